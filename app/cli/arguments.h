@@ -1,0 +1,50 @@
+// Parsing of "--name value", "--flag" and positional arguments against declared options,
+// with the --help text generated from the same declarations.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace handlab::cli {
+
+// A mistake in how the command was called: reported on one line with exit status 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct OptionSpec {
+  std::string name;        // without the leading "--"
+  std::string value_name;  // empty for a flag
+  std::string help;
+  std::string default_value;
+  bool repeatable = false;
+};
+
+class Arguments {
+ public:
+  Arguments(std::vector<OptionSpec> specs, std::vector<std::string> argv, int max_positional = 0);
+
+  bool flag(const std::string& name) const;
+  bool has(const std::string& name) const;
+  std::string text(const std::string& name) const;  // the value or the declared default
+  std::vector<std::string> all(const std::string& name) const;
+  double number(const std::string& name) const;
+  long integer(const std::string& name) const;
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool help_requested() const { return help_; }
+
+ private:
+  const OptionSpec& spec(const std::string& name) const;
+  std::vector<OptionSpec> specs_;
+  std::map<std::string, std::vector<std::string>> values_;
+  std::vector<std::string> positional_;
+  bool help_ = false;
+};
+
+std::string format_options_help(const std::vector<OptionSpec>& specs);
+
+}  // namespace handlab::cli

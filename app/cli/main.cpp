@@ -1,0 +1,60 @@
+// handlab-cli: every handlab job, headless.
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/cli/arguments.h"
+#include "app/cli/command.h"
+#include "handlab/version.h"
+
+namespace {
+
+void print_usage() {
+  std::cout << "Usage: handlab-cli COMMAND [options]\n\n"
+               "handlab runs and analyses user studies of fine virtual manipulation with\n"
+               "tracked hands. Commands:\n\n";
+  for (const auto& c : handlab::cli::all_commands()) {
+    std::string name = "  " + c.name;
+    name.resize(14, ' ');
+    std::cout << name << c.summary << "\n";
+  }
+  std::cout
+      << "\n'handlab-cli COMMAND --help' describes a command. --version prints the version.\n";
+}
+
+// Messages go out on one line, whatever the exception carried (shader logs have newlines).
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    print_usage();
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version" || args[0] == "version") {
+    std::cout << "handlab-cli " << HANDLAB_VERSION << "\n";
+    return 0;
+  }
+  for (const auto& command : handlab::cli::all_commands()) {
+    if (command.name != args[0]) continue;
+    try {
+      return command.run(std::vector<std::string>(args.begin() + 1, args.end()));
+    } catch (const handlab::cli::UsageError& e) {
+      std::cerr << "handlab-cli " << command.name << ": " << one_line(e.what()) << "\n";
+      return 2;
+    } catch (const std::exception& e) {
+      std::cerr << "handlab-cli " << command.name << ": " << one_line(e.what()) << "\n";
+      return 1;
+    }
+  }
+  std::cerr << "handlab-cli: unknown command '" << args[0] << "' (see handlab-cli --help)\n";
+  return 2;
+}

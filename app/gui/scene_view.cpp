@@ -1,0 +1,140 @@
+#include "app/gui/scene_view.h"
+
+#include <memory>
+
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QOpenGLWidget>
+#include <QPainter>
+#include <QVBoxLayout>
+#include <QWheelEvent>
+
+#include "core/render/renderer.h"
+#include "core/render/scene_drawing.h"
+
+namespace handlab::gui {
+
+// Draws the scene with the core renderer; owned by a SceneView, which feeds it the camera.
+class SceneCanvas : public QOpenGLWidget {
+ public:
+  explicit SceneCanvas(SceneView* view) : QOpenGLWidget(view), view_(view) {
+    setAttribute(Qt::WA_TransparentForMouseEvents);  // the SceneView handles input
+  }
+  ~SceneCanvas() override { release(); }
+
+  QString error() const { return error_; }
+
+ protected:
+  void initializeGL() override {
+    QOpenGLContext* gl = context();
+    connect(gl, &QOpenGLContext::aboutToBeDestroyed, this, [this] { release(); });
+    try {
+      renderer_ = std::make_unique<render::Renderer>(
+          [gl](const char* name) -> render::GlProc { return gl->getProcAddress(name); });
+    } catch (const std::exception& e) {
+      error_ = QString::fromUtf8(e.what());
+      qWarning("handlab: 3D view unavailable: %s", e.what());
+    }
+  }
+
+  void paintGL() override {
+    if (!renderer_) return;
+    const qreal ratio = devicePixelRatioF();
+    const task::SceneLayout& layout = view_->layout();
+    renderer_->render(render::draw_task_scene(layout, task::cube_start_pose(layout)),
+                      view_->camera(), int(width() * ratio), int(height() * ratio));
+  }
+
+ private:
+  void release() {
+    if (!renderer_) return;
+    makeCurrent();  // GL objects are deleted with their context current
+    renderer_.reset();
+    doneCurrent();
+  }
+
+  SceneView* view_;
+  std::unique_ptr<render::Renderer> renderer_;
+  QString error_;
+};
+
+bool opengl_available() {
+  static const bool available = [] {
+    QOpenGLContext probe;
+    probe.setFormat(QSurfaceFormat::defaultFormat());
+    return probe.create() && probe.format().version() >= qMakePair(3, 3);
+  }();
+  return available;
+}
+
+SceneView::SceneView(QWidget* parent) : QWidget(parent) {
+  setMinimumSize(320, 240);
+  setFocusPolicy(Qt::StrongFocus);
+  if (opengl_available()) {
+    canvas_ = new SceneCanvas(this);
+    auto* box = new QVBoxLayout(this);
+    box->setContentsMargins(0, 0, 0, 0);
+    box->addWidget(canvas_);
+  }
+}
+
+void SceneView::set_camera(const render::OrbitCamera& camera) {
+  camera_ = camera;
+  emit camera_changed();
+  redraw();
+}
+
+void SceneView::set_layout(const task::SceneLayout& layout) {
+  layout_ = layout;
+  redraw();
+}
+
+QImage SceneView::grab_picture() {
+  return canvas_ ? canvas_->grabFramebuffer() : QImage();
+}
+
+void SceneView::redraw() {
+  if (canvas_)
+    canvas_->update();
+  else
+    update();
+}
+
+void SceneView::paintEvent(QPaintEvent*) {
+  if (canvas_) return;
+  QPainter painter(this);
+  painter.fillRect(rect(), QColor(40, 44, 52));
+  painter.setPen(Qt::white);
+  painter.drawText(rect(), Qt::AlignCenter,
+                   tr("The 3D view needs OpenGL 3.3, which this display lacks."));
+}
+
+void SceneView::mousePressEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton) {
+    dragging_ = true;
+    last_mouse_ = event->position().toPoint();
+  }
+}
+
+void SceneView::mouseMoveEvent(QMouseEvent* event) {
+  if (!dragging_ || !(event->buttons() & Qt::LeftButton)) return;
+  const QPoint now = event->position().toPoint();
+  const QPoint delta = now - last_mouse_;
+  last_mouse_ = now;
+  camera_.orbit(float(delta.x()), float(delta.y()));
+  emit camera_changed();
+  redraw();
+}
+
+void SceneView::mouseReleaseEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton) dragging_ = false;
+}
+
+void SceneView::wheelEvent(QWheelEvent* event) {
+  camera_.zoom(float(event->angleDelta().y()) / 120.0f);
+  emit camera_changed();
+  redraw();
+  event->accept();
+}
+
+}  // namespace handlab::gui

@@ -1,0 +1,54 @@
+// The live 3D view: the core renderer on an OpenGL canvas, with an orbit camera (left drag
+// orbits, wheel zooms). Input is handled here, so the camera works the same whether or not
+// the platform offers OpenGL; without it the view says so instead of drawing.
+#pragma once
+
+#include <QPoint>
+#include <QWidget>
+
+#include "core/render/orbit_camera.h"
+#include "core/task/scene_layout.h"
+
+namespace handlab::gui {
+
+class SceneCanvas;
+
+class SceneView : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit SceneView(QWidget* parent = nullptr);
+
+  const render::OrbitCamera& camera() const { return camera_; }
+  void set_camera(const render::OrbitCamera& camera);
+  void set_layout(const task::SceneLayout& layout);
+  const task::SceneLayout& layout() const { return layout_; }
+  // Null when the platform has no OpenGL 3.3 (e.g. the offscreen platform).
+  SceneCanvas* canvas() const { return canvas_; }
+  // The picture currently shown (empty without OpenGL).
+  QImage grab_picture();
+
+ signals:
+  void camera_changed();
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+
+ private:
+  void redraw();
+
+  render::OrbitCamera camera_;
+  task::SceneLayout layout_;
+  SceneCanvas* canvas_ = nullptr;
+  QPoint last_mouse_;
+  bool dragging_ = false;
+};
+
+// True when an OpenGL 3.3 core context can be created on this platform (checked once).
+bool opengl_available();
+
+}  // namespace handlab::gui

@@ -1,0 +1,13 @@
+# Warnings and sanitizers for every handlab target: call handlab_target_setup(tgt).
+function(handlab_target_setup target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  if(HANDLAB_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR}/generated)
+endfunction()
+
+if(HANDLAB_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,30 @@
+// What one frame draws: meshes with a model transform, a colour and a shading style.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/render/render_mesh.h"
+
+namespace handlab::render {
+
+enum class Shading { kLit, kCheckerFloor, kUnlit };
+
+struct DrawItem {
+  std::shared_ptr<const RenderMesh> mesh;
+  Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+  Eigen::Vector4f color{0.8f, 0.8f, 0.8f, 1.0f};
+  Shading shading = Shading::kLit;
+  // Meshes whose vertices change every frame (deforming skin) are uploaded again each frame;
+  // static ones once, cached by address.
+  bool dynamic = false;
+};
+
+struct DrawList {
+  std::vector<DrawItem> items;
+  Eigen::Vector3f background{0.157f, 0.173f, 0.204f};  // linear RGB of the clear colour
+};
+
+}  // namespace handlab::render

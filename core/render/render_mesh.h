@@ -1,0 +1,24 @@
+// Triangle meshes as the renderer draws them: positions, per-vertex normals, indices.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace handlab::render {
+
+struct RenderMesh {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Eigen::Vector3f> normals;
+  std::vector<std::uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
+};
+
+// An axis-aligned box centred at the origin with the given full extents; flat-shaded faces.
+RenderMesh make_box_mesh(const Eigen::Vector3f& extents);
+// A square in the xz plane centred at the origin, facing +y.
+RenderMesh make_quad_mesh(float size_x, float size_z);
+// A flat square frame (outline) in the xz plane facing +y: outer size and line width.
+RenderMesh make_square_frame_mesh(float outer_size, float line_width);
+
+}  // namespace handlab::render

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package handlab needs to build, test and run.
+# Idempotent and non-interactive: when everything is present it installs nothing.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config clang-format
+  # Qt 6: widgets, OpenGL widgets, charts, SVG, WebSockets (+ test module in qt6-base-dev)
+  qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-charts-dev qt6-svg-dev qt6-websockets-dev
+  qt6-qpa-plugins libgl-dev
+  # offscreen OpenGL rendering
+  libosmesa6-dev
+  # numerics, meshing, storage, distributions
+  libeigen3-dev libtet1.5-dev libsqlite3-dev sqlite3 libboost-math-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # GUI and report checks
+  xvfb xauth poppler-utils
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,63 @@
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "core/mesh/surface_mesh.h"
+#include "core/mesh/tet_mesh.h"
+#include "core/mesh/tetrahedralize.h"
+
+namespace handlab::mesh {
+namespace {
+
+TEST(Icosphere, IsAClosedOrientedSphere) {
+  const SurfaceMesh sphere = make_icosphere(0.02, 2);
+  EXPECT_EQ(sphere.triangles.size(), 320u);
+  const SurfaceTopology t = surface_topology(sphere);
+  EXPECT_TRUE(t.every_edge_shared_by_two);
+  EXPECT_TRUE(t.consistently_oriented);
+  EXPECT_EQ(t.euler_characteristic, 2);
+  EXPECT_GT(enclosed_volume(sphere), 0.0);
+}
+
+TEST(Tetrahedralize, ClosedSurfaceGivesPositiveTetsFillingIt) {
+  const SurfaceMesh sphere = make_icosphere(0.02, 2);
+  const TetMesh mesh = tetrahedralize(sphere);
+  const TetQuality q = tet_quality(mesh);
+  EXPECT_GT(q.tets, 100);
+  EXPECT_GT(q.min_volume, 0.0) << "every tet must have positive volume";
+  // The tets fill exactly the polyhedron the surface encloses (-Y keeps the boundary).
+  EXPECT_NEAR(q.total_volume, enclosed_volume(sphere), 1e-9 * enclosed_volume(sphere) + 1e-15);
+  EXPECT_LE(q.max_radius_edge_ratio, 2.0);
+  EXPECT_GT(q.min_dihedral_deg, 5.0);
+  // The boundary was kept: every surface vertex is a node.
+  EXPECT_GE(mesh.nodes.size(), sphere.vertices.size());
+}
+
+TEST(Tetrahedralize, VolumeBoundRefines) {
+  const SurfaceMesh sphere = make_icosphere(0.02, 1);
+  TetrahedralizeOptions coarse, fine;
+  fine.max_volume = 1e-8;
+  EXPECT_GT(tetrahedralize(sphere, fine).tets.size(),
+            2 * tetrahedralize(sphere, coarse).tets.size());
+}
+
+TEST(Tetrahedralize, OpenSurfaceIsAnErrorNotAnEmptyMesh) {
+  SurfaceMesh open = make_icosphere(0.02, 1);
+  open.triangles.pop_back();
+  EXPECT_THROW(tetrahedralize(open), std::runtime_error);
+}
+
+TEST(TetQuality, RegularTetrahedron) {
+  TetMesh m;
+  m.nodes = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  m.tets = {{0, 1, 2, 3}};
+  if (signed_volume(m.nodes[0], m.nodes[1], m.nodes[2], m.nodes[3]) < 0)
+    std::swap(m.tets[0][2], m.tets[0][3]);
+  const TetQuality q = tet_quality(m);
+  EXPECT_NEAR(q.max_radius_edge_ratio, std::sqrt(6.0) / 4.0, 1e-12);
+  EXPECT_NEAR(q.min_dihedral_deg, std::acos(1.0 / 3.0) * 180.0 / std::numbers::pi, 1e-9);
+  EXPECT_NEAR(q.total_volume, 8.0 / 3.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace handlab::mesh
