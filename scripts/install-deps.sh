@@ -10,7 +10,7 @@ packages=(
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-charts-dev qt6-svg-dev qt6-websockets-dev
   qt6-qpa-plugins libgl-dev
   # offscreen OpenGL rendering
-  libosmesa6-dev
+  libosmesa6-dev zlib1g-dev
   # numerics, meshing, storage, distributions
   libeigen3-dev libtet1.5-dev libsqlite3-dev sqlite3 libboost-math-dev
   # tests and benchmarks
