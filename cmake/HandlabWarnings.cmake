@@ -1,6 +1,10 @@
 # Warnings and sanitizers for every handlab target: call handlab_target_setup(tgt).
 function(handlab_target_setup target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  # GCC 12 reports -Wrestrict on ordinary std::string concatenation at -O3 (GCC bug 105329).
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+    target_compile_options(${target} PRIVATE -Wno-restrict)
+  endif()
   if(HANDLAB_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

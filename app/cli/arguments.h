@@ -17,11 +17,19 @@ class UsageError : public std::runtime_error {
 };
 
 struct OptionSpec {
+  OptionSpec(std::string name_, std::string value_name_, std::string help_,
+             std::string default_value_ = {}, bool repeatable_ = false)
+      : name(std::move(name_)),
+        value_name(std::move(value_name_)),
+        help(std::move(help_)),
+        default_value(std::move(default_value_)),
+        repeatable(repeatable_) {}
+
   std::string name;        // without the leading "--"
   std::string value_name;  // empty for a flag
   std::string help;
-  std::string default_value;
-  bool repeatable = false;
+  std::string default_value;  // what text() returns when the option is absent
+  bool repeatable;
 };
 
 class Arguments {

@@ -5,6 +5,8 @@ namespace handlab::cli {
 
 const std::vector<Command>& all_commands() {
   static const std::vector<Command> commands = {
+      {"analyze", "repeated-measures ANOVA, post hoc, Friedman and Wilcoxon tests (R parity)",
+       run_analyze},
       {"render", "draw the task scene offscreen into a PNG (no display needed)", run_render},
   };
   return commands;

@@ -1,0 +1,42 @@
+// A table in long format read from CSV: a header row, then one observation per row.
+// Cells stay text until a caller asks for a column as numbers, so errors can name the
+// column and the line.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace handlab::analysis {
+
+class DataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class LongTable {
+ public:
+  // RFC 4180 CSV: commas, double-quoted fields with "" escapes, CRLF or LF.
+  static LongTable read_csv(const std::string& path);
+  static LongTable parse_csv(const std::string& text, const std::string& source_name);
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  std::size_t rows() const { return cells_.size(); }
+  // Index of a column; throws DataError naming it and the file when it is missing.
+  std::size_t column(const std::string& name) const;
+  const std::string& cell(std::size_t row, std::size_t column) const { return cells_[row][column]; }
+  // The file line a row came from (1-based, header is line 1).
+  std::size_t line(std::size_t row) const { return lines_[row]; }
+  // A column as finite numbers; throws DataError naming column and line for text, NA,
+  // NaN or infinite values.
+  std::vector<double> numbers(const std::string& name) const;
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+  std::vector<std::string> columns_;
+  std::vector<std::vector<std::string>> cells_;
+  std::vector<std::size_t> lines_;
+};
+
+}  // namespace handlab::analysis

@@ -1,0 +1,193 @@
+#include "analysis/report/study_analysis.h"
+
+#include <cmath>
+#include <map>
+
+#include "analysis/stats/design_matrices.h"
+#include "analysis/stats/p_adjust.h"
+
+namespace handlab::analysis {
+namespace {
+
+// Per-cell descriptives over participants' cell values (their mean when a cell has several
+// rows), counting every participant who has the cell, complete or not.
+std::vector<CellDescriptives> cell_descriptives(const LongTable& table,
+                                                const stats::RmDesignSpec& spec,
+                                                const stats::RmData& data) {
+  std::vector<std::string> factors = spec.within;
+  std::vector<const stats::Factor*> levels;
+  for (const auto& f : data.within) levels.push_back(&f);
+  for (const auto& f : data.between) {
+    factors.push_back(f.name);
+    levels.push_back(&f);
+  }
+  std::vector<std::size_t> cols;
+  for (const auto& f : factors) cols.push_back(table.column(f));
+  const std::size_t subject_col = table.column(spec.subject);
+  const std::vector<double> dv = table.numbers(spec.dv);
+
+  // (cell, subject) -> sum, count, keeping cells in the order of the design.
+  std::map<std::vector<int>, std::map<std::string, std::pair<double, int>>> cells;
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    std::vector<int> key;
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+      const auto& ls = levels[k]->levels;
+      key.push_back(int(std::find(ls.begin(), ls.end(), table.cell(r, cols[k])) - ls.begin()));
+    }
+    std::reverse(key.begin(), key.end());  // the map orders the first factor fastest
+    auto& entry = cells[key][table.cell(r, subject_col)];
+    entry.first += dv[r];
+    entry.second += 1;
+  }
+  std::vector<CellDescriptives> out;
+  for (const auto& [key, subjects] : cells) {
+    CellDescriptives c;
+    for (std::size_t k = 0; k < factors.size(); ++k)
+      c.cell.emplace_back(factors[k], levels[k]->levels[std::size_t(key[key.size() - 1 - k])]);
+    std::vector<double> values;
+    for (const auto& [id, sum_count] : subjects)
+      values.push_back(sum_count.first / sum_count.second);
+    c.d = stats::describe(values);
+    out.push_back(c);
+  }
+  return out;
+}
+
+void run_nonparametric(const LongTable& table, const AnalysisRequest& request,
+                       AnalysisReport* report) {
+  const auto& spec = request.design;
+  std::vector<stats::Factor> factors;
+  for (const auto& name : spec.within) {
+    stats::Factor f{name, {}};
+    const std::size_t col = table.column(name);
+    for (std::size_t r = 0; r < table.rows(); ++r)
+      if (std::find(f.levels.begin(), f.levels.end(), table.cell(r, col)) == f.levels.end())
+        f.levels.push_back(table.cell(r, col));
+    if (f.levels.size() < 2)
+      throw DataError(table.source() + ", column '" + name +
+                      "': a factor needs at least two levels");
+    factors.push_back(f);
+  }
+  // Conditions with the first factor outermost: "Gross Naive", "Gross Ours", "Fine Naive", ...
+  int conditions = 1;
+  for (const auto& f : factors) conditions *= int(f.levels.size());
+  auto condition_of = [&](std::size_t row) {
+    int index = 0;
+    for (std::size_t k = 0; k < factors.size(); ++k) {
+      const auto& ls = factors[k].levels;
+      index = index * int(ls.size()) +
+              int(std::find(ls.begin(), ls.end(), table.cell(row, table.column(factors[k].name))) -
+                  ls.begin());
+    }
+    return index;
+  };
+  auto condition_label = [&](int index) {
+    std::vector<std::string> parts(factors.size());
+    for (std::size_t k = factors.size(); k-- > 0;) {
+      const int n = int(factors[k].levels.size());
+      parts[k] = factors[k].levels[std::size_t(index % n)];
+      index /= n;
+    }
+    std::string label;
+    for (const auto& p : parts) label += (label.empty() ? "" : " ") + p;
+    return label;
+  };
+
+  const std::size_t subject_col = table.column(spec.subject);
+  std::vector<std::string> subjects;
+  std::map<std::string, std::size_t> subject_index;
+  for (std::size_t r = 0; r < table.rows(); ++r)
+    if (subject_index.emplace(table.cell(r, subject_col), subjects.size()).second)
+      subjects.push_back(table.cell(r, subject_col));
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& item : request.nonparametric_items) {
+    const std::vector<double> values = table.numbers(item);
+    Eigen::MatrixXd m = Eigen::MatrixXd::Constant(Eigen::Index(subjects.size()), conditions, nan);
+    for (std::size_t r = 0; r < table.rows(); ++r) {
+      double& cell = m(Eigen::Index(subject_index[table.cell(r, subject_col)]), condition_of(r));
+      if (!std::isnan(cell))
+        throw DataError(table.source() + " line " + std::to_string(table.line(r)) +
+                        ": participant " + table.cell(r, subject_col) +
+                        " has two rows for one condition of '" + item + "'");
+      cell = values[r];
+    }
+    // Friedman on participants with every condition.
+    FriedmanItem fr;
+    fr.dv = item;
+    std::vector<Eigen::Index> complete;
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+      if (m.row(i).array().isNaN().any())
+        fr.dropped_subjects.push_back(subjects[std::size_t(i)]);
+      else
+        complete.push_back(i);
+    }
+    if (complete.size() < 2)
+      throw DataError("'" + item + "': fewer than two participants answered every condition");
+    Eigen::MatrixXd blocks(Eigen::Index(complete.size()), conditions);
+    for (std::size_t i = 0; i < complete.size(); ++i)
+      blocks.row(Eigen::Index(i)) = m.row(complete[i]);
+    fr.result = stats::friedman_test(blocks);
+    if (!fr.dropped_subjects.empty())
+      report->warnings.push_back("'" + item +
+                                 "': Friedman test without participants lacking a condition (" +
+                                 std::to_string(fr.dropped_subjects.size()) + ")");
+    report->friedman.push_back(fr);
+
+    // Wilcoxon for every pair of conditions, on participants with both.
+    std::vector<WilcoxonPair> pairs;
+    std::vector<double> p;
+    for (int a = 0; a < conditions; ++a) {
+      for (int b = a + 1; b < conditions; ++b) {
+        std::vector<double> x, y;
+        for (Eigen::Index i = 0; i < m.rows(); ++i)
+          if (!std::isnan(m(i, a)) && !std::isnan(m(i, b))) {
+            x.push_back(m(i, a));
+            y.push_back(m(i, b));
+          }
+        WilcoxonPair w{item, condition_label(a) + " - " + condition_label(b),
+                       stats::wilcoxon_signed_rank(x, y), 0, 0};
+        p.push_back(w.result.p);
+        pairs.push_back(w);
+      }
+    }
+    const auto bonferroni = stats::p_adjust_bonferroni(p);
+    const auto holm = stats::p_adjust_holm(p);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      pairs[i].p_bonferroni = bonferroni[i];
+      pairs[i].p_holm = holm[i];
+      report->wilcoxon.push_back(pairs[i]);
+    }
+  }
+  report->n_subjects = int(subjects.size());
+}
+
+}  // namespace
+
+AnalysisReport run_analysis(const LongTable& table, const AnalysisRequest& request) {
+  AnalysisReport report;
+  report.request = request;
+  report.source = table.source();
+  if (request.design.within.empty()) throw DataError("name at least one within factor (--within)");
+  if (report.nonparametric()) {
+    run_nonparametric(table, request, &report);
+    return report;
+  }
+  const stats::RmData data = stats::prepare_rm_data(table, request.design);
+  report.n_subjects = int(data.subjects.size());
+  report.dropped_subjects = data.dropped_subjects;
+  report.warnings = data.warnings;
+  report.covariate_means = data.covariate_means;
+  report.anova = stats::rm_anova(data);
+  std::vector<std::string> effects = request.posthoc;
+  if (effects.empty()) {
+    for (const auto& e : stats::within_effects(int(data.within.size())))
+      if (!e.empty()) effects.push_back(data.effect_label(e));
+  }
+  for (const auto& e : effects)
+    report.posthoc.push_back(stats::pairwise_comparisons(data, stats::PosthocSpec::parse(e, data)));
+  report.descriptives = cell_descriptives(table, request.design, data);
+  return report;
+}
+
+}  // namespace handlab::analysis
