@@ -1,9 +1,12 @@
 #include "analysis/data/long_table.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <unordered_map>
 
 namespace handlab::analysis {
 
@@ -18,6 +21,7 @@ LongTable LongTable::read_csv(const std::string& path) {
 LongTable LongTable::parse_csv(const std::string& text, const std::string& source_name) {
   LongTable table;
   table.source_ = source_name;
+  std::vector<std::unordered_map<std::string, int>> interned;
   std::vector<std::string> record;
   std::string field;
   std::size_t line = 1, record_line = 1;
@@ -29,12 +33,19 @@ LongTable LongTable::parse_csv(const std::string& text, const std::string& sourc
     if (!blank) {
       if (table.columns_.empty()) {
         table.columns_ = record;
+        table.columns_data_.resize(record.size());
+        interned.resize(record.size());
       } else {
         if (record.size() != table.columns_.size())
           throw DataError(source_name + " line " + std::to_string(record_line) + ": " +
                           std::to_string(record.size()) + " fields, the header has " +
                           std::to_string(table.columns_.size()));
-        table.cells_.push_back(record);
+        for (std::size_t c = 0; c < record.size(); ++c) {
+          Column& column = table.columns_data_[c];
+          const auto [it, inserted] = interned[c].emplace(record[c], int(column.values.size()));
+          if (inserted) column.values.push_back(record[c]);
+          column.ids.push_back(it->second);
+        }
         table.lines_.push_back(record_line);
       }
     }
@@ -77,7 +88,7 @@ LongTable LongTable::parse_csv(const std::string& text, const std::string& sourc
   for (auto& name : table.columns_) {
     if (name.size() >= 3 && name.compare(0, 3, "\xEF\xBB\xBF") == 0) name.erase(0, 3);  // BOM
   }
-  if (table.cells_.empty()) throw DataError(source_name + ": no data rows after the header");
+  if (table.lines_.empty()) throw DataError(source_name + ": no data rows after the header");
   return table;
 }
 
@@ -89,25 +100,40 @@ std::size_t LongTable::column(const std::string& name) const {
   throw DataError(source_ + ": no column '" + name + "' (columns: " + known + ")");
 }
 
-std::vector<double> LongTable::numbers(const std::string& name) const {
-  const std::size_t col = column(name);
-  std::vector<double> values(rows());
-  for (std::size_t r = 0; r < rows(); ++r) {
-    std::string text = cells_[r][col];
-    while (!text.empty() && text.front() == ' ') text.erase(text.begin());
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    const char* first = text.data();
-    if (!text.empty() && text[0] == '+') ++first;
-    double v = 0.0;
-    const auto [end, error] = std::from_chars(first, text.data() + text.size(), v);
-    if (text.empty() || error != std::errc() || end != text.data() + text.size())
-      throw DataError(source_ + " line " + std::to_string(lines_[r]) + ", column '" + name +
-                      "': '" + cells_[r][col] + "' is not a number");
-    if (!std::isfinite(v))
-      throw DataError(source_ + " line " + std::to_string(lines_[r]) + ", column '" + name +
-                      "': " + cells_[r][col] + " is not a finite number");
-    values[r] = v;
+LongTable::Codes LongTable::factor_codes(const std::string& name) const {
+  const Column& column = columns_data_[this->column(name)];
+  for (std::size_t v = 0; v < column.values.size(); ++v) {
+    if (!column.values[v].empty() && column.values[v] != "NA") continue;
+    const std::size_t r =
+        std::size_t(std::find(column.ids.begin(), column.ids.end(), int(v)) - column.ids.begin());
+    throw DataError(source_ + " line " + std::to_string(lines_[r]) + ", column '" + name +
+                    "': missing value");
   }
+  return {column.values, column.ids};
+}
+
+std::vector<double> LongTable::numbers(const std::string& name) const {
+  const Column& column = columns_data_[this->column(name)];
+  std::vector<double> parsed(column.values.size());
+  for (std::size_t v = 0; v < column.values.size(); ++v) {
+    std::string_view text = column.values[v];
+    while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+    while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+    double x = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), x);
+    const bool ok = !text.empty() && error == std::errc() && end == text.data() + text.size();
+    if (!ok || !std::isfinite(x)) {
+      const std::size_t r =
+          std::size_t(std::find(column.ids.begin(), column.ids.end(), int(v)) - column.ids.begin());
+      throw DataError(source_ + " line " + std::to_string(lines_[r]) + ", column '" + name + "': " +
+                      (ok ? column.values[v] + " is not a finite number"
+                          : "'" + column.values[v] + "' is not a number"));
+    }
+    parsed[v] = x;
+  }
+  std::vector<double> values(rows());
+  for (std::size_t r = 0; r < rows(); ++r) values[r] = parsed[std::size_t(column.ids[r])];
   return values;
 }
 

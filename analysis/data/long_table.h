@@ -21,21 +21,36 @@ class LongTable {
   static LongTable parse_csv(const std::string& text, const std::string& source_name);
 
   const std::vector<std::string>& columns() const { return columns_; }
-  std::size_t rows() const { return cells_.size(); }
+  std::size_t rows() const { return lines_.size(); }
   // Index of a column; throws DataError naming it and the file when it is missing.
   std::size_t column(const std::string& name) const;
-  const std::string& cell(std::size_t row, std::size_t column) const { return cells_[row][column]; }
+  const std::string& cell(std::size_t row, std::size_t column) const {
+    return columns_data_[column].values[std::size_t(columns_data_[column].ids[row])];
+  }
   // The file line a row came from (1-based, header is line 1).
   std::size_t line(std::size_t row) const { return lines_[row]; }
   // A column as finite numbers; throws DataError naming column and line for text, NA,
   // NaN or infinite values.
   std::vector<double> numbers(const std::string& name) const;
+  // A column as a factor: each row's level index, levels in order of first appearance.
+  // Empty cells and "NA" are rejected with the column and line.
+  struct Codes {
+    std::vector<std::string> levels;
+    std::vector<int> codes;
+  };
+  Codes factor_codes(const std::string& name) const;
   const std::string& source() const { return source_; }
 
  private:
+  // Each column's distinct values in order of first appearance and each row's index into
+  // them: interned once when the file is read, so factors need no string work later.
+  struct Column {
+    std::vector<std::string> values;
+    std::vector<int> ids;
+  };
   std::string source_;
   std::vector<std::string> columns_;
-  std::vector<std::vector<std::string>> cells_;
+  std::vector<Column> columns_data_;
   std::vector<std::size_t> lines_;
 };
 

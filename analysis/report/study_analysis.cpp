@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
 
 #include "analysis/stats/design_matrices.h"
 #include "analysis/stats/p_adjust.h"
@@ -21,34 +22,40 @@ std::vector<CellDescriptives> cell_descriptives(const LongTable& table,
     factors.push_back(f.name);
     levels.push_back(&f);
   }
-  std::vector<std::size_t> cols;
-  for (const auto& f : factors) cols.push_back(table.column(f));
-  const std::size_t subject_col = table.column(spec.subject);
+  std::vector<LongTable::Codes> codes;
+  for (const auto& f : factors) codes.push_back(table.factor_codes(f));
+  const LongTable::Codes subjects = table.factor_codes(spec.subject);
   const std::vector<double> dv = table.numbers(spec.dv);
 
-  // (cell, subject) -> sum, count, keeping cells in the order of the design.
-  std::map<std::vector<int>, std::map<std::string, std::pair<double, int>>> cells;
+  std::size_t cells = 1;
+  for (const auto* f : levels) cells *= f->levels.size();
+  const std::size_t n = subjects.levels.size();
+  std::vector<double> sum(cells * n, 0.0);
+  std::vector<int> count(cells * n, 0);
   for (std::size_t r = 0; r < table.rows(); ++r) {
-    std::vector<int> key;
-    for (std::size_t k = 0; k < cols.size(); ++k) {
-      const auto& ls = levels[k]->levels;
-      key.push_back(int(std::find(ls.begin(), ls.end(), table.cell(r, cols[k])) - ls.begin()));
+    std::size_t cell = 0, stride = 1;
+    for (std::size_t k = 0; k < codes.size(); ++k) {
+      cell += stride * std::size_t(codes[k].codes[r]);
+      stride *= levels[k]->levels.size();
     }
-    std::reverse(key.begin(), key.end());  // the map orders the first factor fastest
-    auto& entry = cells[key][table.cell(r, subject_col)];
-    entry.first += dv[r];
-    entry.second += 1;
+    sum[cell * n + std::size_t(subjects.codes[r])] += dv[r];
+    count[cell * n + std::size_t(subjects.codes[r])] += 1;
   }
   std::vector<CellDescriptives> out;
-  for (const auto& [key, subjects] : cells) {
+  std::vector<double> values;
+  for (std::size_t cell = 0; cell < cells; ++cell) {
+    values.clear();
+    for (std::size_t s = 0; s < n; ++s)
+      if (count[cell * n + s] > 0) values.push_back(sum[cell * n + s] / count[cell * n + s]);
+    if (values.empty()) continue;
     CellDescriptives c;
-    for (std::size_t k = 0; k < factors.size(); ++k)
-      c.cell.emplace_back(factors[k], levels[k]->levels[std::size_t(key[key.size() - 1 - k])]);
-    std::vector<double> values;
-    for (const auto& [id, sum_count] : subjects)
-      values.push_back(sum_count.first / sum_count.second);
+    std::size_t rest = cell;
+    for (std::size_t k = 0; k < factors.size(); ++k) {
+      c.cell.emplace_back(factors[k], levels[k]->levels[rest % levels[k]->levels.size()]);
+      rest /= levels[k]->levels.size();
+    }
     c.d = stats::describe(values);
-    out.push_back(c);
+    out.push_back(std::move(c));
   }
   return out;
 }

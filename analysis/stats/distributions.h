@@ -9,5 +9,6 @@ double t_upper_tail(double t, double df);               // P(T > t)
 double t_two_sided(double t, double df);                // P(|T| > |t|)
 double chi_squared_upper_tail(double x, double df);     // P(X > x)
 double normal_upper_tail(double z);                     // P(Z > z)
+double t_upper_quantile(double p, double df);           // t with P(T > t) = p
 
 }  // namespace handlab::stats

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -12,8 +13,6 @@
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/p_adjust.h"
 #include "analysis/stats/ptukey.h"
-
-#include <boost/math/distributions/students_t.hpp>
 
 namespace handlab::stats {
 namespace {
@@ -70,9 +69,8 @@ PosthocResult pairwise_comparisons(const RmData& data, const PosthocSpec& spec) 
   const BetweenModel model = between_model(data);
   const double df = model.error_df;
   const double intercept_var = model.xtx_inverse(0, 0);
-  // Intercept of the participant-level regression of scores on X: with sum-to-zero between
-  // contrasts and centred covariates it is the equally weighted marginal mean.
-  const Eigen::RowVectorXd intercept_row = (model.xtx_inverse * model.x.transpose()).row(0);
+  // The intercept of the participant-level regression of scores on X: with sum-to-zero
+  // between contrasts and centred covariates it is the equally weighted marginal mean.
 
   std::vector<int> spec_f, by_f;
   for (const auto& f : spec.factors) spec_f.push_back(within_index(data, f));
@@ -122,30 +120,35 @@ PosthocResult pairwise_comparisons(const RmData& data, const PosthocSpec& spec) 
           data.within[std::size_t(factors[i])].levels[std::size_t(level_of(combo, factors, i))]);
     return pairs;
   };
-  // One t test of a weight vector over cells.
-  auto test = [&](const Eigen::VectorXd& weights, double* estimate, double* se) {
-    const Eigen::VectorXd scores = data.y * weights;
-    const Eigen::VectorXd beta = model.xtx_inverse * (model.x.transpose() * scores);
-    const Eigen::VectorXd residual = scores - model.x * beta;
-    *estimate = intercept_row * scores;
-    *se = std::sqrt(residual.squaredNorm() / df * intercept_var);
+  // Participants' marginal means of every compared cell, once; each estimate and contrast
+  // below is a combination of its columns.
+  const Eigen::MatrixXd marginal = data.y * averaging;
+  const Eigen::MatrixXd projector = model.xtx_inverse * model.x.transpose();
+  auto test = [&](const Eigen::VectorXd& scores, double* estimate, double* se) {
+    const Eigen::VectorXd beta = projector * scores;
+    *estimate = beta(0);
+    *se = std::sqrt((scores - model.x * beta).squaredNorm() / df * intercept_var);
   };
 
   PosthocResult result;
-  const double t_crit =
-      boost::math::quantile(boost::math::complement(boost::math::students_t(df), 0.025));
+  const double t_crit = t_upper_quantile(0.025, df);
   for (int g = 0; g < by_cells; ++g) {
     for (int s = 0; s < spec_cells; ++s) {
       MarginalMean m;
       m.at = at(s, spec_f);
       for (auto& p : at(g, by_f)) m.at.push_back(p);
-      test(averaging.col(s + spec_cells * g), &m.estimate, &m.se);
+      test(marginal.col(s + spec_cells * g), &m.estimate, &m.se);
       m.df = df;
       m.lower_cl = m.estimate - t_crit * m.se;
       m.upper_cl = m.estimate + t_crit * m.se;
       result.means.push_back(m);
     }
   }
+  // Tukey's test of spec_cells means: every by-group has the same means and df, so one
+  // family serves them all.
+  std::optional<TukeyFamily> family;
+  if (spec_cells > 2) family.emplace(spec_cells, df);
+  auto tukey = [&](double q) { return family->upper(q); };
   for (int g = 0; g < by_cells; ++g) {
     std::vector<double> group_p;
     const std::size_t first = result.contrasts.size();
@@ -155,15 +158,14 @@ PosthocResult pairwise_comparisons(const RmData& data, const PosthocSpec& spec) 
         c.effect = spec.effect();
         c.contrast = label(a, spec_f) + " - " + label(b, spec_f);
         c.by = at(g, by_f);
-        test(averaging.col(a + spec_cells * g) - averaging.col(b + spec_cells * g), &c.estimate,
+        test(marginal.col(a + spec_cells * g) - marginal.col(b + spec_cells * g), &c.estimate,
              &c.se);
         c.df = df;
         c.t = c.estimate / c.se;
         c.p_none = t_two_sided(c.t, df);
         // Tukey's HSD over the spec_cells means of this group: the studentized range of
         // |t|·sqrt(2); with two means it equals the unadjusted p.
-        c.p_tukey = spec_cells > 2 ? ptukey_upper(std::abs(c.t) * std::sqrt(2.0), spec_cells, df)
-                                   : c.p_none;
+        c.p_tukey = spec_cells > 2 ? tukey(std::abs(c.t) * std::sqrt(2.0)) : c.p_none;
         group_p.push_back(c.p_none);
         result.contrasts.push_back(c);
       }

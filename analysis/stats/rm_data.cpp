@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <set>
 
 namespace handlab::stats {
@@ -14,23 +13,13 @@ std::string where(const analysis::LongTable& t, std::size_t row) {
   return t.source() + " line " + std::to_string(t.line(row));
 }
 
-Factor collect_levels(const analysis::LongTable& table, const std::string& name) {
-  const std::size_t col = table.column(name);
-  Factor f{name, {}};
-  for (std::size_t r = 0; r < table.rows(); ++r) {
-    const std::string& v = table.cell(r, col);
-    if (v.empty() || v == "NA")
-      throw DataError(where(table, r) + ", column '" + name + "': missing value");
-    if (std::find(f.levels.begin(), f.levels.end(), v) == f.levels.end()) f.levels.push_back(v);
-  }
-  if (f.levels.size() < 2)
+Factor as_factor(const std::string& name, const analysis::LongTable::Codes& codes,
+                 const analysis::LongTable& table) {
+  if (codes.levels.size() < 2)
     throw DataError(table.source() + ", column '" + name +
-                    "': a factor needs at least two levels, found only '" + f.levels.front() + "'");
-  return f;
-}
-
-int level_index(const Factor& f, const std::string& value) {
-  return int(std::find(f.levels.begin(), f.levels.end(), value) - f.levels.begin());
+                    "': a factor needs at least two levels, found only '" + codes.levels.front() +
+                    "'");
+  return {name, codes.levels};
 }
 
 }  // namespace
@@ -60,83 +49,69 @@ RmData prepare_rm_data(const analysis::LongTable& table, const RmDesignSpec& spe
     for (const auto& name : list)
       if (!seen.insert(name).second)
         throw DataError("column '" + name + "' is named twice in the design");
-
-  RmData data;
-  for (const auto& name : spec.within) data.within.push_back(collect_levels(table, name));
-  for (const auto& name : spec.between) data.between.push_back(collect_levels(table, name));
-  data.covariates = spec.covariates;
-  data.observed = spec.observed;
   for (const auto& name : spec.observed)
     if (std::find(spec.between.begin(), spec.between.end(), name) == spec.between.end() &&
         std::find(spec.covariates.begin(), spec.covariates.end(), name) == spec.covariates.end())
       throw DataError("observed variable '" + name + "' must be a between factor or a covariate");
 
-  const std::size_t subject_col = table.column(spec.subject);
+  RmData data;
+  data.covariates = spec.covariates;
+  data.observed = spec.observed;
+  const auto subjects = table.factor_codes(spec.subject);
+  std::vector<analysis::LongTable::Codes> within_codes, between_codes;
+  for (const auto& name : spec.within) {
+    within_codes.push_back(table.factor_codes(name));
+    data.within.push_back(as_factor(name, within_codes.back(), table));
+  }
+  for (const auto& name : spec.between) {
+    between_codes.push_back(table.factor_codes(name));
+    data.between.push_back(as_factor(name, between_codes.back(), table));
+  }
   const std::vector<double> dv = table.numbers(spec.dv);
   std::vector<std::vector<double>> covariate_columns;
   for (const auto& name : spec.covariates) covariate_columns.push_back(table.numbers(name));
-  std::vector<std::size_t> within_cols, between_cols;
-  for (const auto& name : spec.within) within_cols.push_back(table.column(name));
-  for (const auto& name : spec.between) between_cols.push_back(table.column(name));
 
   int cells = 1;
   for (const auto& f : data.within) cells *= int(f.levels.size());
+  const std::size_t n_all = subjects.levels.size();
+  std::vector<double> sum(n_all * std::size_t(cells), 0.0);
+  std::vector<int> count(n_all * std::size_t(cells), 0);
+  std::vector<std::size_t> first_row(n_all, table.rows());
 
-  struct Subject {
-    std::string id;
-    std::size_t first_row;
-    std::vector<double> sum;
-    std::vector<int> count;
-    std::vector<int> between;
-    std::vector<double> covariates;
-  };
-  std::vector<Subject> subjects;
-  std::map<std::string, std::size_t> index;
   for (std::size_t r = 0; r < table.rows(); ++r) {
-    const std::string& id = table.cell(r, subject_col);
-    if (id.empty() || id == "NA")
-      throw DataError(where(table, r) + ", column '" + spec.subject + "': missing participant id");
-    auto [it, inserted] = index.emplace(id, subjects.size());
-    if (inserted) {
-      Subject s{id,
-                r,
-                std::vector<double>(std::size_t(cells), 0.0),
-                std::vector<int>(std::size_t(cells), 0),
-                {},
-                {}};
-      for (std::size_t b = 0; b < between_cols.size(); ++b)
-        s.between.push_back(level_index(data.between[b], table.cell(r, between_cols[b])));
-      for (const auto& column : covariate_columns) s.covariates.push_back(column[r]);
-      subjects.push_back(std::move(s));
+    const auto s = std::size_t(subjects.codes[r]);
+    if (first_row[s] == table.rows()) {
+      first_row[s] = r;
+    } else {
+      const std::size_t f = first_row[s];
+      for (std::size_t b = 0; b < between_codes.size(); ++b)
+        if (between_codes[b].codes[r] != between_codes[b].codes[f])
+          throw DataError(where(table, r) + ", column '" + spec.between[b] + "': participant " +
+                          subjects.levels[s] + " has more than one value of a between factor");
+      for (std::size_t k = 0; k < covariate_columns.size(); ++k)
+        if (covariate_columns[k][r] != covariate_columns[k][f])
+          throw DataError(where(table, r) + ", column '" + spec.covariates[k] + "': participant " +
+                          subjects.levels[s] + " has more than one value of a covariate");
     }
-    Subject& s = subjects[it->second];
-    for (std::size_t b = 0; b < between_cols.size(); ++b)
-      if (level_index(data.between[b], table.cell(r, between_cols[b])) != s.between[b])
-        throw DataError(where(table, r) + ", column '" + spec.between[b] + "': participant " + id +
-                        " has more than one value of a between factor");
-    for (std::size_t k = 0; k < covariate_columns.size(); ++k)
-      if (covariate_columns[k][r] != s.covariates[k])
-        throw DataError(where(table, r) + ", column '" + spec.covariates[k] + "': participant " +
-                        id + " has more than one value of a covariate");
     int cell = 0, stride = 1;
-    for (std::size_t f = 0; f < within_cols.size(); ++f) {
-      cell += stride * level_index(data.within[f], table.cell(r, within_cols[f]));
+    for (std::size_t f = 0; f < within_codes.size(); ++f) {
+      cell += stride * within_codes[f].codes[r];
       stride *= int(data.within[f].levels.size());
     }
-    s.sum[std::size_t(cell)] += dv[r];
-    s.count[std::size_t(cell)] += 1;
+    sum[s * std::size_t(cells) + std::size_t(cell)] += dv[r];
+    count[s * std::size_t(cells) + std::size_t(cell)] += 1;
   }
 
   bool averaged = false;
-  std::vector<const Subject*> kept;
-  for (const Subject& s : subjects) {
-    const bool complete = std::all_of(s.count.begin(), s.count.end(), [](int n) { return n > 0; });
-    if (!complete) {
-      data.dropped_subjects.push_back(s.id);
+  std::vector<std::size_t> kept;
+  for (std::size_t s = 0; s < n_all; ++s) {
+    const int* c = count.data() + s * std::size_t(cells);
+    if (std::any_of(c, c + cells, [](int n) { return n == 0; })) {
+      data.dropped_subjects.push_back(subjects.levels[s]);
       continue;
     }
-    averaged |= std::any_of(s.count.begin(), s.count.end(), [](int n) { return n > 1; });
-    kept.push_back(&s);
+    averaged |= std::any_of(c, c + cells, [](int n) { return n > 1; });
+    kept.push_back(s);
   }
   if (!data.dropped_subjects.empty()) {
     std::string ids;
@@ -150,17 +125,21 @@ RmData prepare_rm_data(const analysis::LongTable& table, const RmDesignSpec& spe
   if (kept.size() < 2)
     throw DataError(table.source() + ": fewer than two participants have every within cell");
 
-  const std::size_t n = kept.size();
-  data.y.resize(Eigen::Index(n), cells);
-  data.covariate_values.resize(Eigen::Index(n), Eigen::Index(spec.covariates.size()));
-  for (std::size_t i = 0; i < n; ++i) {
-    const Subject& s = *kept[i];
-    data.subjects.push_back(s.id);
-    data.between_levels.push_back(s.between);
+  const auto n = Eigen::Index(kept.size());
+  data.y.resize(n, cells);
+  data.covariate_values.resize(n, Eigen::Index(spec.covariates.size()));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::size_t s = kept[std::size_t(i)];
+    const std::size_t f = first_row[s];
+    data.subjects.push_back(subjects.levels[s]);
+    std::vector<int> between_levels;
+    for (const auto& codes : between_codes) between_levels.push_back(codes.codes[f]);
+    data.between_levels.push_back(std::move(between_levels));
     for (int c = 0; c < cells; ++c)
-      data.y(Eigen::Index(i), c) = s.sum[std::size_t(c)] / s.count[std::size_t(c)];
-    for (std::size_t k = 0; k < s.covariates.size(); ++k)
-      data.covariate_values(Eigen::Index(i), Eigen::Index(k)) = s.covariates[k];
+      data.y(i, c) = sum[s * std::size_t(cells) + std::size_t(c)] /
+                     count[s * std::size_t(cells) + std::size_t(c)];
+    for (std::size_t k = 0; k < covariate_columns.size(); ++k)
+      data.covariate_values(i, Eigen::Index(k)) = covariate_columns[k][f];
   }
   // Covariates are centred on the mean over the participants analysed, as afex expects.
   for (Eigen::Index k = 0; k < data.covariate_values.cols(); ++k) {

@@ -247,6 +247,19 @@ TEST_P(StudyOracle, CovariateAndBetweenSubjectAnalyses) {
     const auto anova = stats::rm_anova(data);
     expect_effects(anova, analysis["effects"], name_ + " " + key);
     expect_afex_tables(anova, analysis["afex_tables"], name_ + " " + key);
+    // Generalised eta squared with the covariates and between factors declared observed.
+    if (const JsonValue* observed = analysis.find("ges_with_observed")) {
+      const auto with_observed = stats::rm_anova(prepare(
+          *times_, "participant", "time", strings(analysis["within"]), strings(analysis["between"]),
+          strings(analysis["covariate"]), strings((*observed)["observed"])));
+      const JsonValue& table = (*observed)["table"];
+      ASSERT_EQ(table.size(), with_observed.effects.size());
+      for (std::size_t i = 0; i < table.size(); ++i) {
+        EXPECT_EQ(with_observed.effects[i].effect, table[i]["effect"].as_string());
+        expect_r(with_observed.effects[i].ges, table[i]["ges"],
+                 name_ + " " + key + " ges observed");
+      }
+    }
     ++checked;
   }
   EXPECT_EQ(checked, 8);

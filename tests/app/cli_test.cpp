@@ -1,4 +1,5 @@
 // handlab-cli as a user calls it: exit status, one-line errors, the files it writes.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -60,6 +61,78 @@ TEST(Cli, RenderWritesThePicture) {
   ASSERT_TRUE(handlab::render::read_png_size(path, &w, &h));
   EXPECT_EQ(w, 320);
   EXPECT_EQ(h, 200);
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+  return path;
+}
+
+const char* kGood =
+    "id,cond,block,y\n"
+    "s1,a,1,1.5\ns1,b,1,2.5\ns1,a,2,1.7\ns1,b,2,2.9\n"
+    "s2,a,1,1.1\ns2,b,1,2.0\ns2,a,2,1.2\ns2,b,2,2.2\n"
+    "s3,a,1,0.9\ns3,b,1,2.2\ns3,a,2,1.0\ns3,b,2,2.4\n";
+
+TEST(CliAnalyze, ReportsAndWritesJson) {
+  const std::string csv = write_temp("good.csv", kGood);
+  const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";
+  const Result r =
+      cli("analyze --csv " + csv + " --subject id --dv y --within cond,block --json " + json);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("cond "), std::string::npos);
+  EXPECT_NE(r.out.find("F(1, 2) = "), std::string::npos) << r.out;
+  std::FILE* f = std::fopen(json.c_str(), "rb");
+  ASSERT_NE(f, nullptr);
+  std::string text(1 << 16, '\0');
+  text.resize(std::fread(text.data(), 1, text.size(), f));
+  std::fclose(f);
+  for (const char* key : {"\"design\"", "\"n_subjects\": 3", "\"dropped_subjects\"", "\"anova\"",
+                          "\"effect\": \"cond:block\"", "\"mauchly_W\"", "\"p_gg\"", "\"posthoc\"",
+                          "\"contrast\": \"a - b\"", "\"p_tukey\"", "\"descriptives\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+}
+
+TEST(CliAnalyze, BadInputGivesOneClearLine) {
+  struct Case {
+    const char* name;
+    std::string csv;
+    const char* args;
+    const char* expect;  // what the message must mention
+  };
+  const std::vector<Case> cases = {
+      {"missing_column", kGood, "--subject id --dv time --within cond", "'time'"},
+      {"non_numeric", "id,cond,y\ns1,a,1\ns1,b,2\ns2,a,x7\ns2,b,3\n",
+       "--subject id --dv y --within cond", "line 4, column 'y'"},
+      {"one_level", "id,cond,y\ns1,a,1\ns2,a,2\n", "--subject id --dv y --within cond", "'cond'"},
+      {"nan_value", "id,cond,y\ns1,a,1\ns1,b,NaN\ns2,a,1\ns2,b,3\n",
+       "--subject id --dv y --within cond", "line 3, column 'y'"},
+      {"inf_value", "id,cond,y\ns1,a,1\ns1,b,2\ns2,a,inf\ns2,b,3\n",
+       "--subject id --dv y --within cond", "line 4, column 'y'"},
+      {"na_value", "id,cond,y\ns1,a,1\ns1,b,NA\ns2,a,1\ns2,b,3\n",
+       "--subject id --dv y --within cond", "line 3, column 'y'"},
+      {"empty", "", "--subject id --dv y --within cond", "empty"},
+      {"header_only", "id,cond,y\n", "--subject id --dv y --within cond", "no data rows"},
+      {"ragged", "id,cond,y\ns1,a,1\ns1,b\n", "--subject id --dv y --within cond", "line 3"},
+      {"nonparametric_text", "id,cond,q\ns1,a,3\ns1,b,good\ns2,a,1\ns2,b,2\n",
+       "--subject id --within cond --nonparametric q", "line 3, column 'q'"},
+  };
+  for (const Case& c : cases) {
+    const std::string csv = write_temp(std::string(c.name) + ".csv", c.csv);
+    const Result r = cli("analyze --csv " + csv + " " + c.args);
+    EXPECT_EQ(r.status, 1) << c.name << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << c.name << ": " << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.name << ": " << r.out;
+  }
+  const Result missing = cli("analyze --csv /no/such/file.csv --subject id --dv y --within cond");
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.out.find("/no/such/file.csv"), std::string::npos);
+  const Result usage = cli("analyze --csv x.csv --dv y --within cond");
+  EXPECT_EQ(usage.status, 2);
+  EXPECT_NE(usage.out.find("--subject"), std::string::npos);
 }
 
 }  // namespace
