@@ -7,6 +7,8 @@ const std::vector<Command>& all_commands() {
   static const std::vector<Command> commands = {
       {"analyze", "repeated-measures ANOVA, post hoc, Friedman and Wilcoxon tests (R parity)",
        run_analyze},
+      {"hand", "build the simulated hand (skin, flesh) or the tracked skeleton of a given size",
+       run_hand},
       {"render", "draw the task scene offscreen into a PNG (no display needed)", run_render},
   };
   return commands;

@@ -1,6 +1,9 @@
 #include "core/render/render_mesh.h"
 
 #include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
 
 namespace handlab::render {
 namespace {
@@ -75,6 +78,49 @@ RenderMesh make_square_frame_mesh(float outer_size, float line_width) {
            {Eigen::Vector3f(i, 0, i), Eigen::Vector3f(o, 0, i), Eigen::Vector3f(o, 0, -i),
             Eigen::Vector3f(i, 0, -i)},
            up);
+  return mesh;
+}
+
+RenderMesh make_capsule_mesh(float radius, float length, int segments) {
+  RenderMesh mesh;
+  const int rings = segments / 2;  // per hemisphere
+  // Rows of vertices from the bottom pole to the top pole; the equator row is doubled so
+  // the cylinder part stretches between the hemispheres.
+  for (int half = 0; half < 2; ++half) {
+    for (int i = 0; i <= rings; ++i) {
+      const float phi =
+          float(M_PI) * 0.5f * float(half == 0 ? i : rings + i) / float(rings) - float(M_PI) * 0.5f;
+      const float y = std::sin(phi), r = std::cos(phi);
+      for (int j = 0; j <= segments; ++j) {
+        const float theta = 2.0f * float(M_PI) * float(j) / float(segments);
+        const Eigen::Vector3f n(r * std::cos(theta), y, r * std::sin(theta));
+        mesh.positions.push_back(radius * n + Eigen::Vector3f(0, half == 0 ? 0.0f : length, 0));
+        mesh.normals.push_back(n);
+      }
+    }
+  }
+  const int row = segments + 1, rows = 2 * (rings + 1);
+  for (int i = 0; i + 1 < rows; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const auto a = std::uint32_t(i * row + j), b = a + 1, c = a + std::uint32_t(row), d = c + 1;
+      for (std::uint32_t v : {a, c, b, b, c, d}) mesh.indices.push_back(v);
+    }
+  return mesh;
+}
+
+RenderMesh make_smooth_mesh(const std::vector<Eigen::Vector3f>& positions,
+                            const std::vector<std::array<int, 3>>& triangles) {
+  RenderMesh mesh;
+  mesh.positions = positions;
+  mesh.normals.assign(positions.size(), Eigen::Vector3f::Zero());
+  for (const auto& t : triangles) {
+    const Eigen::Vector3f n =
+        (positions[std::size_t(t[1])] - positions[std::size_t(t[0])])
+            .cross(positions[std::size_t(t[2])] - positions[std::size_t(t[0])]);
+    for (int k : t) mesh.normals[std::size_t(k)] += n;
+    for (int k : t) mesh.indices.push_back(std::uint32_t(k));
+  }
+  for (auto& n : mesh.normals) n.normalize();
   return mesh;
 }
 

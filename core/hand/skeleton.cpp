@@ -1,0 +1,133 @@
+#include "core/hand/skeleton.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace handlab::hand {
+
+namespace {
+template <typename T>
+int index_of(const std::vector<T>& items, const std::string& name) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == name) return int(i);
+  return -1;
+}
+}  // namespace
+
+int Skeleton::bone_index(const std::string& name) const {
+  return index_of(bones, name);
+}
+int Skeleton::marker_index(const std::string& name) const {
+  return index_of(markers, name);
+}
+int Skeleton::dof_index(const std::string& name) const {
+  return index_of(dofs, name);
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& axis, double angle) {
+  return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+}
+
+HandPose HandPose::rest(const Skeleton& skeleton) {
+  HandPose pose;
+  pose.angles = Eigen::VectorXd::Zero(Eigen::Index(skeleton.dofs.size()));
+  return pose;
+}
+
+void HandPose::apply(const Eigen::VectorXd& delta) {
+  root_position += delta.segment<3>(0);
+  const Eigen::Vector3d phi = delta.segment<3>(3);
+  const double angle = phi.norm();
+  if (angle > 0) root_rotation = axis_rotation(phi / angle, angle) * root_rotation;
+  // Re-orthonormalise so that many small steps do not drift off SO(3).
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(root_rotation,
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
+  root_rotation = svd.matrixU() * svd.matrixV().transpose();
+  angles += delta.tail(delta.size() - 6);
+}
+
+void HandPose::clamp_to_limits(const Skeleton& skeleton) {
+  for (std::size_t k = 0; k < skeleton.dofs.size(); ++k)
+    angles(Eigen::Index(k)) =
+        std::clamp(angles(Eigen::Index(k)), skeleton.dofs[k].lower, skeleton.dofs[k].upper);
+}
+
+BoneFrames forward_kinematics(const Skeleton& skeleton, const HandPose& pose) {
+  BoneFrames f;
+  const std::size_t n = skeleton.bones.size();
+  f.rotation.resize(n);
+  f.origin.resize(n);
+  f.dof_axis.resize(skeleton.dofs.size());
+  f.dof_centre.resize(skeleton.dofs.size());
+  for (std::size_t b = 0; b < n; ++b) {
+    const Bone& bone = skeleton.bones[b];
+    const Eigen::Matrix3d parent_r =
+        bone.parent < 0 ? pose.root_rotation : f.rotation[std::size_t(bone.parent)];
+    const Eigen::Vector3d parent_o =
+        bone.parent < 0 ? pose.root_position : f.origin[std::size_t(bone.parent)];
+    Eigen::Matrix3d r = parent_r * bone.rest;
+    const Eigen::Vector3d origin = parent_o + parent_r * bone.offset;
+    for (int k = bone.first_dof; k < bone.first_dof + bone.dof_count; ++k) {
+      const Dof& dof = skeleton.dofs[std::size_t(k)];
+      f.dof_axis[std::size_t(k)] = r * dof.axis;
+      f.dof_centre[std::size_t(k)] = origin;
+      r = r * axis_rotation(dof.axis, pose.angles(k));
+    }
+    f.rotation[b] = r;
+    f.origin[b] = origin;
+  }
+  return f;
+}
+
+Eigen::Vector3d bone_point(const BoneFrames& frames, int bone, const Eigen::Vector3d& local) {
+  return frames.origin[std::size_t(bone)] + frames.rotation[std::size_t(bone)] * local;
+}
+
+Eigen::Vector3d marker_position(const Skeleton& skeleton, const BoneFrames& frames, int marker) {
+  const Marker& m = skeleton.markers[std::size_t(marker)];
+  return bone_point(frames, m.bone, m.local);
+}
+
+bool in_subtree(const Skeleton& skeleton, int bone, int ancestor) {
+  for (int b = bone; b >= 0; b = skeleton.bones[std::size_t(b)].parent)
+    if (b == ancestor) return true;
+  return false;
+}
+
+Eigen::Matrix<double, 3, Eigen::Dynamic> point_jacobian(const Skeleton& skeleton,
+                                                        const BoneFrames& frames,
+                                                        const HandPose& pose, int bone,
+                                                        const Eigen::Vector3d& world) {
+  Eigen::Matrix<double, 3, Eigen::Dynamic> j =
+      Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, skeleton.parameter_count());
+  j.leftCols<3>().setIdentity();
+  j.middleCols<3>(3) = -skew(world - pose.root_position);  // e_k x r = -[r]x e_k
+  for (int b = bone; b >= 0; b = skeleton.bones[std::size_t(b)].parent) {
+    const Bone& chain = skeleton.bones[std::size_t(b)];
+    for (int k = chain.first_dof; k < chain.first_dof + chain.dof_count; ++k)
+      j.col(6 + k) =
+          frames.dof_axis[std::size_t(k)].cross(world - frames.dof_centre[std::size_t(k)]);
+  }
+  return j;
+}
+
+Eigen::Matrix<double, 3, Eigen::Dynamic> rotation_jacobian(const Skeleton& skeleton,
+                                                           const BoneFrames& frames, int bone) {
+  Eigen::Matrix<double, 3, Eigen::Dynamic> j =
+      Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, skeleton.parameter_count());
+  j.middleCols<3>(3).setIdentity();
+  for (int b = bone; b >= 0; b = skeleton.bones[std::size_t(b)].parent) {
+    const Bone& chain = skeleton.bones[std::size_t(b)];
+    for (int k = chain.first_dof; k < chain.first_dof + chain.dof_count; ++k)
+      j.col(6 + k) = frames.dof_axis[std::size_t(k)];
+  }
+  return j;
+}
+
+}  // namespace handlab::hand

@@ -1,0 +1,20 @@
+// Draw items for hands: a skin surface shaded smooth, and skeletons as capsules.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "core/hand/skeleton.h"
+#include "core/render/draw_list.h"
+
+namespace handlab::render {
+
+// `placement` moves the hand's frame into the scene.
+void draw_skin(DrawList& list, const std::vector<Eigen::Vector3d>& vertices,
+               const std::vector<std::array<int, 3>>& triangles, const Eigen::Isometry3d& placement,
+               const Eigen::Vector4f& color);
+// Each bone as a capsule from its joint to its end, and each marker as a small sphere.
+void draw_skeleton(DrawList& list, const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                   const Eigen::Isometry3d& placement, const Eigen::Vector4f& bone_color,
+                   const Eigen::Vector4f& joint_color, double radius_scale = 1.0);
+
+}  // namespace handlab::render
