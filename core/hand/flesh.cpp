@@ -162,7 +162,8 @@ HandFlesh build_flesh(const Skeleton& skeleton, const HandShape& shape,
         Eigen::Vector4d w;
         const int tet = locator.locate(world, &w, true);
         if (tet < 0) continue;  // the capsule pokes out of the flesh here
-        auto& entry = per_tet[tet];
+        // Eigen vectors are not zeroed on construction: start each tet's sum explicitly.
+        auto& entry = per_tet.try_emplace(tet, 0.0, Eigen::Vector3d::Zero()).first->second;
         entry.first += area;
         entry.second += area * local;
       }
