@@ -77,6 +77,28 @@ const char* kGood =
     "s2,a,1,1.1\ns2,b,1,2.0\ns2,a,2,1.2\ns2,b,2,2.2\n"
     "s3,a,1,0.9\ns3,b,1,2.2\ns3,a,2,1.0\ns3,b,2,2.4\n";
 
+TEST(CliHand, WritesSkinFleshAndPicture) {
+  const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";
+  const Result r = cli("hand --length 0.214 --out " + dir + "hand.obj --tets " + dir +
+                       "hand.vtk --png " + dir + "hand.png --pair --json " + dir + "hand.json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::FILE* vtk = std::fopen((dir + "hand.vtk").c_str(), "rb");
+  ASSERT_NE(vtk, nullptr);
+  char line[256];
+  int cells = 0;
+  while (std::fgets(line, sizeof line, vtk))
+    if (std::sscanf(line, "CELLS %d", &cells) == 1) break;
+  std::fclose(vtk);
+  EXPECT_GE(cells, 2000);
+  EXPECT_LE(cells, 2800);
+  int w = 0, h = 0;
+  EXPECT_TRUE(handlab::render::read_png_size(dir + "hand.png", &w, &h));
+  const Result tracked = cli("hand --tracked --length 0.18");
+  EXPECT_EQ(tracked.status, 0);
+  EXPECT_NE(tracked.out.find("tracked (Leap) skeleton"), std::string::npos);
+  EXPECT_NE(cli("hand --length 0.5").status, 0);
+}
+
 TEST(CliAnalyze, ReportsAndWritesJson) {
   const std::string csv = write_temp("good.csv", kGood);
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";

@@ -160,3 +160,49 @@ TEST(Flesh, ResolutionScalesTheMesh) {
 
 }  // namespace
 }  // namespace handlab::hand
+
+#include "core/hand/tracked_hand.h"
+
+namespace handlab::hand {
+namespace {
+
+TEST(TrackedHand, LeapMorphology) {
+  const Skeleton s = build_tracked_hand(HandShape::with_length(0.18));
+  EXPECT_EQ(s.bones.size(), 21u);  // palm + 4 bones x 5 digits
+  const LeapJoints joints = to_leap_joints(s, HandPose::rest(s));
+  // The thumb's metacarpal has zero length; the fingers' run from near the wrist.
+  EXPECT_LT((joints.joints[0][0] - joints.joints[0][1]).norm(), 1e-12);
+  for (int f = 1; f < kFingerCount; ++f)
+    EXPECT_GT((joints.joints[std::size_t(f)][1] - joints.joints[std::size_t(f)][0]).norm(), 0.04);
+  // Middle fingertip to wrist along the hand: its length.
+  EXPECT_NEAR(joints.joints[2][4].y(), 0.99 * 0.18, 0.002);
+}
+
+TEST(TrackedHand, PoseWrittenAsAFrameFitsBack) {
+  std::mt19937 rng(11);
+  for (double length : {0.159, 0.18, 0.205}) {
+    const Skeleton s = build_tracked_hand(HandShape::with_length(length));
+    for (int trial = 0; trial < 4; ++trial) {
+      HandPose pose = random_pose(s, rng);
+      // Stay away from the limits so that the optimum is interior.
+      for (std::size_t k = 0; k < s.dofs.size(); ++k)
+        pose.angles(Eigen::Index(k)) =
+            0.5 * (s.dofs[k].lower + s.dofs[k].upper) +
+            0.6 * (pose.angles(Eigen::Index(k)) - 0.5 * (s.dofs[k].lower + s.dofs[k].upper));
+      const LeapJoints frame = to_leap_joints(s, pose);
+      const FitResult fit = fit_leap_joints(s, frame);
+      const LeapJoints back = to_leap_joints(s, fit.pose);
+      for (int f = 0; f < kFingerCount; ++f)
+        for (int k = 0; k < 5; ++k)
+          EXPECT_LT((back.joints[std::size_t(f)][std::size_t(k)] -
+                     frame.joints[std::size_t(f)][std::size_t(k)])
+                        .norm(),
+                    1e-4)
+              << finger_name(f) << " joint " << k << " at " << length;
+      EXPECT_LT(fit.max_residual, 1e-4);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace handlab::hand

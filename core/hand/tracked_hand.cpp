@@ -1,0 +1,207 @@
+#include "core/hand/tracked_hand.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Dense>
+
+namespace handlab::hand {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr const char* kJointNames[5] = {"_carp", "_mcp", "_pip", "_dip", "_tip"};
+
+Eigen::Matrix3d frame_along(const Eigen::Vector3d& direction, const Eigen::Vector3d& x_hint) {
+  const Eigen::Vector3d y = direction.normalized();
+  const Eigen::Vector3d z = x_hint.cross(y).normalized();
+  Eigen::Matrix3d r;
+  r.col(0) = y.cross(z);
+  r.col(1) = y;
+  r.col(2) = z;
+  return r;
+}
+
+void add_dof(Skeleton& s, Bone& bone, const std::string& name, const Eigen::Vector3d& axis,
+             double lo, double hi) {
+  if (bone.dof_count == 0) bone.first_dof = int(s.dofs.size());
+  s.dofs.push_back({name, axis, lo * kDeg, hi * kDeg});
+  ++bone.dof_count;
+}
+
+}  // namespace
+
+Eigen::Vector3d palm_centre_offset(const HandShape& shape) {
+  return Eigen::Vector3d(0, 0.25 * shape.length, 0);
+}
+
+Skeleton build_tracked_hand(const HandShape& shape) {
+  const double hl = shape.length, hb = shape.hand_breadth();
+  const double side = shape.left ? -1.0 : 1.0;
+  const Eigen::Matrix3d mirror = Eigen::Vector3d(side, 1, 1).asDiagonal();
+  Skeleton s;
+  Bone palm;
+  palm.name = "palm";
+  palm.length = 0.0;
+  s.bones.push_back(palm);
+  for (int f = 0; f < kFingerCount; ++f) {
+    const FingerProportions& p = shape.fingers[std::size_t(f)];
+    const std::string name = finger_name(f);
+    const Eigen::Vector3d mcp(side * p.base_across * hb, p.base_along * hl, 0.0);
+    // The metacarpal runs from the carpus, near the wrist and closer to the hand's axis.
+    Eigen::Vector3d carp = mcp;
+    std::array<double, 3> lengths;
+    Eigen::Matrix3d rest;
+    if (f == 0) {
+      rest = mirror *
+             frame_along(Eigen::Vector3d(0.74, 0.66, 0.12), Eigen::Vector3d(-0.2, 0.1, 1.0)) *
+             mirror;
+      lengths = {p.metacarpal * hl, p.proximal * hl, p.distal * hl};
+    } else {
+      carp = Eigen::Vector3d(0.45 * mcp.x(), mcp.y() - p.metacarpal * hl * 0.97, 0.0);
+      rest = Eigen::Matrix3d::Identity();
+      lengths = {p.proximal * hl, p.middle * hl, p.distal * hl};
+    }
+    Bone metacarpal;
+    metacarpal.name = name + "_metacarpal";
+    metacarpal.parent = 0;
+    metacarpal.offset = carp;
+    metacarpal.rest =
+        frame_along(mcp - carp + Eigen::Vector3d(0, 1e-12, 0), Eigen::Vector3d(side, 0, 0));
+    metacarpal.length = (mcp - carp).norm();
+    metacarpal.radius = 0.004;
+    s.bones.push_back(metacarpal);
+    const int metacarpal_index = int(s.bones.size()) - 1;
+    int parent = metacarpal_index;
+    for (int segment = 0; segment < 3; ++segment) {
+      Bone bone;
+      static const char* kSegment[3] = {"_proximal", "_intermediate", "_distal"};
+      bone.name = name + kSegment[segment];
+      bone.parent = parent;
+      bone.length = lengths[std::size_t(segment)];
+      bone.radius = 0.004;
+      if (segment == 0) {
+        // The joint sits at the metacarpal's end; its rest frame is the palm's (or the
+        // thumb's own), whatever the metacarpal's direction.
+        bone.offset = Eigen::Vector3d(0, metacarpal.length, 0);
+        bone.rest = metacarpal.rest.transpose() * rest;
+      } else {
+        bone.offset = Eigen::Vector3d(0, lengths[std::size_t(segment - 1)], 0);
+      }
+      const Eigen::Vector3d x(1, 0, 0), z(0, 0, 1);
+      if (f == 0) {
+        if (segment == 0) {
+          add_dof(s, bone, name + "_cmc_flexion", x, -20, 55);
+          add_dof(s, bone, name + "_cmc_abduction", -side * z, -45, 45);
+          add_dof(s, bone, name + "_cmc_rotation", Eigen::Vector3d(0, side, 0), -40, 40);
+        } else {
+          add_dof(s, bone, name + (segment == 1 ? "_mcp_flexion" : "_ip_flexion"), x, -30, 90);
+        }
+      } else if (segment == 0) {
+        add_dof(s, bone, name + "_mcp_flexion", x, -45, 100);
+        add_dof(s, bone, name + "_mcp_abduction", -side * z, -35, 35);
+      } else {
+        add_dof(s, bone, name + (segment == 1 ? "_pip_flexion" : "_dip_flexion"), x, -20, 120);
+      }
+      s.bones.push_back(bone);
+      parent = int(s.bones.size()) - 1;
+    }
+    s.markers.push_back({name + kJointNames[0], metacarpal_index, Eigen::Vector3d::Zero()});
+    s.markers.push_back({name + kJointNames[1], metacarpal_index + 1, Eigen::Vector3d::Zero()});
+    s.markers.push_back({name + kJointNames[2], metacarpal_index + 2, Eigen::Vector3d::Zero()});
+    s.markers.push_back({name + kJointNames[3], metacarpal_index + 3, Eigen::Vector3d::Zero()});
+    s.markers.push_back(
+        {name + kJointNames[4], metacarpal_index + 3, Eigen::Vector3d(0, lengths[2], 0)});
+  }
+  s.markers.push_back({"palm_centre", 0, palm_centre_offset(shape)});
+  return s;
+}
+
+LeapJoints to_leap_joints(const Skeleton& tracked, const HandPose& pose) {
+  const BoneFrames frames = forward_kinematics(tracked, pose);
+  LeapJoints out;
+  for (int f = 0; f < kFingerCount; ++f)
+    for (int k = 0; k < 5; ++k)
+      out.joints[std::size_t(f)][std::size_t(k)] = marker_position(
+          tracked, frames, tracked.marker_index(std::string(finger_name(f)) + kJointNames[k]));
+  out.palm_position = marker_position(tracked, frames, tracked.marker_index("palm_centre"));
+  out.direction = pose.root_rotation.col(1);
+  out.palm_normal = pose.root_rotation.col(2);
+  out.wrist = pose.root_position;
+  return out;
+}
+
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int max_iterations) {
+  // Start from the palm frame the tracker reports.
+  FitResult result;
+  HandPose& pose = result.pose;
+  pose = HandPose::rest(tracked);
+  const Eigen::Vector3d y = frame.direction.normalized();
+  const Eigen::Vector3d z = (frame.palm_normal - frame.palm_normal.dot(y) * y).normalized();
+  pose.root_rotation.col(0) = y.cross(z);
+  pose.root_rotation.col(1) = y;
+  pose.root_rotation.col(2) = z;
+  const Eigen::Vector3d palm_offset =
+      tracked.markers[std::size_t(tracked.marker_index("palm_centre"))].local;
+  pose.root_position = frame.palm_position - pose.root_rotation * palm_offset;
+
+  std::vector<std::pair<int, Eigen::Vector3d>> targets;
+  for (int f = 0; f < kFingerCount; ++f)
+    for (int k = 0; k < 5; ++k)
+      targets.emplace_back(tracked.marker_index(std::string(finger_name(f)) + kJointNames[k]),
+                           frame.joints[std::size_t(f)][std::size_t(k)]);
+  const int n = tracked.parameter_count();
+  const int m = 3 * int(targets.size());
+  double lambda = 1e-3;
+  auto cost_of = [&](const HandPose& p, Eigen::VectorXd* r, Eigen::MatrixXd* j) {
+    const BoneFrames frames = forward_kinematics(tracked, p);
+    r->resize(m);
+    if (j) j->resize(m, n);
+    for (std::size_t t = 0; t < targets.size(); ++t) {
+      const Eigen::Vector3d pos = marker_position(tracked, frames, targets[t].first);
+      r->segment<3>(Eigen::Index(3 * t)) = pos - targets[t].second;
+      if (j)
+        j->middleRows<3>(Eigen::Index(3 * t)) = point_jacobian(
+            tracked, frames, p, tracked.markers[std::size_t(targets[t].first)].bone, pos);
+    }
+    return 0.5 * r->squaredNorm();
+  };
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j;
+  double cost = cost_of(pose, &r, &j);
+  result.iterations = 0;
+  for (int it = 0; it < max_iterations; ++it) {
+    result.iterations = it + 1;
+    const Eigen::MatrixXd jtj = j.transpose() * j;
+    const Eigen::VectorXd g = j.transpose() * r;
+    if (g.norm() < 1e-14) break;
+    bool improved = false;
+    for (int tries = 0; tries < 10 && !improved; ++tries) {
+      Eigen::MatrixXd a = jtj;
+      a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
+      const Eigen::VectorXd step = -a.ldlt().solve(g);
+      HandPose trial = pose;
+      trial.apply(step);
+      trial.clamp_to_limits(tracked);
+      Eigen::VectorXd r2;
+      const double c2 = cost_of(trial, &r2, nullptr);
+      if (c2 < cost) {
+        pose = trial;
+        improved = true;
+        lambda = std::max(lambda * 0.3, 1e-9);
+        const double drop = cost - c2;
+        cost = cost_of(pose, &r, &j);
+        if (drop < 1e-18) it = max_iterations;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!improved) break;
+  }
+  result.rms_residual = std::sqrt(2.0 * cost / double(targets.size()));
+  result.max_residual = 0.0;
+  for (std::size_t t = 0; t < targets.size(); ++t)
+    result.max_residual = std::max(result.max_residual, r.segment<3>(Eigen::Index(3 * t)).norm());
+  return result;
+}
+
+}  // namespace handlab::hand
