@@ -1,5 +1,6 @@
 #include "core/tracking/lz_string.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -7,51 +8,68 @@
 namespace handlab::tracking {
 namespace {
 
-// Reads the stream's bits (6 per base64 character, most significant first).
+// Reads the stream's bits: 6 per base64 character, most significant first. lz-string
+// assembles each code least significant bit first, so a code is the next n stream bits
+// reversed; they are taken from a 64-bit accumulator and reversed by table.
 class BitReader {
  public:
-  explicit BitReader(std::string_view input) : input_(input) {
-    static const std::array<int, 256> table = [] {
-      std::array<int, 256> t;
+  explicit BitReader(std::string_view input) : input_(input) {}
+
+  std::uint32_t read(int bits) {
+    while (count_ < bits) refill();
+    const std::uint64_t stream =
+        (accumulator_ >> (count_ - bits)) & ((std::uint64_t(1) << bits) - 1);
+    count_ -= bits;
+    consumed_ += std::size_t(bits);
+    return reverse(std::uint32_t(stream), bits);
+  }
+  // lz-string stops when it would read a code past the end of the input: that is, when the
+  // character holding the next bit lies beyond the input.
+  bool exhausted() const { return consumed_ / 6 + 1 > input_.size(); }
+  std::size_t index() const { return consumed_ / 6; }
+
+ private:
+  void refill() {
+    int value = 0;
+    if (next_ < input_.size()) {
+      value = table()[static_cast<unsigned char>(input_[next_])];
+      if (value < 0)
+        throw LzStringError("LZ-string: invalid base64 character at offset " +
+                            std::to_string(next_));
+    }  // past the end JavaScript reads undefined, which gives 0 bits
+    ++next_;
+    accumulator_ = (accumulator_ << 6) | std::uint64_t(value);
+    count_ += 6;
+  }
+  static const std::array<int, 256>& table() {
+    static const std::array<int, 256> t = [] {
+      std::array<int, 256> t{};
       t.fill(-1);
       const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=";
       for (int i = 0; i < 65; ++i) t[static_cast<unsigned char>(alphabet[i])] = i;
       return t;
     }();
-    table_ = &table;
-    value_ = value_at(0);
+    return t;
   }
-
-  std::uint32_t read(int bits) {
-    std::uint32_t result = 0;
-    for (int power = 0; power < bits; ++power) {
-      const bool bit = (value_ & position_) != 0;
-      position_ >>= 1;
-      if (position_ == 0) {
-        position_ = 32;
-        value_ = value_at(index_++);
+  static std::uint32_t reverse(std::uint32_t x, int bits) {
+    static const std::array<std::uint16_t, 65536> rev = [] {
+      std::array<std::uint16_t, 65536> r{};
+      for (std::uint32_t i = 0; i < 65536; ++i) {
+        std::uint32_t v = 0;
+        for (int b = 0; b < 16; ++b) v |= ((i >> b) & 1u) << (15 - b);
+        r[i] = std::uint16_t(v);
       }
-      result |= std::uint32_t(bit) << power;
-    }
-    return result;
+      return r;
+    }();
+    const std::uint32_t full = (std::uint32_t(rev[x & 0xFFFF]) << 16) | rev[x >> 16];
+    return full >> (32 - bits);
   }
-  // lz-string stops when it would read a code past the end of the input.
-  bool exhausted() const { return index_ > input_.size(); }
-  std::size_t index() const { return index_; }
 
- private:
-  int value_at(std::size_t i) const {
-    if (i >= input_.size()) return 0;  // JavaScript reads undefined as 0 bits
-    const int v = (*table_)[static_cast<unsigned char>(input_[i])];
-    if (v < 0)
-      throw LzStringError("LZ-string: invalid base64 character at offset " + std::to_string(i));
-    return v;
-  }
   std::string_view input_;
-  const std::array<int, 256>* table_;
-  int value_ = 0;
-  int position_ = 32;
-  std::size_t index_ = 1;
+  std::uint64_t accumulator_ = 0;
+  int count_ = 0;
+  std::size_t next_ = 0;
+  std::size_t consumed_ = 0;
 };
 
 void append_utf8(std::string& out, std::uint32_t code) {
@@ -140,14 +158,17 @@ std::string lz_decompress_base64(std::string_view input) {
       entry = dictionary[c];
     } else if (c < dictionary.size()) {
       entry = dictionary[c];
+      // The entry lies wholly before the end, so the copy never overlaps itself.
       const std::uint32_t start = std::uint32_t(out.size());
-      for (std::uint32_t k = 0; k < entry.length; ++k) out.push_back(out[entry.offset + k]);
+      out.resize(start + entry.length);
+      std::copy_n(out.data() + entry.offset, entry.length, out.data() + start);
       entry.offset = start;
     } else if (c == dictionary.size()) {
       // The code being defined right now: w followed by w's first character.
       const std::uint32_t start = std::uint32_t(out.size());
-      for (std::uint32_t k = 0; k < w.length; ++k) out.push_back(out[w.offset + k]);
-      out.push_back(out[w.offset]);
+      out.resize(start + w.length + 1);
+      std::copy_n(out.data() + w.offset, w.length, out.data() + start);
+      out[start + w.length] = out[w.offset];
       entry = {start, w.length + 1};
     } else {
       throw LzStringError("LZ-string: corrupt data near offset " + std::to_string(bits.index()));

@@ -1,0 +1,150 @@
+// handlab-cli tracking: what a recording holds, and its frames as CSV.
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/tracking/recording_io.h"
+#include "core/util/json_writer.h"
+
+namespace handlab::cli {
+namespace {
+
+int tracking_info(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"json", "OUT", "write the figures as JSON (- for standard output)"}};
+  const Arguments args(specs, argv, 1);
+  if (args.help_requested() || args.positional().empty()) {
+    if (!args.help_requested())
+      throw UsageError("name a recording: handlab-cli tracking info FILE");
+    std::cout << "Usage: handlab-cli tracking info FILE [--json OUT]\n\nFormat, frames, hands, "
+                 "duration, frame "
+                 "rate, rejected frames and the thumb-index tip distance range of a recording "
+                 "(.json, .json.lz, "
+                 ".hlrec).\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  const tracking::Recording r = tracking::read_recording(args.positional()[0]);
+  std::size_t with_hands = 0, left = 0, right = 0;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& f : r.frames) {
+    with_hands += !f.hands.empty();
+    for (const auto& h : f.hands) {
+      (h.side == tracking::Side::kLeft ? left : right) += 1;
+      lo = std::min(lo, tracking::thumb_index_distance(h));
+      hi = std::max(hi, tracking::thumb_index_distance(h));
+    }
+  }
+  const double duration =
+      r.frames.size() > 1 ? r.frames.back().timestamp - r.frames.front().timestamp : 0.0;
+  const double fps = duration > 0 ? double(r.frames.size() - 1) / duration : 0.0;
+  std::map<std::string, int> reasons;
+  for (const auto& rej : r.rejected) ++reasons[rej.reason];
+
+  if (args.text("json") != "-") {
+    std::cout << r.source << "\n  format version   " << r.format_version << "\n  frames           "
+              << r.frames_in_file << " (" << r.frames.size() << " read, " << with_hands
+              << " with hands)\n  hands            " << left << " left, " << right
+              << " right\n  duration         " << std::fixed << std::setprecision(3) << duration
+              << " s\n  mean frame rate  " << std::setprecision(1) << fps
+              << " Hz\n  rejected         " << r.rejected.size() << "\n";
+    for (const auto& [reason, count] : reasons)
+      std::cout << "    " << count << " x " << reason << "\n";
+    if (std::isfinite(lo))
+      std::cout << "  thumb-index tip  " << lo * 1000 << " to " << hi * 1000 << " mm\n";
+  }
+  if (args.has("json")) {
+    write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter json(out);
+      json.begin_object().field("source", r.source).field("format_version", r.format_version);
+      json.field("frames", r.frames_in_file)
+          .field("frames_read", r.frames.size())
+          .field("frames_with_hands", with_hands);
+      json.key("hands").begin_object().field("left", left).field("right", right).end_object();
+      json.field("duration_s", duration).field("fps_mean", fps);
+      json.key("rejected").begin_array();
+      for (const auto& rej : r.rejected)
+        json.begin_object().field("frame", rej.index).field("reason", rej.reason).end_object();
+      json.end_array();
+      json.key("thumb_index_mm").begin_object();
+      if (std::isfinite(lo))
+        json.field("min", lo * 1000).field("max", hi * 1000);
+      else
+        json.key("min").null().key("max").null();
+      json.end_object().end_object();
+    });
+  }
+  return 0;
+}
+
+int tracking_convert(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"out", "FILE", "CSV (one row per hand per frame) or .hlrec"}};
+  const Arguments args(specs, argv, 1);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli tracking convert FILE --out frames.csv|frames.hlrec\n\nWrites "
+                 "every hand of "
+                 "every frame with all its joints (metres, seconds), or handlab's own "
+                 "recording.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  if (args.positional().empty() || !args.has("out"))
+    throw UsageError("usage: handlab-cli tracking convert FILE --out OUT");
+  const tracking::Recording r = tracking::read_recording(args.positional()[0]);
+  const std::string out_path = args.text("out");
+  if (out_path.size() > 6 && out_path.compare(out_path.size() - 6, 6, ".hlrec") == 0) {
+    tracking::write_hlrec(r.frames, out_path);
+  } else {
+    write_output(out_path, [&](std::ostream& out) {
+      out << std::setprecision(17);
+      static const char* digits[5] = {"thumb", "index", "middle", "ring", "pinky"};
+      static const char* joints[5] = {"carp", "mcp", "pip", "dip", "tip"};
+      out << "frame_id,timestamp_s,hand_id,side,confidence,pinch_strength,grab_strength,derived";
+      for (const char* v : {"palm", "palm_normal", "direction", "wrist"})
+        for (const char* c : {"x", "y", "z"}) out << ',' << v << '_' << c;
+      for (const char* d : digits)
+        for (const char* j : joints)
+          for (const char* c : {"x", "y", "z"}) out << ',' << d << '_' << j << '_' << c;
+      out << '\n';
+      for (const auto& f : r.frames)
+        for (const auto& h : f.hands) {
+          out << f.id << ',' << f.timestamp << ',' << h.id << ','
+              << (h.side == tracking::Side::kLeft ? "left" : "right") << ',' << h.confidence << ','
+              << h.pinch_strength << ',' << h.grab_strength << ',' << int(h.derived);
+          for (const auto* v : {&h.palm_position, &h.palm_normal, &h.direction, &h.wrist})
+            for (int c = 0; c < 3; ++c) out << ',' << (*v)[c];
+          for (const auto& digit : h.joints)
+            for (const auto& p : digit)
+              for (int c = 0; c < 3; ++c) out << ',' << p[c];
+          out << '\n';
+        }
+    });
+  }
+  std::cout << "wrote " << out_path << " (" << r.frames.size() << " frames)\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_tracking(const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    std::cout << "Usage: handlab-cli tracking info FILE [--json OUT]\n"
+                 "       handlab-cli tracking convert FILE --out frames.csv\n\n"
+                 "Reads Leap Motion recordings (LeapJS Playback .json/.json.lz, formatVersion 0.1, "
+                 "1, 2) and "
+                 "handlab's .hlrec.\n";
+    return argv.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "info") return tracking_info(rest);
+  if (argv[0] == "convert") return tracking_convert(rest);
+  throw UsageError("unknown tracking command '" + argv[0] + "' (info, convert)");
+}
+
+}  // namespace handlab::cli

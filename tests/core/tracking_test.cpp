@@ -1,0 +1,219 @@
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/tracking/leap_json.h"
+#include "core/tracking/lz_string.h"
+#include "core/tracking/recording_io.h"
+#include "core/util/json_value.h"
+
+namespace handlab::tracking {
+namespace {
+
+std::string data(const std::string& name) {
+  return std::string(HANDLAB_SOURCE_DIR) + "/tests/data/" + name;
+}
+std::string tmp(const std::string& name) {
+  return std::string(HANDLAB_TEST_TMP) + "/" + name;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void spit(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+TEST(LzString, ReferenceVectors) {
+  // Made with the reference lz-string 1.5.0 (tests/data/lzstring/make_vectors.js).
+  const auto vectors = util::JsonValue::parse(slurp(data("lzstring/vectors.json")));
+  ASSERT_GE(vectors.size(), 10u);
+  for (const auto& v : vectors.as_array())
+    EXPECT_EQ(lz_decompress_base64(v["base64"].as_string()), v["plain"].as_string())
+        << v["base64"].as_string();
+}
+
+TEST(LzString, CorruptInputIsAnError) {
+  EXPECT_THROW(lz_decompress_base64(""), LzStringError);
+  EXPECT_THROW(lz_decompress_base64("BYUwNmD2A0A*DukBOYAmQ"), LzStringError);  // '*' is not base64
+  EXPECT_THROW(lz_decompress_base64("BYUwNmD2A0AEDu"), LzStringError);         // truncated
+}
+
+struct Expected {
+  const char* file;
+  std::size_t frames;
+  const char* version;
+};
+
+class RealRecording : public ::testing::TestWithParam<Expected> {};
+
+TEST_P(RealRecording, ReadsCompletely) {
+  const Expected e = GetParam();
+  const Recording r = read_recording(data(std::string("leap/") + e.file));
+  EXPECT_EQ(r.frames_in_file, e.frames);
+  EXPECT_EQ(r.frames.size(), e.frames);
+  EXPECT_TRUE(r.rejected.empty());
+  EXPECT_EQ(r.format_version, e.version);
+  for (std::size_t i = 1; i < r.frames.size(); ++i)
+    EXPECT_GT(r.frames[i].timestamp, r.frames[i - 1].timestamp);
+  for (const auto& f : r.frames)
+    for (const auto& h : f.hands) {
+      EXPECT_LT(h.palm_position.norm(), 1.0);  // metres, in front of the device
+      EXPECT_NEAR(h.palm_normal.norm(), 1.0, 1e-9);
+    }
+  // The encoding round-trips bit for bit.
+  for (const auto& f : r.frames) {
+    const auto bytes = encode_frame(f);
+    std::size_t used = 0;
+    const TrackedFrame back = decode_frame(bytes.data(), bytes.size(), &used);
+    EXPECT_EQ(used, bytes.size());
+    EXPECT_EQ(encode_frame(back), bytes);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, RealRecording,
+                         ::testing::Values(Expected{"pinch.json.lz", 307, "0.1"},
+                                           Expected{"pinch-57fps.json.lz", 133, "2"},
+                                           Expected{"grab.json.lz", 374, "0.1"},
+                                           Expected{"wave.json.lz", 111, "0.1"},
+                                           Expected{"confidence2.json.lz", 368, "0.1"}));
+
+TEST(RealRecording, PinchThumbIndexDistanceRange) {
+  const Recording r = read_recording(data("leap/pinch.json.lz"));
+  double lo = INFINITY, hi = 0;
+  for (const auto& f : r.frames)
+    for (const auto& h : f.hands) {
+      lo = std::min(lo, thumb_index_distance(h));
+      hi = std::max(hi, thumb_index_distance(h));
+    }
+  EXPECT_NEAR(lo * 1000, 18.0, 0.05);
+  EXPECT_NEAR(hi * 1000, 113.0, 0.05);
+}
+
+TEST(RealRecording, PackedFormatHasCarpAndBases) {
+  const Recording r = read_recording(data("leap/pinch-57fps.json.lz"));
+  const auto& h = r.frames.front().hands.front();
+  EXPECT_FALSE(h.derived & kDerivedCarp);
+  EXPECT_TRUE(h.bone_bases.has_value());
+  EXPECT_LT((h.joints[0][0] - h.joints[0][1]).norm(), 1e-9);  // zero-length thumb metacarpal
+  const Recording old = read_recording(data("leap/pinch.json.lz"));
+  EXPECT_TRUE(old.frames.front().hands.front().derived & kDerivedCarp);
+}
+
+TEST(HandlabRecording, WritesAndReadsBackExactly) {
+  const Recording r = read_recording(data("leap/pinch-57fps.json.lz"));
+  write_hlrec(r.frames, tmp("pinch.hlrec"));
+  const Recording back = read_recording(tmp("pinch.hlrec"));
+  ASSERT_EQ(back.frames.size(), r.frames.size());
+  for (std::size_t i = 0; i < r.frames.size(); ++i)
+    EXPECT_EQ(encode_frame(back.frames[i]), encode_frame(r.frames[i]));
+}
+
+// Corrupted copies: an error or a partial read with reasons, never a crash.
+TEST(CorruptRecording, TruncatedAndFlipped) {
+  const std::string original = slurp(data("leap/pinch.json.lz"));
+  spit(tmp("truncated.json.lz"), original.substr(0, original.size() / 2));
+  EXPECT_THROW(read_recording(tmp("truncated.json.lz")), std::runtime_error);
+  std::mt19937 rng(3);
+  int errors = 0, partial = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    std::string copy = original;
+    for (int k = 0; k < 3; ++k) copy[rng() % copy.size()] = "ABCxyz019+/*#"[rng() % 13];
+    spit(tmp("flipped.json.lz"), copy);
+    try {
+      const Recording r = read_recording(tmp("flipped.json.lz"));
+      if (!r.rejected.empty()) ++partial;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("flipped.json.lz"), std::string::npos) << e.what();
+      ++errors;
+    }
+  }
+  EXPECT_GT(errors + partial, 0);
+  spit(tmp("empty.json.lz"), "");
+  EXPECT_THROW(read_recording(tmp("empty.json.lz")), std::runtime_error);
+  EXPECT_THROW(read_recording(tmp("no-such-file.json")), std::runtime_error);
+}
+
+TEST(CorruptRecording, BadFramesAreRejectedWithReasonsAndTheRestKept) {
+  // A real recording decompressed, then edited frame by frame.
+  const std::string json = lz_decompress_base64(slurp(data("leap/pinch.json.lz")));
+  // Edit the real text: a NaN (not JSON at all), then a palm 10 m away and a frame whose
+  // hands are missing.
+  std::string edited = json;
+  auto replace_nth = [&](const std::string& what, const std::string& with, int n) {
+    std::size_t at = 0;
+    for (int k = 0; k <= n; ++k) {
+      at = edited.find(what, k == 0 ? 0 : at + 1);
+      ASSERT_NE(at, std::string::npos);
+    }
+    edited.replace(at, what.size(), with);
+  };
+  replace_nth("\"palmPosition\":[", "\"palmPosition\":[NaN, ", 5);
+  replace_nth("\"palmPosition\":[", "\"palmPosition\":[10000, ", 9);
+  spit(tmp("edited.json"), edited);
+  // NaN is not JSON: the whole document fails to parse, and the error names the file.
+  EXPECT_THROW(read_recording(tmp("edited.json")), std::runtime_error);
+
+  edited = json;
+  replace_nth("\"palmPosition\":[", "\"palmPosition\":[10000, 0, 0], \"x\":[", 9);
+  replace_nth("\"hands\":[", "\"hand\":[", 20);
+  spit(tmp("edited.json"), edited);
+  const Recording r = read_recording(tmp("edited.json"));
+  EXPECT_EQ(r.frames_in_file, 307u);
+  EXPECT_EQ(r.rejected.size(), 2u);
+  EXPECT_EQ(r.frames.size(), 305u);
+  bool far = false, missing = false;
+  for (const auto& rej : r.rejected) {
+    far |= rej.reason.find("m from the device") != std::string::npos;
+    missing |= rej.reason.find("missing hands") != std::string::npos;
+  }
+  EXPECT_TRUE(far);
+  EXPECT_TRUE(missing);
+}
+
+TEST(LeapMessage, V6FrameAndBadMessages) {
+  const std::string message = R"({"id": 5, "timestamp": 1000000, "hands": [], "pointables": []})";
+  std::string error;
+  const auto frame = parse_leap_message(message, &error);
+  ASSERT_TRUE(frame) << error;
+  EXPECT_DOUBLE_EQ(frame->timestamp, 1.0);
+  EXPECT_TRUE(frame->hands.empty());
+  EXPECT_FALSE(parse_leap_message("{\"id\": 5", &error));
+  EXPECT_NE(error.find("JSON"), std::string::npos);
+  EXPECT_FALSE(parse_leap_message(R"({"id": 5, "timestamp": 1})", &error));
+  EXPECT_NE(error.find("hands"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace handlab::tracking
+
+namespace handlab::tracking {
+namespace {
+
+TEST(CorruptRecording, RepeatedAndBackwardTimestampsAreRejected) {
+  const std::string doc = R"({"metadata": {"formatVersion": 1}, "frames": [
+      {"id": 1, "timestamp": 1000, "hands": []},
+      {"id": 2, "timestamp": 1000, "hands": []},
+      {"id": 3, "timestamp": 500, "hands": []},
+      {"id": 4, "timestamp": 2000, "hands": []},
+      "not a frame"]})";
+  const Recording r = parse_playback(doc, "test.json");
+  EXPECT_EQ(r.frames_in_file, 5u);
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[1].id, 4);
+  ASSERT_EQ(r.rejected.size(), 3u);
+  EXPECT_EQ(r.rejected[0].index, 1u);
+  EXPECT_NE(r.rejected[0].reason.find("timestamp"), std::string::npos);
+  EXPECT_NE(r.rejected[2].reason.find("not an object"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace handlab::tracking
