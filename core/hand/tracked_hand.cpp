@@ -34,7 +34,7 @@ Eigen::Vector3d palm_centre_offset(const HandShape& shape) {
   return Eigen::Vector3d(0, 0.25 * shape.length, 0);
 }
 
-Skeleton build_tracked_hand(const HandShape& shape) {
+Skeleton build_tracked_hand(const HandShape& shape, const MeasuredSkeleton* measured) {
   const double hl = shape.length, hb = shape.hand_breadth();
   const double side = shape.left ? -1.0 : 1.0;
   const Eigen::Matrix3d mirror = Eigen::Vector3d(side, 1, 1).asDiagonal();
@@ -46,7 +46,7 @@ Skeleton build_tracked_hand(const HandShape& shape) {
   for (int f = 0; f < kFingerCount; ++f) {
     const FingerProportions& p = shape.fingers[std::size_t(f)];
     const std::string name = finger_name(f);
-    const Eigen::Vector3d mcp(side * p.base_across * hb, p.base_along * hl, 0.0);
+    Eigen::Vector3d mcp(side * p.base_across * hb, p.base_along * hl, 0.0);
     // The metacarpal runs from the carpus, near the wrist and closer to the hand's axis.
     Eigen::Vector3d carp = mcp;
     std::array<double, 3> lengths;
@@ -60,6 +60,11 @@ Skeleton build_tracked_hand(const HandShape& shape) {
       carp = Eigen::Vector3d(0.45 * mcp.x(), mcp.y() - p.metacarpal * hl * 0.97, 0.0);
       rest = Eigen::Matrix3d::Identity();
       lengths = {p.proximal * hl, p.middle * hl, p.distal * hl};
+    }
+    if (measured) {
+      mcp = measured->mcp[std::size_t(f)];
+      carp = f == 0 ? mcp : measured->carp[std::size_t(f)];
+      lengths = measured->lengths[std::size_t(f)];
     }
     Bone metacarpal;
     metacarpal.name = name + "_metacarpal";
@@ -131,24 +136,39 @@ LeapJoints to_leap_joints(const Skeleton& tracked, const HandPose& pose) {
 }
 
 FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int max_iterations) {
-  // Start from the palm frame the tracker reports.
+  FitOptions options;
+  options.max_iterations = max_iterations;
+  return fit_leap_joints(tracked, frame, options);
+}
+
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, const FitOptions& options) {
+  const int max_iterations = options.max_iterations;
   FitResult result;
   HandPose& pose = result.pose;
-  pose = HandPose::rest(tracked);
-  const Eigen::Vector3d y = frame.direction.normalized();
-  const Eigen::Vector3d z = (frame.palm_normal - frame.palm_normal.dot(y) * y).normalized();
-  pose.root_rotation.col(0) = y.cross(z);
-  pose.root_rotation.col(1) = y;
-  pose.root_rotation.col(2) = z;
-  const Eigen::Vector3d palm_offset =
-      tracked.markers[std::size_t(tracked.marker_index("palm_centre"))].local;
-  pose.root_position = frame.palm_position - pose.root_rotation * palm_offset;
+  if (options.initial) {
+    pose = *options.initial;  // the previous frame's fit
+  } else {
+    // Start from the palm frame the tracker reports.
+    pose = HandPose::rest(tracked);
+    const Eigen::Vector3d y = frame.direction.normalized();
+    const Eigen::Vector3d z = (frame.palm_normal - frame.palm_normal.dot(y) * y).normalized();
+    pose.root_rotation.col(0) = y.cross(z);
+    pose.root_rotation.col(1) = y;
+    pose.root_rotation.col(2) = z;
+    const Eigen::Vector3d palm_offset = tracked.markers[std::size_t(tracked.marker_index("palm_centre"))].local;
+    pose.root_position = frame.palm_position - pose.root_rotation * palm_offset;
+  }
 
   std::vector<std::pair<int, Eigen::Vector3d>> targets;
+  std::vector<double> sqrt_weights;
   for (int f = 0; f < kFingerCount; ++f)
-    for (int k = 0; k < 5; ++k)
+    for (int k = 0; k < 5; ++k) {
+      const double w = options.weights[std::size_t(5 * f + k)];
+      if (w <= 0) continue;
       targets.emplace_back(tracked.marker_index(std::string(finger_name(f)) + kJointNames[k]),
                            frame.joints[std::size_t(f)][std::size_t(k)]);
+      sqrt_weights.push_back(std::sqrt(w));
+    }
   const int n = tracked.parameter_count();
   const int m = 3 * int(targets.size());
   double lambda = 1e-3;
@@ -197,10 +217,15 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int 
     }
     if (!improved) break;
   }
-  result.rms_residual = std::sqrt(2.0 * cost / double(targets.size()));
+  // Residuals reported unweighted, over the joints that took part.
+  double sum = 0.0;
   result.max_residual = 0.0;
-  for (std::size_t t = 0; t < targets.size(); ++t)
-    result.max_residual = std::max(result.max_residual, r.segment<3>(Eigen::Index(3 * t)).norm());
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    const double e = r.segment<3>(Eigen::Index(3 * t)).norm() / sqrt_weights[t];
+    sum += e * e;
+    result.max_residual = std::max(result.max_residual, e);
+  }
+  result.rms_residual = std::sqrt(sum / double(std::max<std::size_t>(targets.size(), 1)));
   return result;
 }
 

@@ -22,9 +22,18 @@ struct LeapJoints {
   Eigen::Vector3d wrist = Eigen::Vector3d::Zero();
 };
 
-// Bones: palm; then per digit metacarpal, proximal, intermediate, distal (17 bones).
-// Markers "<digit>_carp", "_mcp", "_pip", "_dip", "_tip".
-Skeleton build_tracked_hand(const HandShape& shape);
+// A person's skeleton measured from tracked frames (see tracking/hand_fitting.h): per digit
+// the carp and mcp positions in the wrist frame (+x radial, +y distal, +z palmar) and the
+// three phalanx lengths.
+struct MeasuredSkeleton {
+  std::array<Eigen::Vector3d, kFingerCount> carp, mcp;
+  std::array<std::array<double, 3>, kFingerCount> lengths;
+};
+
+// Bones: palm; then per digit metacarpal, proximal, intermediate, distal (21 bones).
+// Markers "<digit>_carp", "_mcp", "_pip", "_dip", "_tip", "palm_centre". Proportions from
+// the shape's anthropometric table, or measured ones when given.
+Skeleton build_tracked_hand(const HandShape& shape, const MeasuredSkeleton* measured = nullptr);
 
 LeapJoints to_leap_joints(const Skeleton& tracked, const HandPose& pose);
 
@@ -35,10 +44,24 @@ struct FitResult {
   int iterations;
 };
 
-// Least-squares fit of the skeleton's pose to a frame's 25 joint positions (damped
-// Gauss-Newton from the palm frame, joint angles kept within their limits).
-FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
-                          int max_iterations = 30);
+struct FitOptions {
+  int max_iterations = 30;
+  // Per joint (digit * 5 + k) weight of its residual; 0 leaves a joint out (e.g. a carp
+  // position the source did not have).
+  std::array<double, 25> weights = uniform_weights();
+  // Start from this pose (the previous frame's) instead of the reported palm frame.
+  const HandPose* initial = nullptr;
+  static std::array<double, 25> uniform_weights() {
+    std::array<double, 25> w;
+    w.fill(1.0);
+    return w;
+  }
+};
+
+// Weighted least-squares fit of the skeleton's pose to a frame's 25 joint positions (damped
+// Gauss-Newton, joint angles kept within their limits).
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, const FitOptions& options);
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int max_iterations = 30);
 
 // The palm centre's place in the tracked skeleton's root (wrist) frame.
 Eigen::Vector3d palm_centre_offset(const HandShape& shape);

@@ -217,3 +217,42 @@ TEST(CorruptRecording, RepeatedAndBackwardTimestampsAreRejected) {
 
 }  // namespace
 }  // namespace handlab::tracking
+
+#include "core/tracking/hand_fitting.h"
+
+namespace handlab::tracking {
+namespace {
+
+// Real frames fitted by the tracked skeleton measured from the same recording.
+TEST_P(RealRecording, FramesAreFittedByTheTrackedSkeleton) {
+  const Recording r = read_recording(data(std::string("leap/") + GetParam().file));
+  for (Side side : {Side::kLeft, Side::kRight}) {
+    auto fitter = TrackedHandFitter::for_recording(r.frames, side);
+    if (!fitter) continue;
+    double sum = 0.0, worst = 0.0;
+    int n = 0;
+    for (const auto& f : r.frames)
+      if (const TrackedHand* h = f.hand(side)) {
+        const hand::FitResult fit = fitter->fit(*h);
+        sum += fit.rms_residual;
+        worst = std::max(worst, fit.max_residual);
+        ++n;
+      }
+    std::printf("%s %s hand: %d frames, mean RMS residual %.2f mm, max %.2f mm\n", GetParam().file,
+                side == Side::kLeft ? "left" : "right", n, 1000 * sum / n, 1000 * worst);
+    EXPECT_LT(sum / n, 0.002);
+    EXPECT_LT(worst, 0.015);
+  }
+}
+
+TEST(TrackedHandFitting, HandLengthFromFrames) {
+  const Recording r = read_recording(data("leap/pinch.json.lz"));
+  const auto length = estimate_hand_length(r.frames, Side::kRight);
+  ASSERT_TRUE(length);
+  EXPECT_GT(*length, 0.14);
+  EXPECT_LT(*length, 0.22);
+  EXPECT_FALSE(estimate_hand_length(r.frames, Side::kLeft));
+}
+
+}  // namespace
+}  // namespace handlab::tracking

@@ -8,6 +8,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/output_file.h"
+#include "core/tracking/hand_fitting.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
 
@@ -16,7 +17,8 @@ namespace {
 
 int tracking_info(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
-      {"json", "OUT", "write the figures as JSON (- for standard output)"}};
+      {"json", "OUT", "write the figures as JSON (- for standard output)"},
+      {"fit", "", "also fit every hand with the tracked skeleton measured from the recording"}};
   const Arguments args(specs, argv, 1);
   if (args.help_requested() || args.positional().empty()) {
     if (!args.help_requested())
@@ -43,6 +45,29 @@ int tracking_info(const std::vector<std::string>& argv) {
   const double duration =
       r.frames.size() > 1 ? r.frames.back().timestamp - r.frames.front().timestamp : 0.0;
   const double fps = duration > 0 ? double(r.frames.size() - 1) / duration : 0.0;
+  struct FitFigures {
+    std::string side;
+    double hand_length, mean_rms, max;
+    int frames;
+  };
+  std::vector<FitFigures> fits;
+  if (args.flag("fit")) {
+    for (tracking::Side side : {tracking::Side::kLeft, tracking::Side::kRight}) {
+      auto fitter = tracking::TrackedHandFitter::for_recording(r.frames, side);
+      if (!fitter) continue;
+      FitFigures figures{side == tracking::Side::kLeft ? "left" : "right",
+                         *tracking::estimate_hand_length(r.frames, side), 0, 0, 0};
+      for (const auto& f : r.frames)
+        if (const auto* h = f.hand(side)) {
+          const auto fit = fitter->fit(*h);
+          figures.mean_rms += fit.rms_residual;
+          figures.max = std::max(figures.max, fit.max_residual);
+          ++figures.frames;
+        }
+      figures.mean_rms /= std::max(figures.frames, 1);
+      fits.push_back(figures);
+    }
+  }
   std::map<std::string, int> reasons;
   for (const auto& rej : r.rejected) ++reasons[rej.reason];
 
@@ -57,6 +82,9 @@ int tracking_info(const std::vector<std::string>& argv) {
       std::cout << "    " << count << " x " << reason << "\n";
     if (std::isfinite(lo))
       std::cout << "  thumb-index tip  " << lo * 1000 << " to " << hi * 1000 << " mm\n";
+    for (const auto& f : fits)
+      std::cout << "  fit, " << std::left << std::setw(11) << (f.side + " hand") << "hand length " << f.hand_length * 100 << " cm, residual mean "
+                << f.mean_rms * 1000 << " mm, max " << f.max * 1000 << " mm over " << f.frames << " frames\n";
   }
   if (args.has("json")) {
     write_output(args.text("json"), [&](std::ostream& out) {
@@ -76,7 +104,15 @@ int tracking_info(const std::vector<std::string>& argv) {
         json.field("min", lo * 1000).field("max", hi * 1000);
       else
         json.key("min").null().key("max").null();
-      json.end_object().end_object();
+      json.end_object();
+      if (!fits.empty()) {
+        json.key("fit").begin_array();
+        for (const auto& f : fits)
+          json.begin_object().field("side", f.side).field("hand_length_m", f.hand_length).field("frames", f.frames)
+              .field("residual_mean_mm", f.mean_rms * 1000).field("residual_max_mm", f.max * 1000).end_object();
+        json.end_array();
+      }
+      json.end_object();
     });
   }
   return 0;
