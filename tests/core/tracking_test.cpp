@@ -256,3 +256,53 @@ TEST(TrackedHandFitting, HandLengthFromFrames) {
 
 }  // namespace
 }  // namespace handlab::tracking
+
+#include "core/tracking/frame_source.h"
+
+namespace handlab::tracking {
+namespace {
+
+TEST(Replay, AsFastAsPossibleAndRealTime) {
+  const Recording r = read_recording(data("leap/wave.json.lz"));
+  RecordingReplay fast(r.frames);
+  std::size_t n = 0;
+  while (fast.next()) ++n;
+  EXPECT_EQ(n, r.frames.size());
+  double slept = 0.0;
+  ReplayOptions realtime;
+  realtime.pace = ReplayPace::kRealTime;
+  realtime.sleep = [&](double s) { slept += s; };
+  RecordingReplay paced(r.frames, realtime);
+  while (paced.next()) {
+  }
+  EXPECT_NEAR(slept, r.frames.back().timestamp - r.frames.front().timestamp, 1e-9);
+}
+
+TEST(Replay, ResampledToAFixedRate) {
+  const Recording r = read_recording(data("leap/pinch-57fps.json.lz"));
+  ReplayOptions options;
+  options.pace = ReplayPace::kResampled;
+  options.rate_hz = 120.0;
+  RecordingReplay replay(r.frames, options);
+  std::vector<TrackedFrame> out;
+  while (auto f = replay.next()) out.push_back(*f);
+  const double duration = r.frames.back().timestamp - r.frames.front().timestamp;
+  EXPECT_EQ(out.size(), std::size_t(std::floor(duration * 120.0 + 1e-9)) + 1);
+  for (std::size_t i = 1; i < out.size(); ++i) EXPECT_NEAR(out[i].timestamp - out[i - 1].timestamp, 1.0 / 120, 1e-9);
+  for (const auto& f : out)
+    for (const auto& h : f.hands) {
+      EXPECT_NEAR(h.palm_normal.norm(), 1.0, 1e-9);
+      EXPECT_NEAR(h.palm_normal.dot(h.direction), 0.0, 1e-9);
+      ASSERT_TRUE(h.bone_bases.has_value());
+      const Eigen::Matrix3d& m = (*h.bone_bases)[1][2];
+      EXPECT_TRUE((m.transpose() * m).isIdentity(1e-9));
+    }
+  // At a recorded timestamp the interpolation returns the recorded positions.
+  const TrackedFrame at = interpolate(r.frames[10], r.frames[11], r.frames[10].timestamp);
+  EXPECT_LT((at.hands[0].joints[1][4] - r.frames[10].hands[0].joints[1][4]).norm(), 1e-12);
+  const TrackedFrame mid = interpolate(r.frames[10], r.frames[11], 0.5 * (r.frames[10].timestamp + r.frames[11].timestamp));
+  EXPECT_LT((mid.hands[0].palm_position - 0.5 * (r.frames[10].hands[0].palm_position + r.frames[11].hands[0].palm_position)).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace handlab::tracking
