@@ -1,6 +1,9 @@
 #include "core/util/json_value.h"
 
 #include <charconv>
+#include <sstream>
+
+#include "core/util/json_writer.h"
 #include <cmath>
 
 namespace handlab::util {
@@ -272,6 +275,36 @@ const JsonValue& JsonValue::operator[](std::string_view key) const {
   const JsonValue* v = find(key);
   if (!v) throw JsonError("JSON: no member '" + std::string(key) + "'");
   return *v;
+}
+
+std::string JsonValue::dump() const {
+  std::ostringstream out;
+  JsonWriter writer(out, 0);
+  struct Visitor {
+    JsonWriter& w;
+    void operator()(const JsonValue& v) const {
+      if (v.is_null()) w.null();
+      else if (v.is_bool()) w.value(v.as_bool());
+      else if (v.is_number()) w.value(v.as_number());
+      else if (v.is_string()) w.value(std::string_view(v.as_string()));
+      else if (v.is_array()) {
+        w.begin_array();
+        for (const auto& item : v.as_array()) (*this)(item);
+        w.end_array();
+      } else {
+        w.begin_object();
+        for (const auto& [key, item] : v.as_object()) {
+          w.key(key);
+          (*this)(item);
+        }
+        w.end_object();
+      }
+    }
+  };
+  Visitor{writer}(*this);
+  std::string text = out.str();
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
 }
 
 std::size_t JsonValue::size() const {

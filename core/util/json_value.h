@@ -52,6 +52,8 @@ class JsonValue {
   const JsonValue& operator[](std::string_view key) const;
   const JsonValue& operator[](std::size_t index) const { return as_array().at(index); }
   std::size_t size() const;
+  // Compact JSON text of this value (numbers in shortest round-trip form).
+  std::string dump() const;
 
  private:
   std::variant<std::monostate, bool, double, std::string, Array, Object> v_;
