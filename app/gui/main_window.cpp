@@ -43,6 +43,12 @@ void MainWindow::build_menus() {
     cubes->addAction(action);
   }
 
+  study->addSeparator();
+  QAction* hands = study->addAction(tr("Show &Hands (simulated and tracked)"));
+  hands->setCheckable(true);
+  hands->setChecked(view_->show_hands());
+  connect(hands, &QAction::toggled, view_, &SceneView::set_show_hands);
+
   QMenu* analysis = menuBar()->addMenu(tr("&Analysis"));
   analysis->addAction(tr("Open Data &Table (CSV)…"), this, &MainWindow::open_csv_table);
 

@@ -9,10 +9,50 @@
 #include <QVBoxLayout>
 #include <QWheelEvent>
 
+#include "core/hand/simulated_hand.h"
+#include "core/hand/skin.h"
+#include "core/hand/tracked_hand.h"
+#include "core/render/hand_drawing.h"
 #include "core/render/renderer.h"
 #include "core/render/scene_drawing.h"
 
 namespace handlab::gui {
+namespace {
+
+// Palm down, fingers pointing away from the default camera, over the given point.
+Eigen::Isometry3d hand_placement(const Eigen::Vector3d& at) {
+  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
+  placement.linear() << -1, 0, 0, 0, 0, -1, 0, -1, 0;
+  placement.translation() = at;
+  return placement;
+}
+
+const Eigen::Vector3d kSimulatedHandAt(-0.12, 0.14, 0.12);
+const Eigen::Vector3d kTrackedHandAt(0.16, 0.14, 0.12);
+
+// The hands are built once: the study hand's skin (21.4 cm) and an 18 cm tracked skeleton.
+struct HandModels {
+  hand::Skeleton simulated;
+  hand::HandSkin skin;
+  hand::Skeleton tracked;
+  HandModels() {
+    const hand::HandShape study = hand::HandShape::with_length(0.214);
+    simulated = hand::build_simulated_hand(study);
+    skin = hand::build_skin(simulated, study, 2);
+    tracked = hand::build_tracked_hand(hand::HandShape::with_length(0.18));
+  }
+};
+
+const HandModels& hand_models() {
+  static const HandModels models;
+  return models;
+}
+
+}  // namespace
+
+Eigen::Vector3f SceneView::simulated_palm_position() {
+  return (hand_placement(kSimulatedHandAt) * Eigen::Vector3d(0, 0.25 * 0.214, 0)).cast<float>();
+}
 
 // Draws the scene with the core renderer; owned by a SceneView, which feeds it the camera.
 class SceneCanvas : public QOpenGLWidget {
@@ -41,8 +81,16 @@ class SceneCanvas : public QOpenGLWidget {
     if (!renderer_) return;
     const qreal ratio = devicePixelRatioF();
     const task::SceneLayout& layout = view_->layout();
-    renderer_->render(render::draw_task_scene(layout, task::cube_start_pose(layout)),
-                      view_->camera(), int(width() * ratio), int(height() * ratio));
+    render::DrawList list = render::draw_task_scene(layout, task::cube_start_pose(layout));
+    if (view_->show_hands()) {
+      const HandModels& hands = hand_models();
+      render::draw_skin(list, hands.skin.surface.vertices, hands.skin.surface.triangles,
+                        hand_placement(kSimulatedHandAt), {0.86f, 0.67f, 0.56f, 1.0f});
+      render::draw_skeleton(list, hands.tracked, hand::HandPose::rest(hands.tracked),
+                            hand_placement(kTrackedHandAt), {0.35f, 0.6f, 0.85f, 1.0f},
+                            {0.95f, 0.95f, 0.95f, 1.0f});
+    }
+    renderer_->render(list, view_->camera(), int(width() * ratio), int(height() * ratio));
   }
 
  private:
@@ -81,6 +129,11 @@ SceneView::SceneView(QWidget* parent) : QWidget(parent) {
 void SceneView::set_camera(const render::OrbitCamera& camera) {
   camera_ = camera;
   emit camera_changed();
+  redraw();
+}
+
+void SceneView::set_show_hands(bool show) {
+  show_hands_ = show;
   redraw();
 }
 

@@ -6,6 +6,8 @@
 #include <QPoint>
 #include <QWidget>
 
+#include <Eigen/Geometry>
+
 #include "core/render/orbit_camera.h"
 #include "core/task/scene_layout.h"
 
@@ -23,6 +25,11 @@ class SceneView : public QWidget {
   void set_camera(const render::OrbitCamera& camera);
   void set_layout(const task::SceneLayout& layout);
   const task::SceneLayout& layout() const { return layout_; }
+  // The study's simulated hand (skin) and a tracked Leap skeleton, in their rest poses.
+  void set_show_hands(bool show);
+  bool show_hands() const { return show_hands_; }
+  // Where the simulated hand's palm centre is drawn (scene coordinates), for tests.
+  static Eigen::Vector3f simulated_palm_position();
   // Null when the platform has no OpenGL 3.3 (e.g. the offscreen platform).
   SceneCanvas* canvas() const { return canvas_; }
   // The picture currently shown (empty without OpenGL).
@@ -46,6 +53,7 @@ class SceneView : public QWidget {
   SceneCanvas* canvas_ = nullptr;
   QPoint last_mouse_;
   bool dragging_ = false;
+  bool show_hands_ = true;
 };
 
 // True when an OpenGL 3.3 core context can be created on this platform (checked once).

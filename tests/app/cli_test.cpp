@@ -99,6 +99,30 @@ TEST(CliHand, WritesSkinFleshAndPicture) {
   EXPECT_NE(cli("hand --length 0.5").status, 0);
 }
 
+TEST(CliTracking, InfoJsonAndBadFiles) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/tests/data/leap/pinch.json.lz";
+  const std::string json = std::string(HANDLAB_TEST_TMP) + "/pinch_info.json";
+  const Result r = cli("tracking info " + recording + " --json " + json);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("18.0 to 113.0 mm"), std::string::npos) << r.out;
+  std::FILE* f = std::fopen(json.c_str(), "rb");
+  ASSERT_NE(f, nullptr);
+  std::string text(1 << 16, '\0');
+  text.resize(std::fread(text.data(), 1, text.size(), f));
+  std::fclose(f);
+  for (const char* key : {"\"format_version\"", "\"frames\": 307", "\"frames_with_hands\": 307", "\"hands\"",
+                          "\"duration_s\"", "\"fps_mean\"", "\"rejected\": []", "\"thumb_index_mm\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  const std::string csv = std::string(HANDLAB_TEST_TMP) + "/pinch.csv";
+  EXPECT_EQ(cli("tracking convert " + recording + " --out " + csv).status, 0);
+  // A truncated copy: nothing usable remains, so a one-line error and a non-zero status.
+  const std::string truncated = write_temp("cut.json.lz", "N4IgZgTghgtgpgZxALgNqgMYFcITgOwBcAxaeAJSkLhQEZaBWAOgGYBOAJg");
+  const Result bad = cli("tracking info " + truncated);
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
+  EXPECT_NE(bad.out.find("cut.json.lz"), std::string::npos) << bad.out;
+}
+
 TEST(CliAnalyze, ReportsAndWritesJson) {
   const std::string csv = write_temp("good.csv", kGood);
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";

@@ -81,6 +81,13 @@ TEST(SceneViewGl, DrawsTheSceneInAWindow) {
   const QColor cube = picture.pixelColor(int(p.x()), int(p.y()));
   EXPECT_GT(cube.red(), cube.green() + 60) << qPrintable(cube.name());
   EXPECT_GT(cube.green(), cube.blue() + 30) << qPrintable(cube.name());
+  // The simulated hand's skin over its palm centre.
+  ASSERT_TRUE(render::project_to_pixel(view->camera(), picture.width(), picture.height(),
+                                       SceneView::simulated_palm_position(), &p));
+  const QColor skin = picture.pixelColor(int(p.x()), int(p.y()));
+  EXPECT_GT(skin.red(), 150) << qPrintable(skin.name());
+  EXPECT_GT(skin.red(), skin.green() + 20) << qPrintable(skin.name());
+  EXPECT_GT(skin.green(), skin.blue()) << qPrintable(skin.name());
 }
 
 }  // namespace
