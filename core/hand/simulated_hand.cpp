@@ -8,25 +8,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Orientation whose +y points along `direction`, +x as close as possible to `x_hint`.
-Eigen::Matrix3d frame_along(const Eigen::Vector3d& direction, const Eigen::Vector3d& x_hint) {
-  const Eigen::Vector3d y = direction.normalized();
-  const Eigen::Vector3d z = x_hint.cross(y).normalized();
-  const Eigen::Vector3d x = y.cross(z);
-  Eigen::Matrix3d r;
-  r.col(0) = x;
-  r.col(1) = y;
-  r.col(2) = z;
-  return r;
-}
 
-int add_dof(Skeleton& s, Bone& bone, const std::string& name, const Eigen::Vector3d& axis,
-            double lo_deg, double hi_deg) {
-  if (bone.dof_count == 0) bone.first_dof = int(s.dofs.size());
-  s.dofs.push_back({name, axis, lo_deg * kDeg, hi_deg * kDeg});
-  ++bone.dof_count;
-  return int(s.dofs.size()) - 1;
-}
 
 }  // namespace
 
@@ -91,7 +73,7 @@ Skeleton build_simulated_hand(const HandShape& shape) {
       if (f == 0) {
         if (segment == 0) {
           add_dof(s, bone, name + "_cmc_flexion", flex, -20, 55);
-          add_dof(s, bone, name + "_cmc_abduction", side * z_axis, -25, 45);
+          add_dof(s, bone, name + "_cmc_abduction", -side * z_axis, -25, 45);
           add_dof(s, bone, name + "_cmc_rotation", Eigen::Vector3d(0, side, 0), -25, 25);
         } else if (segment == 1) {
           add_dof(s, bone, name + "_mcp_flexion", flex, -15, 70);

@@ -34,6 +34,24 @@ Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& axis, double angle) {
   return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
 }
 
+Eigen::Matrix3d frame_along(const Eigen::Vector3d& direction, const Eigen::Vector3d& x_hint) {
+  const Eigen::Vector3d y = direction.normalized();
+  const Eigen::Vector3d z = x_hint.cross(y).normalized();
+  Eigen::Matrix3d r;
+  r.col(0) = y.cross(z);
+  r.col(1) = y;
+  r.col(2) = z;
+  return r;
+}
+
+void add_dof(Skeleton& skeleton, Bone& bone, const std::string& name, const Eigen::Vector3d& axis,
+             double lower_deg, double upper_deg) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  if (bone.dof_count == 0) bone.first_dof = int(skeleton.dofs.size());
+  skeleton.dofs.push_back({name, axis, lower_deg * kDeg, upper_deg * kDeg});
+  ++bone.dof_count;
+}
+
 HandPose HandPose::rest(const Skeleton& skeleton) {
   HandPose pose;
   pose.angles = Eigen::VectorXd::Zero(Eigen::Index(skeleton.dofs.size()));

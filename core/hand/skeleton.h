@@ -88,6 +88,11 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> rotation_jacobian(const Skeleton& skele
 bool in_subtree(const Skeleton& skeleton, int bone, int ancestor);
 
 Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& axis, double angle);
+// Orientation whose +y points along `direction` and whose +x is as close as possible to `x_hint`.
+Eigen::Matrix3d frame_along(const Eigen::Vector3d& direction, const Eigen::Vector3d& x_hint);
+// Appends a DOF (limits in degrees) to `bone`, which must be the last bone being built.
+void add_dof(Skeleton& skeleton, Bone& bone, const std::string& name, const Eigen::Vector3d& axis,
+             double lower_deg, double upper_deg);
 Eigen::Matrix3d skew(const Eigen::Vector3d& v);
 
 }  // namespace handlab::hand

@@ -11,22 +11,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr const char* kJointNames[5] = {"_carp", "_mcp", "_pip", "_dip", "_tip"};
 
-Eigen::Matrix3d frame_along(const Eigen::Vector3d& direction, const Eigen::Vector3d& x_hint) {
-  const Eigen::Vector3d y = direction.normalized();
-  const Eigen::Vector3d z = x_hint.cross(y).normalized();
-  Eigen::Matrix3d r;
-  r.col(0) = y.cross(z);
-  r.col(1) = y;
-  r.col(2) = z;
-  return r;
-}
 
-void add_dof(Skeleton& s, Bone& bone, const std::string& name, const Eigen::Vector3d& axis,
-             double lo, double hi) {
-  if (bone.dof_count == 0) bone.first_dof = int(s.dofs.size());
-  s.dofs.push_back({name, axis, lo * kDeg, hi * kDeg});
-  ++bone.dof_count;
-}
 
 }  // namespace
 

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/util/utf8.h"
+
 namespace handlab::tracking {
 namespace {
 
@@ -72,24 +74,6 @@ class BitReader {
   std::size_t consumed_ = 0;
 };
 
-void append_utf8(std::string& out, std::uint32_t code) {
-  if (code < 0x80) {
-    out += char(code);
-  } else if (code < 0x800) {
-    out += char(0xC0 | (code >> 6));
-    out += char(0x80 | (code & 0x3F));
-  } else if (code < 0x10000) {
-    out += char(0xE0 | (code >> 12));
-    out += char(0x80 | ((code >> 6) & 0x3F));
-    out += char(0x80 | (code & 0x3F));
-  } else {
-    out += char(0xF0 | (code >> 18));
-    out += char(0x80 | ((code >> 12) & 0x3F));
-    out += char(0x80 | ((code >> 6) & 0x3F));
-    out += char(0x80 | (code & 0x3F));
-  }
-}
-
 std::string utf16_to_utf8(const std::vector<char16_t>& text) {
   std::string out;
   out.reserve(text.size());
@@ -100,7 +84,7 @@ std::string utf16_to_utf8(const std::vector<char16_t>& text) {
       c = 0x10000 + ((c - 0xD800) << 10) + (text[i + 1] - 0xDC00);
       ++i;
     }
-    append_utf8(out, c);
+    util::append_utf8(out, c);
   }
   return out;
 }

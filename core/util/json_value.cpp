@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/util/json_writer.h"
+#include "core/util/utf8.h"
 #include <cmath>
 
 namespace handlab::util {
@@ -156,24 +157,6 @@ class Parser {
         fail("bad \\u escape");
     }
     return code;
-  }
-
-  static void append_utf8(std::string& out, unsigned code) {
-    if (code < 0x80) {
-      out += char(code);
-    } else if (code < 0x800) {
-      out += char(0xC0 | (code >> 6));
-      out += char(0x80 | (code & 0x3F));
-    } else if (code < 0x10000) {
-      out += char(0xE0 | (code >> 12));
-      out += char(0x80 | ((code >> 6) & 0x3F));
-      out += char(0x80 | (code & 0x3F));
-    } else {
-      out += char(0xF0 | (code >> 18));
-      out += char(0x80 | ((code >> 12) & 0x3F));
-      out += char(0x80 | ((code >> 6) & 0x3F));
-      out += char(0x80 | (code & 0x3F));
-    }
   }
 
   std::string string() {
