@@ -80,6 +80,18 @@ std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<Tracked
   return m;
 }
 
+TrackedHand tracked_hand(const hand::LeapJoints& j, Side side, std::int32_t id) {
+  TrackedHand h;
+  h.id = id;
+  h.side = side;
+  for (int d = 0; d < 5; ++d) h.joints[std::size_t(d)] = j.joints[std::size_t(d)];
+  h.palm_position = j.palm_position;
+  h.palm_normal = j.palm_normal;
+  h.direction = j.direction;
+  h.wrist = j.wrist;
+  return h;
+}
+
 TrackedHandFitter::TrackedHandFitter(double hand_length, Side side, const hand::MeasuredSkeleton* measured) {
   hand::HandShape shape = hand::HandShape::with_length(hand_length);
   shape.left = side == Side::kLeft;

@@ -16,6 +16,8 @@ namespace handlab::tracking {
 std::optional<double> estimate_hand_length(const std::vector<TrackedFrame>& frames, Side side);
 
 hand::LeapJoints leap_joints(const TrackedHand& hand);
+// A tracked hand with the given joints (e.g. a skeleton's pose written as a frame).
+TrackedHand tracked_hand(const hand::LeapJoints& joints, Side side, std::int32_t id = 1);
 
 // The person's skeleton measured from a recording: medians over frames of every phalanx
 // length and of the mcp (and, where the source has them, carp) positions in the palm's

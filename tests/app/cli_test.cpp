@@ -123,6 +123,30 @@ TEST(CliTracking, InfoJsonAndBadFiles) {
   EXPECT_NE(bad.out.find("cut.json.lz"), std::string::npos) << bad.out;
 }
 
+TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/tests/data/leap/pinch.json.lz";
+  const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";
+  for (const char* strategy : {"ours", "naive"}) {
+    const std::string base = dir + "retarget_" + strategy;
+    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base + "_1.csv --json " + base + ".json").status, 0);
+    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base + "_2.csv").status, 0);
+    auto slurp = [](const std::string& path) {
+      std::FILE* f = std::fopen(path.c_str(), "rb");
+      std::string text(1 << 20, '\0');
+      text.resize(f ? std::fread(text.data(), 1, text.size(), f) : 0);
+      if (f) std::fclose(f);
+      return text;
+    };
+    EXPECT_EQ(slurp(base + "_1.csv"), slurp(base + "_2.csv")) << strategy;
+    const std::string json = slurp(base + ".json");
+    for (const char* key : {"\"frames\": 307", "\"time_us\"", "\"median\"", "\"p99\"", "\"iterations\"",
+                            "\"tip_error_mm\"", "\"pinky\"", "\"pinch_frames\"", "\"pinch_tip_error_mm\"",
+                            "\"pinch_gap_error_mm\"", "\"joint_limit_violation_max_rad\": 0"})
+      EXPECT_NE(json.find(key), std::string::npos) << strategy << " " << key;
+  }
+  EXPECT_EQ(cli("retarget " + recording + " --strategy magic").status, 2);
+}
+
 TEST(CliAnalyze, ReportsAndWritesJson) {
   const std::string csv = write_temp("good.csv", kGood);
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";

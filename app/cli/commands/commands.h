@@ -9,6 +9,7 @@ namespace handlab::cli {
 int run_analyze(const std::vector<std::string>& args);
 int run_hand(const std::vector<std::string>& args);
 int run_tracking(const std::vector<std::string>& args);
+int run_retarget(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 
 }  // namespace handlab::cli

@@ -1,0 +1,64 @@
+// "Ours": the intermediate hand's joint angles that best place its fingertips (and any other
+// features) on the scaled tracked ones,
+//   min 1/2 (f(q) - f_t)' W (f(q) - f_t) + R(q)   subject to  lower <= q <= upper,
+// with R a spatial (interphalangeal smoothness) and temporal (distance to the previous
+// frame's solution) regulariser. Gauss-Newton; each step solves the KKT system of the
+// linearised problem with the active bounds as equality constraints, by a Cholesky
+// factorisation of J'WJ + R'' and a Schur complement for the Lagrange multipliers, and
+// updates the active set until the multipliers have the right sign.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/hand/skeleton.h"
+
+namespace handlab::retarget {
+
+struct Feature {
+  int marker;            // a marker of the skeleton (e.g. "index_tip")
+  int relative_to = -1;  // if set, the feature is marker - relative_to (e.g. thumb-index vector)
+  double weight = 1.0;
+};
+
+struct SolverOptions {
+  double spatial_weight = 1e-8;   // (m^2/rad^2): DIP flexion follows PIP flexion
+  double temporal_weight = 1e-9;  // (m^2/rad^2): distance to the previous solution
+  int max_iterations = 16;
+  double step_tolerance = 1e-10;  // rad
+};
+
+struct SolverResult {
+  Eigen::VectorXd angles;
+  int iterations = 0;
+  std::vector<int> active;          // DOF indices at a bound at the solution
+  Eigen::VectorXd multipliers;      // per DOF, >= 0 on active bounds, 0 elsewhere
+  double objective = 0.0;
+};
+
+class FingertipSolver {
+ public:
+  FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features, SolverOptions options = {});
+
+  // Root pose fixed (in `pose`); its angles are the warm start and the temporal anchor.
+  SolverResult solve(const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& targets) const;
+
+  // Gradient of the objective at `angles` (for KKT checks).
+  Eigen::VectorXd gradient(const hand::HandPose& pose, const Eigen::VectorXd& angles,
+                           const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const;
+  double objective(const hand::HandPose& pose, const Eigen::VectorXd& angles, const std::vector<Eigen::Vector3d>& targets,
+                   const Eigen::VectorXd& anchor) const;
+  const std::vector<Feature>& features() const { return features_; }
+
+ private:
+  void evaluate(const hand::HandPose& pose, const Eigen::VectorXd& angles, const std::vector<Eigen::Vector3d>& targets,
+                Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian) const;
+
+  const hand::Skeleton& skeleton_;
+  std::vector<Feature> features_;
+  SolverOptions options_;
+  Eigen::MatrixXd smoothness_;  // L'L of the spatial term (n x n)
+};
+
+}  // namespace handlab::retarget

@@ -1,0 +1,107 @@
+#include "core/retarget/retargeter.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace handlab::retarget {
+namespace {
+
+constexpr const char* kFingers[5] = {"thumb", "index", "middle", "ring", "pinky"};
+
+Eigen::Matrix3d palm_rotation(const tracking::TrackedHand& h) {
+  const Eigen::Vector3d y = h.direction.normalized();
+  const Eigen::Vector3d z = (h.palm_normal - h.palm_normal.dot(y) * y).normalized();
+  Eigen::Matrix3d r;
+  r.col(0) = y.cross(z);
+  r.col(1) = y;
+  r.col(2) = z;
+  return r;
+}
+
+}  // namespace
+
+std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames, tracking::Side side,
+                                               const hand::Skeleton& simulated) {
+  std::vector<double> tracked_diagonals;
+  for (const auto& f : frames) {
+    const tracking::TrackedHand* h = f.hand(side);
+    if (!h || h->grab_strength > 0.1) continue;
+    const Eigen::Matrix3d r = palm_rotation(*h);
+    Eigen::AlignedBox2d box;
+    for (const auto& digit : h->joints)
+      for (int k = 1; k < 5; ++k) box.extend((r.transpose() * (digit[std::size_t(k)] - h->palm_position)).head<2>());
+    tracked_diagonals.push_back(box.diagonal().norm());
+  }
+  if (tracked_diagonals.empty()) return std::nullopt;
+  std::nth_element(tracked_diagonals.begin(), tracked_diagonals.begin() + std::ptrdiff_t(tracked_diagonals.size() / 2),
+                   tracked_diagonals.end());
+  const double tracked = tracked_diagonals[tracked_diagonals.size() / 2];
+  const hand::BoneFrames rest = hand::forward_kinematics(simulated, hand::HandPose::rest(simulated));
+  Eigen::AlignedBox2d box;
+  for (int f = 0; f < 5; ++f) {
+    const bool thumb = f == 0;
+    for (const char* joint : {thumb ? "_mcp" : "_mcp", thumb ? "_ip" : "_pip", thumb ? "_ip" : "_dip", "_tip"}) {
+      const int m = simulated.marker_index(std::string(kFingers[f]) + joint);
+      box.extend(hand::marker_position(simulated, rest, m).head<2>());
+    }
+  }
+  Calibration c;
+  c.scale = box.diagonal().norm() / tracked;
+  return c;
+}
+
+Retargeter::Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calibration calibration,
+                       std::optional<tracking::TrackedHandFitter> fitter, SolverOptions options)
+    : strategy_(strategy), simulated_(simulated), calibration_(calibration), fitter_(std::move(fitter)) {
+  for (int f = 1; f < 5; ++f) mcp_markers_[std::size_t(f - 1)] = simulated.marker_index(std::string(kFingers[f]) + "_mcp");
+  for (int f = 0; f < 5; ++f) tip_markers_[std::size_t(f)] = simulated.marker_index(std::string(kFingers[f]) + "_tip");
+  if (strategy == Strategy::kNaive && !fitter_) throw std::invalid_argument("Naive retargeting needs a tracked-hand fitter");
+  // Thumb and index carry the pinch: they weigh more.
+  std::vector<Feature> features;
+  const double weights[5] = {4.0, 4.0, 1.0, 1.0, 1.0};
+  for (int f = 0; f < 5; ++f) features.push_back({tip_markers_[std::size_t(f)], -1, weights[f]});
+  solver_ = std::make_unique<FingertipSolver>(simulated, features, options);
+}
+
+RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
+  const Eigen::Isometry3d& scene = calibration_.tracker_to_scene;
+  const double s = calibration_.scale;
+  const Eigen::Vector3d centre = tracked.palm_position;
+  auto scaled = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return scene * (centre + s * (p - centre)); };
+
+  RetargetResult out;
+  hand::HandPose& pose = out.pose;
+  pose = hand::HandPose::rest(simulated_);
+  pose.root_rotation = scene.linear() * palm_rotation(tracked);
+  // Palms aligned on the four finger bases: the translation that best puts the simulated
+  // MCPs on the scaled tracked ones.
+  const hand::BoneFrames at_origin = hand::forward_kinematics(simulated_, pose);
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  for (int f = 1; f < 5; ++f)
+    shift += scaled(tracked.joints[std::size_t(f)][1]) - hand::marker_position(simulated_, at_origin, mcp_markers_[std::size_t(f - 1)]);
+  pose.root_position = shift / 4.0;
+  for (int f = 0; f < 5; ++f) out.targets[std::size_t(f)] = scaled(tracked.joints[std::size_t(f)][4]);
+
+  if (strategy_ == Strategy::kNaive) {
+    // The tracked skeleton's joint angles, copied DOF by DOF (both skeletons name their
+    // DOFs alike) and clamped to the simulated hand's limits.
+    const hand::FitResult fit = fitter_->fit(tracked);
+    const hand::Skeleton& t = fitter_->skeleton();
+    for (std::size_t k = 0; k < simulated_.dofs.size(); ++k) {
+      const int source = t.dof_index(simulated_.dofs[k].name);
+      if (source >= 0) pose.angles(Eigen::Index(k)) = fit.pose.angles(source);
+    }
+    pose.clamp_to_limits(simulated_);
+    out.iterations = fit.iterations;
+    return out;
+  }
+  if (previous_) pose.angles = *previous_;  // warm start and temporal anchor
+  const std::vector<Eigen::Vector3d> targets(out.targets.begin(), out.targets.end());
+  const SolverResult solution = solver_->solve(pose, targets);
+  pose.angles = solution.angles;
+  previous_ = solution.angles;
+  out.iterations = solution.iterations;
+  return out;
+}
+
+}  // namespace handlab::retarget

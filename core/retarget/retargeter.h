@@ -1,0 +1,64 @@
+// Pose retargeting: from a tracked hand (Leap morphology, the participant's size) to the
+// intermediate hand (the simulated hand's morphology and size) that the simulation follows.
+// Two strategies behind one interface: Naive (palms aligned on the four finger bases, joint
+// angles copied) and Ours (uniform scale, then the fingertips fitted under joint limits).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "core/hand/skeleton.h"
+#include "core/hand/hand_shape.h"
+#include "core/retarget/fingertip_solver.h"
+#include "core/tracking/hand_fitting.h"
+#include "core/tracking/tracked_frame.h"
+
+namespace handlab::retarget {
+
+enum class Strategy { kNaive, kOurs };
+
+struct Calibration {
+  double scale = 1.0;  // simulated hand size / tracked hand size
+  Eigen::Isometry3d tracker_to_scene = Eigen::Isometry3d::Identity();
+};
+
+// Uniform scale from an open palm: the bounding boxes, in each hand's palm frame, of the
+// tracked joints (mcp..tip of every digit) over frames where the hand is open (grab strength
+// below 0.1), against the simulated hand's same joints in its open rest pose; the scale is
+// the ratio of the boxes' diagonals in the palm plane. nullopt without an open-hand frame.
+std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames, tracking::Side side,
+                                               const hand::Skeleton& simulated);
+
+struct RetargetResult {
+  hand::HandPose pose;                      // the intermediate hand
+  std::array<Eigen::Vector3d, 5> targets;   // scaled tracked fingertips, scene frame
+  int iterations = 0;
+};
+
+class Retargeter {
+ public:
+  // `simulated` must outlive the retargeter. Naive needs the tracked skeleton's fit of each
+  // frame, so it takes a fitter measured for the participant.
+  Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calibration calibration,
+             std::optional<tracking::TrackedHandFitter> fitter = std::nullopt, SolverOptions options = {});
+
+  RetargetResult retarget(const tracking::TrackedHand& hand);
+  Strategy strategy() const { return strategy_; }
+  void reset() { previous_.reset(); }
+
+ private:
+  Strategy strategy_;
+  const hand::Skeleton& simulated_;
+  Calibration calibration_;
+  std::optional<tracking::TrackedHandFitter> fitter_;
+  std::unique_ptr<FingertipSolver> solver_;
+  std::array<int, 4> mcp_markers_;
+  std::array<int, 5> tip_markers_;
+  std::optional<Eigen::VectorXd> previous_;
+};
+
+}  // namespace handlab::retarget
