@@ -76,9 +76,9 @@ Skeleton build_simulated_hand(const HandShape& shape) {
           add_dof(s, bone, name + "_cmc_abduction", -side * z_axis, -25, 45);
           add_dof(s, bone, name + "_cmc_rotation", Eigen::Vector3d(0, side, 0), -25, 25);
         } else if (segment == 1) {
-          add_dof(s, bone, name + "_mcp_flexion", flex, -15, 70);
+          add_dof(s, bone, name + "_mcp_flexion", flex, -40, 70);
         } else {
-          add_dof(s, bone, name + "_ip_flexion", flex, -20, 85);
+          add_dof(s, bone, name + "_ip_flexion", flex, -45, 85);
         }
       } else if (segment == 0) {
         add_dof(s, bone, name + "_mcp_flexion", flex, finger_limits.mcp_flex[0],

@@ -21,32 +21,41 @@ Eigen::Matrix3d palm_rotation(const tracking::TrackedHand& h) {
 }  // namespace
 
 std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames, tracking::Side side,
-                                               const hand::Skeleton& simulated) {
-  std::vector<double> tracked_diagonals;
+                                               const hand::Skeleton& simulated, tracking::TrackedHandFitter fitter) {
+  std::vector<double> ratios;
+  const hand::Skeleton& tracked = fitter.skeleton();
   for (const auto& f : frames) {
     const tracking::TrackedHand* h = f.hand(side);
     if (!h || h->grab_strength > 0.1) continue;
+    // The tracked joints in the palm frame.
     const Eigen::Matrix3d r = palm_rotation(*h);
-    Eigen::AlignedBox2d box;
+    Eigen::AlignedBox2d tracked_box;
     for (const auto& digit : h->joints)
-      for (int k = 1; k < 5; ++k) box.extend((r.transpose() * (digit[std::size_t(k)] - h->palm_position)).head<2>());
-    tracked_diagonals.push_back(box.diagonal().norm());
-  }
-  if (tracked_diagonals.empty()) return std::nullopt;
-  std::nth_element(tracked_diagonals.begin(), tracked_diagonals.begin() + std::ptrdiff_t(tracked_diagonals.size() / 2),
-                   tracked_diagonals.end());
-  const double tracked = tracked_diagonals[tracked_diagonals.size() / 2];
-  const hand::BoneFrames rest = hand::forward_kinematics(simulated, hand::HandPose::rest(simulated));
-  Eigen::AlignedBox2d box;
-  for (int f = 0; f < 5; ++f) {
-    const bool thumb = f == 0;
-    for (const char* joint : {thumb ? "_mcp" : "_mcp", thumb ? "_ip" : "_pip", thumb ? "_ip" : "_dip", "_tip"}) {
-      const int m = simulated.marker_index(std::string(kFingers[f]) + joint);
-      box.extend(hand::marker_position(simulated, rest, m).head<2>());
+      for (int k = 1; k < 5; ++k) tracked_box.extend((r.transpose() * (digit[std::size_t(k)] - h->palm_position)).head<2>());
+    // The simulated hand in the same pose: the fitted angles copied DOF by DOF.
+    const hand::FitResult fit = fitter.fit(*h);
+    hand::HandPose pose = hand::HandPose::rest(simulated);
+    for (std::size_t k = 0; k < simulated.dofs.size(); ++k) {
+      const int source = tracked.dof_index(simulated.dofs[k].name);
+      if (source >= 0) pose.angles(Eigen::Index(k)) = fit.pose.angles(source);
     }
+    pose.clamp_to_limits(simulated);
+    const hand::BoneFrames bones = hand::forward_kinematics(simulated, pose);
+    // The same joints as the tracked ones: Leap's thumb "mcp" is the CMC, its "pip" the MCP.
+    Eigen::AlignedBox2d simulated_box;
+    for (int d = 0; d < 5; ++d) {
+      const bool thumb = d == 0;
+      for (const char* joint : {thumb ? "_cmc" : "_mcp", thumb ? "_mcp" : "_pip", thumb ? "_ip" : "_dip", "_tip"}) {
+        const int m = simulated.marker_index(std::string(kFingers[d]) + joint);
+        simulated_box.extend(hand::marker_position(simulated, bones, m).head<2>());
+      }
+    }
+    ratios.push_back(simulated_box.diagonal().norm() / tracked_box.diagonal().norm());
   }
+  if (ratios.empty()) return std::nullopt;
+  std::nth_element(ratios.begin(), ratios.begin() + std::ptrdiff_t(ratios.size() / 2), ratios.end());
   Calibration c;
-  c.scale = box.diagonal().norm() / tracked;
+  c.scale = ratios[ratios.size() / 2];
   return c;
 }
 

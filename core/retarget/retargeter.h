@@ -26,12 +26,13 @@ struct Calibration {
   Eigen::Isometry3d tracker_to_scene = Eigen::Isometry3d::Identity();
 };
 
-// Uniform scale from an open palm: the bounding boxes, in each hand's palm frame, of the
-// tracked joints (mcp..tip of every digit) over frames where the hand is open (grab strength
-// below 0.1), against the simulated hand's same joints in its open rest pose; the scale is
-// the ratio of the boxes' diagonals in the palm plane. nullopt without an open-hand frame.
+// Uniform scale from an open palm: over frames where the hand is open (grab strength below
+// 0.1), the bounding boxes in the palm plane of the tracked joints (mcp..tip of every digit)
+// and of the simulated hand's corresponding joints in the same pose (the tracked skeleton's
+// fitted joint angles copied onto it); the scale is the median ratio of the boxes'
+// diagonals. nullopt without an open-hand frame.
 std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames, tracking::Side side,
-                                               const hand::Skeleton& simulated);
+                                               const hand::Skeleton& simulated, tracking::TrackedHandFitter fitter);
 
 struct RetargetResult {
   hand::HandPose pose;                      // the intermediate hand

@@ -69,7 +69,7 @@ int run_retarget(const std::vector<std::string>& argv) {
   const hand::Skeleton simulated = hand::build_simulated_hand(shape);
   auto fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
   if (!fitter) throw std::runtime_error(recording.source + ": no " + side_name + " hand in the recording");
-  auto calibration = retarget::calibrate_open_palm(recording.frames, side, simulated);
+  auto calibration = retarget::calibrate_open_palm(recording.frames, side, simulated, *fitter);
   std::string calibration_source = "open palm";
   if (!calibration) {  // no open hand: fall back on the ratio of hand lengths
     calibration = retarget::Calibration{};
