@@ -74,7 +74,7 @@ Skeleton build_simulated_hand(const HandShape& shape) {
         if (segment == 0) {
           add_dof(s, bone, name + "_cmc_flexion", flex, -20, 55);
           add_dof(s, bone, name + "_cmc_abduction", -side * z_axis, -25, 45);
-          add_dof(s, bone, name + "_cmc_rotation", Eigen::Vector3d(0, side, 0), -25, 25);
+          add_dof(s, bone, name + "_cmc_rotation", Eigen::Vector3d(0, side, 0), -25, 55);
         } else if (segment == 1) {
           add_dof(s, bone, name + "_mcp_flexion", flex, -40, 70);
         } else {

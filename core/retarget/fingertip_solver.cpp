@@ -6,6 +6,13 @@
 #include <Eigen/Cholesky>
 
 namespace handlab::retarget {
+namespace {
+
+// The root translation enters the solver in units of 5 cm, so that its Jacobian columns are
+// as large as the joint angles' (lever arms of a few centimetres per radian).
+constexpr double kTranslationUnit = 0.05;
+
+}  // namespace
 
 FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features, SolverOptions options)
     : skeleton_(skeleton), features_(std::move(features)), options_(options) {
@@ -23,26 +30,37 @@ FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Fea
   }
 }
 
-void FingertipSolver::evaluate(const hand::HandPose& pose, const Eigen::VectorXd& angles,
+void FingertipSolver::evaluate(const hand::HandPose& pose, const Eigen::VectorXd& x,
                                const std::vector<Eigen::Vector3d>& targets, Eigen::VectorXd* residual,
                                Eigen::MatrixXd* jacobian) const {
+  const int n = int(skeleton_.dofs.size());
+  const int offset = int(x.size()) - n;  // 3 when the root translation is a variable
   hand::HandPose p = pose;
-  p.angles = angles;
+  p.angles = x.tail(n);
+  if (offset == 3) p.root_position += kTranslationUnit * x.head<3>();
+  const Eigen::VectorXd& angles = x;
   const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, p);
-  const int m = 3 * int(features_.size()), n = int(angles.size());
+  const int m = 3 * int(features_.size());
   residual->resize(m);
-  if (jacobian) jacobian->resize(m, n);
+  if (jacobian) jacobian->resize(m, angles.size());
   for (std::size_t i = 0; i < features_.size(); ++i) {
     const Feature& f = features_[i];
     const double w = std::sqrt(f.weight);
     const hand::Marker& marker = skeleton_.markers[std::size_t(f.marker)];
     Eigen::Vector3d value = hand::marker_position(skeleton_, frames, f.marker);
+    // Columns: the root translation (when a variable), then the joint angles.
+    auto columns = [&](const Eigen::Matrix<double, 3, Eigen::Dynamic>& full) {
+      Eigen::Matrix<double, 3, Eigen::Dynamic> out(3, offset + n);
+      if (offset == 3) out.leftCols<3>() = kTranslationUnit * full.leftCols<3>();
+      out.rightCols(n) = full.rightCols(n);
+      return out;
+    };
     Eigen::Matrix<double, 3, Eigen::Dynamic> j;
-    if (jacobian) j = hand::point_jacobian(skeleton_, frames, p, marker.bone, value).rightCols(n);
+    if (jacobian) j = columns(hand::point_jacobian(skeleton_, frames, p, marker.bone, value));
     if (f.relative_to >= 0) {
       const Eigen::Vector3d other = hand::marker_position(skeleton_, frames, f.relative_to);
       if (jacobian)
-        j -= hand::point_jacobian(skeleton_, frames, p, skeleton_.markers[std::size_t(f.relative_to)].bone, other).rightCols(n);
+        j -= columns(hand::point_jacobian(skeleton_, frames, p, skeleton_.markers[std::size_t(f.relative_to)].bone, other));
       value -= other;
     }
     residual->segment<3>(Eigen::Index(3 * i)) = w * (value - targets[i]);
@@ -50,72 +68,97 @@ void FingertipSolver::evaluate(const hand::HandPose& pose, const Eigen::VectorXd
   }
 }
 
-double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& angles,
-                                  const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const {
-  Eigen::VectorXd r;
-  evaluate(pose, angles, targets, &r, nullptr);
-  const Eigen::VectorXd d = angles - anchor;
-  return 0.5 * r.squaredNorm() + 0.5 * options_.spatial_weight * angles.dot(smoothness_ * angles) +
-         0.5 * options_.temporal_weight * d.squaredNorm();
+Eigen::MatrixXd FingertipSolver::regulariser_hessian(int size) const {
+  const int n = int(skeleton_.dofs.size()), offset = size - n;
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(size, size);
+  h.bottomRightCorner(n, n) = options_.spatial_weight * smoothness_;
+  h.diagonal().tail(n).array() += options_.temporal_weight;
+  if (offset == 3) h.diagonal().head<3>().array() += options_.root_translation_weight * kTranslationUnit * kTranslationUnit;
+  return h;
 }
 
-Eigen::VectorXd FingertipSolver::gradient(const hand::HandPose& pose, const Eigen::VectorXd& angles,
+Eigen::VectorXd FingertipSolver::regulariser_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const {
+  const int n = int(skeleton_.dofs.size());
+  Eigen::VectorXd g = regulariser_hessian(int(x.size())) * x;
+  g.tail(n) -= options_.temporal_weight * anchor;  // the temporal term pulls towards the anchor
+  return g;
+}
+
+double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                                  const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const {
+  Eigen::VectorXd r;
+  evaluate(pose, x, targets, &r, nullptr);
+  const int n = int(skeleton_.dofs.size());
+  const Eigen::VectorXd q = x.tail(n);
+  double value = 0.5 * r.squaredNorm() + 0.5 * options_.spatial_weight * q.dot(smoothness_ * q) +
+                 0.5 * options_.temporal_weight * (q - anchor).squaredNorm();
+  if (x.size() == n + 3)
+    value += 0.5 * options_.root_translation_weight * (kTranslationUnit * x.head<3>()).squaredNorm();
+  return value;
+}
+
+Eigen::VectorXd FingertipSolver::gradient(const hand::HandPose& pose, const Eigen::VectorXd& x,
                                           const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const {
   Eigen::VectorXd r;
   Eigen::MatrixXd j;
-  evaluate(pose, angles, targets, &r, &j);
-  return j.transpose() * r + options_.spatial_weight * (smoothness_ * angles) + options_.temporal_weight * (angles - anchor);
+  evaluate(pose, x, targets, &r, &j);
+  return j.transpose() * r + regulariser_gradient(x, anchor);
 }
 
-SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& targets) const {
+SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& targets,
+                                    bool cold_start) const {
   const int n = int(skeleton_.dofs.size());
-  Eigen::VectorXd lower(n), upper(n);
+  const int offset = options_.root_translation_weight > 0 ? 3 : 0;
+  const int size = offset + n;
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(size, -INFINITY), upper = Eigen::VectorXd::Constant(size, INFINITY);
   for (int k = 0; k < n; ++k) {
-    lower(k) = skeleton_.dofs[std::size_t(k)].lower;
-    upper(k) = skeleton_.dofs[std::size_t(k)].upper;
+    lower(offset + k) = skeleton_.dofs[std::size_t(k)].lower;
+    upper(offset + k) = skeleton_.dofs[std::size_t(k)].upper;
   }
-  const Eigen::VectorXd anchor = pose.angles.cwiseMax(lower).cwiseMin(upper);
+  const Eigen::VectorXd anchor = pose.angles.cwiseMax(lower.tail(n)).cwiseMin(upper.tail(n));
   SolverResult result;
-  Eigen::VectorXd q = anchor;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(size);
+  x.tail(n) = anchor;
   // Active set: -1 at the lower bound, +1 at the upper, 0 free. Start from the bounds the
   // warm start sits on.
-  std::vector<int> state(std::size_t(n), 0);
-  for (int k = 0; k < n; ++k) state[std::size_t(k)] = q(k) <= lower(k) ? -1 : q(k) >= upper(k) ? 1 : 0;
-  Eigen::VectorXd mu = Eigen::VectorXd::Zero(n);
-  const Eigen::MatrixXd regulariser =
-      options_.spatial_weight * smoothness_ + options_.temporal_weight * Eigen::MatrixXd::Identity(n, n);
+  std::vector<int> state(std::size_t(size), 0);
+  for (int k = offset; k < size; ++k) state[std::size_t(k)] = x(k) <= lower(k) ? -1 : x(k) >= upper(k) ? 1 : 0;
+  Eigen::VectorXd mu = Eigen::VectorXd::Zero(size);
+  const Eigen::MatrixXd regulariser = regulariser_hessian(size);
 
   Eigen::VectorXd r;
   Eigen::MatrixXd j;
   // Levenberg-Marquardt damping, grown when the Gauss-Newton model overshoots and shrunk
   // when it is trusted; it does not move the solution (a zero step means g + C'lambda = 0).
   double damping = 0.0;
-  for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
+  const int max_iterations = cold_start ? std::max(options_.cold_start_iterations, options_.max_iterations)
+                                        : options_.max_iterations;
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
     result.iterations = iteration + 1;
-    evaluate(pose, q, targets, &r, &j);
+    evaluate(pose, x, targets, &r, &j);
     Eigen::MatrixXd h = j.transpose() * j + regulariser;
     h.diagonal().array() += damping;
-    const Eigen::VectorXd g = j.transpose() * r + options_.spatial_weight * (smoothness_ * q) + options_.temporal_weight * (q - anchor);
-    const Eigen::LLT<Eigen::MatrixXd> llt(h);  // positive definite: the temporal term
+    const Eigen::VectorXd g = j.transpose() * r + regulariser_gradient(x, anchor);
+    const Eigen::LLT<Eigen::MatrixXd> llt(h);  // positive definite: the regulariser
     Eigen::VectorXd step;
-    // Active-set loop on the linearised problem: min 1/2 s'Hs + g's, s_k = bound_k - q_k on
+    // Active-set loop on the linearised problem: min 1/2 s'Hs + g's, s_k = bound_k - x_k on
     // the active set A. KKT: H s + C' lambda = -g, C s = b; with H = LL':
     // (C H^-1 C') lambda = C H^-1 (-g) - b, s = H^-1 (-g - C' lambda).
-    for (int pass = 0; pass < 2 * n + 2; ++pass) {
+    for (int pass = 0; pass < 2 * size + 2; ++pass) {
       std::vector<int> active;
-      for (int k = 0; k < n; ++k)
+      for (int k = 0; k < size; ++k)
         if (state[std::size_t(k)] != 0) active.push_back(k);
       const Eigen::VectorXd free_step = llt.solve(-g);
       Eigen::VectorXd lambda = Eigen::VectorXd::Zero(Eigen::Index(active.size()));
       step = free_step;
       if (!active.empty()) {
         const Eigen::Index a = Eigen::Index(active.size());
-        Eigen::MatrixXd ct = Eigen::MatrixXd::Zero(n, a);
+        Eigen::MatrixXd ct = Eigen::MatrixXd::Zero(size, a);
         Eigen::VectorXd b(a);
         for (Eigen::Index i = 0; i < a; ++i) {
           const int k = active[std::size_t(i)];
           ct(k, i) = 1.0;
-          b(i) = (state[std::size_t(k)] < 0 ? lower(k) : upper(k)) - q(k);
+          b(i) = (state[std::size_t(k)] < 0 ? lower(k) : upper(k)) - x(k);
         }
         const Eigen::MatrixXd hinv_ct = llt.solve(ct);
         const Eigen::MatrixXd schur = ct.transpose() * hinv_ct;
@@ -124,7 +167,7 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
         lambda = schur.llt().solve(cs - b);
         step = free_step - hinv_ct * lambda;
       }
-      // Multipliers of c(q) >= 0: lower bound c = q - lo (lambda_c = -lambda), upper c = hi - q
+      // Multipliers of c(x) >= 0: lower bound c = x - lo (lambda_c = -lambda), upper c = hi - x
       // (lambda_c = lambda). A wrong sign means the bound should be released.
       int release = -1;
       double most_negative = -1e-12;
@@ -143,16 +186,16 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
       // Bounds the free variables would cross join the active set.
       int enter = -1;
       double worst = 1e-15;
-      for (int k = 0; k < n; ++k) {
+      for (int k = offset; k < size; ++k) {
         if (state[std::size_t(k)] != 0) continue;
-        const double over = std::max(q(k) + step(k) - upper(k), lower(k) - q(k) - step(k));
+        const double over = std::max(x(k) + step(k) - upper(k), lower(k) - x(k) - step(k));
         if (over > worst) {
           worst = over;
           enter = k;
         }
       }
       if (enter >= 0) {
-        state[std::size_t(enter)] = q(enter) + step(enter) > upper(enter) ? 1 : -1;
+        state[std::size_t(enter)] = x(enter) + step(enter) > upper(enter) ? 1 : -1;
         continue;
       }
       mu.setZero();
@@ -163,32 +206,33 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
       break;
     }
     // Backtracking on the true objective: the step keeps every bound for any length in [0, 1].
-    const double current = objective(pose, q, targets, anchor);
+    const double current = objective(pose, x, targets, anchor);
     const double slope = g.dot(step);
     double length = 1.0;
-    Eigen::VectorXd trial = q + step;
+    Eigen::VectorXd trial = x + step;
     // A predicted decrease below the objective's rounding is no test of the step: near the
     // solution the quadratic model is right, so take it whole.
     const bool resolvable = -slope > 1e-10 * current;
     while (resolvable && length > 1e-4 && objective(pose, trial, targets, anchor) > current + 1e-4 * length * slope) {
       length *= 0.5;
-      trial = q + length * step;
+      trial = x + length * step;
     }
-    q = trial;
+    x = trial;
     damping = length < 0.5 ? std::max(10.0 * damping, 1e-6) : 0.25 * damping;
     if (length == 1.0) {
-      for (int k = 0; k < n; ++k) {  // exactly on the active bounds
-        if (state[std::size_t(k)] < 0) q(k) = lower(k);
-        if (state[std::size_t(k)] > 0) q(k) = upper(k);
+      for (int k = 0; k < size; ++k) {  // exactly on the active bounds
+        if (state[std::size_t(k)] < 0) x(k) = lower(k);
+        if (state[std::size_t(k)] > 0) x(k) = upper(k);
       }
     }
     if ((length * step).lpNorm<Eigen::Infinity>() < options_.step_tolerance) break;
   }
-  result.angles = q;
-  result.multipliers = mu;
-  for (int k = 0; k < n; ++k)
-    if (state[std::size_t(k)] != 0) result.active.push_back(k);
-  result.objective = objective(pose, q, targets, anchor);
+  result.angles = x.tail(n);
+  if (offset == 3) result.root_shift = kTranslationUnit * x.head<3>();
+  result.multipliers = mu.tail(n);
+  for (int k = offset; k < size; ++k)
+    if (state[std::size_t(k)] != 0) result.active.push_back(k - offset);
+  result.objective = objective(pose, x, targets, anchor);
   return result;
 }
 

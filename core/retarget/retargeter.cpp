@@ -7,6 +7,8 @@ namespace handlab::retarget {
 namespace {
 
 constexpr const char* kFingers[5] = {"thumb", "index", "middle", "ring", "pinky"};
+constexpr double kRootTranslationWeight = 1e-2;
+constexpr double kReachTolerance = 0.0005;  // m: a tip this far off calls for the free wrist
 
 Eigen::Matrix3d palm_rotation(const tracking::TrackedHand& h) {
   const Eigen::Vector3d y = h.direction.normalized();
@@ -69,7 +71,12 @@ Retargeter::Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calib
   std::vector<Feature> features;
   const double weights[5] = {4.0, 4.0, 1.0, 1.0, 1.0};
   for (int f = 0; f < 5; ++f) features.push_back({tip_markers_[std::size_t(f)], -1, weights[f]});
+  options.root_translation_weight = 0.0;
   solver_ = std::make_unique<FingertipSolver>(simulated, features, options);
+  // When a tip stays out of reach from the palm placed on the finger bases (the two
+  // skeletons' thumb bases differ), the palm may shift, at a regularised cost.
+  options.root_translation_weight = kRootTranslationWeight;
+  free_wrist_ = std::make_unique<FingertipSolver>(simulated, features, options);
 }
 
 RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
@@ -106,10 +113,20 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
   }
   if (previous_) pose.angles = *previous_;  // warm start and temporal anchor
   const std::vector<Eigen::Vector3d> targets(out.targets.begin(), out.targets.end());
-  const SolverResult solution = solver_->solve(pose, targets);
-  pose.angles = solution.angles;
-  previous_ = solution.angles;
+  SolverResult solution = solver_->solve(pose, targets, !previous_.has_value());
   out.iterations = solution.iterations;
+  pose.angles = solution.angles;
+  const hand::BoneFrames frames = hand::forward_kinematics(simulated_, pose);
+  double worst = 0.0;
+  for (int f = 0; f < 5; ++f)
+    worst = std::max(worst, (hand::marker_position(simulated_, frames, tip_markers_[std::size_t(f)]) - targets[std::size_t(f)]).norm());
+  if (worst > kReachTolerance) {
+    solution = free_wrist_->solve(pose, targets);
+    out.iterations += solution.iterations;
+    pose.angles = solution.angles;
+    pose.root_position += solution.root_shift;
+  }
+  previous_ = solution.angles;
   return out;
 }
 

@@ -56,7 +56,8 @@ class Retargeter {
   const hand::Skeleton& simulated_;
   Calibration calibration_;
   std::optional<tracking::TrackedHandFitter> fitter_;
-  std::unique_ptr<FingertipSolver> solver_;
+  std::unique_ptr<FingertipSolver> solver_;       // palm fixed on the finger bases
+  std::unique_ptr<FingertipSolver> free_wrist_;   // palm free to shift, when tips are out of reach
   std::array<int, 4> mcp_markers_;
   std::array<int, 5> tip_markers_;
   std::optional<Eigen::VectorXd> previous_;

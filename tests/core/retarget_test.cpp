@@ -50,7 +50,7 @@ tracking::TrackedHand as_tracked(const Skeleton& s, const HandPose& pose, double
 
 TEST(FingertipSolver, KktConditionsHoldAtTheSolution) {
   const Skeleton s = hand::build_simulated_hand(hand::HandShape::with_length(0.214));
-  FingertipSolver solver(s, tips(s), {1e-6, 1e-6, 200, 1e-13});
+  FingertipSolver solver(s, tips(s), {1e-6, 1e-6, 0.0, 200, 200, 1e-13});
   std::mt19937 rng(5);
   int with_active = 0;
   for (int trial = 0; trial < 20; ++trial) {
@@ -97,6 +97,7 @@ TEST(Retargeter, OursRecoversTheFingertipsOfTheSameMorphology) {
   std::mt19937 rng(9);
   for (int trial = 0; trial < 10; ++trial) {
     const HandPose truth = random_interior_pose(s, rng, 0.6);
+    ours.reset();  // unrelated poses: each a new hand, not the next frame of a motion
     const RetargetResult r = ours.retarget(as_tracked(s, truth, length));
     const hand::BoneFrames got = hand::forward_kinematics(s, r.pose);
     const hand::BoneFrames want = hand::forward_kinematics(s, truth);
@@ -120,7 +121,7 @@ TEST(Retargeter, SyntheticPinchesStayTouchingWithOurs) {
       pose.angles(tracked.dof_index(std::string(f) + "_dip_flexion")) = 0.3;
     }
     const int thumb_tip = tracked.marker_index("thumb_tip"), index_tip = tracked.marker_index("index_tip");
-    FingertipSolver touch(tracked, {{thumb_tip, index_tip, 1.0}}, {1e-9, 1e-9, 60, 1e-13});
+    FingertipSolver touch(tracked, {{thumb_tip, index_tip, 1.0}}, {1e-9, 1e-9, 0.0, 60, 60, 1e-13});
     const SolverResult touching = touch.solve(pose, {Eigen::Vector3d::Zero()});
     pose.angles = touching.angles;
     const hand::LeapJoints joints = hand::to_leap_joints(tracked, pose);
