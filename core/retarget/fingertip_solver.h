@@ -30,7 +30,7 @@ struct SolverOptions {
   double root_translation_weight = 0.0;
   int max_iterations = 16;       // warm-started frames
   int cold_start_iterations = 100;  // the first frame, or after a reset
-  double step_tolerance = 1e-7;   // rad (about 1e-8 m at a fingertip)
+  double step_tolerance = 1e-6;   // rad (about 1e-7 m at a fingertip)
 };
 
 struct SolverResult {
