@@ -13,13 +13,15 @@ namespace handlab::live {
 
 class FrameQueue : public tracking::FrameSource {
  public:
-  explicit FrameQueue(std::chrono::milliseconds wait = std::chrono::milliseconds(1000), std::size_t capacity = 1024)
+  explicit FrameQueue(std::chrono::milliseconds wait = std::chrono::milliseconds(1000),
+                      std::size_t capacity = 1024)
       : wait_(wait), capacity_(capacity) {}
 
   void push(tracking::TrackedFrame frame) {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      if (frames_.size() == capacity_) frames_.pop_front();  // a stalled consumer sees the newest frames
+      if (frames_.size() == capacity_)
+        frames_.pop_front();  // a stalled consumer sees the newest frames
       frames_.push_back(std::move(frame));
     }
     ready_.notify_one();

@@ -8,7 +8,9 @@
 namespace handlab::live {
 
 LeapWebSocketClient::LeapWebSocketClient(LeapClientOptions options, QObject* parent)
-    : QObject(parent), options_(std::move(options)), version_(options_.protocol_version),
+    : QObject(parent),
+      options_(std::move(options)),
+      version_(options_.protocol_version),
       backoff_ms_(options_.first_backoff_ms) {
   reconnect_timer_.setSingleShot(true);
   connect(&reconnect_timer_, &QTimer::timeout, this, &LeapWebSocketClient::open_socket);
@@ -17,7 +19,9 @@ LeapWebSocketClient::LeapWebSocketClient(LeapClientOptions options, QObject* par
   connect(&socket_, &QWebSocket::textMessageReceived, this, &LeapWebSocketClient::on_message);
 }
 
-LeapWebSocketClient::~LeapWebSocketClient() { stop(); }
+LeapWebSocketClient::~LeapWebSocketClient() {
+  stop();
+}
 
 void LeapWebSocketClient::start() {
   running_ = true;
@@ -43,7 +47,8 @@ void LeapWebSocketClient::on_connected() {
   connected_ = true;
   backoff_ms_ = options_.first_backoff_ms;
   // The options LeapJS sends: frames in the background, and this client as the focused one.
-  socket_.sendTextMessage(QString(R"({"background": %1})").arg(options_.background ? "true" : "false"));
+  socket_.sendTextMessage(
+      QString(R"({"background": %1})").arg(options_.background ? "true" : "false"));
   socket_.sendTextMessage(R"({"focused": true})");
   emit connection_changed(true);
 }
@@ -85,7 +90,8 @@ void LeapWebSocketClient::on_message(const QString& text) {
   if (const auto* version = message.find("version"); version && message.find("serviceVersion")) {
     greeted_ = true;
     if (version->is_number()) version_ = int(version->as_number());
-    service_version_ = QString::fromStdString(message["serviceVersion"].is_string() ? message["serviceVersion"].as_string() : "");
+    service_version_ = QString::fromStdString(
+        message["serviceVersion"].is_string() ? message["serviceVersion"].as_string() : "");
     return;
   }
   if (const auto* event = message.find("event")) {

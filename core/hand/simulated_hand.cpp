@@ -8,8 +8,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-
-
 }  // namespace
 
 Skeleton build_simulated_hand(const HandShape& shape) {

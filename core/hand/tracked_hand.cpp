@@ -11,8 +11,6 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr const char* kJointNames[5] = {"_carp", "_mcp", "_pip", "_dip", "_tip"};
 
-
-
 }  // namespace
 
 Eigen::Vector3d palm_centre_offset(const HandShape& shape) {
@@ -126,7 +124,8 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int 
   return fit_leap_joints(tracked, frame, options);
 }
 
-FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, const FitOptions& options) {
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
+                          const FitOptions& options) {
   const int max_iterations = options.max_iterations;
   FitResult result;
   HandPose& pose = result.pose;
@@ -140,7 +139,8 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, cons
     pose.root_rotation.col(0) = y.cross(z);
     pose.root_rotation.col(1) = y;
     pose.root_rotation.col(2) = z;
-    const Eigen::Vector3d palm_offset = tracked.markers[std::size_t(tracked.marker_index("palm_centre"))].local;
+    const Eigen::Vector3d palm_offset =
+        tracked.markers[std::size_t(tracked.marker_index("palm_centre"))].local;
     pose.root_position = frame.palm_position - pose.root_rotation * palm_offset;
   }
 

@@ -60,8 +60,10 @@ struct FitOptions {
 
 // Weighted least-squares fit of the skeleton's pose to a frame's 25 joint positions (damped
 // Gauss-Newton, joint angles kept within their limits).
-FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, const FitOptions& options);
-FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int max_iterations = 30);
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
+                          const FitOptions& options);
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
+                          int max_iterations = 30);
 
 // The palm centre's place in the tracked skeleton's root (wrist) frame.
 Eigen::Vector3d palm_centre_offset(const HandShape& shape);

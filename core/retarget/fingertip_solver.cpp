@@ -14,7 +14,8 @@ constexpr double kTranslationUnit = 0.05;
 
 }  // namespace
 
-FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features, SolverOptions options)
+FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features,
+                                 SolverOptions options)
     : skeleton_(skeleton), features_(std::move(features)), options_(options) {
   const int n = int(skeleton.dofs.size());
   smoothness_ = Eigen::MatrixXd::Zero(n, n);
@@ -31,8 +32,8 @@ FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Fea
 }
 
 void FingertipSolver::evaluate(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                               const std::vector<Eigen::Vector3d>& targets, Eigen::VectorXd* residual,
-                               Eigen::MatrixXd* jacobian) const {
+                               const std::vector<Eigen::Vector3d>& targets,
+                               Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian) const {
   const int n = int(skeleton_.dofs.size());
   const int offset = int(x.size()) - n;  // 3 when the root translation is a variable
   hand::HandPose p = pose;
@@ -60,7 +61,8 @@ void FingertipSolver::evaluate(const hand::HandPose& pose, const Eigen::VectorXd
     if (f.relative_to >= 0) {
       const Eigen::Vector3d other = hand::marker_position(skeleton_, frames, f.relative_to);
       if (jacobian)
-        j -= columns(hand::point_jacobian(skeleton_, frames, p, skeleton_.markers[std::size_t(f.relative_to)].bone, other));
+        j -= columns(hand::point_jacobian(
+            skeleton_, frames, p, skeleton_.markers[std::size_t(f.relative_to)].bone, other));
       value -= other;
     }
     residual->segment<3>(Eigen::Index(3 * i)) = w * (value - targets[i]);
@@ -73,11 +75,14 @@ Eigen::MatrixXd FingertipSolver::regulariser_hessian(int size) const {
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(size, size);
   h.bottomRightCorner(n, n) = options_.spatial_weight * smoothness_;
   h.diagonal().tail(n).array() += options_.temporal_weight;
-  if (offset == 3) h.diagonal().head<3>().array() += options_.root_translation_weight * kTranslationUnit * kTranslationUnit;
+  if (offset == 3)
+    h.diagonal().head<3>().array() +=
+        options_.root_translation_weight * kTranslationUnit * kTranslationUnit;
   return h;
 }
 
-Eigen::VectorXd FingertipSolver::regulariser_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const {
+Eigen::VectorXd FingertipSolver::regulariser_gradient(const Eigen::VectorXd& x,
+                                                      const Eigen::VectorXd& anchor) const {
   const int n = int(skeleton_.dofs.size());
   Eigen::VectorXd g = regulariser_hessian(int(x.size())) * x;
   g.tail(n) -= options_.temporal_weight * anchor;  // the temporal term pulls towards the anchor
@@ -85,7 +90,8 @@ Eigen::VectorXd FingertipSolver::regulariser_gradient(const Eigen::VectorXd& x, 
 }
 
 double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                                  const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const {
+                                  const std::vector<Eigen::Vector3d>& targets,
+                                  const Eigen::VectorXd& anchor) const {
   Eigen::VectorXd r;
   evaluate(pose, x, targets, &r, nullptr);
   const int n = int(skeleton_.dofs.size());
@@ -93,24 +99,28 @@ double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::Vecto
   double value = 0.5 * r.squaredNorm() + 0.5 * options_.spatial_weight * q.dot(smoothness_ * q) +
                  0.5 * options_.temporal_weight * (q - anchor).squaredNorm();
   if (x.size() == n + 3)
-    value += 0.5 * options_.root_translation_weight * (kTranslationUnit * x.head<3>()).squaredNorm();
+    value +=
+        0.5 * options_.root_translation_weight * (kTranslationUnit * x.head<3>()).squaredNorm();
   return value;
 }
 
 Eigen::VectorXd FingertipSolver::gradient(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                                          const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const {
+                                          const std::vector<Eigen::Vector3d>& targets,
+                                          const Eigen::VectorXd& anchor) const {
   Eigen::VectorXd r;
   Eigen::MatrixXd j;
   evaluate(pose, x, targets, &r, &j);
   return j.transpose() * r + regulariser_gradient(x, anchor);
 }
 
-SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& targets,
+SolverResult FingertipSolver::solve(const hand::HandPose& pose,
+                                    const std::vector<Eigen::Vector3d>& targets,
                                     bool cold_start) const {
   const int n = int(skeleton_.dofs.size());
   const int offset = options_.root_translation_weight > 0 ? 3 : 0;
   const int size = offset + n;
-  Eigen::VectorXd lower = Eigen::VectorXd::Constant(size, -INFINITY), upper = Eigen::VectorXd::Constant(size, INFINITY);
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(size, -INFINITY),
+                  upper = Eigen::VectorXd::Constant(size, INFINITY);
   for (int k = 0; k < n; ++k) {
     lower(offset + k) = skeleton_.dofs[std::size_t(k)].lower;
     upper(offset + k) = skeleton_.dofs[std::size_t(k)].upper;
@@ -122,7 +132,8 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
   // Active set: -1 at the lower bound, +1 at the upper, 0 free. Start from the bounds the
   // warm start sits on.
   std::vector<int> state(std::size_t(size), 0);
-  for (int k = offset; k < size; ++k) state[std::size_t(k)] = x(k) <= lower(k) ? -1 : x(k) >= upper(k) ? 1 : 0;
+  for (int k = offset; k < size; ++k)
+    state[std::size_t(k)] = x(k) <= lower(k) ? -1 : x(k) >= upper(k) ? 1 : 0;
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(size);
   const Eigen::MatrixXd regulariser = regulariser_hessian(size);
 
@@ -131,8 +142,9 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
   // Levenberg-Marquardt damping, grown when the Gauss-Newton model overshoots and shrunk
   // when it is trusted; it does not move the solution (a zero step means g + C'lambda = 0).
   double damping = 0.0;
-  const int max_iterations = cold_start ? std::max(options_.cold_start_iterations, options_.max_iterations)
-                                        : options_.max_iterations;
+  const int max_iterations = cold_start
+                                 ? std::max(options_.cold_start_iterations, options_.max_iterations)
+                                 : options_.max_iterations;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     result.iterations = iteration + 1;
     evaluate(pose, x, targets, &r, &j);
@@ -173,7 +185,8 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
       double most_negative = -1e-12;
       for (std::size_t i = 0; i < active.size(); ++i) {
         const int k = active[i];
-        const double m = state[std::size_t(k)] < 0 ? -lambda(Eigen::Index(i)) : lambda(Eigen::Index(i));
+        const double m =
+            state[std::size_t(k)] < 0 ? -lambda(Eigen::Index(i)) : lambda(Eigen::Index(i));
         if (m < most_negative) {
           most_negative = m;
           release = k;
@@ -213,7 +226,8 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose, const std::vecto
     // A predicted decrease below the objective's rounding is no test of the step: near the
     // solution the quadratic model is right, so take it whole.
     const bool resolvable = -slope > 1e-10 * current;
-    while (resolvable && length > 1e-4 && objective(pose, trial, targets, anchor) > current + 1e-4 * length * slope) {
+    while (resolvable && length > 1e-4 &&
+           objective(pose, trial, targets, anchor) > current + 1e-4 * length * slope) {
       length *= 0.5;
       trial = x + length * step;
     }

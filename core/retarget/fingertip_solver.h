@@ -28,23 +28,24 @@ struct SolverOptions {
   // Let the wrist position take part (as x = [translation; angles]), pulled towards the
   // given placement with this weight (m^2/m^2); 0 keeps the root fixed.
   double root_translation_weight = 0.0;
-  int max_iterations = 16;       // warm-started frames
+  int max_iterations = 16;          // warm-started frames
   int cold_start_iterations = 100;  // the first frame, or after a reset
-  double step_tolerance = 1e-6;   // rad (about 1e-7 m at a fingertip)
+  double step_tolerance = 1e-6;     // rad (about 1e-7 m at a fingertip)
 };
 
 struct SolverResult {
   Eigen::VectorXd angles;
   Eigen::Vector3d root_shift = Eigen::Vector3d::Zero();  // added to the root position
   int iterations = 0;
-  std::vector<int> active;          // DOF indices at a bound at the solution
-  Eigen::VectorXd multipliers;      // per DOF, >= 0 on active bounds, 0 elsewhere
+  std::vector<int> active;      // DOF indices at a bound at the solution
+  Eigen::VectorXd multipliers;  // per DOF, >= 0 on active bounds, 0 elsewhere
   double objective = 0.0;
 };
 
 class FingertipSolver {
  public:
-  FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features, SolverOptions options = {});
+  FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features,
+                  SolverOptions options = {});
 
   // Root pose fixed (in `pose`); its angles are the warm start and the temporal anchor.
   SolverResult solve(const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& targets,
@@ -53,17 +54,21 @@ class FingertipSolver {
   // The objective and its gradient at x = angles (root fixed) or [root shift; angles], with
   // the temporal anchor's angles (for KKT checks).
   Eigen::VectorXd gradient(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                           const std::vector<Eigen::Vector3d>& targets, const Eigen::VectorXd& anchor) const;
-  double objective(const hand::HandPose& pose, const Eigen::VectorXd& x, const std::vector<Eigen::Vector3d>& targets,
+                           const std::vector<Eigen::Vector3d>& targets,
+                           const Eigen::VectorXd& anchor) const;
+  double objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                   const std::vector<Eigen::Vector3d>& targets,
                    const Eigen::VectorXd& anchor) const;
   const std::vector<Feature>& features() const { return features_; }
 
  private:
-  void evaluate(const hand::HandPose& pose, const Eigen::VectorXd& x, const std::vector<Eigen::Vector3d>& targets,
-                Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian) const;
+  void evaluate(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                const std::vector<Eigen::Vector3d>& targets, Eigen::VectorXd* residual,
+                Eigen::MatrixXd* jacobian) const;
   // The quadratic regulariser's Hessian over x, and its gradient at x.
   Eigen::MatrixXd regulariser_hessian(int size) const;
-  Eigen::VectorXd regulariser_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const;
+  Eigen::VectorXd regulariser_gradient(const Eigen::VectorXd& x,
+                                       const Eigen::VectorXd& anchor) const;
 
   const hand::Skeleton& skeleton_;
   std::vector<Feature> features_;

@@ -22,8 +22,9 @@ Eigen::Matrix3d palm_rotation(const tracking::TrackedHand& h) {
 
 }  // namespace
 
-std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames, tracking::Side side,
-                                               const hand::Skeleton& simulated, tracking::TrackedHandFitter fitter) {
+std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames,
+                                               tracking::Side side, const hand::Skeleton& simulated,
+                                               tracking::TrackedHandFitter fitter) {
   std::vector<double> ratios;
   const hand::Skeleton& tracked = fitter.skeleton();
   for (const auto& f : frames) {
@@ -33,7 +34,8 @@ std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::Track
     const Eigen::Matrix3d r = palm_rotation(*h);
     Eigen::AlignedBox2d tracked_box;
     for (const auto& digit : h->joints)
-      for (int k = 1; k < 5; ++k) tracked_box.extend((r.transpose() * (digit[std::size_t(k)] - h->palm_position)).head<2>());
+      for (int k = 1; k < 5; ++k)
+        tracked_box.extend((r.transpose() * (digit[std::size_t(k)] - h->palm_position)).head<2>());
     // The simulated hand in the same pose: the fitted angles copied DOF by DOF.
     const hand::FitResult fit = fitter.fit(*h);
     hand::HandPose pose = hand::HandPose::rest(simulated);
@@ -47,7 +49,8 @@ std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::Track
     Eigen::AlignedBox2d simulated_box;
     for (int d = 0; d < 5; ++d) {
       const bool thumb = d == 0;
-      for (const char* joint : {thumb ? "_cmc" : "_mcp", thumb ? "_mcp" : "_pip", thumb ? "_ip" : "_dip", "_tip"}) {
+      for (const char* joint :
+           {thumb ? "_cmc" : "_mcp", thumb ? "_mcp" : "_pip", thumb ? "_ip" : "_dip", "_tip"}) {
         const int m = simulated.marker_index(std::string(kFingers[d]) + joint);
         simulated_box.extend(hand::marker_position(simulated, bones, m).head<2>());
       }
@@ -55,7 +58,8 @@ std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::Track
     ratios.push_back(simulated_box.diagonal().norm() / tracked_box.diagonal().norm());
   }
   if (ratios.empty()) return std::nullopt;
-  std::nth_element(ratios.begin(), ratios.begin() + std::ptrdiff_t(ratios.size() / 2), ratios.end());
+  std::nth_element(ratios.begin(), ratios.begin() + std::ptrdiff_t(ratios.size() / 2),
+                   ratios.end());
   Calibration c;
   c.scale = ratios[ratios.size() / 2];
   return c;
@@ -63,10 +67,16 @@ std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::Track
 
 Retargeter::Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calibration calibration,
                        std::optional<tracking::TrackedHandFitter> fitter, SolverOptions options)
-    : strategy_(strategy), simulated_(simulated), calibration_(calibration), fitter_(std::move(fitter)) {
-  for (int f = 1; f < 5; ++f) mcp_markers_[std::size_t(f - 1)] = simulated.marker_index(std::string(kFingers[f]) + "_mcp");
-  for (int f = 0; f < 5; ++f) tip_markers_[std::size_t(f)] = simulated.marker_index(std::string(kFingers[f]) + "_tip");
-  if (strategy == Strategy::kNaive && !fitter_) throw std::invalid_argument("Naive retargeting needs a tracked-hand fitter");
+    : strategy_(strategy),
+      simulated_(simulated),
+      calibration_(calibration),
+      fitter_(std::move(fitter)) {
+  for (int f = 1; f < 5; ++f)
+    mcp_markers_[std::size_t(f - 1)] = simulated.marker_index(std::string(kFingers[f]) + "_mcp");
+  for (int f = 0; f < 5; ++f)
+    tip_markers_[std::size_t(f)] = simulated.marker_index(std::string(kFingers[f]) + "_tip");
+  if (strategy == Strategy::kNaive && !fitter_)
+    throw std::invalid_argument("Naive retargeting needs a tracked-hand fitter");
   // Thumb and index carry the pinch: they weigh more.
   std::vector<Feature> features;
   const double weights[5] = {4.0, 4.0, 1.0, 1.0, 1.0};
@@ -83,7 +93,9 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
   const Eigen::Isometry3d& scene = calibration_.tracker_to_scene;
   const double s = calibration_.scale;
   const Eigen::Vector3d centre = tracked.palm_position;
-  auto scaled = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return scene * (centre + s * (p - centre)); };
+  auto scaled = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    return scene * (centre + s * (p - centre));
+  };
 
   RetargetResult out;
   hand::HandPose& pose = out.pose;
@@ -94,9 +106,11 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
   const hand::BoneFrames at_origin = hand::forward_kinematics(simulated_, pose);
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   for (int f = 1; f < 5; ++f)
-    shift += scaled(tracked.joints[std::size_t(f)][1]) - hand::marker_position(simulated_, at_origin, mcp_markers_[std::size_t(f - 1)]);
+    shift += scaled(tracked.joints[std::size_t(f)][1]) -
+             hand::marker_position(simulated_, at_origin, mcp_markers_[std::size_t(f - 1)]);
   pose.root_position = shift / 4.0;
-  for (int f = 0; f < 5; ++f) out.targets[std::size_t(f)] = scaled(tracked.joints[std::size_t(f)][4]);
+  for (int f = 0; f < 5; ++f)
+    out.targets[std::size_t(f)] = scaled(tracked.joints[std::size_t(f)][4]);
 
   if (strategy_ == Strategy::kNaive) {
     // The tracked skeleton's joint angles, copied DOF by DOF (both skeletons name their
@@ -119,7 +133,10 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
   const hand::BoneFrames frames = hand::forward_kinematics(simulated_, pose);
   double worst = 0.0;
   for (int f = 0; f < 5; ++f)
-    worst = std::max(worst, (hand::marker_position(simulated_, frames, tip_markers_[std::size_t(f)]) - targets[std::size_t(f)]).norm());
+    worst =
+        std::max(worst, (hand::marker_position(simulated_, frames, tip_markers_[std::size_t(f)]) -
+                         targets[std::size_t(f)])
+                            .norm());
   if (worst > kReachTolerance) {
     solution = free_wrist_->solve(pose, targets);
     out.iterations += solution.iterations;

@@ -11,8 +11,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/hand/skeleton.h"
 #include "core/hand/hand_shape.h"
+#include "core/hand/skeleton.h"
 #include "core/retarget/fingertip_solver.h"
 #include "core/tracking/hand_fitting.h"
 #include "core/tracking/tracked_frame.h"
@@ -31,12 +31,13 @@ struct Calibration {
 // and of the simulated hand's corresponding joints in the same pose (the tracked skeleton's
 // fitted joint angles copied onto it); the scale is the median ratio of the boxes'
 // diagonals. nullopt without an open-hand frame.
-std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames, tracking::Side side,
-                                               const hand::Skeleton& simulated, tracking::TrackedHandFitter fitter);
+std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames,
+                                               tracking::Side side, const hand::Skeleton& simulated,
+                                               tracking::TrackedHandFitter fitter);
 
 struct RetargetResult {
-  hand::HandPose pose;                      // the intermediate hand
-  std::array<Eigen::Vector3d, 5> targets;   // scaled tracked fingertips, scene frame
+  hand::HandPose pose;                     // the intermediate hand
+  std::array<Eigen::Vector3d, 5> targets;  // scaled tracked fingertips, scene frame
   int iterations = 0;
 };
 
@@ -45,7 +46,8 @@ class Retargeter {
   // `simulated` must outlive the retargeter. Naive needs the tracked skeleton's fit of each
   // frame, so it takes a fitter measured for the participant.
   Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calibration calibration,
-             std::optional<tracking::TrackedHandFitter> fitter = std::nullopt, SolverOptions options = {});
+             std::optional<tracking::TrackedHandFitter> fitter = std::nullopt,
+             SolverOptions options = {});
 
   RetargetResult retarget(const tracking::TrackedHand& hand);
   Strategy strategy() const { return strategy_; }
@@ -56,8 +58,8 @@ class Retargeter {
   const hand::Skeleton& simulated_;
   Calibration calibration_;
   std::optional<tracking::TrackedHandFitter> fitter_;
-  std::unique_ptr<FingertipSolver> solver_;       // palm fixed on the finger bases
-  std::unique_ptr<FingertipSolver> free_wrist_;   // palm free to shift, when tips are out of reach
+  std::unique_ptr<FingertipSolver> solver_;      // palm fixed on the finger bases
+  std::unique_ptr<FingertipSolver> free_wrist_;  // palm free to shift, when tips are out of reach
   std::array<int, 4> mcp_markers_;
   std::array<int, 5> tip_markers_;
   std::optional<Eigen::VectorXd> previous_;

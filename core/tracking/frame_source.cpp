@@ -13,7 +13,8 @@ namespace {
 Eigen::Matrix3d slerp(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double s) {
   // Leap's matrices are printed to six digits, so they are only nearly orthonormal: the
   // quaternions are normalised so that the result is a rotation.
-  const Eigen::Quaterniond qa = Eigen::Quaterniond(a).normalized(), qb = Eigen::Quaterniond(b).normalized();
+  const Eigen::Quaterniond qa = Eigen::Quaterniond(a).normalized(),
+                           qb = Eigen::Quaterniond(b).normalized();
   return qa.slerp(s, qb).toRotationMatrix();
 }
 
@@ -30,7 +31,9 @@ Eigen::Matrix3d palm_frame(const TrackedHand& h) {
 
 TrackedHand blend(const TrackedHand& a, const TrackedHand& b, double s) {
   TrackedHand h = a;
-  auto lerp = [s](const Eigen::Vector3d& p, const Eigen::Vector3d& q) -> Eigen::Vector3d { return p + s * (q - p); };
+  auto lerp = [s](const Eigen::Vector3d& p, const Eigen::Vector3d& q) -> Eigen::Vector3d {
+    return p + s * (q - p);
+  };
   h.confidence = a.confidence + s * (b.confidence - a.confidence);
   h.pinch_strength = a.pinch_strength + s * (b.pinch_strength - a.pinch_strength);
   h.grab_strength = a.grab_strength + s * (b.grab_strength - a.grab_strength);
@@ -89,10 +92,13 @@ TrackedFrame interpolate(const TrackedFrame& a, const TrackedFrame& b, double t)
 
 RecordingReplay::RecordingReplay(std::vector<TrackedFrame> frames, ReplayOptions options)
     : frames_(std::move(frames)), options_(std::move(options)) {
-  if (options_.pace == ReplayPace::kResampled && !(options_.rate_hz > 0 && std::isfinite(options_.rate_hz)))
+  if (options_.pace == ReplayPace::kResampled &&
+      !(options_.rate_hz > 0 && std::isfinite(options_.rate_hz)))
     throw std::invalid_argument("resampling needs a positive rate");
   if (!options_.sleep)
-    options_.sleep = [](double seconds) { std::this_thread::sleep_for(std::chrono::duration<double>(seconds)); };
+    options_.sleep = [](double seconds) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    };
   if (!frames_.empty()) time_ = frames_.front().timestamp;
 }
 

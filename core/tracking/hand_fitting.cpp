@@ -9,10 +9,12 @@ std::optional<double> estimate_hand_length(const std::vector<TrackedFrame>& fram
   for (const auto& f : frames)
     if (const TrackedHand* h = f.hand(side)) {
       const auto& m = h->joints[2];
-      lengths.push_back(((m[2] - m[1]).norm() + (m[3] - m[2]).norm() + (m[4] - m[3]).norm()) / 0.544);
+      lengths.push_back(((m[2] - m[1]).norm() + (m[3] - m[2]).norm() + (m[4] - m[3]).norm()) /
+                        0.544);
     }
   if (lengths.empty()) return std::nullopt;
-  std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+  std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2),
+                   lengths.end());
   return lengths[lengths.size() / 2];
 }
 
@@ -35,8 +37,8 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<TrackedFrame>& frames, Side side,
-                                                       double hand_length) {
+std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<TrackedFrame>& frames,
+                                                       Side side, double hand_length) {
   // The wrist frame as the fit sees it: the palm frame moved back by the palm centre offset.
   hand::HandShape shape = hand::HandShape::with_length(hand_length);
   const Eigen::Vector3d palm_offset = hand::palm_centre_offset(shape);
@@ -55,7 +57,9 @@ std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<Tracked
     const Eigen::Vector3d root = h->palm_position - r * palm_offset;
     for (int d = 0; d < 5; ++d) {
       const auto& j = h->joints[std::size_t(d)];
-      for (int k = 0; k < 3; ++k) lengths[std::size_t(d)][std::size_t(k)].push_back((j[std::size_t(k + 2)] - j[std::size_t(k + 1)]).norm());
+      for (int k = 0; k < 3; ++k)
+        lengths[std::size_t(d)][std::size_t(k)].push_back(
+            (j[std::size_t(k + 2)] - j[std::size_t(k + 1)]).norm());
       const Eigen::Vector3d m = r.transpose() * (j[1] - root), c = r.transpose() * (j[0] - root);
       for (int k = 0; k < 3; ++k) {
         mcp[std::size_t(d)][std::size_t(k)].push_back(m[k]);
@@ -75,7 +79,9 @@ std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<Tracked
       m.mcp[std::size_t(d)][k] = median(mcp[std::size_t(d)][std::size_t(k)]);
       m.carp[std::size_t(d)][k] = have_carp ? median(carp[std::size_t(d)][std::size_t(k)]) : 0.0;
     }
-    if (!have_carp) m.carp[std::size_t(d)] = m.mcp[std::size_t(d)] + (rest.joints[std::size_t(d)][0] - rest.joints[std::size_t(d)][1]);
+    if (!have_carp)
+      m.carp[std::size_t(d)] =
+          m.mcp[std::size_t(d)] + (rest.joints[std::size_t(d)][0] - rest.joints[std::size_t(d)][1]);
   }
   return m;
 }
@@ -92,13 +98,15 @@ TrackedHand tracked_hand(const hand::LeapJoints& j, Side side, std::int32_t id) 
   return h;
 }
 
-TrackedHandFitter::TrackedHandFitter(double hand_length, Side side, const hand::MeasuredSkeleton* measured) {
+TrackedHandFitter::TrackedHandFitter(double hand_length, Side side,
+                                     const hand::MeasuredSkeleton* measured) {
   hand::HandShape shape = hand::HandShape::with_length(hand_length);
   shape.left = side == Side::kLeft;
   skeleton_ = hand::build_tracked_hand(shape, measured);
 }
 
-std::optional<TrackedHandFitter> TrackedHandFitter::for_recording(const std::vector<TrackedFrame>& frames, Side side) {
+std::optional<TrackedHandFitter> TrackedHandFitter::for_recording(
+    const std::vector<TrackedFrame>& frames, Side side) {
   const auto length = estimate_hand_length(frames, side);
   if (!length) return std::nullopt;
   const auto measured = measure_skeleton(frames, side, *length);

@@ -22,15 +22,17 @@ TrackedHand tracked_hand(const hand::LeapJoints& joints, Side side, std::int32_t
 // The person's skeleton measured from a recording: medians over frames of every phalanx
 // length and of the mcp (and, where the source has them, carp) positions in the palm's
 // frame. nullopt when no frame has a hand of that side.
-std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<TrackedFrame>& frames, Side side,
-                                                       double hand_length);
+std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<TrackedFrame>& frames,
+                                                       Side side, double hand_length);
 
 // Fits one hand per call, each fit starting from the previous one's pose.
 class TrackedHandFitter {
  public:
-  TrackedHandFitter(double hand_length, Side side, const hand::MeasuredSkeleton* measured = nullptr);
+  TrackedHandFitter(double hand_length, Side side,
+                    const hand::MeasuredSkeleton* measured = nullptr);
   // The skeleton measured from the frames of `side` in a recording.
-  static std::optional<TrackedHandFitter> for_recording(const std::vector<TrackedFrame>& frames, Side side);
+  static std::optional<TrackedHandFitter> for_recording(const std::vector<TrackedFrame>& frames,
+                                                        Side side);
   hand::FitResult fit(const TrackedHand& hand);
   const hand::Skeleton& skeleton() const { return skeleton_; }
   void reset() { previous_.reset(); }

@@ -3,9 +3,9 @@
 #include <charconv>
 #include <sstream>
 
+#include <cmath>
 #include "core/util/json_writer.h"
 #include "core/util/utf8.h"
-#include <cmath>
 
 namespace handlab::util {
 namespace {
@@ -266,10 +266,14 @@ std::string JsonValue::dump() const {
   struct Visitor {
     JsonWriter& w;
     void operator()(const JsonValue& v) const {
-      if (v.is_null()) w.null();
-      else if (v.is_bool()) w.value(v.as_bool());
-      else if (v.is_number()) w.value(v.as_number());
-      else if (v.is_string()) w.value(std::string_view(v.as_string()));
+      if (v.is_null())
+        w.null();
+      else if (v.is_bool())
+        w.value(v.as_bool());
+      else if (v.is_number())
+        w.value(v.as_number());
+      else if (v.is_string())
+        w.value(std::string_view(v.as_string()));
       else if (v.is_array()) {
         w.begin_array();
         for (const auto& item : v.as_array()) (*this)(item);

@@ -111,13 +111,15 @@ TEST(CliTracking, InfoJsonAndBadFiles) {
   std::string text(1 << 16, '\0');
   text.resize(std::fread(text.data(), 1, text.size(), f));
   std::fclose(f);
-  for (const char* key : {"\"format_version\"", "\"frames\": 307", "\"frames_with_hands\": 307", "\"hands\"",
-                          "\"duration_s\"", "\"fps_mean\"", "\"rejected\": []", "\"thumb_index_mm\""})
+  for (const char* key :
+       {"\"format_version\"", "\"frames\": 307", "\"frames_with_hands\": 307", "\"hands\"",
+        "\"duration_s\"", "\"fps_mean\"", "\"rejected\": []", "\"thumb_index_mm\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
   const std::string csv = std::string(HANDLAB_TEST_TMP) + "/pinch.csv";
   EXPECT_EQ(cli("tracking convert " + recording + " --out " + csv).status, 0);
   // A truncated copy: nothing usable remains, so a one-line error and a non-zero status.
-  const std::string truncated = write_temp("cut.json.lz", "N4IgZgTghgtgpgZxALgNqgMYFcITgOwBcAxaeAJSkLhQEZaBWAOgGYBOAJg");
+  const std::string truncated =
+      write_temp("cut.json.lz", "N4IgZgTghgtgpgZxALgNqgMYFcITgOwBcAxaeAJSkLhQEZaBWAOgGYBOAJg");
   const Result bad = cli("tracking info " + truncated);
   EXPECT_EQ(bad.status, 1);
   EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
@@ -129,8 +131,13 @@ TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
   const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";
   for (const char* strategy : {"ours", "naive"}) {
     const std::string base = dir + "retarget_" + strategy;
-    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base + "_1.csv --json " + base + ".json").status, 0);
-    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base + "_2.csv").status, 0);
+    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base +
+                  "_1.csv --json " + base + ".json")
+                  .status,
+              0);
+    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base + "_2.csv")
+                  .status,
+              0);
     auto slurp = [](const std::string& path) {
       std::FILE* f = std::fopen(path.c_str(), "rb");
       std::string text(1 << 20, '\0');
@@ -140,9 +147,10 @@ TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
     };
     EXPECT_EQ(slurp(base + "_1.csv"), slurp(base + "_2.csv")) << strategy;
     const std::string json = slurp(base + ".json");
-    for (const char* key : {"\"frames\": 307", "\"time_us\"", "\"median\"", "\"p99\"", "\"iterations\"",
-                            "\"tip_error_mm\"", "\"pinky\"", "\"pinch_frames\"", "\"pinch_tip_error_mm\"",
-                            "\"pinch_gap_error_mm\"", "\"joint_limit_violation_max_rad\""})
+    for (const char* key :
+         {"\"frames\": 307", "\"time_us\"", "\"median\"", "\"p99\"", "\"iterations\"",
+          "\"tip_error_mm\"", "\"pinky\"", "\"pinch_frames\"", "\"pinch_tip_error_mm\"",
+          "\"pinch_gap_error_mm\"", "\"joint_limit_violation_max_rad\""})
       EXPECT_NE(json.find(key), std::string::npos) << strategy << " " << key;
     const auto at = json.find("\"joint_limit_violation_max_rad\": ");
     ASSERT_NE(at, std::string::npos);

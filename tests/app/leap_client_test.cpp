@@ -30,11 +30,15 @@ std::vector<std::string> recording_messages() {
 // Serves frames [first, last) of the recording to each client, as the Leap service would.
 class FakeLeapService : public QObject {
  public:
-  FakeLeapService(quint16 port, std::vector<std::string> messages, std::size_t first, std::size_t last,
-                  bool refuse_v6 = false)
-      : server_("fake leap", QWebSocketServer::NonSecureMode), messages_(std::move(messages)), first_(first),
-        last_(last), refuse_v6_(refuse_v6) {
-    EXPECT_TRUE(server_.listen(QHostAddress::LocalHost, port)) << server_.errorString().toStdString();
+  FakeLeapService(quint16 port, std::vector<std::string> messages, std::size_t first,
+                  std::size_t last, bool refuse_v6 = false)
+      : server_("fake leap", QWebSocketServer::NonSecureMode),
+        messages_(std::move(messages)),
+        first_(first),
+        last_(last),
+        refuse_v6_(refuse_v6) {
+    EXPECT_TRUE(server_.listen(QHostAddress::LocalHost, port))
+        << server_.errorString().toStdString();
     connect(&server_, &QWebSocketServer::newConnection, this, [this] {
       QWebSocket* socket = server_.nextPendingConnection();
       paths.push_back(socket->requestUrl().path());
@@ -42,11 +46,14 @@ class FakeLeapService : public QObject {
         socket->close(QWebSocketProtocol::CloseCodeGoingAway);
         return;
       }
-      connect(socket, &QWebSocket::textMessageReceived, this, [this](const QString& m) { options.push_back(m); });
+      connect(socket, &QWebSocket::textMessageReceived, this,
+              [this](const QString& m) { options.push_back(m); });
       sockets_.emplace_back(socket);
       socket->sendTextMessage(R"({"serviceVersion":"2.3.1+33747","version":6})");
-      socket->sendTextMessage(R"({"event":{"type":"deviceEvent","state":{"attached":true,"streaming":true,"type":"peripheral"}}})");
-      for (std::size_t i = first_; i < last_; ++i) socket->sendTextMessage(QString::fromStdString(messages_[i]));
+      socket->sendTextMessage(
+          R"({"event":{"type":"deviceEvent","state":{"attached":true,"streaming":true,"type":"peripheral"}}})");
+      for (std::size_t i = first_; i < last_; ++i)
+        socket->sendTextMessage(QString::fromStdString(messages_[i]));
     });
   }
   quint16 port() const { return server_.serverPort(); }
@@ -80,7 +87,8 @@ TEST(LeapWebSocketClient, ReceivesEveryFrameInOrderAndSurvivesARestart) {
   bool device = false;
   QObject::connect(&client, &LeapWebSocketClient::frame_received,
                    [&](const tracking::TrackedFrame& f) { ids.push_back(f.id); });
-  QObject::connect(&client, &LeapWebSocketClient::device_changed, [&](bool attached, bool) { device = attached; });
+  QObject::connect(&client, &LeapWebSocketClient::device_changed,
+                   [&](bool attached, bool) { device = attached; });
   client.start();
   ASSERT_TRUE(QTest::qWaitFor([&] { return ids.size() == 150; }, 10000)) << ids.size();
   EXPECT_TRUE(client.connected());
@@ -101,7 +109,8 @@ TEST(LeapWebSocketClient, ReceivesEveryFrameInOrderAndSurvivesARestart) {
   // Every frame, in order, none twice; also through the queue a session runner reads.
   const auto doc_ids = [&] {
     std::vector<std::int64_t> v;
-    for (const auto& m : messages) v.push_back(std::int64_t(util::JsonValue::parse(m)["id"].as_number()));
+    for (const auto& m : messages)
+      v.push_back(std::int64_t(util::JsonValue::parse(m)["id"].as_number()));
     return v;
   }();
   EXPECT_EQ(ids, doc_ids);
@@ -119,7 +128,8 @@ TEST(LeapWebSocketClient, StepsDownWhenTheServiceRefusesV6) {
   options.server = QUrl(QString("ws://127.0.0.1:%1").arg(service.port()));
   LeapWebSocketClient client(options);
   int frames = 0;
-  QObject::connect(&client, &LeapWebSocketClient::frame_received, [&](const tracking::TrackedFrame&) { ++frames; });
+  QObject::connect(&client, &LeapWebSocketClient::frame_received,
+                   [&](const tracking::TrackedFrame&) { ++frames; });
   client.start();
   ASSERT_TRUE(QTest::qWaitFor([&] { return frames == 5; }, 10000));
   ASSERT_GE(service.paths.size(), 2u);

@@ -17,9 +17,11 @@ HandPose random_interior_pose(const Skeleton& s, std::mt19937& rng, double sprea
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   HandPose pose = HandPose::rest(s);
   pose.root_position = Eigen::Vector3d(0.02, 0.2, -0.03);
-  pose.root_rotation = Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.3, 1, 0.2).normalized()).toRotationMatrix();
+  pose.root_rotation =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.3, 1, 0.2).normalized()).toRotationMatrix();
   for (std::size_t k = 0; k < s.dofs.size(); ++k) {
-    const double mid = 0.5 * (s.dofs[k].lower + s.dofs[k].upper), half = 0.5 * (s.dofs[k].upper - s.dofs[k].lower);
+    const double mid = 0.5 * (s.dofs[k].lower + s.dofs[k].upper),
+                 half = 0.5 * (s.dofs[k].upper - s.dofs[k].lower);
     pose.angles(Eigen::Index(k)) = mid + spread * half * unit(rng);
   }
   return pose;
@@ -38,12 +40,16 @@ tracking::TrackedHand as_tracked(const Skeleton& s, const HandPose& pose, double
   const char* names[5] = {"thumb", "index", "middle", "ring", "pinky"};
   for (int f = 0; f < 5; ++f) {
     const std::string n = names[f];
-    const char* joints[5] = {f == 0 ? "_cmc" : "_mcp", f == 0 ? "_cmc" : "_mcp", f == 0 ? "_mcp" : "_pip", f == 0 ? "_ip" : "_dip", "_tip"};
-    for (int k = 0; k < 5; ++k) j.joints[std::size_t(f)][std::size_t(k)] = hand::marker_position(s, frames, s.marker_index(n + joints[k]));
+    const char* joints[5] = {f == 0 ? "_cmc" : "_mcp", f == 0 ? "_cmc" : "_mcp",
+                             f == 0 ? "_mcp" : "_pip", f == 0 ? "_ip" : "_dip", "_tip"};
+    for (int k = 0; k < 5; ++k)
+      j.joints[std::size_t(f)][std::size_t(k)] =
+          hand::marker_position(s, frames, s.marker_index(n + joints[k]));
   }
   j.direction = pose.root_rotation.col(1);
   j.palm_normal = pose.root_rotation.col(2);
-  j.palm_position = pose.root_position + pose.root_rotation * Eigen::Vector3d(0, 0.25 * hand_length, 0);
+  j.palm_position =
+      pose.root_position + pose.root_rotation * Eigen::Vector3d(0, 0.25 * hand_length, 0);
   j.wrist = pose.root_position;
   return tracking::tracked_hand(j, tracking::Side::kRight);
 }
@@ -80,10 +86,13 @@ TEST(FingertipSolver, KktConditionsHoldAtTheSolution) {
       EXPECT_GE(r.angles(i), lower(i) - 1e-9);
       EXPECT_LE(r.angles(i), upper(i) + 1e-9);
       EXPECT_GE(r.multipliers(i), 0.0) << s.dofs[k].name;
-      // Stationarity: grad f = sum mu grad c, with grad c = +e_k at a lower bound, -e_k at an upper.
+      // Stationarity: grad f = sum mu grad c, with grad c = +e_k at a lower bound, -e_k at an
+      // upper.
       double expected = 0.0;
-      if (std::abs(r.angles(i) - lower(i)) < 1e-12 && r.multipliers(i) > 0) expected = r.multipliers(i);
-      if (std::abs(r.angles(i) - upper(i)) < 1e-12 && r.multipliers(i) > 0) expected = -r.multipliers(i);
+      if (std::abs(r.angles(i) - lower(i)) < 1e-12 && r.multipliers(i) > 0)
+        expected = r.multipliers(i);
+      if (std::abs(r.angles(i) - upper(i)) < 1e-12 && r.multipliers(i) > 0)
+        expected = -r.multipliers(i);
       EXPECT_NEAR(g(i), expected, 1e-8) << s.dofs[k].name << " trial " << trial;
     }
   }
@@ -102,7 +111,8 @@ TEST(Retargeter, OursRecoversTheFingertipsOfTheSameMorphology) {
     const hand::BoneFrames got = hand::forward_kinematics(s, r.pose);
     const hand::BoneFrames want = hand::forward_kinematics(s, truth);
     for (int m : hand::fingertip_markers(s))
-      EXPECT_LT((hand::marker_position(s, got, m) - hand::marker_position(s, want, m)).norm(), 1e-6) << "trial " << trial;
+      EXPECT_LT((hand::marker_position(s, got, m) - hand::marker_position(s, want, m)).norm(), 1e-6)
+          << "trial " << trial;
   }
 }
 
@@ -120,12 +130,14 @@ TEST(Retargeter, SyntheticPinchesStayTouchingWithOurs) {
       pose.angles(tracked.dof_index(std::string(f) + "_pip_flexion")) = 0.6;
       pose.angles(tracked.dof_index(std::string(f) + "_dip_flexion")) = 0.3;
     }
-    const int thumb_tip = tracked.marker_index("thumb_tip"), index_tip = tracked.marker_index("index_tip");
+    const int thumb_tip = tracked.marker_index("thumb_tip"),
+              index_tip = tracked.marker_index("index_tip");
     FingertipSolver touch(tracked, {{thumb_tip, index_tip, 1.0}}, {1e-9, 1e-9, 0.0, 60, 60, 1e-13});
     const SolverResult touching = touch.solve(pose, {Eigen::Vector3d::Zero()});
     pose.angles = touching.angles;
     const hand::LeapJoints joints = hand::to_leap_joints(tracked, pose);
-    ASSERT_LT((joints.joints[0][4] - joints.joints[1][4]).norm(), 1e-5) << "the synthetic pinch must touch, " << length;
+    ASSERT_LT((joints.joints[0][4] - joints.joints[1][4]).norm(), 1e-5)
+        << "the synthetic pinch must touch, " << length;
 
     tracking::TrackedHand hand = tracking::tracked_hand(joints, tracking::Side::kRight);
     hand.pinch_strength = 1.0;
@@ -135,7 +147,8 @@ TEST(Retargeter, SyntheticPinchesStayTouchingWithOurs) {
     const RetargetResult r = ours.retarget(hand);
     const hand::BoneFrames frames = hand::forward_kinematics(sim, r.pose);
     const double gap = (hand::marker_position(sim, frames, sim.marker_index("thumb_tip")) -
-                        hand::marker_position(sim, frames, sim.marker_index("index_tip"))).norm();
+                        hand::marker_position(sim, frames, sim.marker_index("index_tip")))
+                           .norm();
     EXPECT_LT(gap, 0.001) << "Ours, tracked hand " << length;
 
     tracking::TrackedHandFitter fitter(length, tracking::Side::kRight);
@@ -143,8 +156,10 @@ TEST(Retargeter, SyntheticPinchesStayTouchingWithOurs) {
     const RetargetResult n = naive.retarget(hand);
     const hand::BoneFrames nf = hand::forward_kinematics(sim, n.pose);
     const double naive_gap = (hand::marker_position(sim, nf, sim.marker_index("thumb_tip")) -
-                              hand::marker_position(sim, nf, sim.marker_index("index_tip"))).norm();
-    std::printf("tracked hand %.1f cm: pinch gap Ours %.3f mm, Naive %.1f mm\n", length * 100, gap * 1000, naive_gap * 1000);
+                              hand::marker_position(sim, nf, sim.marker_index("index_tip")))
+                                 .norm();
+    std::printf("tracked hand %.1f cm: pinch gap Ours %.3f mm, Naive %.1f mm\n", length * 100,
+                gap * 1000, naive_gap * 1000);
   }
 }
 

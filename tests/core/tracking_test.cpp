@@ -288,7 +288,8 @@ TEST(Replay, ResampledToAFixedRate) {
   while (auto f = replay.next()) out.push_back(*f);
   const double duration = r.frames.back().timestamp - r.frames.front().timestamp;
   EXPECT_EQ(out.size(), std::size_t(std::floor(duration * 120.0 + 1e-9)) + 1);
-  for (std::size_t i = 1; i < out.size(); ++i) EXPECT_NEAR(out[i].timestamp - out[i - 1].timestamp, 1.0 / 120, 1e-9);
+  for (std::size_t i = 1; i < out.size(); ++i)
+    EXPECT_NEAR(out[i].timestamp - out[i - 1].timestamp, 1.0 / 120, 1e-9);
   for (const auto& f : out)
     for (const auto& h : f.hands) {
       EXPECT_NEAR(h.palm_normal.norm(), 1.0, 1e-9);
@@ -300,8 +301,12 @@ TEST(Replay, ResampledToAFixedRate) {
   // At a recorded timestamp the interpolation returns the recorded positions.
   const TrackedFrame at = interpolate(r.frames[10], r.frames[11], r.frames[10].timestamp);
   EXPECT_LT((at.hands[0].joints[1][4] - r.frames[10].hands[0].joints[1][4]).norm(), 1e-12);
-  const TrackedFrame mid = interpolate(r.frames[10], r.frames[11], 0.5 * (r.frames[10].timestamp + r.frames[11].timestamp));
-  EXPECT_LT((mid.hands[0].palm_position - 0.5 * (r.frames[10].hands[0].palm_position + r.frames[11].hands[0].palm_position)).norm(), 1e-12);
+  const TrackedFrame mid = interpolate(r.frames[10], r.frames[11],
+                                       0.5 * (r.frames[10].timestamp + r.frames[11].timestamp));
+  EXPECT_LT((mid.hands[0].palm_position -
+             0.5 * (r.frames[10].hands[0].palm_position + r.frames[11].hands[0].palm_position))
+                .norm(),
+            1e-12);
 }
 
 }  // namespace

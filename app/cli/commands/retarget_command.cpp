@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
@@ -47,20 +47,26 @@ int run_retarget(const std::vector<std::string>& argv) {
   };
   const Arguments args(specs, argv, 1);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli retarget FILE [--strategy naive|ours] [--hand right|left] [--sim-length 0.214]\n"
-                 "                              [--csv per_frame.csv] [--json summary.json]\n\n"
-                 "Runs a recording through calibration (uniform scale from open-palm frames) and retargeting onto\n"
-                 "the simulated hand, and reports fingertip and pinch errors and timings.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout
+        << "Usage: handlab-cli retarget FILE [--strategy naive|ours] [--hand right|left] "
+           "[--sim-length 0.214]\n"
+           "                              [--csv per_frame.csv] [--json summary.json]\n\n"
+           "Runs a recording through calibration (uniform scale from open-palm frames) and "
+           "retargeting onto\n"
+           "the simulated hand, and reports fingertip and pinch errors and timings.\n\nOptions:\n"
+        << format_options_help(specs);
     return 0;
   }
   if (args.positional().empty()) throw UsageError("name a recording");
   const std::string strategy_name = args.text("strategy"), side_name = args.text("hand");
-  if (strategy_name != "naive" && strategy_name != "ours") throw UsageError("--strategy must be naive or ours");
+  if (strategy_name != "naive" && strategy_name != "ours")
+    throw UsageError("--strategy must be naive or ours");
   if (side_name != "right" && side_name != "left") throw UsageError("--hand must be right or left");
   const double sim_length = args.number("sim-length");
-  if (sim_length < 0.1 || sim_length > 0.3) throw UsageError("--sim-length must be between 0.1 and 0.3 m");
-  const auto strategy = strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
+  if (sim_length < 0.1 || sim_length > 0.3)
+    throw UsageError("--sim-length must be between 0.1 and 0.3 m");
+  const auto strategy =
+      strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
   const auto side = side_name == "left" ? tracking::Side::kLeft : tracking::Side::kRight;
 
   const tracking::Recording recording = tracking::read_recording(args.positional()[0]);
@@ -68,7 +74,8 @@ int run_retarget(const std::vector<std::string>& argv) {
   shape.left = side == tracking::Side::kLeft;
   const hand::Skeleton simulated = hand::build_simulated_hand(shape);
   auto fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
-  if (!fitter) throw std::runtime_error(recording.source + ": no " + side_name + " hand in the recording");
+  if (!fitter)
+    throw std::runtime_error(recording.source + ": no " + side_name + " hand in the recording");
   auto calibration = retarget::calibrate_open_palm(recording.frames, side, simulated, *fitter);
   std::string calibration_source = "open palm";
   if (!calibration) {  // no open hand: fall back on the ratio of hand lengths
@@ -94,7 +101,9 @@ int run_retarget(const std::vector<std::string>& argv) {
     if (!h) continue;
     const auto start = std::chrono::steady_clock::now();
     const retarget::RetargetResult r = retargeter.retarget(*h);
-    time_us.values.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+    time_us.values.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+            .count());
     iterations.values.push_back(r.iterations);
     const hand::BoneFrames frames = hand::forward_kinematics(simulated, r.pose);
     std::array<Eigen::Vector3d, 5> got;
@@ -105,17 +114,20 @@ int run_retarget(const std::vector<std::string>& argv) {
       tip_error[std::size_t(f)].values.push_back(e);
       csv << ',' << e;
     }
-    const double gap = 1000 * (got[0] - got[1]).norm(), target_gap = 1000 * (r.targets[0] - r.targets[1]).norm();
+    const double gap = 1000 * (got[0] - got[1]).norm(),
+                 target_gap = 1000 * (r.targets[0] - r.targets[1]).norm();
     double frame_violation = 0.0;
     for (std::size_t k = 0; k < simulated.dofs.size(); ++k) {
       const double a = r.pose.angles(Eigen::Index(k));
-      frame_violation = std::max({frame_violation, simulated.dofs[k].lower - a, a - simulated.dofs[k].upper});
+      frame_violation =
+          std::max({frame_violation, simulated.dofs[k].lower - a, a - simulated.dofs[k].upper});
     }
     violation = std::max(violation, frame_violation);
     csv << ',' << gap << ',' << target_gap << ',' << frame_violation << '\n';
     if (h->pinch_strength >= 0.8) {
       ++pinch_frames;
-      for (int f = 0; f < 2; ++f) pinch_tip[std::size_t(f)].values.push_back(tip_error[std::size_t(f)].values.back());
+      for (int f = 0; f < 2; ++f)
+        pinch_tip[std::size_t(f)].values.push_back(tip_error[std::size_t(f)].values.back());
       pinch_gap.values.push_back(std::abs(gap - target_gap));
     }
   }
@@ -126,23 +138,39 @@ int run_retarget(const std::vector<std::string>& argv) {
   };
   const std::string json_out = args.text("json");
   if (json_out != "-") {
-    std::cout << std::fixed << std::setprecision(2) << recording.source << ": " << strategy_name << ", " << time_us.values.size()
-              << " frames, scale " << calibration->scale << " (" << calibration_source << ")\n  time per frame: median "
-              << time_us.quantile(0.5) << " us, p99 " << time_us.quantile(0.99) << " us; iterations mean "
-              << iterations.mean() << ", max " << iterations.quantile(1.0) << "\n  fingertip error (mm, mean / p95):";
-    for (int f = 0; f < 5; ++f) std::cout << " " << kNames[f] << " " << tip_error[std::size_t(f)].mean() << " / " << tip_error[std::size_t(f)].quantile(0.95);
-    std::cout << "\n  pinch frames " << pinch_frames << ": thumb " << pinch_tip[0].mean() << ", index " << pinch_tip[1].mean()
-              << " mm; gap error mean " << pinch_gap.mean() << " mm, p95 " << pinch_gap.quantile(0.95)
-              << " mm\n  joint limit violation max " << violation << " rad\n";
+    std::cout << std::fixed << std::setprecision(2) << recording.source << ": " << strategy_name
+              << ", " << time_us.values.size() << " frames, scale " << calibration->scale << " ("
+              << calibration_source << ")\n  time per frame: median " << time_us.quantile(0.5)
+              << " us, p99 " << time_us.quantile(0.99) << " us; iterations mean "
+              << iterations.mean() << ", max " << iterations.quantile(1.0)
+              << "\n  fingertip error (mm, mean / p95):";
+    for (int f = 0; f < 5; ++f)
+      std::cout << " " << kNames[f] << " " << tip_error[std::size_t(f)].mean() << " / "
+                << tip_error[std::size_t(f)].quantile(0.95);
+    std::cout << "\n  pinch frames " << pinch_frames << ": thumb " << pinch_tip[0].mean()
+              << ", index " << pinch_tip[1].mean() << " mm; gap error mean " << pinch_gap.mean()
+              << " mm, p95 " << pinch_gap.quantile(0.95) << " mm\n  joint limit violation max "
+              << violation << " rad\n";
   }
   if (!json_out.empty()) {
     write_output(json_out, [&](std::ostream& out) {
       util::JsonWriter json(out);
-      json.begin_object().field("source", recording.source).field("strategy", strategy_name).field("hand", side_name);
+      json.begin_object()
+          .field("source", recording.source)
+          .field("strategy", strategy_name)
+          .field("hand", side_name);
       json.field("scale", calibration->scale).field("calibration", calibration_source);
       json.field("frames", time_us.values.size());
-      json.key("time_us").begin_object().field("median", time_us.quantile(0.5)).field("p99", time_us.quantile(0.99)).end_object();
-      json.key("iterations").begin_object().field("mean", iterations.mean()).field("max", iterations.quantile(1.0)).end_object();
+      json.key("time_us")
+          .begin_object()
+          .field("median", time_us.quantile(0.5))
+          .field("p99", time_us.quantile(0.99))
+          .end_object();
+      json.key("iterations")
+          .begin_object()
+          .field("mean", iterations.mean())
+          .field("max", iterations.quantile(1.0))
+          .end_object();
       json.key("tip_error_mm").begin_object();
       for (int f = 0; f < 5; ++f) {
         json.key(kNames[f]);

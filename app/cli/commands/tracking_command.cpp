@@ -83,8 +83,9 @@ int tracking_info(const std::vector<std::string>& argv) {
     if (std::isfinite(lo))
       std::cout << "  thumb-index tip  " << lo * 1000 << " to " << hi * 1000 << " mm\n";
     for (const auto& f : fits)
-      std::cout << "  fit, " << std::left << std::setw(11) << (f.side + " hand") << "hand length " << f.hand_length * 100 << " cm, residual mean "
-                << f.mean_rms * 1000 << " mm, max " << f.max * 1000 << " mm over " << f.frames << " frames\n";
+      std::cout << "  fit, " << std::left << std::setw(11) << (f.side + " hand") << "hand length "
+                << f.hand_length * 100 << " cm, residual mean " << f.mean_rms * 1000 << " mm, max "
+                << f.max * 1000 << " mm over " << f.frames << " frames\n";
   }
   if (args.has("json")) {
     write_output(args.text("json"), [&](std::ostream& out) {
@@ -108,8 +109,13 @@ int tracking_info(const std::vector<std::string>& argv) {
       if (!fits.empty()) {
         json.key("fit").begin_array();
         for (const auto& f : fits)
-          json.begin_object().field("side", f.side).field("hand_length_m", f.hand_length).field("frames", f.frames)
-              .field("residual_mean_mm", f.mean_rms * 1000).field("residual_max_mm", f.max * 1000).end_object();
+          json.begin_object()
+              .field("side", f.side)
+              .field("hand_length_m", f.hand_length)
+              .field("frames", f.frames)
+              .field("residual_mean_mm", f.mean_rms * 1000)
+              .field("residual_max_mm", f.max * 1000)
+              .end_object();
         json.end_array();
       }
       json.end_object();
