@@ -10,16 +10,6 @@ constexpr const char* kFingers[5] = {"thumb", "index", "middle", "ring", "pinky"
 constexpr double kRootTranslationWeight = 1e-2;
 constexpr double kReachTolerance = 0.0005;  // m: a tip this far off calls for the free wrist
 
-Eigen::Matrix3d palm_rotation(const tracking::TrackedHand& h) {
-  const Eigen::Vector3d y = h.direction.normalized();
-  const Eigen::Vector3d z = (h.palm_normal - h.palm_normal.dot(y) * y).normalized();
-  Eigen::Matrix3d r;
-  r.col(0) = y.cross(z);
-  r.col(1) = y;
-  r.col(2) = z;
-  return r;
-}
-
 }  // namespace
 
 std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::TrackedFrame>& frames,
@@ -31,7 +21,7 @@ std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::Track
     const tracking::TrackedHand* h = f.hand(side);
     if (!h || h->grab_strength > 0.1) continue;
     // The tracked joints in the palm frame.
-    const Eigen::Matrix3d r = palm_rotation(*h);
+    const Eigen::Matrix3d r = tracking::palm_frame(*h);
     Eigen::AlignedBox2d tracked_box;
     for (const auto& digit : h->joints)
       for (int k = 1; k < 5; ++k)
@@ -100,7 +90,7 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
   RetargetResult out;
   hand::HandPose& pose = out.pose;
   pose = hand::HandPose::rest(simulated_);
-  pose.root_rotation = scene.linear() * palm_rotation(tracked);
+  pose.root_rotation = scene.linear() * tracking::palm_frame(tracked);
   // Palms aligned on the four finger bases: the translation that best puts the simulated
   // MCPs on the scaled tracked ones.
   const hand::BoneFrames at_origin = hand::forward_kinematics(simulated_, pose);

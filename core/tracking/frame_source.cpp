@@ -19,15 +19,6 @@ Eigen::Matrix3d slerp(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double
 }
 
 // The palm's frame from its normal and direction, and back.
-Eigen::Matrix3d palm_frame(const TrackedHand& h) {
-  const Eigen::Vector3d y = h.direction.normalized();
-  const Eigen::Vector3d z = (h.palm_normal - h.palm_normal.dot(y) * y).normalized();
-  Eigen::Matrix3d r;
-  r.col(0) = y.cross(z);
-  r.col(1) = y;
-  r.col(2) = z;
-  return r;
-}
 
 TrackedHand blend(const TrackedHand& a, const TrackedHand& b, double s) {
   TrackedHand h = a;

@@ -48,12 +48,7 @@ std::optional<hand::MeasuredSkeleton> measure_skeleton(const std::vector<Tracked
   for (const auto& f : frames) {
     const TrackedHand* h = f.hand(side);
     if (!h) continue;
-    const Eigen::Vector3d y = h->direction.normalized();
-    const Eigen::Vector3d z = (h->palm_normal - h->palm_normal.dot(y) * y).normalized();
-    Eigen::Matrix3d r;
-    r.col(0) = y.cross(z);
-    r.col(1) = y;
-    r.col(2) = z;
+    const Eigen::Matrix3d r = palm_frame(*h);
     const Eigen::Vector3d root = h->palm_position - r * palm_offset;
     for (int d = 0; d < 5; ++d) {
       const auto& j = h->joints[std::size_t(d)];

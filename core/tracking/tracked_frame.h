@@ -43,6 +43,10 @@ struct TrackedFrame {
   const TrackedHand* hand(Side side) const;
 };
 
+// The palm's orientation: +y along the direction, +z along the normal (made orthogonal to
+// it), +x = y x z (radial for a right hand).
+Eigen::Matrix3d palm_frame(const TrackedHand& hand);
+
 // Thumb-index tip distance of a hand (m).
 double thumb_index_distance(const TrackedHand& hand);
 
