@@ -11,7 +11,7 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
 cmake --build build-fuzz --target leap_input_fuzz -j "$(nproc)"
 corpus=build-fuzz/corpus
 mkdir -p "$corpus"
-cp tests/data/leap/*.lz "$corpus"/ 2>/dev/null || true
+cp data/leap/*.lz "$corpus"/ 2>/dev/null || true
 python3 - "$corpus" <<'PY'
 import json, sys, os
 for i, v in enumerate(json.load(open('tests/data/lzstring/vectors.json'))):

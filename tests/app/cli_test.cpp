@@ -101,7 +101,7 @@ TEST(CliHand, WritesSkinFleshAndPicture) {
 }
 
 TEST(CliTracking, InfoJsonAndBadFiles) {
-  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/tests/data/leap/pinch.json.lz";
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/pinch_info.json";
   const Result r = cli("tracking info " + recording + " --json " + json);
   ASSERT_EQ(r.status, 0) << r.out;
@@ -127,7 +127,7 @@ TEST(CliTracking, InfoJsonAndBadFiles) {
 }
 
 TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
-  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/tests/data/leap/pinch.json.lz";
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";
   for (const char* strategy : {"ours", "naive"}) {
     const std::string base = dir + "retarget_" + strategy;

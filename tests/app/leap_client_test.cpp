@@ -18,7 +18,7 @@ namespace handlab::live {
 namespace {
 
 std::vector<std::string> recording_messages() {
-  std::ifstream in(std::string(HANDLAB_SOURCE_DIR) + "/tests/data/leap/pinch.json.lz");
+  std::ifstream in(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz");
   std::stringstream text;
   text << in.rdbuf();
   const auto doc = util::JsonValue::parse(tracking::lz_decompress_base64(text.str()));

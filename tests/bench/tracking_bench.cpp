@@ -7,7 +7,7 @@
 namespace {
 
 void BM_ReadRecording(benchmark::State& state, const char* file) {
-  const std::string path = std::string(HANDLAB_SOURCE_DIR) + "/tests/data/leap/" + file;
+  const std::string path = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/" + file;
   std::size_t frames = 0, hands = 0;
   for (auto _ : state) {
     const auto r = handlab::tracking::read_recording(path);

@@ -1,3 +1,4 @@
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,8 +15,10 @@
 namespace handlab::tracking {
 namespace {
 
+// Sample recordings ship in data/leap; test-only data lives in tests/data.
 std::string data(const std::string& name) {
-  return std::string(HANDLAB_SOURCE_DIR) + "/tests/data/" + name;
+  const bool recording = name.rfind("leap/", 0) == 0;
+  return std::string(HANDLAB_SOURCE_DIR) + (recording ? "/data/" : "/tests/data/") + name;
 }
 std::string tmp(const std::string& name) {
   return std::string(HANDLAB_TEST_TMP) + "/" + name;
@@ -84,7 +87,14 @@ INSTANTIATE_TEST_SUITE_P(SharedData, RealRecording,
                                            Expected{"pinch-57fps.json.lz", 133, "2"},
                                            Expected{"grab.json.lz", 374, "0.1"},
                                            Expected{"wave.json.lz", 111, "0.1"},
-                                           Expected{"confidence2.json.lz", 368, "0.1"}));
+                                           Expected{"confidence2.json.lz", 368, "0.1"}),
+                         [](const ::testing::TestParamInfo<Expected>& info) {
+                           std::string name = info.param.file;
+                           name = name.substr(0, name.find('.'));
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 TEST(RealRecording, PinchThumbIndexDistanceRange) {
   const Recording r = read_recording(data("leap/pinch.json.lz"));
