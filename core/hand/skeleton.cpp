@@ -78,6 +78,11 @@ void HandPose::clamp_to_limits(const Skeleton& skeleton) {
 
 BoneFrames forward_kinematics(const Skeleton& skeleton, const HandPose& pose) {
   BoneFrames f;
+  forward_kinematics(skeleton, pose, f);
+  return f;
+}
+
+void forward_kinematics(const Skeleton& skeleton, const HandPose& pose, BoneFrames& f) {
   const std::size_t n = skeleton.bones.size();
   f.rotation.resize(n);
   f.origin.resize(n);
@@ -100,7 +105,6 @@ BoneFrames forward_kinematics(const Skeleton& skeleton, const HandPose& pose) {
     f.rotation[b] = r;
     f.origin[b] = origin;
   }
-  return f;
 }
 
 Eigen::Vector3d bone_point(const BoneFrames& frames, int bone, const Eigen::Vector3d& local) {

@@ -69,6 +69,8 @@ struct BoneFrames {
 };
 
 BoneFrames forward_kinematics(const Skeleton& skeleton, const HandPose& pose);
+// The same into `frames`, reusing its storage (no allocation once it has the right sizes).
+void forward_kinematics(const Skeleton& skeleton, const HandPose& pose, BoneFrames& frames);
 
 Eigen::Vector3d marker_position(const Skeleton& skeleton, const BoneFrames& frames, int marker);
 Eigen::Vector3d bone_point(const BoneFrames& frames, int bone, const Eigen::Vector3d& local);

@@ -1,7 +1,11 @@
 #include "core/retarget/fingertip_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <utility>
 
 #include <Eigen/Cholesky>
 
@@ -11,92 +15,287 @@ namespace {
 // The root translation enters the solver in units of 5 cm, so that its Jacobian columns are
 // as large as the joint angles' (lever arms of a few centimetres per radian).
 constexpr double kTranslationUnit = 0.05;
+constexpr double kDipPerPip = 2.0 / 3.0;
+
+// Fixed-capacity storage: the solver's vectors and matrices live on the stack, so a frame
+// costs no allocation. A hand has 21 DOFs (24 variables with the root translation).
+constexpr int kMaxVariables = 48;
+constexpr int kMaxFeatureColumns = 32;
+using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxVariables, 1>;
+using Matrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxVariables, kMaxVariables>;
+using FeatureJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxFeatureColumns>;
+
+// Cholesky factorisation A = LL' of a small symmetric positive definite matrix, and solves
+// with it. Plain loops: at these sizes (4 to 24) Eigen's blocked kernels cost more than the
+// arithmetic.
+class SmallCholesky {
+ public:
+  explicit SmallCholesky(const Matrix& a) : n_(int(a.rows())), l_(a) {
+    for (int j = 0; j < n_; ++j) {
+      double d = l_(j, j);
+      for (int k = 0; k < j; ++k) d -= l_(j, k) * l_(j, k);
+      d = std::sqrt(std::max(d, 1e-300));
+      l_(j, j) = d;
+      for (int i = j + 1; i < n_; ++i) {
+        double v = l_(i, j);
+        for (int k = 0; k < j; ++k) v -= l_(i, k) * l_(j, k);
+        l_(i, j) = v / d;
+      }
+    }
+  }
+  // v <- A^-1 v
+  void solve_in_place(double* v) const {
+    for (int i = 0; i < n_; ++i) {
+      double s = v[i];
+      for (int k = 0; k < i; ++k) s -= l_(i, k) * v[k];
+      v[i] = s / l_(i, i);
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      double s = v[i];
+      for (int k = i + 1; k < n_; ++k) s -= l_(k, i) * v[k];
+      v[i] = s / l_(i, i);
+    }
+  }
+
+ private:
+  int n_;
+  Matrix l_;  // lower triangle
+};
+
+// One Gauss-Newton step of a block of variables: min 1/2 s'Hs + g's subject to
+// lower <= x + s <= upper, by an active-set loop on the linearised problem. The active
+// bounds (state -1 lower, +1 upper) are equality constraints C s = b; with H = LL' the KKT
+// system H s + C' lambda = -g, C s = b gives the Schur complement system
+// (C H^-1 C') lambda = C H^-1 (-g) - b, and s = H^-1 (-g - C' lambda). Bounds with a
+// multiplier of the wrong sign leave the set, bounds the step would cross join it. `mu`
+// receives the multipliers of c(x) >= 0.
+void kkt_step(const Matrix& h, const Vector& g, const Vector& x, const Vector& lower,
+              const Vector& upper, int* state, Vector& step, Vector& mu) {
+  const int size = int(x.size());
+  const SmallCholesky llt(h);  // positive definite: the regulariser
+  Vector free_step = -g;
+  llt.solve_in_place(free_step.data());
+  // Columns of H^-1 for the bounds that have been active in this step, computed once each.
+  Matrix hinv_columns(size, size);
+  std::array<bool, kMaxVariables> have_column{};
+  std::array<int, kMaxVariables> active;
+  for (int pass = 0; pass < 2 * size + 2; ++pass) {
+    int a = 0;
+    for (int k = 0; k < size; ++k)
+      if (state[k] != 0) active[std::size_t(a++)] = k;
+    Vector lambda = Vector::Zero(a);
+    step = free_step;
+    if (a > 0) {
+      Matrix schur(a, a);
+      Vector rhs(a);
+      for (int i = 0; i < a; ++i) {
+        const int k = active[std::size_t(i)];
+        if (!have_column[std::size_t(k)]) {
+          auto column = hinv_columns.col(k);
+          column.setZero();
+          column(k) = 1.0;
+          llt.solve_in_place(column.data());
+          have_column[std::size_t(k)] = true;
+        }
+        for (int j = 0; j < a; ++j) schur(i, j) = hinv_columns(active[std::size_t(j)], k);
+        rhs(i) = free_step(k) - ((state[k] < 0 ? lower(k) : upper(k)) - x(k));
+      }
+      lambda = rhs;
+      SmallCholesky(schur).solve_in_place(lambda.data());
+      for (int i = 0; i < a; ++i) step -= hinv_columns.col(active[std::size_t(i)]) * lambda(i);
+    }
+    // Multipliers of c(x) >= 0: lower bound c = x - lo (lambda_c = -lambda), upper c = hi - x
+    // (lambda_c = lambda). A wrong sign means the bound should be released.
+    int release = -1;
+    double most_negative = -1e-12;
+    for (int i = 0; i < a; ++i) {
+      const int k = active[std::size_t(i)];
+      const double m = state[k] < 0 ? -lambda(i) : lambda(i);
+      if (m < most_negative) {
+        most_negative = m;
+        release = k;
+      }
+    }
+    if (release >= 0) {
+      state[release] = 0;
+      continue;
+    }
+    // Bounds the free variables would cross join the active set (never an unbounded one).
+    int enter = -1;
+    double worst = 1e-15;
+    for (int k = 0; k < size; ++k) {
+      if (state[k] != 0) continue;
+      const double over = std::max(x(k) + step(k) - upper(k), lower(k) - x(k) - step(k));
+      if (over > worst) {
+        worst = over;
+        enter = k;
+      }
+    }
+    if (enter >= 0) {
+      state[enter] = x(enter) + step(enter) > upper(enter) ? 1 : -1;
+      continue;
+    }
+    mu.setZero(size);
+    for (int i = 0; i < a; ++i) {
+      const int k = active[std::size_t(i)];
+      mu(k) = state[k] < 0 ? -lambda(i) : lambda(i);
+    }
+    return;
+  }
+}
 
 }  // namespace
+
+struct FingertipSolver::Linearisation {
+  double value = 0.0;      // 1/2 sum_i w_i |f_i - t_i|^2
+  double max_error = 0.0;  // max_i |f_i - t_i|
+  Vector gradient;         // J'W(f - t)
+  Matrix hessian;          // J'WJ
+};
 
 FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features,
                                  SolverOptions options)
     : skeleton_(skeleton), features_(std::move(features)), options_(options) {
   const int n = int(skeleton.dofs.size());
-  smoothness_ = Eigen::MatrixXd::Zero(n, n);
-  // Interphalangeal coupling: each finger's DIP flexion follows its PIP flexion.
+  if (n + 3 > kMaxVariables) throw std::invalid_argument("FingertipSolver: too many DOFs");
+  const int offset = options_.root_translation_weight > 0 ? 3 : 0, size = offset + n;
+  // The regulariser's constant Hessian. Spatial term: each finger's DIP flexion follows its
+  // PIP flexion, DIP ~ 2/3 PIP in natural motion, as sum_f (dip_f - 2/3 pip_f)^2.
+  regulariser_hessian_ = Eigen::MatrixXd::Zero(size, size);
   for (const char* finger : {"index", "middle", "ring", "pinky"}) {
     const int pip = skeleton.dof_index(std::string(finger) + "_pip_flexion");
     const int dip = skeleton.dof_index(std::string(finger) + "_dip_flexion");
     if (pip < 0 || dip < 0) continue;
-    Eigen::VectorXd l = Eigen::VectorXd::Zero(n);
-    l(dip) = 1.0;
-    l(pip) = -2.0 / 3.0;  // DIP ~ 2/3 PIP in natural motion
-    smoothness_ += l * l.transpose();
+    interphalangeal_.push_back({dip, pip});
+    Eigen::VectorXd l = Eigen::VectorXd::Zero(size);
+    l(offset + dip) = 1.0;
+    l(offset + pip) = -kDipPerPip;
+    regulariser_hessian_ += options_.spatial_weight * l * l.transpose();
   }
+  regulariser_hessian_.diagonal().tail(n).array() += options_.temporal_weight;
+  if (offset == 3)
+    regulariser_hessian_.diagonal().head<3>().array() +=
+        options_.root_translation_weight * kTranslationUnit * kTranslationUnit;
+  // The DOFs that move each feature: the chain from its marker's bone to the root, minus
+  // (for a relative feature) the other marker's chain; a DOF on both chains moves both.
+  for (const Feature& f : features_) {
+    std::vector<int> sign(std::size_t(n), 2);  // 2: not on either chain
+    auto mark = [&](int marker, int s) {
+      for (int b = skeleton.markers[std::size_t(marker)].bone; b >= 0;
+           b = skeleton.bones[std::size_t(b)].parent) {
+        const hand::Bone& bone = skeleton.bones[std::size_t(b)];
+        for (int k = bone.first_dof; k < bone.first_dof + bone.dof_count; ++k)
+          sign[std::size_t(k)] = sign[std::size_t(k)] == 2 ? s : 0;
+      }
+    };
+    mark(f.marker, 1);
+    if (f.relative_to >= 0) mark(f.relative_to, -1);
+    FeatureColumns c;
+    for (int k = 0; k < n; ++k)
+      if (sign[std::size_t(k)] != 2) {
+        c.dofs.push_back(k);
+        c.sign.push_back(sign[std::size_t(k)]);
+      }
+    if (int(c.dofs.size()) + 3 > kMaxFeatureColumns)
+      throw std::invalid_argument("FingertipSolver: a feature moves too many DOFs");
+    columns_.push_back(std::move(c));
+  }
+  // Connected components of the variables (root translation first, when it is one).
+  std::vector<int> parent(static_cast<std::size_t>(size));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int v) {
+    while (parent[std::size_t(v)] != v)
+      v = parent[std::size_t(v)] = parent[std::size_t(parent[std::size_t(v)])];
+    return v;
+  };
+  auto join = [&](int a, int b) { parent[std::size_t(root(a))] = root(b); };
+  for (std::size_t i = 0; i < features_.size(); ++i) {
+    std::vector<int> vars;
+    if (offset == 3 && features_[i].relative_to < 0) vars = {0, 1, 2};
+    for (int k : columns_[i].dofs) vars.push_back(offset + k);
+    for (std::size_t k = 1; k < vars.size(); ++k) join(vars[0], vars[k]);
+  }
+  for (const auto& [dip, pip] : interphalangeal_) join(offset + dip, offset + pip);
+  std::vector<int> block_of(static_cast<std::size_t>(size), -1);
+  for (int v = 0; v < size; ++v) {
+    int& b = block_of[std::size_t(root(v))];
+    if (b < 0) {
+      b = int(blocks_.size());
+      blocks_.emplace_back();
+    }
+    blocks_[std::size_t(b)].push_back(v);
+  }
+  scratch_pose_ = hand::HandPose::rest(skeleton);
+  hand::forward_kinematics(skeleton, scratch_pose_, frames_);
 }
 
-void FingertipSolver::evaluate(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                               const std::vector<Eigen::Vector3d>& targets,
-                               Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian) const {
+FingertipSolver::~FingertipSolver() = default;
+
+void FingertipSolver::linearise(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                                const std::vector<Eigen::Vector3d>& targets, Linearisation& out,
+                                hand::BoneFrames& frames, hand::HandPose& scratch) const {
   const int n = int(skeleton_.dofs.size());
-  const int offset = int(x.size()) - n;  // 3 when the root translation is a variable
-  hand::HandPose p = pose;
-  p.angles = x.tail(n);
-  if (offset == 3) p.root_position += kTranslationUnit * x.head<3>();
-  const Eigen::VectorXd& angles = x;
-  const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, p);
-  const int m = 3 * int(features_.size());
-  residual->resize(m);
-  if (jacobian) jacobian->resize(m, angles.size());
+  const int size = int(x.size()), offset = size - n;  // offset 3: the root translation
+  scratch.root_rotation = pose.root_rotation;
+  scratch.root_position = pose.root_position;
+  if (offset == 3) scratch.root_position += kTranslationUnit * x.head<3>();
+  scratch.angles = x.tail(n);
+  hand::forward_kinematics(skeleton_, scratch, frames);
+  out.value = out.max_error = 0.0;
+  out.gradient.setZero(size);
+  out.hessian.setZero(size, size);
+  std::array<int, kMaxFeatureColumns> variable;
+  FeatureJacobian j;
   for (std::size_t i = 0; i < features_.size(); ++i) {
     const Feature& f = features_[i];
-    const double w = std::sqrt(f.weight);
-    const hand::Marker& marker = skeleton_.markers[std::size_t(f.marker)];
-    Eigen::Vector3d value = hand::marker_position(skeleton_, frames, f.marker);
-    // Columns: the root translation (when a variable), then the joint angles.
-    auto columns = [&](const Eigen::Matrix<double, 3, Eigen::Dynamic>& full) {
-      Eigen::Matrix<double, 3, Eigen::Dynamic> out(3, offset + n);
-      if (offset == 3) out.leftCols<3>() = kTranslationUnit * full.leftCols<3>();
-      out.rightCols(n) = full.rightCols(n);
-      return out;
-    };
-    Eigen::Matrix<double, 3, Eigen::Dynamic> j;
-    if (jacobian) j = columns(hand::point_jacobian(skeleton_, frames, p, marker.bone, value));
-    if (f.relative_to >= 0) {
-      const Eigen::Vector3d other = hand::marker_position(skeleton_, frames, f.relative_to);
-      if (jacobian)
-        j -= columns(hand::point_jacobian(
-            skeleton_, frames, p, skeleton_.markers[std::size_t(f.relative_to)].bone, other));
-      value -= other;
+    const FeatureColumns& c = columns_[i];
+    const Eigen::Vector3d p = hand::marker_position(skeleton_, frames, f.marker);
+    const Eigen::Vector3d q = f.relative_to >= 0
+                                  ? hand::marker_position(skeleton_, frames, f.relative_to)
+                                  : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d d = p - q - targets[i];
+    out.value += 0.5 * f.weight * d.squaredNorm();
+    out.max_error = std::max(out.max_error, d.norm());
+    int count = 0;
+    j.resize(3, Eigen::Index(c.dofs.size()) + 3);
+    if (offset == 3 && f.relative_to < 0) {  // a difference of markers ignores the root shift
+      for (int a = 0; a < 3; ++a) {
+        j.col(count) = kTranslationUnit * Eigen::Vector3d::Unit(a);
+        variable[std::size_t(count++)] = a;
+      }
     }
-    residual->segment<3>(Eigen::Index(3 * i)) = w * (value - targets[i]);
-    if (jacobian) jacobian->middleRows<3>(Eigen::Index(3 * i)) = w * j;
+    for (std::size_t k = 0; k < c.dofs.size(); ++k) {
+      const int dof = c.dofs[k];
+      const Eigen::Vector3d& axis = frames.dof_axis[std::size_t(dof)];
+      const Eigen::Vector3d& centre = frames.dof_centre[std::size_t(dof)];
+      Eigen::Vector3d column = Eigen::Vector3d::Zero();
+      if (c.sign[k] >= 0) column += axis.cross(p - centre);
+      if (c.sign[k] <= 0) column -= axis.cross(q - centre);
+      j.col(count) = column;
+      variable[std::size_t(count++)] = offset + dof;
+    }
+    for (int a = 0; a < count; ++a) {
+      const int va = variable[std::size_t(a)];
+      out.gradient(va) += f.weight * j.col(a).dot(d);
+      for (int b = 0; b <= a; ++b) {
+        const double h = f.weight * j.col(a).dot(j.col(b));
+        out.hessian(va, variable[std::size_t(b)]) += h;
+        if (b != a) out.hessian(variable[std::size_t(b)], va) += h;
+      }
+    }
   }
 }
 
-Eigen::MatrixXd FingertipSolver::regulariser_hessian(int size) const {
-  const int n = int(skeleton_.dofs.size()), offset = size - n;
-  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(size, size);
-  h.bottomRightCorner(n, n) = options_.spatial_weight * smoothness_;
-  h.diagonal().tail(n).array() += options_.temporal_weight;
-  if (offset == 3)
-    h.diagonal().head<3>().array() +=
-        options_.root_translation_weight * kTranslationUnit * kTranslationUnit;
-  return h;
-}
-
-Eigen::VectorXd FingertipSolver::regulariser_gradient(const Eigen::VectorXd& x,
-                                                      const Eigen::VectorXd& anchor) const {
+double FingertipSolver::regulariser(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const {
   const int n = int(skeleton_.dofs.size());
-  Eigen::VectorXd g = regulariser_hessian(int(x.size())) * x;
-  g.tail(n) -= options_.temporal_weight * anchor;  // the temporal term pulls towards the anchor
-  return g;
-}
-
-double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                                  const std::vector<Eigen::Vector3d>& targets,
-                                  const Eigen::VectorXd& anchor) const {
-  Eigen::VectorXd r;
-  evaluate(pose, x, targets, &r, nullptr);
-  const int n = int(skeleton_.dofs.size());
-  const Eigen::VectorXd q = x.tail(n);
-  double value = 0.5 * r.squaredNorm() + 0.5 * options_.spatial_weight * q.dot(smoothness_ * q) +
+  const auto q = x.tail(n);
+  double spatial = 0.0;
+  for (const auto& [dip, pip] : interphalangeal_) {
+    const double d = q(dip) - kDipPerPip * q(pip);
+    spatial += d * d;
+  }
+  double value = 0.5 * options_.spatial_weight * spatial +
                  0.5 * options_.temporal_weight * (q - anchor).squaredNorm();
   if (x.size() == n + 3)
     value +=
@@ -104,149 +303,152 @@ double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::Vecto
   return value;
 }
 
+double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                                  const std::vector<Eigen::Vector3d>& targets,
+                                  const Eigen::VectorXd& anchor) const {
+  Linearisation lin;
+  hand::BoneFrames frames;
+  hand::HandPose scratch;
+  linearise(pose, x, targets, lin, frames, scratch);
+  return lin.value + regulariser(x, anchor);
+}
+
 Eigen::VectorXd FingertipSolver::gradient(const hand::HandPose& pose, const Eigen::VectorXd& x,
                                           const std::vector<Eigen::Vector3d>& targets,
                                           const Eigen::VectorXd& anchor) const {
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j;
-  evaluate(pose, x, targets, &r, &j);
-  return j.transpose() * r + regulariser_gradient(x, anchor);
+  Linearisation lin;
+  hand::BoneFrames frames;
+  hand::HandPose scratch;
+  linearise(pose, x, targets, lin, frames, scratch);
+  const int n = int(skeleton_.dofs.size());
+  Eigen::VectorXd g = lin.gradient;
+  if (x.size() != regulariser_hessian_.rows())
+    throw std::invalid_argument("FingertipSolver::gradient: x has the wrong size");
+  g += regulariser_hessian_ * x;
+  g.tail(n) -= options_.temporal_weight * anchor;
+  return g;
 }
 
 SolverResult FingertipSolver::solve(const hand::HandPose& pose,
-                                    const std::vector<Eigen::Vector3d>& targets,
-                                    bool cold_start) const {
+                                    const std::vector<Eigen::Vector3d>& targets, bool cold_start,
+                                    const Eigen::Vector3d& root_shift) {
   const int n = int(skeleton_.dofs.size());
   const int offset = options_.root_translation_weight > 0 ? 3 : 0;
   const int size = offset + n;
-  Eigen::VectorXd lower = Eigen::VectorXd::Constant(size, -INFINITY),
-                  upper = Eigen::VectorXd::Constant(size, INFINITY);
+  if (pose.angles.size() != n || targets.size() != features_.size())
+    throw std::invalid_argument("FingertipSolver: a pose of another skeleton, or too few targets");
+  Vector lower = Vector::Constant(size, -INFINITY), upper = Vector::Constant(size, INFINITY);
   for (int k = 0; k < n; ++k) {
     lower(offset + k) = skeleton_.dofs[std::size_t(k)].lower;
     upper(offset + k) = skeleton_.dofs[std::size_t(k)].upper;
   }
-  const Eigen::VectorXd anchor = pose.angles.cwiseMax(lower.tail(n)).cwiseMin(upper.tail(n));
-  SolverResult result;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(size);
+  Vector anchor = pose.angles.cwiseMax(lower.tail(n)).cwiseMin(upper.tail(n));
+  // The regulariser is quadratic: its Hessian R'' is constant (block-diagonal like H),
+  // its gradient R''x - wt anchor.
+  const Eigen::MatrixXd& regulariser_hessian = regulariser_hessian_;
+  Vector anchor_pull = Vector::Zero(size);
+  anchor_pull.tail(n) = options_.temporal_weight * anchor;
+  auto regulariser_value = [&](const Vector& v) {
+    return regulariser(Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()),
+                       Eigen::Map<const Eigen::VectorXd>(anchor.data(), n));
+  };
+
+  Vector x = Vector::Zero(size);
   x.tail(n) = anchor;
+  if (offset == 3) x.head<3>() = root_shift / kTranslationUnit;
   // Active set: -1 at the lower bound, +1 at the upper, 0 free. Start from the bounds the
   // warm start sits on.
-  std::vector<int> state(std::size_t(size), 0);
+  std::array<int, kMaxVariables> state{};
   for (int k = offset; k < size; ++k)
     state[std::size_t(k)] = x(k) <= lower(k) ? -1 : x(k) >= upper(k) ? 1 : 0;
-  Eigen::VectorXd mu = Eigen::VectorXd::Zero(size);
-  const Eigen::MatrixXd regulariser = regulariser_hessian(size);
+  Vector mu = Vector::Zero(size);
 
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j;
+  Linearisation first, second;
+  Linearisation *lin = &first, *trial = &second;
+  // x's storage is a fixed-capacity vector; the linearisation reads it through a VectorXd
+  // view without copying.
+  auto linearise_at = [&](const Vector& v, Linearisation& out) {
+    linearise(pose, Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()), targets, out, frames_,
+              scratch_pose_);
+    return out.value + regulariser_value(v);
+  };
+  double current = linearise_at(x, *lin);
+
   // Levenberg-Marquardt damping, grown when the Gauss-Newton model overshoots and shrunk
   // when it is trusted; it does not move the solution (a zero step means g + C'lambda = 0).
   double damping = 0.0;
+  SolverResult result;
   const int max_iterations = cold_start
                                  ? std::max(options_.cold_start_iterations, options_.max_iterations)
                                  : options_.max_iterations;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     result.iterations = iteration + 1;
-    evaluate(pose, x, targets, &r, &j);
-    Eigen::MatrixXd h = j.transpose() * j + regulariser;
-    h.diagonal().array() += damping;
-    const Eigen::VectorXd g = j.transpose() * r + regulariser_gradient(x, anchor);
-    const Eigen::LLT<Eigen::MatrixXd> llt(h);  // positive definite: the regulariser
-    Eigen::VectorXd step;
-    // Active-set loop on the linearised problem: min 1/2 s'Hs + g's, s_k = bound_k - x_k on
-    // the active set A. KKT: H s + C' lambda = -g, C s = b; with H = LL':
-    // (C H^-1 C') lambda = C H^-1 (-g) - b, s = H^-1 (-g - C' lambda).
-    for (int pass = 0; pass < 2 * size + 2; ++pass) {
-      std::vector<int> active;
-      for (int k = 0; k < size; ++k)
-        if (state[std::size_t(k)] != 0) active.push_back(k);
-      const Eigen::VectorXd free_step = llt.solve(-g);
-      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(Eigen::Index(active.size()));
-      step = free_step;
-      if (!active.empty()) {
-        const Eigen::Index a = Eigen::Index(active.size());
-        Eigen::MatrixXd ct = Eigen::MatrixXd::Zero(size, a);
-        Eigen::VectorXd b(a);
-        for (Eigen::Index i = 0; i < a; ++i) {
-          const int k = active[std::size_t(i)];
-          ct(k, i) = 1.0;
-          b(i) = (state[std::size_t(k)] < 0 ? lower(k) : upper(k)) - x(k);
+    // H = J'WJ + R'' is block-diagonal over the blocks (no feature or regulariser term
+    // couples two): each takes its step on its own.
+    Vector step(size);
+    double slope = 0.0;  // g's
+    for (const std::vector<int>& block : blocks_) {
+      const int b = int(block.size());
+      Matrix hb(b, b);
+      Vector gb(b), xb(b), lb(b), ub(b), sb(b), mb(b);
+      std::array<int, kMaxVariables> sb_state;
+      for (int i = 0; i < b; ++i) {
+        const int vi = block[std::size_t(i)];
+        double gi = lin->gradient(vi) - anchor_pull(vi);
+        for (int j = 0; j < b; ++j) {
+          const int vj = block[std::size_t(j)];
+          hb(i, j) = lin->hessian(vi, vj) + regulariser_hessian(vi, vj);
+          gi += regulariser_hessian(vi, vj) * x(vj);
         }
-        const Eigen::MatrixXd hinv_ct = llt.solve(ct);
-        const Eigen::MatrixXd schur = ct.transpose() * hinv_ct;
-        Eigen::VectorXd cs(a);
-        for (Eigen::Index i = 0; i < a; ++i) cs(i) = free_step(active[std::size_t(i)]);
-        lambda = schur.llt().solve(cs - b);
-        step = free_step - hinv_ct * lambda;
+        hb(i, i) += damping;
+        gb(i) = gi;
+        xb(i) = x(vi);
+        lb(i) = lower(vi);
+        ub(i) = upper(vi);
+        sb_state[std::size_t(i)] = state[std::size_t(vi)];
       }
-      // Multipliers of c(x) >= 0: lower bound c = x - lo (lambda_c = -lambda), upper c = hi - x
-      // (lambda_c = lambda). A wrong sign means the bound should be released.
-      int release = -1;
-      double most_negative = -1e-12;
-      for (std::size_t i = 0; i < active.size(); ++i) {
-        const int k = active[i];
-        const double m =
-            state[std::size_t(k)] < 0 ? -lambda(Eigen::Index(i)) : lambda(Eigen::Index(i));
-        if (m < most_negative) {
-          most_negative = m;
-          release = k;
-        }
+      kkt_step(hb, gb, xb, lb, ub, sb_state.data(), sb, mb);
+      slope += gb.dot(sb);
+      for (int i = 0; i < b; ++i) {
+        const int vi = block[std::size_t(i)];
+        step(vi) = sb(i);
+        mu(vi) = mb(i);
+        state[std::size_t(vi)] = sb_state[std::size_t(i)];
       }
-      if (release >= 0) {
-        state[std::size_t(release)] = 0;
-        continue;
-      }
-      // Bounds the free variables would cross join the active set.
-      int enter = -1;
-      double worst = 1e-15;
-      for (int k = offset; k < size; ++k) {
-        if (state[std::size_t(k)] != 0) continue;
-        const double over = std::max(x(k) + step(k) - upper(k), lower(k) - x(k) - step(k));
-        if (over > worst) {
-          worst = over;
-          enter = k;
-        }
-      }
-      if (enter >= 0) {
-        state[std::size_t(enter)] = x(enter) + step(enter) > upper(enter) ? 1 : -1;
-        continue;
-      }
-      mu.setZero();
-      for (std::size_t i = 0; i < active.size(); ++i) {
-        const int k = active[i];
-        mu(k) = state[std::size_t(k)] < 0 ? -lambda(Eigen::Index(i)) : lambda(Eigen::Index(i));
-      }
-      break;
     }
-    // Backtracking on the true objective: the step keeps every bound for any length in [0, 1].
-    const double current = objective(pose, x, targets, anchor);
-    const double slope = g.dot(step);
+    // Backtracking on the true objective: the step keeps every bound for any length in
+    // [0, 1]. The full step lands exactly on the active bounds.
     double length = 1.0;
-    Eigen::VectorXd trial = x + step;
+    Vector next = x + step;
+    for (int k = 0; k < size; ++k) {
+      if (state[std::size_t(k)] < 0) next(k) = lower(k);
+      if (state[std::size_t(k)] > 0) next(k) = upper(k);
+    }
+    double value = linearise_at(next, *trial);
     // A predicted decrease below the objective's rounding is no test of the step: near the
     // solution the quadratic model is right, so take it whole.
     const bool resolvable = -slope > 1e-10 * current;
-    while (resolvable && length > 1e-4 &&
-           objective(pose, trial, targets, anchor) > current + 1e-4 * length * slope) {
+    while (resolvable && length > 1e-4 && value > current + 1e-4 * length * slope) {
       length *= 0.5;
-      trial = x + length * step;
+      next = x + length * step;
+      value = linearise_at(next, *trial);
     }
-    x = trial;
+    const double decrease = current - value;
+    x = next;
+    std::swap(lin, trial);  // the accepted point's linearisation is the next iteration's
+    current = value;
     damping = length < 0.5 ? std::max(10.0 * damping, 1e-6) : 0.25 * damping;
-    if (length == 1.0) {
-      for (int k = 0; k < size; ++k) {  // exactly on the active bounds
-        if (state[std::size_t(k)] < 0) x(k) = lower(k);
-        if (state[std::size_t(k)] > 0) x(k) = upper(k);
-      }
-    }
-    if ((length * step).lpNorm<Eigen::Infinity>() < options_.step_tolerance) break;
+    if ((length * step).lpNorm<Eigen::Infinity>() < options_.step_tolerance ||
+        decrease < options_.decrease_tolerance)
+      break;
   }
   result.angles = x.tail(n);
   if (offset == 3) result.root_shift = kTranslationUnit * x.head<3>();
   result.multipliers = mu.tail(n);
   for (int k = offset; k < size; ++k)
     if (state[std::size_t(k)] != 0) result.active.push_back(k - offset);
-  result.objective = objective(pose, x, targets, anchor);
+  result.objective = current;
+  result.max_feature_error = lin->max_error;
   return result;
 }
 

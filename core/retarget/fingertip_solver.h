@@ -8,6 +8,7 @@
 // updates the active set until the multipliers have the right sign.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,6 +32,9 @@ struct SolverOptions {
   int max_iterations = 16;          // warm-started frames
   int cold_start_iterations = 100;  // the first frame, or after a reset
   double step_tolerance = 1e-6;     // rad (about 1e-7 m at a fingertip)
+  // Stop when an iteration lowers the objective by less (m^2, weighted): a step along a
+  // flat valley (a palm shift traded for finger angles) moves no tip measurably.
+  double decrease_tolerance = 1e-13;
 };
 
 struct SolverResult {
@@ -40,16 +44,23 @@ struct SolverResult {
   std::vector<int> active;      // DOF indices at a bound at the solution
   Eigen::VectorXd multipliers;  // per DOF, >= 0 on active bounds, 0 elsewhere
   double objective = 0.0;
+  double max_feature_error = 0.0;  // m: the farthest feature from its target, unweighted
 };
 
+// Not thread-safe: solve() reuses the solver's scratch space, so that a warm-started frame
+// allocates nothing but its result.
 class FingertipSolver {
  public:
   FingertipSolver(const hand::Skeleton& skeleton, std::vector<Feature> features,
                   SolverOptions options = {});
+  ~FingertipSolver();
 
-  // Root pose fixed (in `pose`); its angles are the warm start and the temporal anchor.
+  // Root rotation fixed (in `pose`); its angles are the warm start and the temporal
+  // anchor. With a root translation weight, the root position may shift from `pose`'s,
+  // starting from `root_shift` (the previous frame's).
   SolverResult solve(const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& targets,
-                     bool cold_start = false) const;
+                     bool cold_start = false,
+                     const Eigen::Vector3d& root_shift = Eigen::Vector3d::Zero());
 
   // The objective and its gradient at x = angles (root fixed) or [root shift; angles], with
   // the temporal anchor's angles (for KKT checks).
@@ -62,18 +73,25 @@ class FingertipSolver {
   const std::vector<Feature>& features() const { return features_; }
 
  private:
-  void evaluate(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                const std::vector<Eigen::Vector3d>& targets, Eigen::VectorXd* residual,
-                Eigen::MatrixXd* jacobian) const;
-  // The quadratic regulariser's Hessian over x, and its gradient at x.
-  Eigen::MatrixXd regulariser_hessian(int size) const;
-  Eigen::VectorXd regulariser_gradient(const Eigen::VectorXd& x,
-                                       const Eigen::VectorXd& anchor) const;
+  struct Linearisation;  // the data term's value, gradient and Gauss-Newton Hessian at x
+  struct FeatureColumns {
+    std::vector<int> dofs;  // the DOFs that move the feature
+    std::vector<int> sign;  // +1 from the marker's chain, -1 from relative_to's, 0 both
+  };
+  void linearise(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                 const std::vector<Eigen::Vector3d>& targets, Linearisation& out,
+                 hand::BoneFrames& frames, hand::HandPose& scratch) const;
+  double regulariser(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const;
 
   const hand::Skeleton& skeleton_;
   std::vector<Feature> features_;
+  std::vector<FeatureColumns> columns_;
+  std::vector<std::vector<int>> blocks_;  // variables coupled by a feature or the regulariser
   SolverOptions options_;
-  Eigen::MatrixXd smoothness_;  // L'L of the spatial term (n x n)
+  std::vector<std::array<int, 2>> interphalangeal_;  // (DIP, PIP) of each finger
+  Eigen::MatrixXd regulariser_hessian_;              // constant: R is quadratic
+  hand::BoneFrames frames_;                          // scratch
+  hand::HandPose scratch_pose_;
 };
 
 }  // namespace handlab::retarget

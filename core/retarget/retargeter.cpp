@@ -115,25 +115,28 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
     out.iterations = fit.iterations;
     return out;
   }
-  if (previous_) pose.angles = *previous_;  // warm start and temporal anchor
+  // Warm start and temporal anchor: the previous frame's solution.
+  if (previous_) pose.angles = previous_->angles;
   const std::vector<Eigen::Vector3d> targets(out.targets.begin(), out.targets.end());
-  SolverResult solution = solver_->solve(pose, targets, !previous_.has_value());
-  out.iterations = solution.iterations;
-  pose.angles = solution.angles;
-  const hand::BoneFrames frames = hand::forward_kinematics(simulated_, pose);
-  double worst = 0.0;
-  for (int f = 0; f < 5; ++f)
-    worst =
-        std::max(worst, (hand::marker_position(simulated_, frames, tip_markers_[std::size_t(f)]) -
-                         targets[std::size_t(f)])
-                            .norm());
-  if (worst > kReachTolerance) {
-    solution = free_wrist_->solve(pose, targets);
-    out.iterations += solution.iterations;
-    pose.angles = solution.angles;
-    pose.root_position += solution.root_shift;
+  // The palm stays on the finger bases unless a tip is out of reach from there; once it
+  // has shifted, it keeps shifting (warm-started) until the shift falls below half the
+  // reach tolerance, so that frames do not alternate between the two.
+  const bool shifted = previous_ && previous_->root_shift.norm() > 0.5 * kReachTolerance;
+  SolverResult solution;
+  if (!shifted) {
+    solution = solver_->solve(pose, targets, !previous_.has_value());
+    out.iterations = solution.iterations;
   }
-  previous_ = solution.angles;
+  if (shifted || solution.max_feature_error > kReachTolerance) {
+    // From the fixed palm's solution, or the previous frame's, with its shift.
+    if (!shifted) pose.angles = solution.angles;
+    solution = free_wrist_->solve(pose, targets, !previous_.has_value(),
+                                  previous_ ? previous_->root_shift : Eigen::Vector3d::Zero());
+    out.iterations += solution.iterations;
+  }
+  pose.angles = solution.angles;
+  pose.root_position += solution.root_shift;
+  previous_ = solution;
   return out;
 }
 

@@ -62,7 +62,7 @@ class Retargeter {
   std::unique_ptr<FingertipSolver> free_wrist_;  // palm free to shift, when tips are out of reach
   std::array<int, 4> mcp_markers_;
   std::array<int, 5> tip_markers_;
-  std::optional<Eigen::VectorXd> previous_;
+  std::optional<SolverResult> previous_;
 };
 
 }  // namespace handlab::retarget

@@ -159,6 +159,20 @@ TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
   EXPECT_EQ(cli("retarget " + recording + " --strategy magic").status, 2);
 }
 
+TEST(CliRetarget, DrawsThePinchPicture) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
+  const std::string png = std::string(HANDLAB_TEST_TMP) + "/retarget_pinch.png";
+  std::remove(png.c_str());
+  const Result r = cli("retarget " + recording + " --picture " + png + " --json /dev/null");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("frame 133040"), std::string::npos) << r.out;  // the strongest pinch
+  int width = 0, height = 0;
+  ASSERT_TRUE(handlab::render::read_png_size(png, &width, &height));
+  EXPECT_EQ(width, 1500);
+  EXPECT_EQ(height, 600);
+  EXPECT_EQ(cli("retarget " + recording + " --picture " + png + " --frame 1").status, 1);
+}
+
 TEST(CliAnalyze, ReportsAndWritesJson) {
   const std::string csv = write_temp("good.csv", kGood);
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";

@@ -56,7 +56,7 @@ tracking::TrackedHand as_tracked(const Skeleton& s, const HandPose& pose, double
 
 TEST(FingertipSolver, KktConditionsHoldAtTheSolution) {
   const Skeleton s = hand::build_simulated_hand(hand::HandShape::with_length(0.214));
-  FingertipSolver solver(s, tips(s), {1e-6, 1e-6, 0.0, 200, 200, 1e-13});
+  FingertipSolver solver(s, tips(s), {1e-6, 1e-6, 0.0, 200, 200, 1e-13, 0.0});
   std::mt19937 rng(5);
   int with_active = 0;
   for (int trial = 0; trial < 20; ++trial) {
@@ -132,7 +132,7 @@ TEST(Retargeter, SyntheticPinchesStayTouchingWithOurs) {
     }
     const int thumb_tip = tracked.marker_index("thumb_tip"),
               index_tip = tracked.marker_index("index_tip");
-    FingertipSolver touch(tracked, {{thumb_tip, index_tip, 1.0}}, {1e-9, 1e-9, 0.0, 60, 60, 1e-13});
+    FingertipSolver touch(tracked, {{thumb_tip, index_tip, 1.0}}, {1e-9, 1e-9, 0.0, 60, 60, 1e-13, 0.0});
     const SolverResult touching = touch.solve(pose, {Eigen::Vector3d::Zero()});
     pose.angles = touching.angles;
     const hand::LeapJoints joints = hand::to_leap_joints(tracked, pose);

@@ -9,6 +9,7 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
+#include "app/cli/commands/retarget_picture.h"
 #include "app/cli/output_file.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/retargeter.h"
@@ -44,6 +45,8 @@ int run_retarget(const std::vector<std::string>& argv) {
       {"sim-length", "METRES", "the simulated hand's length", "0.214"},
       {"csv", "FILE", "per-frame errors (deterministic: no timings)"},
       {"json", "OUT", "summary as JSON (- for standard output)"},
+      {"picture", "FILE", "draw a pinch frame: tracked, Naive and Ours side by side (PNG)"},
+      {"frame", "ID", "with --picture: this frame id instead of the strongest pinch"},
   };
   const Arguments args(specs, argv, 1);
   if (args.help_requested()) {
@@ -82,6 +85,13 @@ int run_retarget(const std::vector<std::string>& argv) {
     calibration = retarget::Calibration{};
     calibration->scale = sim_length / *tracking::estimate_hand_length(recording.frames, side);
     calibration_source = "hand lengths";
+  }
+  if (args.has("picture")) {
+    std::optional<std::int64_t> frame_id;
+    if (args.has("frame")) frame_id = args.integer("frame");
+    const std::int64_t id = write_retarget_picture(recording, side, shape, *calibration, *fitter,
+                                                   frame_id, args.text("picture"));
+    std::cout << "wrote " << args.text("picture") << " (frame " << id << ")\n";
   }
   retarget::Retargeter retargeter(strategy, simulated, *calibration,
                                   strategy == retarget::Strategy::kNaive ? fitter : std::nullopt);
