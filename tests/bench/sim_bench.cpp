@@ -1,0 +1,38 @@
+// The flesh alone: one backward-Euler Newton step of the study hand's tetrahedral flesh
+// (linear co-rotational FEM), its coupling points tied by springs to where the bones hold
+// them, so that the system has the simulator's size and conditioning.
+#include <benchmark/benchmark.h>
+
+#include "core/hand/flesh.h"
+#include "core/hand/simulated_hand.h"
+#include "core/sim/elastic_body.h"
+
+namespace {
+
+void BM_FleshStep(benchmark::State& state) {
+  using namespace handlab;
+  const hand::HandShape shape = hand::HandShape::with_length(0.214);
+  const hand::Skeleton skeleton = hand::build_simulated_hand(shape);
+  hand::FleshOptions options;
+  options.resolution = int(state.range(0));
+  const hand::HandFlesh flesh = hand::build_flesh(skeleton, shape, options);
+  sim::ElasticBodyModel model = sim::make_elastic_body(flesh.tets, {30e3, 0.45}, 1100.0);
+  // Every node of a tet that holds a coupling point is tied to its rest place.
+  std::vector<Eigen::Vector3d> anchors;
+  std::vector<bool> tied(flesh.tets.nodes.size(), false);
+  for (const auto& c : flesh.coupling)
+    for (int node : flesh.tets.tets[std::size_t(c.tet)]) tied[std::size_t(node)] = true;
+  for (std::size_t i = 0; i < tied.size(); ++i)
+    if (tied[i]) {
+      model.springs.push_back({int(i), 50.0});
+      anchors.push_back(model.rest[i]);
+    }
+  sim::ElasticBodySolver solver(model);
+  sim::ElasticBodyState s = sim::rest_state(model);
+  for (auto _ : state) benchmark::DoNotOptimize(solver.step(s, anchors).residual);
+  state.counters["tets"] = double(model.tets.size());
+  state.counters["nodes"] = double(model.rest.size());
+}
+BENCHMARK(BM_FleshStep)->Arg(1)->Arg(4)->ArgName("resolution")->Unit(benchmark::kMillisecond);
+
+}  // namespace
