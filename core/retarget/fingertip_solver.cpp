@@ -232,7 +232,7 @@ FingertipSolver::FingertipSolver(const hand::Skeleton& skeleton, std::vector<Fea
 
 FingertipSolver::~FingertipSolver() = default;
 
-void FingertipSolver::linearise(const hand::HandPose& pose, const Eigen::VectorXd& x,
+void FingertipSolver::linearise(const hand::HandPose& pose, Eigen::Ref<const Eigen::VectorXd> x,
                                 const std::vector<Eigen::Vector3d>& targets, Linearisation& out,
                                 hand::BoneFrames& frames, hand::HandPose& scratch) const {
   const int n = int(skeleton_.dofs.size());
@@ -287,7 +287,8 @@ void FingertipSolver::linearise(const hand::HandPose& pose, const Eigen::VectorX
   }
 }
 
-double FingertipSolver::regulariser(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const {
+double FingertipSolver::regulariser(Eigen::Ref<const Eigen::VectorXd> x,
+                                    Eigen::Ref<const Eigen::VectorXd> anchor) const {
   const int n = int(skeleton_.dofs.size());
   const auto q = x.tail(n);
   double spatial = 0.0;

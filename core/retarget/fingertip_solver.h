@@ -78,10 +78,11 @@ class FingertipSolver {
     std::vector<int> dofs;  // the DOFs that move the feature
     std::vector<int> sign;  // +1 from the marker's chain, -1 from relative_to's, 0 both
   };
-  void linearise(const hand::HandPose& pose, const Eigen::VectorXd& x,
+  void linearise(const hand::HandPose& pose, Eigen::Ref<const Eigen::VectorXd> x,
                  const std::vector<Eigen::Vector3d>& targets, Linearisation& out,
                  hand::BoneFrames& frames, hand::HandPose& scratch) const;
-  double regulariser(const Eigen::VectorXd& x, const Eigen::VectorXd& anchor) const;
+  double regulariser(Eigen::Ref<const Eigen::VectorXd> x,
+                     Eigen::Ref<const Eigen::VectorXd> anchor) const;
 
   const hand::Skeleton& skeleton_;
   std::vector<Feature> features_;
