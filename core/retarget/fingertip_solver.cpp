@@ -304,27 +304,29 @@ double FingertipSolver::regulariser(Eigen::Ref<const Eigen::VectorXd> x,
   return value;
 }
 
-double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
-                                  const std::vector<Eigen::Vector3d>& targets,
-                                  const Eigen::VectorXd& anchor) const {
+FingertipSolver::Linearisation FingertipSolver::linearise(
+    const hand::HandPose& pose, const Eigen::VectorXd& x,
+    const std::vector<Eigen::Vector3d>& targets) const {
   Linearisation lin;
   hand::BoneFrames frames;
   hand::HandPose scratch;
   linearise(pose, x, targets, lin, frames, scratch);
-  return lin.value + regulariser(x, anchor);
+  return lin;
+}
+
+double FingertipSolver::objective(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                                  const std::vector<Eigen::Vector3d>& targets,
+                                  const Eigen::VectorXd& anchor) const {
+  return linearise(pose, x, targets).value + regulariser(x, anchor);
 }
 
 Eigen::VectorXd FingertipSolver::gradient(const hand::HandPose& pose, const Eigen::VectorXd& x,
                                           const std::vector<Eigen::Vector3d>& targets,
                                           const Eigen::VectorXd& anchor) const {
-  Linearisation lin;
-  hand::BoneFrames frames;
-  hand::HandPose scratch;
-  linearise(pose, x, targets, lin, frames, scratch);
-  const int n = int(skeleton_.dofs.size());
-  Eigen::VectorXd g = lin.gradient;
   if (x.size() != regulariser_hessian_.rows())
     throw std::invalid_argument("FingertipSolver::gradient: x has the wrong size");
+  const int n = int(skeleton_.dofs.size());
+  Eigen::VectorXd g = linearise(pose, x, targets).gradient;
   g += regulariser_hessian_ * x;
   g.tail(n) -= options_.temporal_weight * anchor;
   return g;
@@ -349,10 +351,7 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose,
   const Eigen::MatrixXd& regulariser_hessian = regulariser_hessian_;
   Vector anchor_pull = Vector::Zero(size);
   anchor_pull.tail(n) = options_.temporal_weight * anchor;
-  auto regulariser_value = [&](const Vector& v) {
-    return regulariser(Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()),
-                       Eigen::Map<const Eigen::VectorXd>(anchor.data(), n));
-  };
+  auto regulariser_value = [&](const Vector& v) { return regulariser(v, anchor); };
 
   Vector x = Vector::Zero(size);
   x.tail(n) = anchor;
@@ -366,11 +365,9 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose,
 
   Linearisation first, second;
   Linearisation *lin = &first, *trial = &second;
-  // x's storage is a fixed-capacity vector; the linearisation reads it through a VectorXd
-  // view without copying.
+  // The linearisation reads the fixed-capacity vector through an Eigen::Ref, without a copy.
   auto linearise_at = [&](const Vector& v, Linearisation& out) {
-    linearise(pose, Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()), targets, out, frames_,
-              scratch_pose_);
+    linearise(pose, v, targets, out, frames_, scratch_pose_);
     return out.value + regulariser_value(v);
   };
   double current = linearise_at(x, *lin);

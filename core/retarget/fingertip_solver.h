@@ -81,6 +81,9 @@ class FingertipSolver {
   void linearise(const hand::HandPose& pose, Eigen::Ref<const Eigen::VectorXd> x,
                  const std::vector<Eigen::Vector3d>& targets, Linearisation& out,
                  hand::BoneFrames& frames, hand::HandPose& scratch) const;
+  // The same with its own scratch space (objective() and gradient(), for tests).
+  Linearisation linearise(const hand::HandPose& pose, const Eigen::VectorXd& x,
+                          const std::vector<Eigen::Vector3d>& targets) const;
   double regulariser(Eigen::Ref<const Eigen::VectorXd> x,
                      Eigen::Ref<const Eigen::VectorXd> anchor) const;
 

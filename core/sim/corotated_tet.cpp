@@ -36,6 +36,12 @@ Eigen::Matrix3d deformation_gradient(const TetElement& tet,
   return f;
 }
 
+Eigen::Matrix3d corotated_strain(const TetElement& tet, const std::array<Eigen::Vector3d, 4>& x,
+                                 const Eigen::Matrix3d& rotation) {
+  const Eigen::Matrix3d g = rotation.transpose() * deformation_gradient(tet, x);
+  return 0.5 * (g + g.transpose()) - Eigen::Matrix3d::Identity();
+}
+
 void evaluate_corotated(const TetElement& tet, const std::array<Eigen::Vector3d, 4>& rest,
                         const std::array<Eigen::Vector3d, 4>& x, const Eigen::Matrix3d& rotation,
                         ElementEvaluation& out, bool with_hessian) {

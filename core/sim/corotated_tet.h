@@ -40,6 +40,10 @@ TetElement make_tet_element(const std::array<Eigen::Vector3d, 4>& rest,
 Eigen::Matrix3d deformation_gradient(const TetElement& tet,
                                      const std::array<Eigen::Vector3d, 4>& x);
 
+// Strain in the element's rotated frame: sym(R'F) - I.
+Eigen::Matrix3d corotated_strain(const TetElement& tet, const std::array<Eigen::Vector3d, 4>& x,
+                                 const Eigen::Matrix3d& rotation);
+
 struct ElementEvaluation {
   double energy = 0.0;
   Vector12d gradient;

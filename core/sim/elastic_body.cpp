@@ -45,12 +45,6 @@ ElasticBodyState rest_state(const ElasticBodyModel& model) {
   return s;
 }
 
-Eigen::Matrix3d corotated_strain(const TetElement& tet, const std::array<Eigen::Vector3d, 4>& x,
-                                 const Eigen::Matrix3d& rotation) {
-  const Eigen::Matrix3d g = rotation.transpose() * deformation_gradient(tet, x);
-  return 0.5 * (g + g.transpose()) - Eigen::Matrix3d::Identity();
-}
-
 struct ElasticBodySolver::Impl {
   const ElasticBodyModel& model;
   int dofs = 0;

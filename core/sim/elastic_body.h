@@ -43,7 +43,9 @@ ElasticBodyState rest_state(const ElasticBodyModel& model);
 
 struct StepReport {
   int newton_iterations = 0;
-  double residual = 0.0;  // max |gradient| at free nodes after the last iteration (N)
+  // max |gradient| at free nodes (N) where the last Newton solve started (for a static
+  // solve that stopped converged: at the solution)
+  double residual = 0.0;
 };
 
 // Newton on the backward-Euler energy E(x) = 1/(2h^2) |x - x_pred|_M^2 + U(x), or on U(x)
@@ -71,9 +73,5 @@ class ElasticBodySolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// Strain of a tet in its rotated frame: sym(R'F) - I.
-Eigen::Matrix3d corotated_strain(const TetElement& tet, const std::array<Eigen::Vector3d, 4>& x,
-                                 const Eigen::Matrix3d& rotation);
 
 }  // namespace handlab::sim

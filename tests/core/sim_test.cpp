@@ -46,14 +46,17 @@ ElasticBodyModel weightless(const mesh::TetMesh& mesh, const Material& material)
   return model;
 }
 
+Eigen::Matrix3d random_rotation(std::mt19937& rng, double max_angle) {
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const Eigen::Vector3d axis = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+  return Eigen::AngleAxisd(max_angle * unit(rng), axis).toRotationMatrix();
+}
+
 TEST(RotationExtraction, RecoversThePolarRotation) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> unit(-1, 1);
   for (int trial = 0; trial < 50; ++trial) {
-    const Eigen::Matrix3d r =
-        Eigen::AngleAxisd(3 * unit(rng),
-                          Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized())
-            .toRotationMatrix();
+    const Eigen::Matrix3d r = random_rotation(rng, 3.0);
     Eigen::Matrix3d s = Eigen::Matrix3d::Identity();
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j <= i; ++j) s(i, j) = s(j, i) = (i == j ? 1.0 : 0.0) + 0.2 * unit(rng);
@@ -113,10 +116,7 @@ TEST(CorotatedFem, RigidMotionsHaveNoElasticForce) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(-1, 1);
   for (int trial = 0; trial < 10; ++trial) {
-    const Eigen::Matrix3d r =
-        Eigen::AngleAxisd(3.1 * unit(rng),
-                          Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized())
-            .toRotationMatrix();
+    const Eigen::Matrix3d r = random_rotation(rng, 3.1);
     const Eigen::Vector3d t(unit(rng), unit(rng), unit(rng));
     ElasticBodyState state = rest_state(model);
     for (std::size_t i = 0; i < state.position.size(); ++i)
