@@ -13,6 +13,12 @@ const std::vector<Command>& all_commands() {
        run_retarget},
       {"tracking", "read Leap Motion recordings: info, convert to CSV or .hlrec", run_tracking},
       {"render", "draw the task scene offscreen into a PNG (no display needed)", run_render},
+      {"study", "create a study database from a protocol; show its progress", run_study},
+      {"participant", "enrol a participant (their schedule is fixed and stored)", run_participant},
+      {"session", "run a participant's session headless (resumes after a crash); redo, skip",
+       run_session},
+      {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
+       run_export},
   };
   return commands;
 }

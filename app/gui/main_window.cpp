@@ -13,6 +13,7 @@
 #include <QTextStream>
 
 #include "app/gui/scene_view.h"
+#include "app/gui/study_panel.h"
 #include "handlab/version.h"
 
 namespace handlab::gui {
@@ -34,6 +35,8 @@ void MainWindow::build_menus() {
   quit->setShortcut(QKeySequence::Quit);
 
   QMenu* study = menuBar()->addMenu(tr("&Study"));
+  study->addAction(tr("&Open Study Database…"), this, &MainWindow::open_study);
+  study->addSeparator();
   auto* cubes = new QActionGroup(this);
   for (const auto& [label, size] : {std::pair{tr("&Gross Manipulation (6 cm cube)"), 0.06},
                                     std::pair{tr("&Fine Manipulation (1 cm cube)"), 0.01}}) {
@@ -101,6 +104,31 @@ void MainWindow::open_csv_table() {
   dock->setAttribute(Qt::WA_DeleteOnClose);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   statusBar()->showMessage(tr("%1: %2 rows").arg(QFileInfo(path).fileName()).arg(row), 5000);
+}
+
+void MainWindow::open_study() {
+  const QString path =
+      QFileDialog::getOpenFileName(this, tr("Open Study Database"), QString(),
+                                   tr("Study databases (*.db *.sqlite);;All files (*)"));
+  if (path.isEmpty()) return;
+  const QString error = show_study(path);
+  if (!error.isEmpty()) QMessageBox::warning(this, tr("Open Study Database"), error);
+}
+
+QString MainWindow::show_study(const QString& path) {
+  auto* panel = new StudyPanel;
+  const QString error = panel->open_database(path);
+  if (!error.isEmpty()) {
+    delete panel;
+    return error;
+  }
+  auto* dock = new QDockWidget(tr("Study: %1").arg(QFileInfo(path).fileName()), this);
+  dock->setObjectName("study");
+  dock->setWidget(panel);
+  dock->setAttribute(Qt::WA_DeleteOnClose);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+  return {};
 }
 
 void MainWindow::show_about() {

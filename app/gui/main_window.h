@@ -7,6 +7,7 @@
 namespace handlab::gui {
 
 class SceneView;
+class StudyPanel;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -20,6 +21,13 @@ class MainWindow : public QMainWindow {
   void save_view_image();
   void set_cube_size(double metres);
   void open_csv_table();
+  void open_study();
+
+ public:
+  // Shows the study database's progress in a dock; returns the error text (empty: opened).
+  QString show_study(const QString& path);
+
+ private:
   void show_about();
 
   SceneView* view_ = nullptr;

@@ -66,6 +66,7 @@ class Database {
   Statement prepare(std::string_view sql);
   std::optional<std::string> query_text(std::string_view sql);  // first column of the first row
   std::int64_t last_insert_rowid() const;
+  int changes() const;  // rows changed by the last INSERT, UPDATE or DELETE
   const std::string& path() const { return path_; }
   sqlite3* handle() { return db_; }
 

@@ -5,6 +5,13 @@
 
 #include "app/gui/main_window.h"
 #include "app/gui/scene_view.h"
+#include "app/gui/study_panel.h"
+#include "core/store/study_store.h"
+#include "studies/session/session_runner.h"
+
+#include <QDockWidget>
+#include <QTableWidget>
+#include <filesystem>
 
 namespace handlab::gui {
 namespace {
@@ -52,6 +59,43 @@ TEST(MainWindow, WheelZooms) {
                     Qt::NoModifier, Qt::NoScrollPhase, false);
   QApplication::sendEvent(view, &wheel);
   EXPECT_NEAR(view->camera().distance, before * 0.81f, 1e-5f);
+}
+
+TEST(MainWindow, ShowsAStudyDatabasesProgress) {
+  const std::string path = std::string(HANDLAB_TEST_TMP) + "/gui_study.db";
+  for (const char* side : {"", "-wal", "-shm"}) std::filesystem::remove(path + side);
+  const studies::Protocol protocol = studies::read_protocol(std::string(HANDLAB_SOURCE_DIR) +
+                                                            "/studies/fine-manipulation-2021.json");
+  store::StudyStore::create(path, studies::study_definition(protocol));
+  {
+    store::StudyStore db(path);
+    store::Participant p;
+    p.id = "P07";
+    p.age = 31;
+    p.sex = "M";
+    p.handedness = "left";
+    p.hand_length = 0.2;
+    p.vr_experience = "none";
+    db.add_participant(p, studies::planned_rows(protocol, "P07", 0));
+    db.skip_trial("P07", 0, db.begin_session("P07", "gui test"), "demo");
+  }
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  ASSERT_EQ(window.show_study(QString::fromStdString(path)), QString());
+  auto* dock = window.findChild<QDockWidget*>("study");
+  ASSERT_NE(dock, nullptr);
+  auto* panel = qobject_cast<StudyPanel*>(dock->widget());
+  ASSERT_NE(panel, nullptr);
+  QTableWidget* table = panel->table();
+  ASSERT_EQ(table->rowCount(), 1);
+  EXPECT_EQ(table->item(0, 0)->text(), "P07");
+  EXPECT_EQ(table->item(0, 1)->text(), "24");
+  EXPECT_EQ(table->item(0, 3)->text(), "1");
+  EXPECT_TRUE(table->item(0, 5)->text().startsWith("2: "))
+      << table->item(0, 5)->text().toStdString();
+
+  EXPECT_NE(window.show_study("/no/such/study.db"), QString());
 }
 
 }  // namespace

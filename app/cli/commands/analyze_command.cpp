@@ -1,5 +1,6 @@
 // handlab-cli analyze: repeated-measures ANOVA with post hoc tests, or Friedman and
 // Wilcoxon tests, on a long-format CSV file; numbers equal to R's afex, emmeans and stats.
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -8,6 +9,8 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/output_file.h"
+#include "core/store/study_store.h"
+#include "studies/export/study_export.h"
 
 namespace handlab::cli {
 namespace {
@@ -21,11 +24,80 @@ std::vector<std::string> split_list(const std::string& text) {
   return items;
 }
 
+// The study's own analysis on its database: completion time by every factor and the
+// repetition (RM-ANOVA with post hoc tests), then Friedman and Wilcoxon tests of the
+// questionnaire items across the conditions. Skipped trials are left out; participants
+// without every cell are dropped and named.
+int analyze_database(const std::string& path, const std::string& json_out) {
+  store::StudyStore store(path);
+  const store::StudyInfo info = store.study();
+  std::ostringstream trials, answers;
+  studies::write_trials_csv(store, trials);
+  studies::write_questionnaire_csv(store, answers);
+  // Keep the rows with a time: drop skipped trials (their time is NA).
+  std::istringstream in(trials.str());
+  std::string line, kept;
+  std::getline(in, line);
+  kept = line + "\n";
+  std::size_t rows = 0;
+  while (std::getline(in, line))
+    if (line.find(",skipped,") == std::string::npos) {
+      kept += line + "\n";
+      ++rows;
+    }
+  if (rows == 0) throw std::runtime_error(path + " has no trial results to analyse yet");
+
+  analysis::AnalysisRequest times;
+  times.design.subject = "participant";
+  times.design.dv = "completion_time_s";
+  times.design.within = info.factors;
+  times.design.within.push_back("repetition");
+  const analysis::AnalysisReport time_report =
+      analysis::run_analysis(analysis::LongTable::parse_csv(kept, path + " (trials)"), times);
+
+  std::optional<analysis::AnalysisReport> item_report;
+  const analysis::LongTable items =
+      analysis::LongTable::parse_csv(answers.str(), path + " (questionnaire)");
+  if (items.rows() > 0) {
+    analysis::AnalysisRequest request;
+    request.design.subject = "participant";
+    request.design.within = info.factors;
+    const std::vector<std::string>& columns = items.columns();
+    const auto first_item = std::find(columns.begin(), columns.end(), "repetition") + 1;
+    request.nonparametric_items.assign(first_item, columns.end());
+    item_report = analysis::run_analysis(items, request);
+  }
+  if (json_out != "-") {
+    std::cout << "Study " << info.name << " (" << path << "): completion time\n\n";
+    analysis::write_text(time_report, std::cout);
+    if (item_report) {
+      std::cout << "\nQuestionnaire\n\n";
+      analysis::write_text(*item_report, std::cout);
+    }
+  }
+  if (!json_out.empty()) {
+    write_output(json_out, [&](std::ostream& out) {
+      out << "{\"completion_time\": ";
+      analysis::write_json(time_report, out);
+      out << ", \"questionnaire\": ";
+      if (item_report)
+        analysis::write_json(*item_report, out);
+      else
+        out << "null";
+      out << "}\n";
+    });
+  }
+  return 0;
+}
+
 }  // namespace
 
 int run_analyze(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"csv", "FILE", "long-format data: one row per observation, with a header"},
+      {"db", "DB",
+       "a study database: run the study's analysis (completion time ANOVA, "
+       "questionnaire Friedman/Wilcoxon)"},
       {"subject", "COL", "participant id column"},
       {"dv", "COL", "dependent variable (numeric) for the ANOVA"},
       {"within", "A,B,...", "within-participant factors (levels in order of first appearance)"},
@@ -47,7 +119,8 @@ int run_analyze(const std::vector<std::string>& argv) {
         << "Usage: handlab-cli analyze --csv FILE --subject COL --dv COL --within A,B,... "
            "[options]\n"
            "       handlab-cli analyze --csv FILE --subject COL --within A,B --nonparametric "
-           "I1,I2,...\n\n"
+           "I1,I2,...\n"
+           "       handlab-cli analyze --db DB [--json OUT]\n\n"
            "Repeated-measures ANOVA (type 3, as afex::aov_ez) with Mauchly's test, Greenhouse-\n"
            "Geisser and Huynh-Feldt corrections, and pairwise comparisons of cell means (as\n"
            "emmeans on afex's multivariate model: Tukey, Bonferroni, Holm); or, with\n"
@@ -55,6 +128,10 @@ int run_analyze(const std::vector<std::string>& argv) {
            "tests between all conditions for each item. Prints an APA-style report.\n\nOptions:\n"
         << format_options_help(specs);
     return 0;
+  }
+  if (args.has("db")) {
+    if (args.has("csv")) throw UsageError("give --csv or --db, not both");
+    return analyze_database(args.text("db"), args.text("json"));
   }
   for (const char* required : {"csv", "subject", "within"})
     if (!args.has(required)) throw UsageError(std::string("--") + required + " is required");

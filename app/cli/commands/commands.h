@@ -11,5 +11,9 @@ int run_hand(const std::vector<std::string>& args);
 int run_tracking(const std::vector<std::string>& args);
 int run_retarget(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
+int run_study(const std::vector<std::string>& args);
+int run_participant(const std::vector<std::string>& args);
+int run_session(const std::vector<std::string>& args);
+int run_export(const std::vector<std::string>& args);
 
 }  // namespace handlab::cli

@@ -1,0 +1,41 @@
+// handlab-cli export: a study database's results as CSV for R, JASP or jamovi.
+#include <filesystem>
+#include <iostream>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/store/study_store.h"
+#include "studies/export/study_export.h"
+
+namespace handlab::cli {
+
+int run_export(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"db", "DB", "the study database"},
+      {"out", "DIR", "directory for trials.csv and questionnaire.csv (created if needed)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli export --db DB --out DIR\n\nWrites trials.csv (one row per "
+                 "trial with a result: participant, covariates, block, order, factors, "
+                 "repetition, completion_time_s, outcome, grasps, drops) and questionnaire.csv "
+                 "(one column per item). Practice trials are left out.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  for (const char* name : {"db", "out"})
+    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
+  store::StudyStore store(args.text("db"));
+  const std::filesystem::path dir = args.text("out");
+  std::filesystem::create_directories(dir);
+  write_output((dir / "trials.csv").string(),
+               [&](std::ostream& out) { studies::write_trials_csv(store, out); });
+  write_output((dir / "questionnaire.csv").string(),
+               [&](std::ostream& out) { studies::write_questionnaire_csv(store, out); });
+  std::cout << "wrote " << (dir / "trials.csv").string() << " and "
+            << (dir / "questionnaire.csv").string() << "\n";
+  return 0;
+}
+
+}  // namespace handlab::cli

@@ -1,0 +1,137 @@
+// handlab-cli session: run a participant's session headless; redo or skip a trial.
+#include <chrono>
+#include <iostream>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/store/study_store.h"
+#include "core/util/json_writer.h"
+#include "studies/session/session_runner.h"
+#include "studies/session/trial_driver.h"
+
+namespace handlab::cli {
+namespace {
+
+void require(const Arguments& args, std::initializer_list<const char*> names) {
+  for (const char* name : names)
+    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
+}
+
+int session_run(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"db", "DB", "the study database"},
+      {"participant", "ID", "an enrolled participant"},
+      {"tracker", "scripted|FILE",
+       "scripted: the built-in pick-and-place motion at the participant's hand size; or a "
+       "recording (.json, .json.lz, .hlrec) replayed for every trial",
+       "scripted"},
+      {"resume", "",
+       "continue a started schedule (after a crash: the interrupted trial is "
+       "kept as aborted and run again)"},
+      {"quiet", "", "no line per trial"},
+      {"json", "OUT", "write a summary as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli session run --db DB --participant ID --tracker "
+                 "scripted|FILE [--resume]\n\nRuns the participant's schedule headless: "
+                 "tracker -> retargeting -> hand-cube physics -> task, frames logged at 120 Hz, "
+                 "questionnaire where the protocol asks it (the scripted participant answers "
+                 "the middle of the scale).\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  require(args, {"db", "participant"});
+  const std::string tracker = args.text("tracker");
+  store::StudyStore store(args.text("db"));
+  studies::PipelineTrialDriver driver(tracker == "scripted"
+                                          ? studies::TrackerKind::scripted()
+                                          : studies::TrackerKind::recording(tracker));
+  studies::SessionRunner runner(store, driver, studies::fixed_responder());
+  const bool quiet = args.flag("quiet") || args.text("json") == "-";
+  const auto start = std::chrono::steady_clock::now();
+  const studies::SessionReport report = runner.run(
+      args.text("participant"), tracker, args.flag("resume"), [&](const std::string& line) {
+        if (!quiet) std::cout << line << std::endl;
+      });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (args.text("json") != "-") {
+    if (report.aborted_before)
+      std::cout << report.aborted_before << " interrupted trial(s) marked aborted, run again\n";
+    std::cout << args.text("participant") << ": " << report.trials_run << " trials run in "
+              << seconds << " s; schedule " << (report.schedule_complete ? "complete" : "open")
+              << "\n";
+  }
+  if (args.has("json")) {
+    write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter w(out);
+      w.begin_object()
+          .field("participant", args.text("participant"))
+          .field("trials_run", report.trials_run)
+          .field("aborted_before", report.aborted_before)
+          .field("schedule_complete", report.schedule_complete)
+          .field("seconds", seconds)
+          .end_object();
+      out << "\n";
+    });
+  }
+  return 0;
+}
+
+int session_decision(const std::vector<std::string>& argv, bool redo) {
+  const std::vector<OptionSpec> specs = {
+      {"db", "DB", "the study database"},
+      {"participant", "ID", "an enrolled participant"},
+      {"trial", "N", "the trial's number in the schedule (1-based, as status shows it)"},
+      {"reason", "TEXT", "why: kept in the record"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << (redo ? "Usage: handlab-cli session redo --db DB --participant ID --trial N "
+                         "--reason TEXT\n\nMarks a trial's result as redone (kept) so the next "
+                         "session run runs it again.\n\nOptions:\n"
+                       : "Usage: handlab-cli session skip --db DB --participant ID --trial N "
+                         "--reason TEXT\n\nRecords a planned trial as skipped; runs go on "
+                         "past it.\n\nOptions:\n")
+              << format_options_help(specs);
+    return 0;
+  }
+  require(args, {"db", "participant", "trial", "reason"});
+  store::StudyStore store(args.text("db"));
+  const std::string id = args.text("participant");
+  if (!store.participant(id)) throw std::runtime_error("no participant " + id);
+  const int position = int(args.integer("trial")) - 1;
+  if (redo) {
+    store.redo_trial(id, position, args.text("reason"));
+    std::cout << id << " trial " << position + 1 << " will run again\n";
+  } else {
+    const std::int64_t session = store.begin_session(id, "experimenter");
+    store.skip_trial(id, position, session, args.text("reason"));
+    store.end_session(session, "stopped");
+    std::cout << id << " trial " << position + 1 << " skipped\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_session(const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    std::cout << "Usage: handlab-cli session run --db DB --participant ID --tracker "
+                 "scripted|FILE [--resume] [--json OUT]\n"
+                 "       handlab-cli session redo --db DB --participant ID --trial N --reason "
+                 "TEXT\n"
+                 "       handlab-cli session skip --db DB --participant ID --trial N --reason "
+                 "TEXT\n";
+    return argv.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "run") return session_run(rest);
+  if (argv[0] == "redo") return session_decision(rest, true);
+  if (argv[0] == "skip") return session_decision(rest, false);
+  throw UsageError("unknown session command '" + argv[0] + "' (run, redo, skip)");
+}
+
+}  // namespace handlab::cli

@@ -1,0 +1,124 @@
+// handlab-cli study: create a study database from a protocol; show its progress.
+#include <iostream>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/store/study_store.h"
+#include "core/util/json_writer.h"
+#include "studies/export/study_export.h"
+#include "studies/session/session_runner.h"
+
+namespace handlab::cli {
+namespace {
+
+void require(const Arguments& args, std::initializer_list<const char*> names) {
+  for (const char* name : names)
+    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
+}
+
+int study_create(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"protocol", "FILE", "the study protocol (JSON; docs/study.md)"},
+      {"db", "DB", "the study database to create (must not exist)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli study create --protocol FILE --db DB\n\nCreates a study "
+                 "database holding the protocol's exact text and SHA-256.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  require(args, {"protocol", "db"});
+  const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
+  store::StudyStore::create(args.text("db"), studies::study_definition(protocol));
+  store::StudyStore created(args.text("db"));
+  const store::StudyInfo info = created.study();
+  std::cout << "created " << args.text("db") << ": study " << info.name << ", "
+            << info.conditions.size() << " conditions, " << protocol.blocks
+            << " blocks, protocol sha256 " << info.protocol_sha256 << "\n";
+  return 0;
+}
+
+int study_status(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"db", "DB", "the study database"},
+      {"json", "OUT", "write the status as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli study status --db DB [--json OUT]\n\nPer participant: "
+                 "trials planned, completed (ended by success or timeout), skipped, aborted "
+                 "(interrupted attempts, run again) and the next trial.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  require(args, {"db"});
+  store::StudyStore store(args.text("db"));
+  const store::StudyInfo info = store.study();
+  const std::vector<studies::ParticipantStatus> status = studies::study_status(store);
+  const std::string json = args.text("json");
+  if (json != "-") {
+    std::cout << "study " << info.name << " (" << args.text("db") << "), " << status.size()
+              << " participants\n";
+    for (const auto& p : status) {
+      std::cout << "  " << p.id << ": " << p.trials_completed << "/" << p.trials_planned
+                << " completed, " << p.trials_skipped << " skipped, " << p.trials_aborted
+                << " aborted, next: ";
+      if (p.next)
+        std::cout << "trial " << p.next->position + 1
+                  << (p.next->practice ? " (practice) "
+                                       : " (block " + std::to_string(p.next->block) + ") ")
+                  << p.next_condition << "\n";
+      else
+        std::cout << "none (schedule complete)\n";
+    }
+  }
+  if (!json.empty()) {
+    write_output(json, [&](std::ostream& out) {
+      util::JsonWriter w(out);
+      w.begin_object().field("study", info.name).field("protocol_sha256", info.protocol_sha256);
+      w.key("participants").begin_array();
+      for (const auto& p : status) {
+        w.begin_object()
+            .field("id", p.id)
+            .field("trials_planned", p.trials_planned)
+            .field("trials_completed", p.trials_completed)
+            .field("trials_skipped", p.trials_skipped)
+            .field("trials_aborted", p.trials_aborted);
+        w.key("next");
+        if (p.next) {
+          w.begin_object()
+              .field("trial", p.next->position + 1)
+              .field("block", p.next->block)
+              .field("order", p.next->order)
+              .field("practice", p.next->practice)
+              .field("condition", p.next_condition)
+              .end_object();
+        } else {
+          w.null();
+        }
+        w.end_object();
+      }
+      w.end_array().end_object();
+      out << "\n";
+    });
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_study(const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    std::cout << "Usage: handlab-cli study create --protocol FILE --db DB\n"
+                 "       handlab-cli study status --db DB [--json OUT]\n";
+    return argv.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "create") return study_create(rest);
+  if (argv[0] == "status") return study_status(rest);
+  throw UsageError("unknown study command '" + argv[0] + "' (create, status)");
+}
+
+}  // namespace handlab::cli

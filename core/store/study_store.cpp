@@ -1,0 +1,551 @@
+#include "core/store/study_store.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <sstream>
+
+#include "core/util/json_value.h"
+#include "core/util/json_writer.h"
+#include "core/util/sha256.h"
+
+namespace handlab::store {
+namespace {
+
+constexpr std::int64_t kApplicationId = 0x484C4142;  // "HLAB"
+
+// Schema version k+1 from version k. Never edit a step that has shipped: add one.
+constexpr const char* kMigrations[] = {
+    // 0 -> 1
+    R"sql(
+CREATE TABLE study (
+  id INTEGER PRIMARY KEY CHECK (id = 1),
+  name TEXT NOT NULL,
+  protocol_text TEXT NOT NULL,
+  protocol_sha256 TEXT NOT NULL CHECK (length(protocol_sha256) = 64),
+  seed INTEGER NOT NULL,
+  factors TEXT NOT NULL,
+  created_at TEXT NOT NULL
+);
+CREATE TABLE condition (
+  id INTEGER PRIMARY KEY CHECK (id >= 0),
+  label TEXT NOT NULL UNIQUE,
+  levels TEXT NOT NULL
+);
+CREATE TABLE participant (
+  id TEXT PRIMARY KEY CHECK (length(id) BETWEEN 1 AND 64),
+  enrolment INTEGER NOT NULL UNIQUE,
+  age INTEGER NOT NULL CHECK (age BETWEEN 5 AND 120),
+  sex TEXT NOT NULL CHECK (sex IN ('F', 'M', 'X')),
+  handedness TEXT NOT NULL CHECK (handedness IN ('right', 'left', 'ambidextrous')),
+  hand_length REAL NOT NULL CHECK (hand_length BETWEEN 0.10 AND 0.30),
+  vr_experience TEXT NOT NULL,
+  notes TEXT NOT NULL DEFAULT '',
+  created_at TEXT NOT NULL
+);
+CREATE TABLE planned_trial (
+  id INTEGER PRIMARY KEY,
+  participant_id TEXT NOT NULL REFERENCES participant(id),
+  position INTEGER NOT NULL CHECK (position >= 0),
+  block INTEGER NOT NULL CHECK (block >= 0),
+  order_in_block INTEGER NOT NULL CHECK (order_in_block >= 1),
+  condition_id INTEGER NOT NULL REFERENCES condition(id),
+  repetition INTEGER NOT NULL CHECK (repetition >= 0),
+  practice INTEGER NOT NULL CHECK (practice IN (0, 1)),
+  questionnaire INTEGER NOT NULL CHECK (questionnaire IN (0, 1)),
+  UNIQUE (participant_id, position)
+);
+CREATE TABLE session (
+  id INTEGER PRIMARY KEY,
+  participant_id TEXT NOT NULL REFERENCES participant(id),
+  tracker TEXT NOT NULL,
+  started_at TEXT NOT NULL,
+  ended_at TEXT,
+  status TEXT NOT NULL CHECK (status IN ('running', 'finished', 'stopped', 'interrupted'))
+);
+CREATE TABLE trial (
+  id INTEGER PRIMARY KEY,
+  planned_id INTEGER NOT NULL REFERENCES planned_trial(id),
+  session_id INTEGER NOT NULL REFERENCES session(id),
+  attempt INTEGER NOT NULL CHECK (attempt >= 1),
+  status TEXT NOT NULL
+    CHECK (status IN ('running', 'completed', 'timeout', 'aborted', 'skipped', 'redone')),
+  started_at TEXT NOT NULL,
+  ended_at TEXT,
+  completion_time_s REAL CHECK (completion_time_s >= 0),
+  grasps INTEGER CHECK (grasps >= 0),
+  drops INTEGER CHECK (drops >= 0),
+  reason TEXT,
+  UNIQUE (planned_id, attempt)
+);
+-- At most one result per planned trial: a completed trial cannot be duplicated.
+CREATE UNIQUE INDEX trial_one_result ON trial(planned_id)
+  WHERE status IN ('completed', 'timeout', 'skipped');
+CREATE TABLE event (
+  id INTEGER PRIMARY KEY,
+  trial_id INTEGER NOT NULL REFERENCES trial(id),
+  t REAL NOT NULL,
+  kind TEXT NOT NULL
+);
+CREATE TABLE answer (
+  trial_id INTEGER NOT NULL REFERENCES trial(id),
+  item TEXT NOT NULL,
+  value INTEGER NOT NULL CHECK (value >= 1),
+  PRIMARY KEY (trial_id, item)
+);
+-- A rowid table: rows of about a kilobyte are what WITHOUT ROWID tables store badly.
+CREATE TABLE frame (
+  id INTEGER PRIMARY KEY,
+  trial_id INTEGER NOT NULL REFERENCES trial(id),
+  seq INTEGER NOT NULL CHECK (seq >= 0),
+  t REAL NOT NULL,
+  data BLOB NOT NULL,
+  UNIQUE (trial_id, seq)
+);
+)sql",
+    // 1 -> 2: frame counts on trials (checked against the frame table), event lookup by trial.
+    R"sql(
+ALTER TABLE trial ADD COLUMN frames INTEGER NOT NULL DEFAULT 0 CHECK (frames >= 0);
+CREATE INDEX event_by_trial ON event(trial_id);
+CREATE INDEX trial_by_planned ON trial(planned_id);
+)sql",
+};
+static_assert(std::size(kMigrations) == kSchemaVersion);
+
+std::int64_t pragma_int(Database& db, const char* pragma) {
+  Statement s = db.prepare(std::string("PRAGMA ") + pragma);
+  return s.step() ? s.column_int64(0) : 0;
+}
+
+// Inspects the file through a read-only connection before anything may write to it.
+std::string checked_study_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw StoreError("no study database at " + path +
+                     " (create one with: handlab-cli study create --protocol FILE --db " + path +
+                     ")");
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  char magic[16] = {};
+  const std::size_t got = f ? std::fread(magic, 1, 16, f) : 0;
+  if (f) std::fclose(f);
+  if (got < 16 || std::string(magic, 15) != "SQLite format 3")
+    throw StoreError(path + " is not a study database (not an SQLite file)");
+  Database probe(path, Database::Mode::kReadOnly);
+  std::int64_t application = 0, version = 0;
+  try {
+    application = pragma_int(probe, "application_id");
+    version = pragma_int(probe, "user_version");
+  } catch (const StoreError& e) {
+    throw StoreError(path + " cannot be read: " + e.what());
+  }
+  if (application != kApplicationId)
+    throw StoreError(path + " is an SQLite file but not a handlab study database");
+  if (version > kSchemaVersion)
+    throw StoreError(path + " was written by a newer handlab (schema " + std::to_string(version) +
+                     "; this build reads up to " + std::to_string(kSchemaVersion) +
+                     "): update handlab; the file was not changed");
+  if (version < 1) throw StoreError(path + " is an incomplete study database (schema 0)");
+  return path;
+}
+
+TrialStatus parse_status(const std::string& s) {
+  if (s == "running") return TrialStatus::kRunning;
+  if (s == "completed") return TrialStatus::kCompleted;
+  if (s == "timeout") return TrialStatus::kTimeout;
+  if (s == "aborted") return TrialStatus::kAborted;
+  if (s == "skipped") return TrialStatus::kSkipped;
+  if (s == "redone") return TrialStatus::kRedone;
+  throw StoreError("unknown trial status \"" + s + "\"");
+}
+
+void apply_migrations(Database& db, int from, int to) {
+  for (int v = from; v < to; ++v) db.exec(kMigrations[v]);
+  db.exec("PRAGMA user_version = " + std::to_string(to));
+}
+
+PlannedTrialRow read_planned(const Statement& s) {
+  PlannedTrialRow p;
+  p.id = s.column_int64(0);
+  p.position = int(s.column_int64(1));
+  p.block = int(s.column_int64(2));
+  p.order = int(s.column_int64(3));
+  p.condition = int(s.column_int64(4));
+  p.repetition = int(s.column_int64(5));
+  p.practice = s.column_int64(6) != 0;
+  p.questionnaire = s.column_int64(7) != 0;
+  return p;
+}
+
+constexpr const char* kPlannedColumns =
+    "id, position, block, order_in_block, condition_id, repetition, practice, questionnaire";
+
+}  // namespace
+
+const char* status_name(TrialStatus status) {
+  switch (status) {
+    case TrialStatus::kRunning:
+      return "running";
+    case TrialStatus::kCompleted:
+      return "completed";
+    case TrialStatus::kTimeout:
+      return "timeout";
+    case TrialStatus::kAborted:
+      return "aborted";
+    case TrialStatus::kSkipped:
+      return "skipped";
+    case TrialStatus::kRedone:
+      return "redone";
+  }
+  return "?";
+}
+
+std::string utc_timestamp() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+  const auto ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()) % 1000;
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char text[64];
+  std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900,
+                utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, int(ms.count()));
+  return text;
+}
+
+void StudyStore::create(const std::string& path, const StudyDefinition& d) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec))
+    throw StoreError(path + " already exists: a study database is created once");
+  if (d.conditions.empty()) throw StoreError("a study needs at least one condition");
+  const std::filesystem::path partial = path + ".creating";
+  std::filesystem::remove(partial, ec);
+  {
+    Database db(partial.string(), Database::Mode::kReadWriteCreate);
+    Transaction t(db);
+    apply_migrations(db, 0, kSchemaVersion);
+    db.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+    std::ostringstream factors;
+    {
+      util::JsonWriter w(factors, 0);
+      w.string_array(d.factors);
+    }
+    db.prepare(
+          "INSERT INTO study (id, name, protocol_text, protocol_sha256, seed, factors, "
+          "created_at) VALUES (1, ?, ?, ?, ?, ?, ?)")
+        .bind(1, d.name)
+        .bind(2, d.protocol_text)
+        .bind(3, util::sha256_hex(d.protocol_text))
+        .bind(4, std::int64_t(d.seed))
+        .bind(5, factors.str())
+        .bind(6, utc_timestamp())
+        .run();
+    Statement insert = db.prepare("INSERT INTO condition (id, label, levels) VALUES (?, ?, ?)");
+    for (std::size_t c = 0; c < d.conditions.size(); ++c) {
+      if (d.conditions[c].second.size() != d.factors.size())
+        throw StoreError("condition " + d.conditions[c].first + " needs a level of every factor");
+      std::ostringstream levels;
+      {
+        util::JsonWriter w(levels, 0);
+        w.string_array(d.conditions[c].second);
+      }
+      insert.bind(1, std::int64_t(c)).bind(2, d.conditions[c].first).bind(3, levels.str()).run();
+    }
+    t.commit();
+    db.exec("PRAGMA wal_checkpoint(TRUNCATE)");
+  }
+  // Appears under its name only once complete.
+  std::filesystem::rename(partial, path);
+  for (const char* side : {"-wal", "-shm"}) std::filesystem::remove(partial.string() + side, ec);
+}
+
+StudyStore::StudyStore(const std::string& path)
+    : db_(checked_study_file(path), Database::Mode::kReadWrite) {
+  // A trial's result is the record of a person's time: survive power loss, not just a crash.
+  db_.exec("PRAGMA synchronous = FULL");
+  migrate();
+}
+
+void StudyStore::migrate() {
+  if (pragma_int(db_, "user_version") == kSchemaVersion) return;
+  Transaction t(db_);  // then check again under the write lock
+  const int version = int(pragma_int(db_, "user_version"));
+  if (version > kSchemaVersion)  // another process upgraded it meanwhile
+    throw StoreError(db_.path() + " was written by a newer handlab");
+  apply_migrations(db_, version, kSchemaVersion);
+  t.commit();
+}
+
+StudyInfo StudyStore::study() {
+  StudyInfo info;
+  Statement s = db_.prepare(
+      "SELECT name, protocol_text, protocol_sha256, seed, created_at, factors FROM study");
+  if (!s.step()) throw StoreError(db_.path() + " has no study row");
+  info.name = s.column_text(0);
+  info.protocol_text = s.column_text(1);
+  info.protocol_sha256 = s.column_text(2);
+  info.seed = std::uint64_t(s.column_int64(3));
+  info.created_at = s.column_text(4);
+  const util::JsonValue factors = util::JsonValue::parse(s.column_text(5));
+  for (const auto& f : factors.as_array()) info.factors.push_back(f.as_string());
+  info.schema_version = int(pragma_int(db_, "user_version"));
+  Statement c = db_.prepare("SELECT label, levels FROM condition ORDER BY id");
+  while (c.step()) {
+    std::vector<std::string> levels;
+    const util::JsonValue parsed = util::JsonValue::parse(c.column_text(1));
+    for (const auto& l : parsed.as_array()) levels.push_back(l.as_string());
+    info.conditions.emplace_back(c.column_text(0), std::move(levels));
+  }
+  return info;
+}
+
+void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRow>& plan) {
+  Transaction t(db_);
+  if (participant(p.id))
+    throw StoreError("participant " + p.id + " already exists in " + db_.path());
+  p.enrolment = participant_count();
+  db_.prepare(
+         "INSERT INTO participant (id, enrolment, age, sex, handedness, hand_length, "
+         "vr_experience, notes, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)")
+      .bind(1, p.id)
+      .bind(2, std::int64_t(p.enrolment))
+      .bind(3, std::int64_t(p.age))
+      .bind(4, p.sex)
+      .bind(5, p.handedness)
+      .bind(6, p.hand_length)
+      .bind(7, p.vr_experience)
+      .bind(8, p.notes)
+      .bind(9, utc_timestamp())
+      .run();
+  Statement insert = db_.prepare(
+      "INSERT INTO planned_trial (participant_id, position, block, order_in_block, condition_id, "
+      "repetition, practice, questionnaire) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const PlannedTrialRow& r : plan)
+    insert.bind(1, p.id)
+        .bind(2, std::int64_t(r.position))
+        .bind(3, std::int64_t(r.block))
+        .bind(4, std::int64_t(r.order))
+        .bind(5, std::int64_t(r.condition))
+        .bind(6, std::int64_t(r.repetition))
+        .bind(7, std::int64_t(r.practice))
+        .bind(8, std::int64_t(r.questionnaire))
+        .run();
+  t.commit();
+}
+
+int StudyStore::participant_count() {
+  Statement s = db_.prepare("SELECT count(*) FROM participant");
+  s.step();
+  return int(s.column_int64(0));
+}
+
+std::vector<Participant> StudyStore::participants() {
+  std::vector<Participant> out;
+  Statement s = db_.prepare(
+      "SELECT id, age, sex, handedness, hand_length, vr_experience, notes, enrolment FROM "
+      "participant ORDER BY enrolment");
+  while (s.step()) {
+    Participant p;
+    p.id = s.column_text(0);
+    p.age = int(s.column_int64(1));
+    p.sex = s.column_text(2);
+    p.handedness = s.column_text(3);
+    p.hand_length = s.column_double(4);
+    p.vr_experience = s.column_text(5);
+    p.notes = s.column_text(6);
+    p.enrolment = int(s.column_int64(7));
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+std::optional<Participant> StudyStore::participant(const std::string& id) {
+  for (Participant& p : participants())
+    if (p.id == id) return std::move(p);
+  return std::nullopt;
+}
+
+std::vector<PlannedTrialRow> StudyStore::plan(const std::string& participant_id) {
+  std::vector<PlannedTrialRow> out;
+  Statement s = db_.prepare(std::string("SELECT ") + kPlannedColumns +
+                            " FROM planned_trial WHERE participant_id = ? ORDER BY position");
+  s.bind(1, participant_id);
+  while (s.step()) out.push_back(read_planned(s));
+  return out;
+}
+
+std::vector<TrialRow> StudyStore::trials(const std::string& participant_id) {
+  std::vector<TrialRow> out;
+  Statement s = db_.prepare(
+      "SELECT t.id, t.planned_id, t.session_id, p.position, t.attempt, t.status, t.started_at, "
+      "coalesce(t.ended_at, ''), coalesce(t.reason, ''), coalesce(t.completion_time_s, 0), "
+      "coalesce(t.grasps, 0), coalesce(t.drops, 0), t.frames FROM trial t JOIN planned_trial p "
+      "ON p.id = t.planned_id WHERE p.participant_id = ? ORDER BY t.id");
+  s.bind(1, participant_id);
+  while (s.step()) {
+    TrialRow r;
+    r.id = s.column_int64(0);
+    r.planned_id = s.column_int64(1);
+    r.session_id = s.column_int64(2);
+    r.position = int(s.column_int64(3));
+    r.attempt = int(s.column_int64(4));
+    r.status = parse_status(s.column_text(5));
+    r.started_at = s.column_text(6);
+    r.ended_at = s.column_text(7);
+    r.reason = s.column_text(8);
+    r.completion_time_s = s.column_double(9);
+    r.grasps = int(s.column_int64(10));
+    r.drops = int(s.column_int64(11));
+    r.frames = int(s.column_int64(12));
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::optional<PlannedTrialRow> StudyStore::next_trial(const std::string& participant_id) {
+  Statement s = db_.prepare(
+      std::string("SELECT ") + kPlannedColumns +
+      " FROM planned_trial p WHERE participant_id = ? AND NOT EXISTS (SELECT 1 FROM trial t "
+      "WHERE t.planned_id = p.id AND t.status IN ('completed', 'timeout', 'skipped')) ORDER BY "
+      "position LIMIT 1");
+  s.bind(1, participant_id);
+  if (!s.step()) return std::nullopt;
+  return read_planned(s);
+}
+
+std::int64_t StudyStore::begin_session(const std::string& participant_id,
+                                       const std::string& tracker) {
+  db_.prepare(
+         "INSERT INTO session (participant_id, tracker, started_at, status) VALUES (?, ?, ?, "
+         "'running')")
+      .bind(1, participant_id)
+      .bind(2, tracker)
+      .bind(3, utc_timestamp())
+      .run();
+  return db_.last_insert_rowid();
+}
+
+void StudyStore::end_session(std::int64_t session_id, const std::string& status) {
+  db_.prepare("UPDATE session SET status = ?, ended_at = ? WHERE id = ?")
+      .bind(1, status)
+      .bind(2, utc_timestamp())
+      .bind(3, session_id)
+      .run();
+}
+
+bool StudyStore::has_running_session(const std::string& participant_id) {
+  Statement s =
+      db_.prepare("SELECT count(*) FROM session WHERE participant_id = ? AND status = 'running'");
+  s.bind(1, participant_id);
+  s.step();
+  return s.column_int64(0) > 0;
+}
+
+int StudyStore::abort_interrupted(const std::string& participant_id) {
+  Transaction t(db_);
+  const std::string now = utc_timestamp();
+  Statement trials = db_.prepare(
+      "UPDATE trial SET status = 'aborted', ended_at = ?, reason = 'interrupted: the session "
+      "ended while the trial ran' WHERE status = 'running' AND planned_id IN (SELECT id FROM "
+      "planned_trial WHERE participant_id = ?)");
+  trials.bind(1, now).bind(2, participant_id).run();
+  const int aborted = int(db_.changes());
+  db_.prepare(
+         "UPDATE session SET status = 'interrupted', ended_at = ? WHERE participant_id = ? "
+         "AND status = 'running'")
+      .bind(1, now)
+      .bind(2, participant_id)
+      .run();
+  t.commit();
+  return aborted;
+}
+
+std::int64_t StudyStore::begin_trial(std::int64_t planned_id, std::int64_t session_id) {
+  Transaction t(db_);
+  Statement attempt =
+      db_.prepare("SELECT coalesce(max(attempt), 0) + 1 FROM trial WHERE planned_id = ?");
+  attempt.bind(1, planned_id);
+  attempt.step();
+  db_.prepare(
+         "INSERT INTO trial (planned_id, session_id, attempt, status, started_at) VALUES "
+         "(?, ?, ?, 'running', ?)")
+      .bind(1, planned_id)
+      .bind(2, session_id)
+      .bind(3, attempt.column_int64(0))
+      .bind(4, utc_timestamp())
+      .run();
+  const std::int64_t id = db_.last_insert_rowid();
+  t.commit();
+  return id;
+}
+
+void StudyStore::finish_trial(std::int64_t trial_id, const TrialOutcome& o) {
+  Transaction t(db_);
+  db_.prepare(
+         "UPDATE trial SET status = ?, ended_at = ?, completion_time_s = ?, grasps = ?, "
+         "drops = ?, frames = ? WHERE id = ? AND status = 'running'")
+      .bind(1, o.success ? "completed" : "timeout")
+      .bind(2, utc_timestamp())
+      .bind(3, o.completion_time_s)
+      .bind(4, std::int64_t(o.grasps))
+      .bind(5, std::int64_t(o.drops))
+      .bind(6, std::int64_t(o.frames))
+      .bind(7, trial_id)
+      .run();
+  if (db_.changes() != 1) throw StoreError("trial " + std::to_string(trial_id) + " is not running");
+  Statement event = db_.prepare("INSERT INTO event (trial_id, t, kind) VALUES (?, ?, ?)");
+  for (const auto& [time, kind] : o.events)
+    event.bind(1, trial_id).bind(2, time).bind(3, kind).run();
+  Statement answer = db_.prepare("INSERT INTO answer (trial_id, item, value) VALUES (?, ?, ?)");
+  for (const auto& [item, value] : o.answers)
+    answer.bind(1, trial_id).bind(2, item).bind(3, std::int64_t(value)).run();
+  t.commit();
+}
+
+void StudyStore::skip_trial(const std::string& participant_id, int position,
+                            std::int64_t session_id, const std::string& reason) {
+  if (reason.empty()) throw StoreError("skipping a trial needs a reason");
+  Transaction t(db_);
+  Statement planned =
+      db_.prepare("SELECT id FROM planned_trial WHERE participant_id = ? AND position = ?");
+  planned.bind(1, participant_id).bind(2, std::int64_t(position));
+  if (!planned.step())
+    throw StoreError(participant_id + " has no planned trial " + std::to_string(position));
+  const std::int64_t planned_id = planned.column_int64(0);
+  Statement attempt =
+      db_.prepare("SELECT coalesce(max(attempt), 0) + 1 FROM trial WHERE planned_id = ?");
+  attempt.bind(1, planned_id);
+  attempt.step();
+  const std::string now = utc_timestamp();
+  db_.prepare(
+         "INSERT INTO trial (planned_id, session_id, attempt, status, started_at, ended_at, "
+         "reason) VALUES (?, ?, ?, 'skipped', ?, ?, ?)")
+      .bind(1, planned_id)
+      .bind(2, session_id)
+      .bind(3, attempt.column_int64(0))
+      .bind(4, now)
+      .bind(5, now)
+      .bind(6, reason)
+      .run();
+  t.commit();
+}
+
+void StudyStore::redo_trial(const std::string& participant_id, int position,
+                            const std::string& reason) {
+  if (reason.empty()) throw StoreError("redoing a trial needs a reason");
+  Transaction t(db_);
+  db_.prepare(
+         "UPDATE trial SET status = 'redone', reason = ? WHERE status IN ('completed', "
+         "'timeout', 'skipped') AND planned_id = (SELECT id FROM planned_trial WHERE "
+         "participant_id = ? AND position = ?)")
+      .bind(1, reason)
+      .bind(2, participant_id)
+      .bind(3, std::int64_t(position))
+      .run();
+  if (db_.changes() != 1)
+    throw StoreError(participant_id + "'s trial " + std::to_string(position) +
+                     " has no result to redo");
+  t.commit();
+}
+
+}  // namespace handlab::store

@@ -1,0 +1,121 @@
+// The study database: the protocol a study runs (exact text and hash), its participants,
+// their planned schedules, sessions, trials with their events and questionnaire answers,
+// and per-frame records. One SQLite file in WAL mode, foreign keys and constraints on;
+// every trial's outcome, events and answers commit in one transaction, so a crash costs at
+// most the trial that was running. Schema versions migrate forward on open; a file from a
+// newer handlab, a file that is not a study database, or a corrupt one is refused without
+// being changed. Schema in docs/study.md.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/store/sqlite_database.h"
+
+namespace handlab::store {
+
+constexpr int kSchemaVersion = 2;
+
+struct StudyDefinition {
+  std::string name;
+  std::string protocol_text;  // stored byte for byte with its SHA-256
+  std::uint64_t seed = 0;
+  std::vector<std::string> factors;
+  // Per condition: its label and its level of every factor (same order as `factors`).
+  std::vector<std::pair<std::string, std::vector<std::string>>> conditions;
+};
+
+struct StudyInfo {
+  std::string name, protocol_text, protocol_sha256, created_at;
+  std::uint64_t seed = 0;
+  int schema_version = 0;
+  std::vector<std::string> factors;
+  std::vector<std::pair<std::string, std::vector<std::string>>> conditions;
+};
+
+struct Participant {
+  std::string id;
+  int age = 0;
+  std::string sex;            // "F", "M", "X" (other or not given)
+  std::string handedness;     // "right", "left", "ambidextrous"
+  double hand_length = 0.0;   // m, wrist crease to middle fingertip
+  std::string vr_experience;  // "none", "some", "yes", "expert" ...
+  std::string notes;
+  int enrolment = 0;  // 0-based order of enrolment (set by add_participant)
+};
+
+struct PlannedTrialRow {
+  std::int64_t id = 0;
+  int position = 0, block = 0, order = 0, condition = 0, repetition = 0;
+  bool practice = false, questionnaire = false;
+};
+
+enum class TrialStatus { kRunning, kCompleted, kTimeout, kAborted, kSkipped, kRedone };
+const char* status_name(TrialStatus status);
+
+struct TrialRow {
+  std::int64_t id = 0, planned_id = 0, session_id = 0;
+  int position = 0, attempt = 0;
+  TrialStatus status = TrialStatus::kRunning;
+  std::string started_at, ended_at, reason;
+  double completion_time_s = 0.0;
+  int grasps = 0, drops = 0, frames = 0;
+};
+
+struct TrialOutcome {
+  bool success = false;  // false: timed out
+  double completion_time_s = 0.0;
+  int grasps = 0, drops = 0, frames = 0;
+  std::vector<std::pair<double, std::string>> events;  // (time s, kind)
+  std::vector<std::pair<std::string, int>> answers;    // (item id, value)
+};
+
+class StudyStore {
+ public:
+  // Creates a new study file; refuses a path that exists.
+  static void create(const std::string& path, const StudyDefinition& definition);
+  // Opens an existing study file, migrating an older schema forward.
+  explicit StudyStore(const std::string& path);
+
+  StudyInfo study();
+  // Enrols a participant with the planned schedule, in one transaction. Throws StoreError
+  // on a duplicate id or a value the schema's constraints reject.
+  void add_participant(Participant participant, const std::vector<PlannedTrialRow>& plan);
+  int participant_count();
+  std::optional<Participant> participant(const std::string& id);
+  std::vector<Participant> participants();
+  std::vector<PlannedTrialRow> plan(const std::string& participant_id);
+  std::vector<TrialRow> trials(const std::string& participant_id);  // every attempt, in order
+  // The first planned trial without a result (completed, timed out or skipped).
+  std::optional<PlannedTrialRow> next_trial(const std::string& participant_id);
+
+  std::int64_t begin_session(const std::string& participant_id, const std::string& tracker);
+  void end_session(std::int64_t session_id, const std::string& status);
+  // After a crash: trials still "running" become "aborted" (kept, to be run again) and
+  // their sessions "interrupted". Returns how many trials were aborted.
+  int abort_interrupted(const std::string& participant_id);
+  bool has_running_session(const std::string& participant_id);
+
+  std::int64_t begin_trial(std::int64_t planned_id, std::int64_t session_id);
+  void finish_trial(std::int64_t trial_id, const TrialOutcome& outcome);
+  // The experimenter's decisions, with the reason kept: skip a planned trial (it counts as
+  // done), or redo one that has a result (the result stays, marked redone; it runs again).
+  void skip_trial(const std::string& participant_id, int position, std::int64_t session_id,
+                  const std::string& reason);
+  void redo_trial(const std::string& participant_id, int position, const std::string& reason);
+
+  Database& database() { return db_; }
+  const std::string& path() const { return db_.path(); }
+
+ private:
+  void migrate();
+  Database db_;
+};
+
+// "2026-11-22T20:04:03.123Z"
+std::string utc_timestamp();
+
+}  // namespace handlab::store

@@ -1,0 +1,35 @@
+// A study database's results as long-format CSV for R, JASP or jamovi, and its progress per
+// participant. Practice trials stay in the database and out of these tables.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "core/store/study_store.h"
+
+namespace handlab::studies {
+
+// trials.csv: participant, age, sex, handedness, hand_length, vr_experience, block, order,
+// one column per factor, repetition, completion_time_s, outcome (success | timeout |
+// skipped), grasps, drops, attempt. One row per planned trial that has a result; a skipped
+// trial's numbers are NA.
+void write_trials_csv(store::StudyStore& store, std::ostream& out);
+// questionnaire.csv: participant, covariates, block, order, factors, repetition, then one
+// column per questionnaire item.
+void write_questionnaire_csv(store::StudyStore& store, std::ostream& out);
+
+struct ParticipantStatus {
+  std::string id;
+  int trials_planned = 0;
+  int trials_completed = 0;  // ended, by success or by timeout
+  int trials_skipped = 0;
+  int trials_aborted = 0;  // attempts interrupted (each is, or was, run again)
+  std::optional<store::PlannedTrialRow> next;
+  std::string next_condition;
+};
+
+std::vector<ParticipantStatus> study_status(store::StudyStore& store);
+
+}  // namespace handlab::studies

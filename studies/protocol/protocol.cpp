@@ -1,0 +1,353 @@
+#include "studies/protocol/protocol.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+#include "core/util/json_value.h"
+#include "core/util/portable_random.h"
+#include "studies/protocol/block_schedule.h"
+
+namespace handlab::studies {
+namespace {
+
+using util::JsonValue;
+
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw ProtocolError(source_ + ": " + where + ": " + what);
+  }
+
+  // Every key of `object` must be one of `known`: a misspelt key is an error, not ignored.
+  void check_keys(const JsonValue& object, const std::string& where,
+                  std::initializer_list<const char*> known) const {
+    if (!object.is_object()) fail(where, "must be an object");
+    for (const auto& [key, value] : object.as_object()) {
+      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
+        std::string list;
+        for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+        fail(where, "unknown key \"" + key + "\" (known: " + list + ")");
+      }
+    }
+  }
+
+  double number(const JsonValue& object, const char* key, const std::string& where, double lo,
+                double hi, std::optional<double> fallback = std::nullopt) const {
+    const JsonValue* v = object.find(key);
+    if (!v) {
+      if (fallback) return *fallback;
+      fail(where, std::string("\"") + key + "\" is required");
+    }
+    if (!v->is_number()) fail(where + "." + key, "must be a number");
+    const double x = v->as_number();
+    if (!(x >= lo && x <= hi)) {
+      std::ostringstream range;
+      range << "must be in [" << lo << ", " << hi << "], is " << x;
+      fail(where + "." + key, range.str());
+    }
+    return x;
+  }
+
+  int integer(const JsonValue& object, const char* key, const std::string& where, int lo, int hi,
+              std::optional<int> fallback = std::nullopt) const {
+    const double x = number(object, key, where, lo, hi,
+                            fallback ? std::optional<double>(*fallback) : std::nullopt);
+    if (x != std::floor(x)) fail(where + "." + key, "must be a whole number");
+    return int(x);
+  }
+
+  std::string text(const JsonValue& object, const char* key, const std::string& where,
+                   std::optional<std::string> fallback = std::nullopt) const {
+    const JsonValue* v = object.find(key);
+    if (!v) {
+      if (fallback) return *fallback;
+      fail(where, std::string("\"") + key + "\" is required");
+    }
+    if (!v->is_string() || v->as_string().empty())
+      fail(where + "." + key, "must be a non-empty string");
+    return v->as_string();
+  }
+
+  Eigen::Vector3d point(const JsonValue& object, const char* key, const std::string& where,
+                        const Eigen::Vector3d& fallback) const {
+    const JsonValue* v = object.find(key);
+    if (!v) return fallback;
+    if (!v->is_array() || v->size() != 3) fail(where + "." + key, "must be [x, y, z] in metres");
+    Eigen::Vector3d p;
+    for (int i = 0; i < 3; ++i) {
+      if (!(*v)[std::size_t(i)].is_number()) fail(where + "." + key, "must hold numbers");
+      p[i] = (*v)[std::size_t(i)].as_number();
+      if (std::abs(p[i]) > 2.0) fail(where + "." + key, "is more than 2 m from the origin");
+    }
+    return p;
+  }
+
+ private:
+  std::string source_;
+};
+
+Level parse_level(const Reader& r, const std::string& factor, const JsonValue& v,
+                  const std::string& where) {
+  Level level;
+  if (factor == "strategy") {
+    r.check_keys(v, where, {"name"});
+    level.name = r.text(v, "name", where);
+    if (level.name != "naive" && level.name != "ours")
+      r.fail(where + ".name", "a strategy is \"naive\" or \"ours\", not \"" + level.name + "\"");
+  } else if (factor == "manipulation") {
+    r.check_keys(v, where, {"name", "cube_size"});
+    level.name = r.text(v, "name", where);
+    level.cube_size = r.number(v, "cube_size", where, 0.002, 0.2);
+  } else if (factor == "hand_length") {
+    r.check_keys(v, where, {"name", "length"});
+    level.name = r.text(v, "name", where);
+    level.hand_length = r.number(v, "length", where, 0.10, 0.30);
+  }
+  return level;
+}
+
+}  // namespace
+
+std::vector<Condition> Protocol::conditions() const {
+  std::vector<Condition> out;
+  std::vector<int> index(factors.size(), 0);
+  while (true) {
+    Condition c;
+    c.levels = index;
+    c.naive_strategy = naive_strategy;
+    c.cube_size = scene.cube_size;
+    c.simulated_hand_length = simulated_hand_length;
+    for (std::size_t f = 0; f < factors.size(); ++f) {
+      const Level& level = factors[f].levels[std::size_t(index[f])];
+      c.label += (f ? "-" : "") + level.name;
+      if (factors[f].name == "strategy") c.naive_strategy = level.name == "naive";
+      if (level.cube_size) c.cube_size = *level.cube_size;
+      if (level.hand_length) c.simulated_hand_length = *level.hand_length;
+    }
+    if (factors.empty()) c.label = "task";
+    out.push_back(std::move(c));
+    // Odometer: the last factor varies fastest.
+    int f = int(factors.size()) - 1;
+    for (; f >= 0; --f) {
+      if (++index[std::size_t(f)] < int(factors[std::size_t(f)].levels.size())) break;
+      index[std::size_t(f)] = 0;
+    }
+    if (f < 0) break;
+  }
+  return out;
+}
+
+int Protocol::factor_index(const std::string& name) const {
+  for (std::size_t f = 0; f < factors.size(); ++f)
+    if (factors[f].name == name) return int(f);
+  return -1;
+}
+
+Protocol parse_protocol(const std::string& text, const std::string& source_name) {
+  const Reader r(source_name);
+  JsonValue root;
+  try {
+    root = JsonValue::parse(text);
+  } catch (const util::JsonError& e) {
+    throw ProtocolError(source_name + ": " + e.what());
+  }
+  r.check_keys(
+      root, "protocol",
+      {"format", "version", "name", "title", "seed", "factors", "blocks", "counterbalancing",
+       "practice", "questionnaire", "scene", "simulated_hand", "strategy", "trial"});
+  if (r.text(root, "format", "protocol") != "handlab-protocol")
+    r.fail("protocol.format", "must be \"handlab-protocol\"");
+  const int version = r.integer(root, "version", "protocol", 1, 1000);
+  if (version != 1)
+    r.fail("protocol.version",
+           "this handlab reads version 1, the file is version " + std::to_string(version));
+
+  Protocol p;
+  p.text = text;
+  p.name = r.text(root, "name", "protocol");
+  p.title = r.text(root, "title", "protocol", p.name);
+  p.seed = std::uint64_t(r.number(root, "seed", "protocol", 0, 9007199254740991.0));
+  p.blocks = r.integer(root, "blocks", "protocol", 1, 100);
+
+  const std::string order = r.text(root, "counterbalancing", "protocol", "randomized-per-block");
+  if (order == "randomized-per-block")
+    p.counterbalancing = Counterbalancing::kRandomizedPerBlock;
+  else if (order == "latin-square")
+    p.counterbalancing = Counterbalancing::kLatinSquare;
+  else if (order == "fixed")
+    p.counterbalancing = Counterbalancing::kFixed;
+  else
+    r.fail("protocol.counterbalancing",
+           "\"" + order + "\" is not one of randomized-per-block, latin-square, fixed");
+
+  const JsonValue* factors = root.find("factors");
+  if (!factors || !factors->is_array()) r.fail("protocol", "\"factors\" must be an array");
+  std::set<std::string> factor_names;
+  for (std::size_t i = 0; i < factors->size(); ++i) {
+    const std::string where = "factors[" + std::to_string(i) + "]";
+    const JsonValue& f = (*factors)[i];
+    r.check_keys(f, where, {"name", "levels"});
+    Factor factor;
+    factor.name = r.text(f, "name", where);
+    if (factor.name != "strategy" && factor.name != "manipulation" && factor.name != "hand_length")
+      r.fail(where + ".name",
+             "unknown factor \"" + factor.name + "\" (known: strategy, manipulation, hand_length)");
+    if (!factor_names.insert(factor.name).second)
+      r.fail(where + ".name", "factor \"" + factor.name + "\" appears twice");
+    const JsonValue* levels = f.find("levels");
+    if (!levels || !levels->is_array() || levels->size() < 2)
+      r.fail(where, "\"levels\" must list at least two levels");
+    std::set<std::string> level_names;
+    for (std::size_t k = 0; k < levels->size(); ++k) {
+      factor.levels.push_back(
+          parse_level(r, factor.name, (*levels)[k], where + ".levels[" + std::to_string(k) + "]"));
+      if (!level_names.insert(factor.levels.back().name).second)
+        r.fail(where, "level \"" + factor.levels.back().name + "\" appears twice");
+    }
+    p.factors.push_back(std::move(factor));
+  }
+
+  if (const JsonValue* practice = root.find("practice")) {
+    r.check_keys(*practice, "practice", {"trials_per_condition"});
+    p.practice_per_condition = r.integer(*practice, "trials_per_condition", "practice", 0, 10);
+  }
+
+  if (const JsonValue* q = root.find("questionnaire")) {
+    r.check_keys(*q, "questionnaire", {"when", "scale_points", "items"});
+    const std::string when = r.text(*q, "when", "questionnaire");
+    if (when == "never")
+      p.questionnaire_timing = QuestionnaireTiming::kNever;
+    else if (when == "last-block")
+      p.questionnaire_timing = QuestionnaireTiming::kLastBlock;
+    else if (when == "every-trial")
+      p.questionnaire_timing = QuestionnaireTiming::kEveryTrial;
+    else
+      r.fail("questionnaire.when", "\"" + when + "\" is not one of never, last-block, every-trial");
+    p.scale_points = r.integer(*q, "scale_points", "questionnaire", 2, 11);
+    const JsonValue* items = q->find("items");
+    if (!items || !items->is_array() || items->size() == 0)
+      r.fail("questionnaire", "\"items\" must list at least one item");
+    std::set<std::string> ids;
+    for (std::size_t i = 0; i < items->size(); ++i) {
+      const std::string where = "questionnaire.items[" + std::to_string(i) + "]";
+      const JsonValue& it = (*items)[i];
+      r.check_keys(it, where, {"id", "text", "anchors"});
+      QuestionnaireItem item;
+      item.id = r.text(it, "id", where);
+      const bool identifier = std::all_of(item.id.begin(), item.id.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+      });
+      if (!identifier) r.fail(where + ".id", "use letters, digits and '_' (it becomes a column)");
+      if (!ids.insert(item.id).second) r.fail(where + ".id", "\"" + item.id + "\" appears twice");
+      item.text = r.text(it, "text", where);
+      const JsonValue* anchors = it.find("anchors");
+      if (!anchors || !anchors->is_array() || int(anchors->size()) != p.scale_points)
+        r.fail(where + ".anchors",
+               "must give one label per scale point (" + std::to_string(p.scale_points) + ")");
+      for (const JsonValue& a : anchors->as_array()) {
+        if (!a.is_string()) r.fail(where + ".anchors", "labels must be strings");
+        item.anchors.push_back(a.as_string());
+      }
+      p.items.push_back(std::move(item));
+    }
+  }
+
+  if (const JsonValue* scene = root.find("scene")) {
+    r.check_keys(*scene, "scene",
+                 {"zone_a", "zone_b", "zone_size", "cube_size", "cube_density", "rest_time_s"});
+    p.scene.zone_a = r.point(*scene, "zone_a", "scene", p.scene.zone_a);
+    p.scene.zone_b = r.point(*scene, "zone_b", "scene", p.scene.zone_b);
+    p.scene.zone_size = r.number(*scene, "zone_size", "scene", 0.01, 1.0, p.scene.zone_size);
+    p.scene.cube_size = r.number(*scene, "cube_size", "scene", 0.002, 0.2, p.scene.cube_size);
+    p.cube_density = r.number(*scene, "cube_density", "scene", 10, 20000, p.cube_density);
+    p.rest_time_s = r.number(*scene, "rest_time_s", "scene", 0.0, 10.0, p.rest_time_s);
+    if ((p.scene.zone_a - p.scene.zone_b).norm() < p.scene.zone_size)
+      r.fail("scene", "zones A and B overlap");
+  }
+  if (const JsonValue* hand = root.find("simulated_hand")) {
+    r.check_keys(*hand, "simulated_hand", {"length"});
+    p.simulated_hand_length = r.number(*hand, "length", "simulated_hand", 0.10, 0.30);
+  }
+  if (root.find("strategy")) {
+    const std::string s = r.text(root, "strategy", "protocol");
+    if (s != "naive" && s != "ours") r.fail("protocol.strategy", "is \"naive\" or \"ours\"");
+    p.naive_strategy = s == "naive";
+  }
+  if (const JsonValue* trial = root.find("trial")) {
+    r.check_keys(*trial, "trial", {"timeout_s"});
+    p.timeout_s = r.number(*trial, "timeout_s", "trial", 1.0, 3600.0, p.timeout_s);
+  }
+  return p;
+}
+
+Protocol read_protocol(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ProtocolError("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_protocol(text.str(), path);
+}
+
+std::vector<int> balanced_latin_square_row(int n, int row) {
+  // Williams: 0, 1, n-1, 2, n-2, ... shifted by the row; odd n also needs the mirrored rows.
+  std::vector<int> first(static_cast<std::size_t>(n));
+  for (int j = 0, lo = 1, hi = n - 1; j < n; ++j)
+    first[std::size_t(j)] = j == 0 ? 0 : (j % 2 == 1 ? lo++ : hi--);
+  const int rows = n % 2 == 0 ? n : 2 * n;
+  row %= rows;
+  std::vector<int> out(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) out[std::size_t(j)] = (first[std::size_t(j)] + row % n) % n;
+  if (row >= n) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+std::vector<PlannedTrial> plan_schedule(const Protocol& protocol, const std::string& participant,
+                                        int enrolment) {
+  const int n = int(protocol.conditions().size());
+  std::vector<std::vector<int>> orders;
+  switch (protocol.counterbalancing) {
+    case Counterbalancing::kRandomizedPerBlock:
+      orders = randomized_block_schedule(protocol.seed, participant, n, protocol.blocks);
+      break;
+    case Counterbalancing::kLatinSquare:
+      orders.assign(std::size_t(protocol.blocks), balanced_latin_square_row(n, enrolment));
+      break;
+    case Counterbalancing::kFixed: {
+      std::vector<int> fixed(static_cast<std::size_t>(n));
+      std::iota(fixed.begin(), fixed.end(), 0);
+      orders.assign(std::size_t(protocol.blocks), fixed);
+    }
+  }
+  std::vector<PlannedTrial> plan;
+  std::vector<int> repetitions(std::size_t(n), 0);
+  if (protocol.practice_per_condition > 0) {
+    // Practice: every condition, in an order of its own (a distinct stream of the seed).
+    std::vector<int> practice;
+    for (int k = 0; k < protocol.practice_per_condition; ++k)
+      for (int c = 0; c < n; ++c) practice.push_back(c);
+    util::PortableRandom random(protocol.seed ^ util::fnv1a64("practice:" + participant));
+    random.shuffle(practice);
+    for (std::size_t k = 0; k < practice.size(); ++k)
+      plan.push_back({int(plan.size()), 0, int(k) + 1, practice[k], 0, true, false});
+  }
+  for (int b = 0; b < protocol.blocks; ++b) {
+    const bool ask = protocol.questionnaire_timing == QuestionnaireTiming::kEveryTrial ||
+                     (protocol.questionnaire_timing == QuestionnaireTiming::kLastBlock &&
+                      b == protocol.blocks - 1);
+    for (int k = 0; k < n; ++k) {
+      const int c = orders[std::size_t(b)][std::size_t(k)];
+      plan.push_back(
+          {int(plan.size()), b + 1, k + 1, c, ++repetitions[std::size_t(c)], false, ask});
+    }
+  }
+  return plan;
+}
+
+}  // namespace handlab::studies

@@ -1,0 +1,106 @@
+// A study protocol: the factors and their levels, how the conditions are ordered over the
+// blocks, the questionnaire and when it is asked, the scene and the trial's limits. Read
+// from a JSON file whose schema docs/study.md documents; the exact text is kept so that a
+// study database can store it with its hash.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/task/scene_layout.h"
+
+namespace handlab::studies {
+
+class ProtocolError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A level of a factor and the settings it fixes. Factors the pipeline knows:
+//   strategy      levels "naive" | "ours"         (retargeting strategy)
+//   manipulation  levels with "cube_size" (m)     (the cube of the task)
+//   hand_length   levels with "length" (m)        (the simulated hand's length)
+struct Level {
+  std::string name;
+  std::optional<double> cube_size, hand_length;
+};
+
+struct Factor {
+  std::string name;
+  std::vector<Level> levels;
+};
+
+// One cell of the design: a level of every factor.
+struct Condition {
+  std::string label;                     // levels joined by '-', e.g. "naive-gross"
+  std::vector<int> levels;               // per factor
+  bool naive_strategy = false;           // the strategy factor's level, or the protocol default
+  double cube_size = 0.06;               // m
+  double simulated_hand_length = 0.214;  // m
+};
+
+enum class Counterbalancing {
+  kRandomizedPerBlock,  // each block's order drawn per participant and block (seeded)
+  kLatinSquare,         // the participant's row of a balanced Latin square, every block
+  kFixed,               // the conditions in protocol order
+};
+
+enum class QuestionnaireTiming { kNever, kLastBlock, kEveryTrial };
+
+struct QuestionnaireItem {
+  std::string id;                    // column name in exports, e.g. "precision"
+  std::string text;                  // the question as shown
+  std::vector<std::string> anchors;  // one label per scale point, low to high
+};
+
+struct Protocol {
+  std::string name, title;
+  std::uint64_t seed = 0;
+  std::vector<Factor> factors;
+  int blocks = 1;
+  Counterbalancing counterbalancing = Counterbalancing::kRandomizedPerBlock;
+  int practice_per_condition = 0;
+  QuestionnaireTiming questionnaire_timing = QuestionnaireTiming::kNever;
+  int scale_points = 5;
+  std::vector<QuestionnaireItem> items;
+  task::SceneLayout scene;
+  double cube_density = 500.0;  // kg/m^3
+  double rest_time_s = 0.5;     // the cube must rest in zone B this long
+  double timeout_s = 60.0;
+  bool naive_strategy = false;  // without a strategy factor
+  double simulated_hand_length = 0.214;
+  std::string text;  // the file's exact bytes
+
+  std::vector<Condition> conditions() const;        // first factor varies slowest
+  int factor_index(const std::string& name) const;  // -1 when absent
+};
+
+// Parses and validates; errors name the offending key.
+Protocol parse_protocol(const std::string& text, const std::string& source_name);
+Protocol read_protocol(const std::string& path);
+
+// One planned trial of a participant's schedule, in running order.
+struct PlannedTrial {
+  int position = 0;    // 0-based running order over the whole session
+  int block = 0;       // 0 = practice, then 1..blocks
+  int order = 0;       // 1-based place within its block
+  int condition = 0;   // index into Protocol::conditions()
+  int repetition = 0;  // how many times this condition has been run, this one included
+  bool practice = false;
+  bool questionnaire = false;
+};
+
+// The participant's whole schedule: practice trials, then the blocks. Reproducible from
+// (protocol seed, participant id, enrolment index) on every platform.
+std::vector<PlannedTrial> plan_schedule(const Protocol& protocol, const std::string& participant,
+                                        int enrolment);
+
+// Row `row` of a balanced (Williams) Latin square of n conditions: every condition follows
+// every other equally often over n rows (2n for odd n).
+std::vector<int> balanced_latin_square_row(int n, int row);
+
+}  // namespace handlab::studies

@@ -1,0 +1,131 @@
+#include "studies/session/session_runner.h"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "core/store/frame_logger.h"
+
+namespace handlab::studies {
+
+QuestionnaireResponder fixed_responder() {
+  return [](const Protocol& p, const TrialSetup&, const TrialRun&) {
+    return std::vector<int>(p.items.size(), (p.scale_points + 1) / 2);
+  };
+}
+
+Protocol stored_protocol(store::StudyStore& store) {
+  const store::StudyInfo info = store.study();
+  return parse_protocol(info.protocol_text, store.path() + " (stored protocol)");
+}
+
+store::StudyDefinition study_definition(const Protocol& protocol) {
+  store::StudyDefinition d;
+  d.name = protocol.name;
+  d.protocol_text = protocol.text;
+  d.seed = protocol.seed;
+  for (const Factor& f : protocol.factors) d.factors.push_back(f.name);
+  for (const Condition& c : protocol.conditions()) {
+    std::vector<std::string> levels;
+    for (std::size_t f = 0; f < protocol.factors.size(); ++f)
+      levels.push_back(protocol.factors[f].levels[std::size_t(c.levels[f])].name);
+    d.conditions.emplace_back(c.label, std::move(levels));
+  }
+  return d;
+}
+
+std::vector<store::PlannedTrialRow> planned_rows(const Protocol& protocol,
+                                                 const std::string& participant, int enrolment) {
+  std::vector<store::PlannedTrialRow> rows;
+  for (const PlannedTrial& t : plan_schedule(protocol, participant, enrolment)) {
+    store::PlannedTrialRow r;
+    r.position = t.position;
+    r.block = t.block;
+    r.order = t.order;
+    r.condition = t.condition;
+    r.repetition = t.repetition;
+    r.practice = t.practice;
+    r.questionnaire = t.questionnaire;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+SessionRunner::SessionRunner(store::StudyStore& store, TrialDriver& driver,
+                             QuestionnaireResponder responder)
+    : store_(store), driver_(driver), responder_(std::move(responder)) {}
+
+SessionReport SessionRunner::run(const std::string& participant_id, const std::string& tracker_name,
+                                 bool resume,
+                                 const std::function<void(const std::string&)>& progress) {
+  const auto participant = store_.participant(participant_id);
+  if (!participant)
+    throw std::runtime_error("no participant " + participant_id + " in " + store_.path());
+  const Protocol protocol = stored_protocol(store_);
+  const std::vector<Condition> conditions = protocol.conditions();
+
+  SessionReport report;
+  const bool started =
+      store_.has_running_session(participant_id) || !store_.trials(participant_id).empty();
+  if (started && !resume)
+    throw std::runtime_error(participant_id +
+                             " has already started the schedule; continue it with --resume");
+  report.aborted_before = store_.abort_interrupted(participant_id);
+
+  std::optional<store::PlannedTrialRow> next = store_.next_trial(participant_id);
+  if (!next) {
+    report.schedule_complete = true;
+    return report;
+  }
+  const retarget::Calibration calibration = driver_.calibrate(protocol, *participant);
+  const std::int64_t session = store_.begin_session(participant_id, tracker_name);
+  store::FrameLogger logger(store_.path());
+  const int planned = int(store_.plan(participant_id).size());
+  for (; next; next = store_.next_trial(participant_id)) {
+    TrialSetup setup;
+    setup.protocol = &protocol;
+    setup.condition = conditions.at(std::size_t(next->condition));
+    setup.participant = *participant;
+    setup.planned = *next;
+    setup.calibration = calibration;
+
+    const std::int64_t trial = store_.begin_trial(next->id, session);
+    std::int64_t seq = 0;
+    const TrialRun run = driver_.run(
+        setup, [&](const store::FrameRecord& frame) { logger.log(trial, seq++, frame); });
+    logger.flush();  // every frame on disk before the outcome is committed
+
+    store::TrialOutcome outcome;
+    outcome.success = run.success;
+    outcome.completion_time_s = run.completion_time_s;
+    outcome.grasps = run.grasps;
+    outcome.drops = run.drops;
+    outcome.frames = int(run.frames);
+    outcome.events = run.events;
+    if (next->questionnaire && !protocol.items.empty()) {
+      const std::vector<int> values = responder_(protocol, setup, run);
+      if (values.size() != protocol.items.size())
+        throw std::runtime_error("the questionnaire needs one answer per item");
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        if (values[i] < 1 || values[i] > protocol.scale_points)
+          throw std::runtime_error("answer out of the scale for " + protocol.items[i].id);
+        outcome.answers.emplace_back(protocol.items[i].id, values[i]);
+      }
+    }
+    store_.finish_trial(trial, outcome);
+    ++report.trials_run;
+    if (progress) {
+      std::ostringstream line;
+      line << participant_id << " trial " << next->position + 1 << "/" << planned << " "
+           << (next->practice ? "practice " : "block " + std::to_string(next->block) + " ")
+           << setup.condition.label << ": " << (run.success ? "done in " : "timed out at ")
+           << run.completion_time_s << " s, " << run.grasps << " grasps, " << run.drops
+           << " drops, " << run.frames << " frames";
+      progress(line.str());
+    }
+  }
+  store_.end_session(session, "finished");
+  report.schedule_complete = true;
+  return report;
+}
+
+}  // namespace handlab::studies

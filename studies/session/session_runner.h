@@ -1,0 +1,55 @@
+// Runs a participant's session from the study database: walks the stored schedule from the
+// first unfinished trial, runs each through a trial driver with its frames logged off the
+// simulation thread, asks the questionnaire when the protocol says so, and commits each
+// trial's outcome, events and answers in one transaction. After a crash, a resumed session
+// marks the interrupted trial aborted (kept) and runs it again.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/store/study_store.h"
+#include "studies/protocol/protocol.h"
+#include "studies/session/trial_driver.h"
+
+namespace handlab::studies {
+
+// Answers for the questionnaire after a trial: one value per protocol item, 1..scale.
+using QuestionnaireResponder =
+    std::function<std::vector<int>(const Protocol&, const TrialSetup&, const TrialRun&)>;
+
+// The scripted participant's answers: the middle of the scale for every item.
+QuestionnaireResponder fixed_responder();
+
+struct SessionReport {
+  int trials_run = 0, aborted_before = 0;
+  bool schedule_complete = false;
+};
+
+class SessionRunner {
+ public:
+  SessionRunner(store::StudyStore& store, TrialDriver& driver, QuestionnaireResponder responder);
+
+  // resume: continue a participant who has results or an interrupted session. Without it
+  // the runner refuses to touch a started schedule. `progress` gets a line per trial.
+  SessionReport run(const std::string& participant_id, const std::string& tracker_name, bool resume,
+                    const std::function<void(const std::string&)>& progress = {});
+
+ private:
+  store::StudyStore& store_;
+  TrialDriver& driver_;
+  QuestionnaireResponder responder_;
+};
+
+// The protocol a study database was created with, parsed from its stored text.
+Protocol stored_protocol(store::StudyStore& store);
+
+// A study definition for the database from a protocol.
+store::StudyDefinition study_definition(const Protocol& protocol);
+
+// The planned schedule rows of a participant.
+std::vector<store::PlannedTrialRow> planned_rows(const Protocol& protocol,
+                                                 const std::string& participant, int enrolment);
+
+}  // namespace handlab::studies

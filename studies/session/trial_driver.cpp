@@ -1,0 +1,199 @@
+#include "studies/session/trial_driver.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "core/hand/simulated_hand.h"
+#include "core/task/cube_task.h"
+#include "core/task/grasp_proxy.h"
+#include "core/tracking/hand_fitting.h"
+#include "core/tracking/recording_io.h"
+#include "core/util/portable_random.h"
+#include "studies/session/scripted_tracker.h"
+
+namespace handlab::studies {
+namespace {
+
+using tracking::Side;
+
+task::SceneLayout layout_of(const TrialSetup& setup) {
+  task::SceneLayout layout = setup.protocol->scene;
+  layout.cube_size = setup.condition.cube_size;
+  return layout;
+}
+
+double tip_radius(const hand::Skeleton& s) {
+  const int tip = s.marker_index("index_tip");
+  return s.bones[std::size_t(s.markers[std::size_t(tip)].bone)].radius;
+}
+
+void fill_record(store::FrameRecord& r, double time, const tracking::TrackedFrame* frame,
+                 const hand::HandPose* pose, const task::HandCubeWorld& world,
+                 task::TaskPhase phase) {
+  r.time = time;
+  if (frame) {
+    r.tracked = *frame;
+  } else {
+    r.tracked = tracking::TrackedFrame{};
+    r.tracked.timestamp = time;
+  }
+  if (pose) {
+    r.root_position = pose->root_position.cast<float>();
+    r.root_rotation = Eigen::Quaternionf(pose->root_rotation.cast<float>());
+    r.angles.resize(std::size_t(pose->angles.size()));
+    for (Eigen::Index k = 0; k < pose->angles.size(); ++k)
+      r.angles[std::size_t(k)] = float(pose->angles(k));
+  }
+  const auto& bones = world.bones();
+  r.bone_positions.resize(bones.size());
+  r.bone_rotations.resize(bones.size());
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    r.bone_positions[b] = bones[b].translation().cast<float>();
+    r.bone_rotations[b] = Eigen::Quaternionf(bones[b].linear().cast<float>());
+  }
+  r.cube_position = world.cube().position.cast<float>();
+  r.cube_rotation = world.cube().orientation.cast<float>();
+  r.task_phase = std::uint8_t(phase);
+  r.thumb_contact = world.thumb_contact();
+  r.index_contact = world.index_contact();
+}
+
+}  // namespace
+
+PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz)
+    : tracker_(std::move(tracker)), rate_hz_(rate_hz) {
+  if (!tracker_.is_scripted()) {
+    recording_ = tracking::read_recording(tracker_.path()).frames;
+    const bool any = std::any_of(recording_.begin(), recording_.end(),
+                                 [](const auto& f) { return f.hand(Side::kRight) != nullptr; });
+    if (!any) throw std::runtime_error(tracker_.path() + " has no right hand to drive the trials");
+  }
+}
+
+retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
+                                                     const store::Participant& participant) {
+  const hand::Skeleton sim =
+      hand::build_simulated_hand(hand::HandShape::with_length(protocol.simulated_hand_length));
+  if (tracker_.is_scripted()) {
+    ScriptedMotionSettings settings;
+    settings.hand_length = participant.hand_length;
+    settings.layout = protocol.scene;
+    const auto calibration = retarget::calibrate_open_palm(
+        scripted_open_palm(settings), Side::kRight, sim,
+        tracking::TrackedHandFitter(participant.hand_length, Side::kRight));
+    if (!calibration) throw std::runtime_error("the scripted open palm did not calibrate");
+    return *calibration;
+  }
+  // A recording: its own open-palm frames (or the length ratio without any), and the
+  // recording's median palm placed 12 cm above zone A.
+  retarget::Calibration c;
+  auto fitter = tracking::TrackedHandFitter::for_recording(recording_, Side::kRight);
+  if (auto open = retarget::calibrate_open_palm(recording_, Side::kRight, sim, *fitter))
+    c = *open;
+  else
+    c.scale = protocol.simulated_hand_length /
+              tracking::estimate_hand_length(recording_, Side::kRight).value();
+  std::vector<double> axis[3];
+  for (const auto& f : recording_)
+    if (const auto* h = f.hand(Side::kRight))
+      for (int i = 0; i < 3; ++i) axis[i].push_back(h->palm_position[i]);
+  Eigen::Vector3d median;
+  for (int i = 0; i < 3; ++i) {
+    std::nth_element(axis[i].begin(), axis[i].begin() + long(axis[i].size() / 2), axis[i].end());
+    median[i] = axis[i][axis[i].size() / 2];
+  }
+  c.tracker_to_scene =
+      Eigen::Translation3d(protocol.scene.zone_a + Eigen::Vector3d(0, 0.12, 0) - median);
+  return c;
+}
+
+std::unique_ptr<tracking::FrameSource> PipelineTrialDriver::open_tracker(
+    const TrialSetup& setup) const {
+  if (tracker_.is_scripted()) {
+    const hand::Skeleton sim = hand::build_simulated_hand(
+        hand::HandShape::with_length(setup.condition.simulated_hand_length));
+    ScriptedMotionSettings settings;
+    settings.hand_length = setup.participant.hand_length;
+    settings.scale = setup.calibration.scale;
+    settings.simulated_tip_radius = tip_radius(sim);
+    settings.layout = layout_of(setup);
+    settings.rate_hz = rate_hz_;
+    // A person is not a metronome: each trial's tempo varies by up to 15 %, drawn from the
+    // participant and the trial so that a session replays identically.
+    util::PortableRandom random(
+        util::fnv1a64(setup.participant.id) ^
+        (0x9E3779B97F4A7C15ull * std::uint64_t(setup.planned.position + 1)));
+    settings.tempo = 0.85 + 0.3 * random.uniform();
+    return std::make_unique<ScriptedTracker>(settings);
+  }
+  tracking::ReplayOptions options;
+  options.pace = tracking::ReplayPace::kResampled;
+  options.rate_hz = rate_hz_;
+  return std::make_unique<tracking::RecordingReplay>(recording_, options);
+}
+
+TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink) {
+  const Protocol& protocol = *setup.protocol;
+  const hand::Skeleton sim = hand::build_simulated_hand(
+      hand::HandShape::with_length(setup.condition.simulated_hand_length));
+  const task::SceneLayout layout = layout_of(setup);
+  const bool naive = setup.condition.naive_strategy;
+  std::optional<tracking::TrackedHandFitter> fitter;
+  if (naive) {
+    if (tracker_.is_scripted())
+      fitter.emplace(setup.participant.hand_length, Side::kRight);
+    else
+      fitter = tracking::TrackedHandFitter::for_recording(recording_, Side::kRight);
+  }
+  retarget::Retargeter retargeter(naive ? retarget::Strategy::kNaive : retarget::Strategy::kOurs,
+                                  sim, setup.calibration, fitter);
+  task::GraspProxySettings world_settings;
+  world_settings.cube_size = layout.cube_size;
+  task::GraspProxyWorld world(sim, world_settings, task::cube_start_pose(layout).translation());
+  task::TaskSettings task_settings;
+  task_settings.layout = layout;
+  task_settings.rest_time = protocol.rest_time_s;
+  task_settings.timeout = protocol.timeout_s;
+  task::CubeTask task(task_settings);
+  task.start(0.0);
+
+  const std::unique_ptr<tracking::FrameSource> tracker = open_tracker(setup);
+  const double dt = 1.0 / rate_hz_;
+  store::FrameRecord record;
+  TrialRun run;
+  bool tracker_ended = false;
+  std::optional<hand::HandPose> pose;
+  for (long step = 1; !task.finished(); ++step) {
+    const double t = double(step) * dt;
+    std::optional<tracking::TrackedFrame> frame;
+    if (!tracker_ended && !(frame = tracker->next())) tracker_ended = true;
+    const tracking::TrackedHand* hand = frame ? frame->hand(Side::kRight) : nullptr;
+    if (hand) pose = retargeter.retarget(*hand).pose;
+    world.step(hand ? &*pose : nullptr, dt);
+    task::TaskObservation o;
+    o.time = t;
+    o.cube_position = world.cube().position;
+    o.cube_velocity = world.cube().velocity;
+    o.thumb_contact = world.thumb_contact();
+    o.index_contact = world.index_contact();
+    task.update(o);
+    fill_record(record, t, frame ? &*frame : nullptr, pose ? &*pose : nullptr, world, task.phase());
+    sink(record);
+    ++run.frames;
+    // With the tracker gone and the cube at rest waiting for a grasp, nothing can happen
+    // any more: the trial runs out its time without further frames.
+    if (tracker_ended && task.phase() == task::TaskPhase::kStarted &&
+        world.cube().velocity.isZero()) {
+      o.time = protocol.timeout_s;
+      task.update(o);
+    }
+  }
+  run.success = task.phase() == task::TaskPhase::kDone;
+  run.completion_time_s = task.completion_time();
+  run.grasps = task.grasps();
+  run.drops = task.drops();
+  for (const task::TaskEvent& e : task.events()) run.events.emplace_back(e.time, e.kind);
+  return run;
+}
+
+}  // namespace handlab::studies

@@ -1,0 +1,320 @@
+// The study commands as an experimenter runs them, bad inputs, and the crash test: a session
+// killed with SIGKILL at random moments loses no completed trial and resumes in order.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "core/store/sqlite_database.h"
+#include "core/util/json_value.h"
+
+namespace {
+
+using handlab::store::Database;
+using handlab::store::Statement;
+
+struct Result {
+  int status;
+  std::string out;
+};
+
+Result cli(const std::string& args) {
+  const std::string command = std::string(HANDLAB_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+    out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+const std::string kProtocol =
+    std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+
+std::string fresh(const std::string& name) {
+  const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
+  for (const char* side : {"", "-wal", "-shm"}) std::filesystem::remove_all(path + side);
+  return path;
+}
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string enrol(const std::string& db, const std::string& id, double length) {
+  return "participant add --db " + db + " --id " + id + " --age 27 --sex M --handedness right " +
+         "--hand-length " + std::to_string(length) + " --vr-experience some";
+}
+
+TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
+  const std::string db = fresh("cli_study.db");
+  Result r = cli("study create --protocol " + kProtocol + " --db " + db);
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (auto [id, length] :
+       {std::pair{"P01", 0.17}, std::pair{"P02", 0.19}, std::pair{"P03", 0.2}}) {
+    r = cli(enrol(db, id, length));
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("24 trials planned"), std::string::npos) << r.out;
+  }
+  r = cli("study status --db " + db + " --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  {
+    const auto status = handlab::util::JsonValue::parse(r.out);
+    ASSERT_EQ(status["participants"].size(), 3u);
+    EXPECT_EQ(status["participants"][0]["trials_planned"].as_number(), 24);
+    EXPECT_EQ(status["participants"][0]["trials_completed"].as_number(), 0);
+    EXPECT_EQ(status["participants"][0]["next"]["trial"].as_number(), 1);
+  }
+  for (const char* id : {"P01", "P02", "P03"}) {
+    r = cli("session run --db " + db + " --participant " + id + " --tracker scripted --quiet");
+    ASSERT_EQ(r.status, 0) << r.out;
+  }
+  r = cli("session run --db " + db + " --participant P01 --tracker scripted");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("--resume"), std::string::npos) << r.out;
+  r = cli("study status --db " + db + " --json -");
+  {
+    const auto status = handlab::util::JsonValue::parse(r.out);
+    for (const auto& p : status["participants"].as_array()) {
+      EXPECT_EQ(p["trials_completed"].as_number(), 24);
+      EXPECT_EQ(p["trials_aborted"].as_number(), 0);
+      EXPECT_TRUE(p["next"].is_null());
+    }
+  }
+  const std::string out = fresh("cli_export");
+  r = cli("export --db " + db + " --out " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream trials(out + "/trials.csv");
+  std::string header;
+  std::getline(trials, header);
+  EXPECT_EQ(header,
+            "participant,age,sex,handedness,hand_length,vr_experience,block,order,strategy,"
+            "manipulation,repetition,completion_time_s,outcome,grasps,drops,attempt");
+  int rows = 0;
+  for (std::string line; std::getline(trials, line);) ++rows;
+  EXPECT_EQ(rows, 3 * 20) << "practice trials stay out";
+  std::ifstream questionnaire(out + "/questionnaire.csv");
+  std::getline(questionnaire, header);
+  EXPECT_NE(header.find("repetition,precision,ease,naturalness"), std::string::npos) << header;
+
+  r = cli("analyze --db " + db + " --json " + out + "/analysis.json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("strategy:manipulation"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Friedman"), std::string::npos);
+  std::ifstream json(out + "/analysis.json");
+  std::ostringstream text;
+  text << json.rdbuf();
+  const auto analysis = handlab::util::JsonValue::parse(text.str());
+  EXPECT_TRUE(analysis.find("completion_time"));
+  EXPECT_TRUE(analysis.find("questionnaire"));
+
+  // Redo and skip, with reasons kept.
+  r = cli("session redo --db " + db + " --participant P02 --trial 7 --reason 'tracking lost'");
+  ASSERT_EQ(r.status, 0) << r.out;
+  r = cli("study status --db " + db + " --json -");
+  EXPECT_EQ(handlab::util::JsonValue::parse(r.out)["participants"][1]["next"]["trial"].as_number(),
+            7);
+  r = cli("session skip --db " + db + " --participant P02 --trial 7 --reason 'participant tired'");
+  ASSERT_EQ(r.status, 0) << r.out;
+  Database check(db, Database::Mode::kReadOnly);
+  EXPECT_EQ(check.query_text("SELECT group_concat(status || ':' || reason) FROM trial WHERE reason "
+                             "IS NOT NULL"),
+            "redone:tracking lost,skipped:participant tired");
+}
+
+TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
+  const std::string db = fresh("cli_bad.db");
+  ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);
+  ASSERT_EQ(cli(enrol(db, "P01", 0.18)).status, 0);
+  const std::string before = bytes_of(db);
+  auto one_line_error = [](const Result& r, const std::string& what) {
+    EXPECT_NE(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
+    EXPECT_NE(r.out.find(what), std::string::npos) << r.out;
+  };
+  one_line_error(cli(enrol(db, "P01", 0.18)), "already exists");
+  one_line_error(cli("study create --protocol " + kProtocol + " --db " + db), "already exists");
+  one_line_error(cli("participant add --db " + db +
+                     " --id P09 --age 27 --sex M --handedness right "
+                     "--hand-length 18.8 --vr-experience some"),
+                 "metres");
+  EXPECT_EQ(bytes_of(db), before);
+
+  // A protocol with an unknown factor: no database is created.
+  std::string protocol = bytes_of(kProtocol);
+  protocol.replace(protocol.find("\"manipulation\""), 14, "\"glove\"");
+  const std::string bad_protocol = fresh("cli_bad_protocol.json");
+  std::ofstream(bad_protocol) << protocol;
+  const std::string never = fresh("cli_never.db");
+  one_line_error(cli("study create --protocol " + bad_protocol + " --db " + never),
+                 "unknown factor");
+  EXPECT_FALSE(std::filesystem::exists(never));
+
+  // Newer, corrupt, truncated and locked files.
+  const std::string newer = fresh("cli_newer.db");
+  std::filesystem::copy_file(db, newer);
+  { Database(newer, Database::Mode::kReadWrite).exec("PRAGMA user_version = 7"); }
+  const std::string newer_bytes = bytes_of(newer);
+  one_line_error(cli("study status --db " + newer), "newer handlab");
+  one_line_error(cli("session run --db " + newer + " --participant P01"), "newer handlab");
+  EXPECT_EQ(bytes_of(newer), newer_bytes);
+
+  const std::string corrupt = fresh("cli_corrupt.db");
+  std::string garbage = before;
+  for (std::size_t k = 100; k < garbage.size(); k += 7) garbage[k] = char(garbage[k] ^ 0x5a);
+  std::ofstream(corrupt, std::ios::binary) << garbage;
+  one_line_error(cli("study status --db " + corrupt), "cli_corrupt.db");
+  one_line_error(cli(enrol(corrupt, "P02", 0.18)), "cli_corrupt.db");
+  EXPECT_EQ(bytes_of(corrupt), garbage);
+
+  const std::string truncated = fresh("cli_truncated.db");
+  std::ofstream(truncated, std::ios::binary) << before.substr(0, before.size() / 2);
+  const std::string cut = bytes_of(truncated);
+  const Result t = cli("session run --db " + truncated + " --participant P01 --quiet");
+  one_line_error(t, "cli_truncated.db");
+  EXPECT_EQ(bytes_of(truncated), cut);
+
+  {
+    Database holder(db, Database::Mode::kReadWrite);
+    holder.exec("PRAGMA locking_mode = EXCLUSIVE; BEGIN EXCLUSIVE");
+    one_line_error(cli(enrol(db, "P02", 0.18)), "locked");
+    holder.exec("ROLLBACK");
+  }
+  one_line_error(cli("study status --db " + fresh("cli_absent.db")), "no study database");
+  EXPECT_FALSE(std::filesystem::exists(std::string(HANDLAB_TEST_TMP) + "/cli_absent.db"));
+}
+
+struct Result_ {
+  std::int64_t planned_id;
+  int position;
+  std::string status;
+  double time;
+};
+
+// Every result (completed or timed out) of a participant, by trial id.
+std::map<std::int64_t, Result_> results_of(Database& db, const std::string& id) {
+  std::map<std::int64_t, Result_> out;
+  Statement s = db.prepare(
+      "SELECT t.id, t.planned_id, p.position, t.status, t.completion_time_s FROM trial t JOIN "
+      "planned_trial p ON p.id = t.planned_id WHERE p.participant_id = ? AND t.status IN "
+      "('completed', 'timeout') ORDER BY t.id");
+  s.bind(1, id);
+  while (s.step())
+    out[s.column_int64(0)] = {s.column_int64(1), int(s.column_int64(2)), s.column_text(3),
+                              s.column_double(4)};
+  return out;
+}
+
+pid_t spawn_session(const std::string& db, const std::string& id) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(HANDLAB_CLI, HANDLAB_CLI, "session", "run", "--db", db.c_str(), "--participant",
+          id.c_str(), "--tracker", "scripted", "--resume", "--quiet", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
+  const std::string db = fresh("crash.db");
+  const std::string reference = fresh("crash_reference.db");
+  for (const std::string& path : {db, reference})
+    ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + path).status, 0);
+  const std::vector<std::string> ids = {"P01", "P02", "P03", "P04", "P05", "P06"};
+  for (const std::string& id : ids)
+    for (const std::string& path : {db, reference})
+      ASSERT_EQ(cli(enrol(path, id, 0.185)).status, 0);
+
+  std::mt19937 rng(20211004);
+  std::uniform_int_distribution<int> delay_ms(15, 400);
+  int kills = 0;
+  std::size_t participant = 0;
+  std::map<std::int64_t, Result_> kept;  // every result seen so far, must never change
+  while (participant < ids.size()) {
+    const std::string& id = ids[participant];
+    const pid_t pid = spawn_session(db, id);
+    if (kills < 20) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    if (kills < 20) ::kill(pid, SIGKILL);  // unless it has finished already
+    int status = 0;
+    waitpid(pid, &status, 0);
+    const bool killed = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+    kills += killed;
+    if (!killed) {
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the session failed";
+    }
+
+    Database check(db, Database::Mode::kReadWrite);
+    ASSERT_EQ(check.query_text("PRAGMA integrity_check"), "ok") << "after kill " << kills;
+    // No result lost or changed, none duplicated, and results in planned order.
+    std::map<std::int64_t, Result_> now;
+    for (std::size_t k = 0; k <= participant; ++k) {
+      std::map<std::int64_t, int> per_planned;
+      int last_position = -1;
+      for (const auto& [trial, r] : results_of(check, ids[k])) {
+        EXPECT_EQ(++per_planned[r.planned_id], 1) << "duplicate result for trial " << r.position;
+        EXPECT_GT(r.position, last_position) << "out of planned order";
+        last_position = r.position;
+        now[trial] = r;
+      }
+    }
+    for (const auto& [trial, r] : kept) {
+      ASSERT_TRUE(now.count(trial)) << "a completed trial was lost";
+      EXPECT_EQ(now[trial].status, r.status);
+      EXPECT_EQ(now[trial].time, r.time);
+    }
+    kept = now;
+    // Every frame of a finished trial is there.
+    EXPECT_EQ(check.query_text("SELECT count(*) FROM trial t WHERE status IN ('completed', "
+                               "'timeout') AND frames != (SELECT count(*) FROM frame f WHERE "
+                               "f.trial_id = t.id)"),
+              "0");
+    if (!killed) {  // its schedule is complete
+      ++participant;
+      if (kills >= 20) break;
+    }
+  }
+  EXPECT_GE(kills, 20);
+
+  Database check(db, Database::Mode::kReadWrite);
+  const int aborted_seen =
+      std::stoi(*check.query_text("SELECT count(*) FROM trial WHERE status = 'aborted'"));
+  EXPECT_GT(aborted_seen, 0) << "some kills should land inside a trial";
+  // The finished participants' results equal an uninterrupted run's, trial by trial.
+  for (std::size_t k = 0; k < participant; ++k) {
+    ASSERT_EQ(cli("session run --db " + reference + " --participant " + ids[k] + " --quiet").status,
+              0);
+    Database ref(reference, Database::Mode::kReadOnly);
+    const auto got = results_of(check, ids[k]);
+    const auto want = results_of(ref, ids[k]);
+    ASSERT_EQ(got.size(), 24u) << ids[k];
+    ASSERT_EQ(want.size(), 24u);
+    auto g = got.begin();
+    for (auto w = want.begin(); w != want.end(); ++w, ++g) {
+      EXPECT_EQ(g->second.position, w->second.position);
+      EXPECT_EQ(g->second.time, w->second.time) << ids[k] << " trial " << w->second.position;
+    }
+  }
+  std::printf("%d kills, %d aborted trials kept, %zu participants finished\n", kills, aborted_seen,
+              participant);
+}
+
+}  // namespace

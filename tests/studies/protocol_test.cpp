@@ -1,0 +1,154 @@
+// The study protocol file, its schedules and its validation.
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "core/util/sha256.h"
+#include "studies/protocol/protocol.h"
+
+namespace handlab::studies {
+namespace {
+
+const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+
+TEST(Protocol, TheStudyFileDescribesThePaper) {
+  const Protocol p = read_protocol(kStudy);
+  EXPECT_EQ(p.name, "fine-manipulation-2021");
+  ASSERT_EQ(p.factors.size(), 2u);
+  EXPECT_EQ(p.factors[0].name, "strategy");
+  EXPECT_EQ(p.factors[1].name, "manipulation");
+  const auto conditions = p.conditions();
+  ASSERT_EQ(conditions.size(), 4u);
+  EXPECT_EQ(conditions[0].label, "naive-gross");
+  EXPECT_TRUE(conditions[0].naive_strategy);
+  EXPECT_DOUBLE_EQ(conditions[0].cube_size, 0.06);
+  EXPECT_EQ(conditions[3].label, "ours-fine");
+  EXPECT_FALSE(conditions[3].naive_strategy);
+  EXPECT_DOUBLE_EQ(conditions[3].cube_size, 0.01);
+  EXPECT_DOUBLE_EQ(conditions[3].simulated_hand_length, 0.214);
+  EXPECT_EQ(p.blocks, 5);
+  EXPECT_EQ(p.questionnaire_timing, QuestionnaireTiming::kLastBlock);
+  ASSERT_EQ(p.items.size(), 3u);
+  EXPECT_EQ(p.items[0].id, "precision");
+  EXPECT_EQ(p.items[1].id, "ease");
+  EXPECT_EQ(p.items[2].id, "naturalness");
+  for (const auto& item : p.items) EXPECT_EQ(item.anchors.size(), 5u);
+  EXPECT_DOUBLE_EQ(p.timeout_s, 60.0);
+  EXPECT_DOUBLE_EQ(p.rest_time_s, 0.5);
+  EXPECT_GT(p.text.size(), 500u);
+}
+
+TEST(Protocol, ScheduleIsReproducibleAndEveryBlockHoldsEachConditionOnce) {
+  const Protocol p = read_protocol(kStudy);
+  const auto a = plan_schedule(p, "P01", 0);
+  ASSERT_EQ(a.size(), 4u + 20u);  // practice, then 5 blocks of 4
+  const auto same = plan_schedule(p, "P01", 0);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].condition, same[k].condition);
+    EXPECT_EQ(a[k].position, int(k));
+  }
+  std::map<int, std::set<int>> by_block;
+  for (const auto& t : a) {
+    EXPECT_TRUE(by_block[t.block].insert(t.condition).second) << "block " << t.block;
+    EXPECT_EQ(t.practice, t.block == 0);
+    EXPECT_EQ(t.questionnaire, t.block == 5);
+    if (!t.practice) {
+      EXPECT_EQ(t.repetition, t.block);
+    }
+  }
+  for (int b = 0; b <= 5; ++b) EXPECT_EQ(by_block[b].size(), 4u) << "block " << b;
+  // Other participants get other orders.
+  int differing = 0;
+  for (const char* id : {"P02", "P03", "P04", "P05"}) {
+    const auto other = plan_schedule(p, id, 1);
+    for (std::size_t k = 4; k < a.size(); ++k) differing += other[k].condition != a[k].condition;
+  }
+  EXPECT_GT(differing, 20);
+}
+
+TEST(Protocol, BalancedLatinSquares) {
+  for (int n : {2, 3, 4, 5, 6}) {
+    const int rows = n % 2 == 0 ? n : 2 * n;
+    std::map<std::pair<int, int>, int> follows;
+    std::vector<std::map<int, int>> at_place(static_cast<std::size_t>(n));
+    for (int r = 0; r < rows; ++r) {
+      const auto row = balanced_latin_square_row(n, r);
+      std::vector<int> sorted = row;
+      std::sort(sorted.begin(), sorted.end());
+      for (int k = 0; k < n; ++k) ASSERT_EQ(sorted[std::size_t(k)], k);
+      for (int k = 0; k + 1 < n; ++k) ++follows[{row[std::size_t(k)], row[std::size_t(k + 1)]}];
+      for (int k = 0; k < n; ++k) ++at_place[std::size_t(k)][row[std::size_t(k)]];
+    }
+    // Every ordered pair adjacent equally often; every condition equally often at each place.
+    EXPECT_EQ(int(follows.size()), n * (n - 1)) << n;
+    for (const auto& [pair, count] : follows) EXPECT_EQ(count, rows / n) << n;
+    for (const auto& place : at_place)
+      for (const auto& [c, count] : place) EXPECT_EQ(count, rows / n) << n;
+  }
+}
+
+std::string with(const std::string& text, const std::string& from, const std::string& to) {
+  std::string out = text;
+  const auto at = out.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  out.replace(at, from.size(), to);
+  return out;
+}
+
+TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
+  const std::string text = read_protocol(kStudy).text;
+  struct Case {
+    std::string text, message;
+  };
+  const std::vector<Case> cases = {
+      {with(text, "\"name\": \"manipulation\"", "\"name\": \"glove\""), "unknown factor \"glove\""},
+      {with(text, "\"blocks\": 5", "\"blokcs\": 5"), "unknown key \"blokcs\""},
+      {with(text, "{\"name\": \"ours\"}", "{\"name\": \"naive\"}"), "appears twice"},
+      {with(text, "\"counterbalancing\": \"randomized-per-block\"",
+            "\"counterbalancing\": \"abba\""),
+       "abba"},
+      {with(text, "\"cube_size\": 0.01", "\"cube_size\": -1"), "cube_size"},
+      {with(text, "\"version\": 1", "\"version\": 2"), "version 2"},
+      {text.substr(0, text.size() / 2), "protocol.json"},
+  };
+  for (const Case& c : cases) {
+    try {
+      parse_protocol(c.text, "protocol.json");
+      ADD_FAILURE() << "accepted: " << c.message;
+    } catch (const ProtocolError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Protocol, LatinSquareAndEveryTrialQuestionnaire) {
+  std::string text = read_protocol(kStudy).text;
+  text = with(text, "\"randomized-per-block\"", "\"latin-square\"");
+  text = with(text, "\"last-block\"", "\"every-trial\"");
+  const Protocol p = parse_protocol(text, "p.json");
+  for (int enrolment = 0; enrolment < 4; ++enrolment) {
+    const auto plan = plan_schedule(p, "X", enrolment);
+    const auto row = balanced_latin_square_row(4, enrolment);
+    for (const auto& t : plan) {
+      if (t.practice) continue;
+      EXPECT_EQ(t.condition, row[std::size_t(t.order - 1)]);
+      EXPECT_TRUE(t.questionnaire);
+    }
+  }
+}
+
+TEST(Sha256, KnownDigests) {
+  EXPECT_EQ(util::sha256_hex(""),
+            "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(util::sha256_hex("abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(util::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(util::sha256_hex(std::string(1000000, 'a')),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+}  // namespace
+}  // namespace handlab::studies

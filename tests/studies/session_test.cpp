@@ -1,0 +1,145 @@
+// The trial pipeline (scripted tracker -> retargeting -> grasp proxy -> task) and the session
+// runner against a real study database.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "core/store/frame_record.h"
+#include "core/store/study_store.h"
+#include "studies/export/study_export.h"
+#include "studies/session/session_runner.h"
+#include "studies/session/trial_driver.h"
+
+namespace handlab::studies {
+namespace {
+
+const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+
+std::string fresh(const std::string& name) {
+  const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
+  for (const char* side : {"", "-wal", "-shm"}) std::filesystem::remove(path + side);
+  return path;
+}
+
+store::Participant person(const std::string& id, double hand_length) {
+  store::Participant p;
+  p.id = id;
+  p.age = 30;
+  p.sex = "X";
+  p.handedness = "right";
+  p.hand_length = hand_length;
+  p.vr_experience = "some";
+  return p;
+}
+
+// Every condition, for a small and a large hand: the scripted pinch lifts the cube 10 cm
+// (it only moves when held), carries it and puts it down inside B.
+TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
+  const Protocol protocol = read_protocol(kStudy);
+  PipelineTrialDriver driver(TrackerKind::scripted());
+  for (double length : {0.165, 0.205}) {
+    const store::Participant p = person("S", length);
+    const retarget::Calibration calibration = driver.calibrate(protocol, p);
+    // The open-palm boxes of the two morphologies differ a little: ~6 % above the length ratio.
+    EXPECT_NEAR(calibration.scale, 0.214 / length, 0.08 * 0.214 / length);
+    for (const Condition& c : protocol.conditions()) {
+      TrialSetup setup;
+      setup.protocol = &protocol;
+      setup.condition = c;
+      setup.participant = p;
+      setup.calibration = calibration;
+      double highest = 0.0;
+      store::FrameRecord last;
+      long frames = 0;
+      const TrialRun run = driver.run(setup, [&](const store::FrameRecord& f) {
+        highest = std::max(highest, double(f.cube_position.y()));
+        last = f;
+        ++frames;
+      });
+      const std::string what = c.label + " at " + std::to_string(length);
+      EXPECT_TRUE(run.success) << what;
+      EXPECT_EQ(run.grasps, 1) << what;
+      EXPECT_EQ(run.drops, 0) << what;
+      EXPECT_EQ(run.frames, frames) << what;
+      // The script raises the hand 10 cm; a grip that first touches while still closing
+      // holds the cube a little lower (Naive's tips close past the first touch).
+      EXPECT_GT(highest - 0.5 * c.cube_size, 0.09) << what << ": lifted";
+      EXPECT_LT(std::abs(last.cube_position.x() - protocol.scene.zone_b.x()),
+                0.5 * protocol.scene.zone_size)
+          << what;
+      EXPECT_NEAR(last.cube_position.y(), 0.5 * c.cube_size, 1e-6) << what;
+      EXPECT_GT(run.completion_time_s, 3.0) << what;
+      EXPECT_LT(run.completion_time_s, 8.0) << what;
+      ASSERT_EQ(last.bone_positions.size(), 16u);
+      EXPECT_EQ(last.angles.size(), 21u);
+    }
+  }
+}
+
+TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) {
+  const std::string path = fresh("session_runner.db");
+  const Protocol protocol = read_protocol(kStudy);
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore db(path);
+  db.add_participant(person("P01", 0.18), planned_rows(protocol, "P01", 0));
+  PipelineTrialDriver driver(TrackerKind::scripted());
+  SessionRunner runner(db, driver, fixed_responder());
+  std::vector<std::string> lines;
+  const SessionReport report =
+      runner.run("P01", "scripted", false, [&](const std::string& l) { lines.push_back(l); });
+  EXPECT_EQ(report.trials_run, 24);
+  EXPECT_TRUE(report.schedule_complete);
+  EXPECT_EQ(lines.size(), 24u);
+
+  const auto trials = db.trials("P01");
+  ASSERT_EQ(trials.size(), 24u);
+  for (std::size_t k = 0; k < trials.size(); ++k) {
+    EXPECT_EQ(trials[k].position, int(k));
+    EXPECT_EQ(trials[k].status, store::TrialStatus::kCompleted);
+    store::Statement count =
+        db.database().prepare("SELECT count(*), max(seq) FROM frame WHERE trial_id = ?");
+    count.bind(1, trials[k].id);
+    count.step();
+    EXPECT_EQ(count.column_int64(0), trials[k].frames) << "no frame dropped";
+    EXPECT_EQ(count.column_int64(1), trials[k].frames - 1);
+  }
+  {  // (statements in a scope: an unfinished one would hold its read snapshot)
+    store::Statement answers = db.database().prepare("SELECT count(*) FROM answer");
+    answers.step();
+    EXPECT_EQ(answers.column_int64(0), 4 * 3) << "three items after each trial of the last block";
+    // A frame reads back.
+    store::Statement blob =
+        db.database().prepare("SELECT data FROM frame WHERE trial_id = ? AND seq = 100");
+    blob.bind(1, trials[5].id);
+    ASSERT_TRUE(blob.step());
+    const store::FrameRecord f = store::decode_frame(blob.column_blob(0));
+    EXPECT_NEAR(f.time, 101.0 / 120.0, 1e-12);
+    EXPECT_EQ(f.tracked.hands.size(), 1u);
+  }
+
+  // Running again without --resume is refused; with it there is nothing left.
+  EXPECT_THROW(runner.run("P01", "scripted", false), std::runtime_error);
+  EXPECT_TRUE(runner.run("P01", "scripted", true).schedule_complete);
+  EXPECT_EQ(db.trials("P01").size(), 24u);
+
+  // The experimenter redoes trial 3: the old result stays, marked, and the run repeats it.
+  db.redo_trial("P01", 2, "participant sneezed");
+  EXPECT_EQ(db.next_trial("P01")->position, 2);
+  EXPECT_EQ(runner.run("P01", "scripted", true).trials_run, 1);
+  const auto after = db.trials("P01");
+  ASSERT_EQ(after.size(), 25u);
+  EXPECT_EQ(after[2].status, store::TrialStatus::kRedone);
+  EXPECT_EQ(after[2].reason, "participant sneezed");
+  EXPECT_EQ(after[24].position, 2);
+  EXPECT_EQ(after[24].attempt, 2);
+  EXPECT_DOUBLE_EQ(after[24].completion_time_s, after[2].completion_time_s) << "deterministic";
+
+  const auto status = study_status(db);
+  ASSERT_EQ(status.size(), 1u);
+  EXPECT_EQ(status[0].trials_planned, 24);
+  EXPECT_EQ(status[0].trials_completed, 24);
+  EXPECT_FALSE(status[0].next);
+}
+
+}  // namespace
+}  // namespace handlab::studies
