@@ -131,6 +131,12 @@ std::vector<Condition> Protocol::conditions() const {
       if (level.cube_size) c.cube_size = *level.cube_size;
       if (level.hand_length) c.simulated_hand_length = *level.hand_length;
     }
+    c.simulated_hand = hand::HandShape::with_length(c.simulated_hand_length);
+    c.simulated_hand.tissue = simulated_hand_tissue;
+    // A breadth given for the protocol's hand scales with the condition's length.
+    if (simulated_hand_breadth > 0)
+      c.simulated_hand.breadth =
+          simulated_hand_breadth * c.simulated_hand_length / simulated_hand_length;
     if (factors.empty()) c.label = "task";
     out.push_back(std::move(c));
     // Odometer: the last factor varies fastest.
@@ -272,8 +278,10 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
       r.fail("scene", "zones A and B overlap");
   }
   if (const JsonValue* hand = root.find("simulated_hand")) {
-    r.check_keys(*hand, "simulated_hand", {"length"});
+    r.check_keys(*hand, "simulated_hand", {"length", "breadth", "tissue"});
     p.simulated_hand_length = r.number(*hand, "length", "simulated_hand", 0.10, 0.30);
+    p.simulated_hand_breadth = r.number(*hand, "breadth", "simulated_hand", 0.0, 0.2, 0.0);
+    p.simulated_hand_tissue = r.number(*hand, "tissue", "simulated_hand", 0.5, 2.0, 1.0);
   }
   if (root.find("strategy")) {
     const std::string s = r.text(root, "strategy", "protocol");

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hand/hand_shape.h"
 #include "core/task/scene_layout.h"
 
 namespace handlab::studies {
@@ -41,6 +42,7 @@ struct Condition {
   bool naive_strategy = false;           // the strategy factor's level, or the protocol default
   double cube_size = 0.06;               // m
   double simulated_hand_length = 0.214;  // m
+  hand::HandShape simulated_hand;        // the protocol's shape at that length
 };
 
 enum class Counterbalancing {
@@ -73,7 +75,9 @@ struct Protocol {
   double timeout_s = 60.0;
   bool naive_strategy = false;  // without a strategy factor
   double simulated_hand_length = 0.214;
-  std::string text;  // the file's exact bytes
+  double simulated_hand_breadth = 0.0;  // m across the MCPs; 0: 0.45 of the length
+  double simulated_hand_tissue = 1.0;   // scales finger breadth and thickness
+  std::string text;                     // the file's exact bytes
 
   std::vector<Condition> conditions() const;        // first factor varies slowest
   int factor_index(const std::string& name) const;  // -1 when absent

@@ -87,6 +87,9 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
     setup.participant = *participant;
     setup.planned = *next;
     setup.calibration = calibration;
+    // Calibrated for the first condition's hand; the box ratio scales with the hand's length.
+    setup.calibration.scale *=
+        setup.condition.simulated_hand_length / conditions.front().simulated_hand_length;
 
     const std::int64_t trial = store_.begin_trial(next->id, session);
     std::int64_t seq = 0;

@@ -72,8 +72,9 @@ PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz)
 
 retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
                                                      const store::Participant& participant) {
+  // The protocol's simulated hand (conditions of another hand length rescale it: trial setup).
   const hand::Skeleton sim =
-      hand::build_simulated_hand(hand::HandShape::with_length(protocol.simulated_hand_length));
+      hand::build_simulated_hand(protocol.conditions().front().simulated_hand);
   if (tracker_.is_scripted()) {
     ScriptedMotionSettings settings;
     settings.hand_length = participant.hand_length;
@@ -91,7 +92,7 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
   if (auto open = retarget::calibrate_open_palm(recording_, Side::kRight, sim, *fitter))
     c = *open;
   else
-    c.scale = protocol.simulated_hand_length /
+    c.scale = protocol.conditions().front().simulated_hand_length /
               tracking::estimate_hand_length(recording_, Side::kRight).value();
   std::vector<double> axis[3];
   for (const auto& f : recording_)
@@ -110,8 +111,7 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
 std::unique_ptr<tracking::FrameSource> PipelineTrialDriver::open_tracker(
     const TrialSetup& setup) const {
   if (tracker_.is_scripted()) {
-    const hand::Skeleton sim = hand::build_simulated_hand(
-        hand::HandShape::with_length(setup.condition.simulated_hand_length));
+    const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
     ScriptedMotionSettings settings;
     settings.hand_length = setup.participant.hand_length;
     settings.scale = setup.calibration.scale;
@@ -134,8 +134,7 @@ std::unique_ptr<tracking::FrameSource> PipelineTrialDriver::open_tracker(
 
 TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink) {
   const Protocol& protocol = *setup.protocol;
-  const hand::Skeleton sim = hand::build_simulated_hand(
-      hand::HandShape::with_length(setup.condition.simulated_hand_length));
+  const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
   const task::SceneLayout layout = layout_of(setup);
   const bool naive = setup.condition.naive_strategy;
   std::optional<tracking::TrackedHandFitter> fitter;

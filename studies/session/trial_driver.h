@@ -37,7 +37,8 @@ using FrameSink = std::function<void(const store::FrameRecord&)>;
 class TrialDriver {
  public:
   virtual ~TrialDriver() = default;
-  // Once per session, before the first trial: the tracker-to-scene calibration.
+  // Once per session, before the first trial: the tracker-to-scene calibration, for the
+  // first condition's simulated hand.
   virtual retarget::Calibration calibrate(const Protocol& protocol,
                                           const store::Participant& participant) = 0;
   virtual TrialRun run(const TrialSetup& setup, const FrameSink& sink) = 0;

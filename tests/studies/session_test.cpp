@@ -1,6 +1,7 @@
 // The trial pipeline (scripted tracker -> retargeting -> grasp proxy -> task) and the session
 // runner against a real study database.
 #include <filesystem>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -139,6 +140,51 @@ TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) 
   EXPECT_EQ(status[0].trials_planned, 24);
   EXPECT_EQ(status[0].trials_completed, 24);
   EXPECT_FALSE(status[0].next);
+}
+
+}  // namespace
+}  // namespace handlab::studies
+
+namespace handlab::studies {
+namespace {
+
+// Another design: the simulated hand's size as a factor, Latin-square orders, one block.
+TEST(SessionRunner, HandSizeFactorRescalesTheCalibrationPerCondition) {
+  const std::string text = R"({
+    "format": "handlab-protocol", "version": 1, "name": "hand-sizes", "seed": 5,
+    "factors": [{"name": "hand_length", "levels": [{"name": "small", "length": 0.17},
+                                                   {"name": "large", "length": 0.23}]}],
+    "blocks": 1, "counterbalancing": "latin-square",
+    "scene": {"cube_size": 0.03}, "simulated_hand": {"length": 0.2, "tissue": 1.1}})";
+  const Protocol protocol = parse_protocol(text, "hand-sizes.json");
+  const auto conditions = protocol.conditions();
+  ASSERT_EQ(conditions.size(), 2u);
+  EXPECT_DOUBLE_EQ(conditions[1].simulated_hand.length, 0.23);
+  EXPECT_DOUBLE_EQ(conditions[1].simulated_hand.tissue, 1.1);
+  const std::string path = fresh("hand_sizes.db");
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore db(path);
+  db.add_participant(person("H1", 0.19), planned_rows(protocol, "H1", 0));
+  // The real pipeline, watched: which calibration each condition's trial received.
+  struct Watching : TrialDriver {
+    PipelineTrialDriver real{TrackerKind::scripted()};
+    std::map<std::string, double> scale;
+    retarget::Calibration calibrate(const Protocol& p, const store::Participant& who) override {
+      return real.calibrate(p, who);
+    }
+    TrialRun run(const TrialSetup& setup, const FrameSink& sink) override {
+      scale[setup.condition.label] = setup.calibration.scale;
+      return real.run(setup, sink);
+    }
+  } driver;
+  SessionRunner runner(db, driver, fixed_responder());
+  EXPECT_EQ(runner.run("H1", "scripted", false).trials_run, 2);
+  EXPECT_NEAR(driver.scale["large"] / driver.scale["small"], 0.23 / 0.17, 1e-12);
+  EXPECT_NEAR(driver.scale["small"], 0.17 / 0.19, 0.08 * 0.17 / 0.19);
+  for (const store::TrialRow& t : db.trials("H1")) {
+    EXPECT_EQ(t.status, store::TrialStatus::kCompleted) << t.position;
+    EXPECT_EQ(t.grasps, 1) << t.position;
+  }
 }
 
 }  // namespace
