@@ -82,6 +82,11 @@ double Arguments::number(const std::string& name) const {
   return result;
 }
 
+void Arguments::require(std::initializer_list<const char*> names) const {
+  for (const char* name : names)
+    if (!has(name)) throw UsageError(std::string("--") + name + " is required");
+}
+
 long Arguments::integer(const std::string& name) const {
   const std::string value = text(name);
   long result = 0;

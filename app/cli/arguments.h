@@ -2,6 +2,7 @@
 // with the --help text generated from the same declarations.
 #pragma once
 
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -38,6 +39,8 @@ class Arguments {
 
   bool flag(const std::string& name) const;
   bool has(const std::string& name) const;
+  // Throws UsageError naming the first of these options that was not given.
+  void require(std::initializer_list<const char*> names) const;
   std::string text(const std::string& name) const;  // the value or the declared default
   std::vector<std::string> all(const std::string& name) const;
   double number(const std::string& name) const;

@@ -177,28 +177,26 @@ PlannedTrialRow read_planned(const Statement& s) {
   return p;
 }
 
+constexpr const char* kParticipantColumns =
+    "id, age, sex, handedness, hand_length, vr_experience, notes, enrolment";
+
+Participant read_participant(const Statement& s) {
+  Participant p;
+  p.id = s.column_text(0);
+  p.age = int(s.column_int64(1));
+  p.sex = s.column_text(2);
+  p.handedness = s.column_text(3);
+  p.hand_length = s.column_double(4);
+  p.vr_experience = s.column_text(5);
+  p.notes = s.column_text(6);
+  p.enrolment = int(s.column_int64(7));
+  return p;
+}
+
 constexpr const char* kPlannedColumns =
     "id, position, block, order_in_block, condition_id, repetition, practice, questionnaire";
 
 }  // namespace
-
-const char* status_name(TrialStatus status) {
-  switch (status) {
-    case TrialStatus::kRunning:
-      return "running";
-    case TrialStatus::kCompleted:
-      return "completed";
-    case TrialStatus::kTimeout:
-      return "timeout";
-    case TrialStatus::kAborted:
-      return "aborted";
-    case TrialStatus::kSkipped:
-      return "skipped";
-    case TrialStatus::kRedone:
-      return "redone";
-  }
-  return "?";
-}
 
 std::string utc_timestamp() {
   const auto now = std::chrono::system_clock::now();
@@ -341,28 +339,18 @@ int StudyStore::participant_count() {
 
 std::vector<Participant> StudyStore::participants() {
   std::vector<Participant> out;
-  Statement s = db_.prepare(
-      "SELECT id, age, sex, handedness, hand_length, vr_experience, notes, enrolment FROM "
-      "participant ORDER BY enrolment");
-  while (s.step()) {
-    Participant p;
-    p.id = s.column_text(0);
-    p.age = int(s.column_int64(1));
-    p.sex = s.column_text(2);
-    p.handedness = s.column_text(3);
-    p.hand_length = s.column_double(4);
-    p.vr_experience = s.column_text(5);
-    p.notes = s.column_text(6);
-    p.enrolment = int(s.column_int64(7));
-    out.push_back(std::move(p));
-  }
+  Statement s = db_.prepare(std::string("SELECT ") + kParticipantColumns +
+                            " FROM participant ORDER BY enrolment");
+  while (s.step()) out.push_back(read_participant(s));
   return out;
 }
 
 std::optional<Participant> StudyStore::participant(const std::string& id) {
-  for (Participant& p : participants())
-    if (p.id == id) return std::move(p);
-  return std::nullopt;
+  Statement s =
+      db_.prepare(std::string("SELECT ") + kParticipantColumns + " FROM participant WHERE id = ?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return read_participant(s);
 }
 
 std::vector<PlannedTrialRow> StudyStore::plan(const std::string& participant_id) {

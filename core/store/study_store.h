@@ -54,7 +54,6 @@ struct PlannedTrialRow {
 };
 
 enum class TrialStatus { kRunning, kCompleted, kTimeout, kAborted, kSkipped, kRedone };
-const char* status_name(TrialStatus status);
 
 struct TrialRow {
   std::int64_t id = 0, planned_id = 0, session_id = 0;

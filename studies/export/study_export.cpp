@@ -75,13 +75,14 @@ constexpr const char* kCovariateHeader = "participant,age,sex,handedness,hand_le
 
 }  // namespace
 
-void write_trials_csv(store::StudyStore& store, std::ostream& out) {
+void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_skipped) {
   const store::StudyInfo info = store.study();
   const auto people = participants_by_id(store);
   out << kCovariateHeader << ",block,order";
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
   out << ",repetition,completion_time_s,outcome,grasps,drops,attempt\n";
   for (const ResultRow& r : results(store)) {
+    if (r.status == "skipped" && !include_skipped) continue;
     write_covariates(out, people.at(r.participant));
     write_design(out, info, r);
     if (r.status == "skipped")

@@ -14,8 +14,8 @@ namespace handlab::studies {
 // trials.csv: participant, age, sex, handedness, hand_length, vr_experience, block, order,
 // one column per factor, repetition, completion_time_s, outcome (success | timeout |
 // skipped), grasps, drops, attempt. One row per planned trial that has a result; a skipped
-// trial's numbers are NA.
-void write_trials_csv(store::StudyStore& store, std::ostream& out);
+// trial's numbers are NA (its row left out with include_skipped false, as an analysis needs).
+void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_skipped = true);
 // questionnaire.csv: participant, covariates, block, order, factors, repetition, then one
 // column per questionnaire item.
 void write_questionnaire_csv(store::StudyStore& store, std::ostream& out);

@@ -50,14 +50,12 @@ hand::HandPose pinch_pose(const hand::Skeleton& s, const Eigen::Matrix3d& rotati
 }
 
 tracking::TrackedFrame frame_of(const hand::Skeleton& s, const hand::HandPose& pose, double time,
-                                long id, double grab) {
+                                long id) {
   tracking::TrackedFrame f;
   f.timestamp = time;
   f.id = id;
   tracking::TrackedHand h =
       tracking::tracked_hand(hand::to_leap_joints(s, pose), tracking::Side::kRight);
-  h.grab_strength = grab;
-  h.pinch_strength = grab;
   f.hands.push_back(h);
   return f;
 }
@@ -82,7 +80,7 @@ std::vector<tracking::TrackedFrame> scripted_open_palm(const ScriptedMotionSetti
   open.root_position = settings.layout.zone_a + Eigen::Vector3d(0, 0.20, 0.05);
   std::vector<tracking::TrackedFrame> frames;
   for (long k = 0; k < long(settings.rate_hz); ++k)
-    frames.push_back(frame_of(s, open, double(k) / settings.rate_hz, k, 0.0));
+    frames.push_back(frame_of(s, open, double(k) / settings.rate_hz, k));
   return frames;
 }
 
@@ -130,7 +128,7 @@ std::optional<tracking::TrackedFrame> ScriptedTracker::next() {
   pose.root_rotation = root_rotation_;
   pose.root_position = (1 - u) * a.root_position + u * b.root_position;
   pose.angles = (1 - u) * a.angles + u * b.angles;
-  return frame_of(skeleton_, pose, t, frame_++, 0.0);
+  return frame_of(skeleton_, pose, t, frame_++);
 }
 
 }  // namespace handlab::studies

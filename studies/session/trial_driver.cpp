@@ -72,9 +72,9 @@ PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz)
 
 retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
                                                      const store::Participant& participant) {
-  // The protocol's simulated hand (conditions of another hand length rescale it: trial setup).
-  const hand::Skeleton sim =
-      hand::build_simulated_hand(protocol.conditions().front().simulated_hand);
+  // The first condition's simulated hand (the runner rescales for conditions of other lengths).
+  const Condition first = protocol.conditions().front();
+  const hand::Skeleton sim = hand::build_simulated_hand(first.simulated_hand);
   if (tracker_.is_scripted()) {
     ScriptedMotionSettings settings;
     settings.hand_length = participant.hand_length;
@@ -92,7 +92,7 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
   if (auto open = retarget::calibrate_open_palm(recording_, Side::kRight, sim, *fitter))
     c = *open;
   else
-    c.scale = protocol.conditions().front().simulated_hand_length /
+    c.scale = first.simulated_hand_length /
               tracking::estimate_hand_length(recording_, Side::kRight).value();
   std::vector<double> axis[3];
   for (const auto& f : recording_)
@@ -109,13 +109,12 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
 }
 
 std::unique_ptr<tracking::FrameSource> PipelineTrialDriver::open_tracker(
-    const TrialSetup& setup) const {
+    const TrialSetup& setup, const hand::Skeleton& simulated) const {
   if (tracker_.is_scripted()) {
-    const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
     ScriptedMotionSettings settings;
     settings.hand_length = setup.participant.hand_length;
     settings.scale = setup.calibration.scale;
-    settings.simulated_tip_radius = tip_radius(sim);
+    settings.simulated_tip_radius = tip_radius(simulated);
     settings.layout = layout_of(setup);
     settings.rate_hz = rate_hz_;
     // A person is not a metronome: each trial's tempo varies by up to 15 %, drawn from the
@@ -156,7 +155,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   task::CubeTask task(task_settings);
   task.start(0.0);
 
-  const std::unique_ptr<tracking::FrameSource> tracker = open_tracker(setup);
+  const std::unique_ptr<tracking::FrameSource> tracker = open_tracker(setup, sim);
   const double dt = 1.0 / rate_hz_;
   store::FrameRecord record;
   TrialRun run;

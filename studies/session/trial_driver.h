@@ -67,7 +67,9 @@ class PipelineTrialDriver : public TrialDriver {
   TrialRun run(const TrialSetup& setup, const FrameSink& sink) override;
 
  private:
-  std::unique_ptr<tracking::FrameSource> open_tracker(const TrialSetup& setup) const;
+  // `simulated` is the condition's simulated hand (the scripted pinch closes on its tips).
+  std::unique_ptr<tracking::FrameSource> open_tracker(const TrialSetup& setup,
+                                                      const hand::Skeleton& simulated) const;
 
   TrackerKind tracker_;
   double rate_hz_;

@@ -9,24 +9,14 @@
 #include <gtest/gtest.h>
 
 #include "core/render/image.h"
+#include "tests/support/cli_runner.h"
 
+namespace handlab {
 namespace {
 
-struct Result {
-  int status;
-  std::string out;
-};
-
-// Runs handlab-cli with the given arguments, capturing stdout and stderr together.
+using Result = test::CliResult;
 Result cli(const std::string& args) {
-  const std::string command = std::string(HANDLAB_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
-    out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return test::run_cli(args);
 }
 
 TEST(Cli, Version) {
@@ -232,3 +222,4 @@ TEST(CliAnalyze, BadInputGivesOneClearLine) {
 }
 
 }  // namespace
+}  // namespace handlab

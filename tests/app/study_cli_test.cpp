@@ -19,43 +19,21 @@
 
 #include "core/store/sqlite_database.h"
 #include "core/util/json_value.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/test_files.h"
 
 namespace {
 
 using handlab::store::Database;
 using handlab::store::Statement;
 
-struct Result {
-  int status;
-  std::string out;
-};
-
+using Result = handlab::test::CliResult;
 Result cli(const std::string& args) {
-  const std::string command = std::string(HANDLAB_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
-    out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return handlab::test::run_cli(args);
 }
 
 const std::string kProtocol =
     std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
-
-std::string fresh(const std::string& name) {
-  const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
-  for (const char* side : {"", "-wal", "-shm"}) std::filesystem::remove_all(path + side);
-  return path;
-}
-
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string enrol(const std::string& db, const std::string& id, double length) {
   return "participant add --db " + db + " --id " + id + " --age 27 --sex M --handedness right " +
@@ -63,7 +41,7 @@ std::string enrol(const std::string& db, const std::string& id, double length) {
 }
 
 TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
-  const std::string db = fresh("cli_study.db");
+  const std::string db = handlab::test::fresh_path("cli_study.db");
   Result r = cli("study create --protocol " + kProtocol + " --db " + db);
   ASSERT_EQ(r.status, 0) << r.out;
   for (auto [id, length] :
@@ -97,7 +75,7 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
       EXPECT_TRUE(p["next"].is_null());
     }
   }
-  const std::string out = fresh("cli_export");
+  const std::string out = handlab::test::fresh_path("cli_export");
   r = cli("export --db " + db + " --out " + out);
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream trials(out + "/trials.csv");
@@ -139,10 +117,10 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
 }
 
 TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
-  const std::string db = fresh("cli_bad.db");
+  const std::string db = handlab::test::fresh_path("cli_bad.db");
   ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);
   ASSERT_EQ(cli(enrol(db, "P01", 0.18)).status, 0);
-  const std::string before = bytes_of(db);
+  const std::string before = handlab::test::file_bytes(db);
   auto one_line_error = [](const Result& r, const std::string& what) {
     EXPECT_NE(r.status, 0) << r.out;
     EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
@@ -154,41 +132,41 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
                      " --id P09 --age 27 --sex M --handedness right "
                      "--hand-length 18.8 --vr-experience some"),
                  "metres");
-  EXPECT_EQ(bytes_of(db), before);
+  EXPECT_EQ(handlab::test::file_bytes(db), before);
 
   // A protocol with an unknown factor: no database is created.
-  std::string protocol = bytes_of(kProtocol);
+  std::string protocol = handlab::test::file_bytes(kProtocol);
   protocol.replace(protocol.find("\"manipulation\""), 14, "\"glove\"");
-  const std::string bad_protocol = fresh("cli_bad_protocol.json");
+  const std::string bad_protocol = handlab::test::fresh_path("cli_bad_protocol.json");
   std::ofstream(bad_protocol) << protocol;
-  const std::string never = fresh("cli_never.db");
+  const std::string never = handlab::test::fresh_path("cli_never.db");
   one_line_error(cli("study create --protocol " + bad_protocol + " --db " + never),
                  "unknown factor");
   EXPECT_FALSE(std::filesystem::exists(never));
 
   // Newer, corrupt, truncated and locked files.
-  const std::string newer = fresh("cli_newer.db");
+  const std::string newer = handlab::test::fresh_path("cli_newer.db");
   std::filesystem::copy_file(db, newer);
   { Database(newer, Database::Mode::kReadWrite).exec("PRAGMA user_version = 7"); }
-  const std::string newer_bytes = bytes_of(newer);
+  const std::string newer_bytes = handlab::test::file_bytes(newer);
   one_line_error(cli("study status --db " + newer), "newer handlab");
   one_line_error(cli("session run --db " + newer + " --participant P01"), "newer handlab");
-  EXPECT_EQ(bytes_of(newer), newer_bytes);
+  EXPECT_EQ(handlab::test::file_bytes(newer), newer_bytes);
 
-  const std::string corrupt = fresh("cli_corrupt.db");
+  const std::string corrupt = handlab::test::fresh_path("cli_corrupt.db");
   std::string garbage = before;
   for (std::size_t k = 100; k < garbage.size(); k += 7) garbage[k] = char(garbage[k] ^ 0x5a);
   std::ofstream(corrupt, std::ios::binary) << garbage;
   one_line_error(cli("study status --db " + corrupt), "cli_corrupt.db");
   one_line_error(cli(enrol(corrupt, "P02", 0.18)), "cli_corrupt.db");
-  EXPECT_EQ(bytes_of(corrupt), garbage);
+  EXPECT_EQ(handlab::test::file_bytes(corrupt), garbage);
 
-  const std::string truncated = fresh("cli_truncated.db");
+  const std::string truncated = handlab::test::fresh_path("cli_truncated.db");
   std::ofstream(truncated, std::ios::binary) << before.substr(0, before.size() / 2);
-  const std::string cut = bytes_of(truncated);
+  const std::string cut = handlab::test::file_bytes(truncated);
   const Result t = cli("session run --db " + truncated + " --participant P01 --quiet");
   one_line_error(t, "cli_truncated.db");
-  EXPECT_EQ(bytes_of(truncated), cut);
+  EXPECT_EQ(handlab::test::file_bytes(truncated), cut);
 
   {
     Database holder(db, Database::Mode::kReadWrite);
@@ -196,7 +174,8 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
     one_line_error(cli(enrol(db, "P02", 0.18)), "locked");
     holder.exec("ROLLBACK");
   }
-  one_line_error(cli("study status --db " + fresh("cli_absent.db")), "no study database");
+  one_line_error(cli("study status --db " + handlab::test::fresh_path("cli_absent.db")),
+                 "no study database");
   EXPECT_FALSE(std::filesystem::exists(std::string(HANDLAB_TEST_TMP) + "/cli_absent.db"));
 }
 
@@ -235,8 +214,8 @@ pid_t spawn_session(const std::string& db, const std::string& id) {
 }
 
 TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
-  const std::string db = fresh("crash.db");
-  const std::string reference = fresh("crash_reference.db");
+  const std::string db = handlab::test::fresh_path("crash.db");
+  const std::string reference = handlab::test::fresh_path("crash_reference.db");
   for (const std::string& path : {db, reference})
     ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + path).status, 0);
   const std::vector<std::string> ids = {"P01", "P02", "P03", "P04", "P05", "P06"};

@@ -9,22 +9,10 @@
 #include "core/store/frame_logger.h"
 #include "core/store/frame_record.h"
 #include "core/store/study_store.h"
+#include "tests/support/test_files.h"
 
 namespace handlab::store {
 namespace {
-
-std::string fresh(const std::string& name) {
-  const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
-  for (const char* side : {"", "-wal", "-shm", ".creating"}) std::filesystem::remove(path + side);
-  return path;
-}
-
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 StudyDefinition definition() {
   StudyDefinition d;
@@ -67,7 +55,7 @@ std::string error_of(F f) {
 }
 
 TEST(StudyStore, CreatesOpensAndKeepsTheProtocolWithItsHash) {
-  const std::string path = fresh("store_basic.db");
+  const std::string path = test::fresh_path("store_basic.db");
   StudyStore::create(path, definition());
   EXPECT_NE(error_of([&] { StudyStore::create(path, definition()); }).find("already exists"),
             std::string::npos);
@@ -84,7 +72,7 @@ TEST(StudyStore, CreatesOpensAndKeepsTheProtocolWithItsHash) {
 }
 
 TEST(StudyStore, ParticipantsTrialsAndConstraints) {
-  const std::string path = fresh("store_trials.db");
+  const std::string path = test::fresh_path("store_trials.db");
   StudyStore::create(path, definition());
   StudyStore db(path);
   db.add_participant(person("P01"), two_trials());
@@ -150,7 +138,7 @@ TEST(StudyStore, ParticipantsTrialsAndConstraints) {
 }
 
 TEST(StudyStore, MigratesAnOlderSchemaForward) {
-  const std::string path = fresh("store_v1.db");
+  const std::string path = test::fresh_path("store_v1.db");
   StudyStore::create(path, definition());
   {
     StudyStore db(path);
@@ -173,14 +161,14 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
 }
 
 TEST(StudyStore, RefusesBadFilesWithoutChangingThem) {
-  const std::string newer = fresh("store_newer.db");
+  const std::string newer = test::fresh_path("store_newer.db");
   StudyStore::create(newer, definition());
   { Database(newer, Database::Mode::kReadWrite).exec("PRAGMA user_version = 99"); }
-  const std::string text = fresh("store_text.db");
+  const std::string text = test::fresh_path("store_text.db");
   std::ofstream(text) << "participant,age\nP01,26\n";
-  const std::string foreign = fresh("store_foreign.db");
+  const std::string foreign = test::fresh_path("store_foreign.db");
   { Database(foreign).exec("CREATE TABLE x (a); INSERT INTO x VALUES (1)"); }
-  const std::string truncated = fresh("store_truncated.db");
+  const std::string truncated = test::fresh_path("store_truncated.db");
   {
     StudyStore::create(truncated, definition());
     StudyStore db(truncated);
@@ -200,32 +188,32 @@ TEST(StudyStore, RefusesBadFilesWithoutChangingThem) {
   };
   for (const Case& c : {Case{newer, "newer handlab"}, Case{text, "not an SQLite file"},
                         Case{foreign, "not a handlab study database"},
-                        Case{fresh("store_missing.db"), "no study database"}}) {
+                        Case{test::fresh_path("store_missing.db"), "no study database"}}) {
     const bool existed = std::filesystem::exists(c.path);
-    const std::string before = existed ? bytes_of(c.path) : "";
+    const std::string before = existed ? test::file_bytes(c.path) : "";
     const std::string message = error_of([&] { StudyStore db(c.path); });
     EXPECT_NE(message.find(c.message), std::string::npos) << c.path << ": " << message;
     EXPECT_EQ(std::filesystem::exists(c.path), existed) << c.path;
     if (existed) {
-      EXPECT_EQ(bytes_of(c.path), before) << c.path;
+      EXPECT_EQ(test::file_bytes(c.path), before) << c.path;
     }
   }
   // A truncated file opens (its first page is intact) but reading what is gone is an error,
   // not a crash, and writing to it is refused.
-  const std::string before = bytes_of(truncated);
+  const std::string before = test::file_bytes(truncated);
   const std::string message = error_of([&] {
     StudyStore db(truncated);
     db.plan("P01");
     db.add_participant(person("P02"), two_trials());
   });
   EXPECT_FALSE(message.empty());
-  EXPECT_EQ(bytes_of(truncated), before);
+  EXPECT_EQ(test::file_bytes(truncated), before);
 }
 
 TEST(StudyStore, LockedFileIsReportedNotWaitedOnForever) {
-  const std::string path = fresh("store_locked.db");
+  const std::string path = test::fresh_path("store_locked.db");
   StudyStore::create(path, definition());
-  const std::string before = bytes_of(path);
+  const std::string before = test::file_bytes(path);
   Database holder(path, Database::Mode::kReadWrite);
   holder.exec("PRAGMA locking_mode = EXCLUSIVE; BEGIN EXCLUSIVE");
   const std::string message = error_of([&] {
@@ -281,7 +269,7 @@ TEST(FrameRecord, RoundTripsAndRejectsDamage) {
 }
 
 TEST(FrameLogger, CommitsEveryFrameOffTheCallersThread) {
-  const std::string path = fresh("store_frames.db");
+  const std::string path = test::fresh_path("store_frames.db");
   StudyStore::create(path, definition());
   StudyStore db(path);
   db.add_participant(person("P01"), two_trials());

@@ -10,17 +10,12 @@
 #include "studies/export/study_export.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
+#include "tests/support/test_files.h"
 
 namespace handlab::studies {
 namespace {
 
 const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
-
-std::string fresh(const std::string& name) {
-  const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
-  for (const char* side : {"", "-wal", "-shm"}) std::filesystem::remove(path + side);
-  return path;
-}
 
 store::Participant person(const std::string& id, double hand_length) {
   store::Participant p;
@@ -78,7 +73,7 @@ TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
 }
 
 TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) {
-  const std::string path = fresh("session_runner.db");
+  const std::string path = test::fresh_path("session_runner.db");
   const Protocol protocol = read_protocol(kStudy);
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
@@ -161,7 +156,7 @@ TEST(SessionRunner, HandSizeFactorRescalesTheCalibrationPerCondition) {
   ASSERT_EQ(conditions.size(), 2u);
   EXPECT_DOUBLE_EQ(conditions[1].simulated_hand.length, 0.23);
   EXPECT_DOUBLE_EQ(conditions[1].simulated_hand.tissue, 1.1);
-  const std::string path = fresh("hand_sizes.db");
+  const std::string path = test::fresh_path("hand_sizes.db");
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
   db.add_participant(person("H1", 0.19), planned_rows(protocol, "H1", 0));

@@ -32,28 +32,19 @@ int analyze_database(const std::string& path, const std::string& json_out) {
   store::StudyStore store(path);
   const store::StudyInfo info = store.study();
   std::ostringstream trials, answers;
-  studies::write_trials_csv(store, trials);
+  studies::write_trials_csv(store, trials, false);  // skipped trials have no time
   studies::write_questionnaire_csv(store, answers);
-  // Keep the rows with a time: drop skipped trials (their time is NA).
-  std::istringstream in(trials.str());
-  std::string line, kept;
-  std::getline(in, line);
-  kept = line + "\n";
-  std::size_t rows = 0;
-  while (std::getline(in, line))
-    if (line.find(",skipped,") == std::string::npos) {
-      kept += line + "\n";
-      ++rows;
-    }
-  if (rows == 0) throw std::runtime_error(path + " has no trial results to analyse yet");
+  const analysis::LongTable trial_table =
+      analysis::LongTable::parse_csv(trials.str(), path + " (trials)");
+  if (trial_table.rows() == 0)
+    throw std::runtime_error(path + " has no trial results to analyse yet");
 
   analysis::AnalysisRequest times;
   times.design.subject = "participant";
   times.design.dv = "completion_time_s";
   times.design.within = info.factors;
   times.design.within.push_back("repetition");
-  const analysis::AnalysisReport time_report =
-      analysis::run_analysis(analysis::LongTable::parse_csv(kept, path + " (trials)"), times);
+  const analysis::AnalysisReport time_report = analysis::run_analysis(trial_table, times);
 
   std::optional<analysis::AnalysisReport> item_report;
   const analysis::LongTable items =
@@ -133,8 +124,7 @@ int run_analyze(const std::vector<std::string>& argv) {
     if (args.has("csv")) throw UsageError("give --csv or --db, not both");
     return analyze_database(args.text("db"), args.text("json"));
   }
-  for (const char* required : {"csv", "subject", "within"})
-    if (!args.has(required)) throw UsageError(std::string("--") + required + " is required");
+  args.require({"csv", "subject", "within"});
 
   analysis::AnalysisRequest request;
   request.design.subject = args.text("subject");

@@ -24,8 +24,7 @@ int run_export(const std::vector<std::string>& argv) {
               << format_options_help(specs);
     return 0;
   }
-  for (const char* name : {"db", "out"})
-    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
+  args.require({"db", "out"});
   store::StudyStore store(args.text("db"));
   const std::filesystem::path dir = args.text("out");
   std::filesystem::create_directories(dir);

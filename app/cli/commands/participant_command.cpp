@@ -29,8 +29,7 @@ int participant_add(const std::vector<std::string>& argv) {
               << format_options_help(specs);
     return 0;
   }
-  for (const char* name : {"db", "id", "age", "sex", "handedness", "hand-length", "vr-experience"})
-    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
+  args.require({"db", "id", "age", "sex", "handedness", "hand-length", "vr-experience"});
   store::Participant p;
   p.id = args.text("id");
   const long age = args.integer("age");

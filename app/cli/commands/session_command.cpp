@@ -13,11 +13,6 @@
 namespace handlab::cli {
 namespace {
 
-void require(const Arguments& args, std::initializer_list<const char*> names) {
-  for (const char* name : names)
-    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
-}
-
 int session_run(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"db", "DB", "the study database"},
@@ -42,7 +37,7 @@ int session_run(const std::vector<std::string>& argv) {
               << format_options_help(specs);
     return 0;
   }
-  require(args, {"db", "participant"});
+  args.require({"db", "participant"});
   const std::string tracker = args.text("tracker");
   store::StudyStore store(args.text("db"));
   studies::PipelineTrialDriver driver(tracker == "scripted"
@@ -98,7 +93,7 @@ int session_decision(const std::vector<std::string>& argv, bool redo) {
               << format_options_help(specs);
     return 0;
   }
-  require(args, {"db", "participant", "trial", "reason"});
+  args.require({"db", "participant", "trial", "reason"});
   store::StudyStore store(args.text("db"));
   const std::string id = args.text("participant");
   if (!store.participant(id)) throw std::runtime_error("no participant " + id);

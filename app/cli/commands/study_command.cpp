@@ -12,11 +12,6 @@
 namespace handlab::cli {
 namespace {
 
-void require(const Arguments& args, std::initializer_list<const char*> names) {
-  for (const char* name : names)
-    if (!args.has(name)) throw UsageError(std::string("--") + name + " is required");
-}
-
 int study_create(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"protocol", "FILE", "the study protocol (JSON; docs/study.md)"},
@@ -29,7 +24,7 @@ int study_create(const std::vector<std::string>& argv) {
               << format_options_help(specs);
     return 0;
   }
-  require(args, {"protocol", "db"});
+  args.require({"protocol", "db"});
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   store::StudyStore::create(args.text("db"), studies::study_definition(protocol));
   store::StudyStore created(args.text("db"));
@@ -53,7 +48,7 @@ int study_status(const std::vector<std::string>& argv) {
               << format_options_help(specs);
     return 0;
   }
-  require(args, {"db"});
+  args.require({"db"});
   store::StudyStore store(args.text("db"));
   const store::StudyInfo info = store.study();
   const std::vector<studies::ParticipantStatus> status = studies::study_status(store);
