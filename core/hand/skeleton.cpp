@@ -98,9 +98,16 @@ void forward_kinematics(const Skeleton& skeleton, const HandPose& pose, BoneFram
     const Eigen::Vector3d origin = parent_o + parent_r * bone.offset;
     for (int k = bone.first_dof; k < bone.first_dof + bone.dof_count; ++k) {
       const Dof& dof = skeleton.dofs[std::size_t(k)];
-      f.dof_axis[std::size_t(k)] = r * dof.axis;
+      const Eigen::Vector3d axis = r * dof.axis;
+      f.dof_axis[std::size_t(k)] = axis;
       f.dof_centre[std::size_t(k)] = origin;
-      r = r * axis_rotation(dof.axis, pose.angles(k));
+      // r <- r * rotation(dof.axis, angle), by Rodrigues' formula on r's columns:
+      // r (a x e_j) = (r a) x r_j, so column j becomes c r_j + s (ra x r_j) + (1 - c)(ra) a_j.
+      const double angle = pose.angles(k), c = std::cos(angle), s = std::sin(angle);
+      Eigen::Matrix3d turned;
+      for (int j = 0; j < 3; ++j)
+        turned.col(j) = c * r.col(j) + s * axis.cross(r.col(j)) + ((1.0 - c) * dof.axis(j)) * axis;
+      r = turned;
     }
     f.rotation[b] = r;
     f.origin[b] = origin;

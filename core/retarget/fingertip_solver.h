@@ -26,7 +26,7 @@ struct Feature {
 struct SolverOptions {
   double spatial_weight = 1e-8;   // (m^2/rad^2): DIP flexion follows PIP flexion
   double temporal_weight = 1e-9;  // (m^2/rad^2): distance to the previous solution
-  // Let the wrist position take part (as x = [translation; angles]), pulled towards the
+  // Let the wrist position take part (as x = [angles; translation]), pulled towards the
   // given placement with this weight (m^2/m^2); 0 keeps the root fixed.
   double root_translation_weight = 0.0;
   int max_iterations = 16;          // warm-started frames
@@ -35,6 +35,12 @@ struct SolverOptions {
   // Stop when an iteration lowers the objective by less (m^2, weighted): a step along a
   // flat valley (a palm shift traded for finger angles) moves no tip measurably.
   double decrease_tolerance = 1e-13;
+  // ... or by less than this fraction of itself: the tips then move by well under 0.1% of
+  // their distance to the targets, where the rest is a compromise (a target out of reach)
+  // that further iterations only slide along a flat valley.
+  double relative_decrease_tolerance = 1e-3;
+  // The longest step an iteration takes (rad; the root translation counts in units of 5 cm).
+  double trust_radius = 0.35;
 };
 
 struct SolverResult {
@@ -62,8 +68,12 @@ class FingertipSolver {
                      bool cold_start = false,
                      const Eigen::Vector3d& root_shift = Eigen::Vector3d::Zero());
 
-  // The objective and its gradient at x = angles (root fixed) or [root shift; angles], with
-  // the temporal anchor's angles (for KKT checks).
+  // The root shift enters the variables in this unit (m), so that its Jacobian columns are as
+  // large as the joint angles' (lever arms of a few centimetres per radian).
+  static constexpr double kTranslationUnit = 0.05;
+
+  // The objective and its gradient at x = angles (root fixed) or [angles; root shift /
+  // kTranslationUnit], with the temporal anchor's angles (for KKT checks).
   Eigen::VectorXd gradient(const hand::HandPose& pose, const Eigen::VectorXd& x,
                            const std::vector<Eigen::Vector3d>& targets,
                            const Eigen::VectorXd& anchor) const;
@@ -73,14 +83,15 @@ class FingertipSolver {
   const std::vector<Feature>& features() const { return features_; }
 
  private:
-  struct Linearisation;  // the data term's value, gradient and Gauss-Newton Hessian at x
+  // The data term's value, and (with derivatives) its gradient and Gauss-Newton Hessian at x.
+  struct Linearisation;
   struct FeatureColumns {
     std::vector<int> dofs;  // the DOFs that move the feature
     std::vector<int> sign;  // +1 from the marker's chain, -1 from relative_to's, 0 both
   };
   void linearise(const hand::HandPose& pose, Eigen::Ref<const Eigen::VectorXd> x,
                  const std::vector<Eigen::Vector3d>& targets, Linearisation& out,
-                 hand::BoneFrames& frames, hand::HandPose& scratch) const;
+                 hand::BoneFrames& frames, hand::HandPose& scratch, bool derivatives) const;
   // The same with its own scratch space (objective() and gradient(), for tests).
   Linearisation linearise(const hand::HandPose& pose, const Eigen::VectorXd& x,
                           const std::vector<Eigen::Vector3d>& targets) const;

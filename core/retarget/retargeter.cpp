@@ -65,6 +65,11 @@ Retargeter::Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calib
     mcp_markers_[std::size_t(f - 1)] = simulated.marker_index(std::string(kFingers[f]) + "_mcp");
   for (int f = 0; f < 5; ++f)
     tip_markers_[std::size_t(f)] = simulated.marker_index(std::string(kFingers[f]) + "_tip");
+  const hand::BoneFrames rest =
+      hand::forward_kinematics(simulated, hand::HandPose::rest(simulated));
+  for (int f = 0; f < 4; ++f)
+    mcp_in_palm_[std::size_t(f)] =
+        hand::marker_position(simulated, rest, mcp_markers_[std::size_t(f)]);
   if (strategy == Strategy::kNaive && !fitter_)
     throw std::invalid_argument("Naive retargeting needs a tracked-hand fitter");
   // Thumb and index carry the pinch: they weigh more.
@@ -93,11 +98,10 @@ RetargetResult Retargeter::retarget(const tracking::TrackedHand& tracked) {
   pose.root_rotation = scene.linear() * tracking::palm_frame(tracked);
   // Palms aligned on the four finger bases: the translation that best puts the simulated
   // MCPs on the scaled tracked ones.
-  const hand::BoneFrames at_origin = hand::forward_kinematics(simulated_, pose);
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   for (int f = 1; f < 5; ++f)
     shift += scaled(tracked.joints[std::size_t(f)][1]) -
-             hand::marker_position(simulated_, at_origin, mcp_markers_[std::size_t(f - 1)]);
+             pose.root_rotation * mcp_in_palm_[std::size_t(f - 1)];
   pose.root_position = shift / 4.0;
   for (int f = 0; f < 5; ++f)
     out.targets[std::size_t(f)] = scaled(tracked.joints[std::size_t(f)][4]);

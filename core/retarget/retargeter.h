@@ -61,6 +61,8 @@ class Retargeter {
   std::unique_ptr<FingertipSolver> solver_;      // palm fixed on the finger bases
   std::unique_ptr<FingertipSolver> free_wrist_;  // palm free to shift, when tips are out of reach
   std::array<int, 4> mcp_markers_;
+  std::array<Eigen::Vector3d, 4>
+      mcp_in_palm_;  // the four finger bases in the rest pose, root frame
   std::array<int, 5> tip_markers_;
   std::optional<SolverResult> previous_;
 };
