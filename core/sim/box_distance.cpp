@@ -1,0 +1,34 @@
+#include "core/sim/box_distance.h"
+
+#include <cmath>
+
+namespace handlab::sim {
+
+BoxProximity box_proximity(const Eigen::Vector3d& half, const Eigen::Vector3d& q) {
+  BoxProximity out;
+  const Eigen::Vector3d clamped = q.cwiseMax(-half).cwiseMin(half);
+  const Eigen::Vector3d outside = q - clamped;
+  const double gap = outside.norm();
+  if (gap > 0) {
+    out.distance = gap;
+    out.closest = clamped;
+    out.normal = outside / gap;
+    return out;
+  }
+  // Inside: the nearest face is the one with the least depth.
+  int axis = 0;
+  double depth = half(0) - std::abs(q(0));
+  for (int k = 1; k < 3; ++k)
+    if (half(k) - std::abs(q(k)) < depth) {
+      depth = half(k) - std::abs(q(k));
+      axis = k;
+    }
+  const double side = q(axis) >= 0 ? 1.0 : -1.0;
+  out.distance = -depth;
+  out.closest = q;
+  out.closest(axis) = side * half(axis);
+  out.normal = side * Eigen::Vector3d::Unit(axis);
+  return out;
+}
+
+}  // namespace handlab::sim

@@ -1,0 +1,100 @@
+#include "core/sim/hand_sim_model.h"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+namespace handlab::sim {
+
+std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int node_count) {
+  std::map<std::array<int, 3>, int> faces;
+  for (const auto& t : tets)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> f;
+      int k = 0;
+      for (int a = 0; a < 4; ++a)
+        if (a != skip) f[std::size_t(k++)] = t[std::size_t(a)];
+      std::sort(f.begin(), f.end());
+      ++faces[f];
+    }
+  std::vector<bool> on(std::size_t(node_count), false);
+  for (const auto& [f, count] : faces)
+    if (count == 1)
+      for (int n : f) on[std::size_t(n)] = true;
+  std::vector<int> out;
+  for (int n = 0; n < node_count; ++n)
+    if (on[std::size_t(n)]) out.push_back(n);
+  return out;
+}
+
+namespace {
+
+void add_cube(HandSimModel& m) {
+  const SimParameters& p = m.parameters;
+  if (!(p.cube_size > 0) || !(p.cube_density > 0))
+    throw std::invalid_argument("the cube needs a positive size and density");
+  m.cube = box_inertia(Eigen::Vector3d::Constant(p.cube_size), p.cube_density);
+  m.cube_half = Eigen::Vector3d::Constant(p.cube_size / 2);
+}
+
+}  // namespace
+
+HandSimModel make_cube_sim_model(const SimParameters& parameters) {
+  HandSimModel m;
+  m.parameters = parameters;
+  add_cube(m);
+  return m;
+}
+
+HandSimModel make_hand_sim_model(const hand::Skeleton& skeleton, const hand::HandFlesh& flesh,
+                                 const SimParameters& parameters) {
+  HandSimModel m = make_cube_sim_model(parameters);
+  const SimParameters& p = m.parameters;
+  // Flesh
+  m.rest = flesh.tets.nodes;
+  m.node_mass.assign(m.rest.size(), 0.0);
+  for (const auto& ids : flesh.tets.tets) {
+    const std::array<Eigen::Vector3d, 4> x = {
+        m.rest[std::size_t(ids[0])], m.rest[std::size_t(ids[1])], m.rest[std::size_t(ids[2])],
+        m.rest[std::size_t(ids[3])]};
+    m.tets.push_back(make_tet_element(x, ids, p.flesh));
+    for (int id : ids) m.node_mass[std::size_t(id)] += p.flesh_density * m.tets.back().volume / 4;
+  }
+  m.surface_nodes = boundary_nodes(flesh.tets.tets, int(m.rest.size()));
+  // Bones: mass and inertia of their capsules (the palm has one per metacarpal).
+  std::vector<std::vector<RigidInertia>> parts(skeleton.bones.size());
+  for (const hand::Capsule& c : flesh.capsules)
+    parts[std::size_t(c.bone)].push_back(capsule_inertia(c.a, c.b, c.radius, p.bone_density));
+  for (std::size_t b = 0; b < skeleton.bones.size(); ++b) {
+    if (parts[b].empty()) throw std::invalid_argument("a bone without a capsule");
+    SimBone bone;
+    bone.parent = skeleton.bones[b].parent;
+    bone.inertia = combine(parts[b]);
+    bone.centre_in_bone = bone.inertia.centre;
+    m.bones.push_back(bone);
+  }
+  // Joints: the child's origin (its joint centre) seen from both centres of mass.
+  for (std::size_t b = 0; b < skeleton.bones.size(); ++b) {
+    const hand::Bone& bone = skeleton.bones[b];
+    if (bone.parent < 0) continue;
+    SimJoint j;
+    j.parent = bone.parent;
+    j.child = int(b);
+    j.in_parent = bone.offset - m.bones[std::size_t(bone.parent)].centre_in_bone;
+    j.in_child = -m.bones[b].centre_in_bone;
+    m.joints.push_back(j);
+  }
+  // Coupling springs, their stiffness in proportion to the bone surface they stand for.
+  for (const hand::CouplingPoint& c : flesh.coupling) {
+    SimCoupling s;
+    s.bone = c.bone;
+    s.nodes = flesh.tets.tets[std::size_t(c.tet)];
+    s.weights = c.barycentric;
+    s.in_bone = c.local - m.bones[std::size_t(c.bone)].centre_in_bone;
+    s.stiffness = p.coupling_stiffness * c.area;
+    m.coupling.push_back(s);
+  }
+  return m;
+}
+
+}  // namespace handlab::sim

@@ -1,0 +1,102 @@
+// The soft-hand simulator's immutable model (after Verschoor, Lobo & Otaduy 2018, as the
+// ISMAR 2021 study used it): rigid bones joined by penalty joints, tetrahedral flesh with linear
+// co-rotational FEM and a stiffening term, bone-flesh coupling springs, penalty contact with
+// anchored Coulomb friction against a rigid cube and the floor, and elastic tracking springs
+// towards the intermediate hand. The state it advances is in hand_sim_state.h.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/hand/flesh.h"
+#include "core/hand/skeleton.h"
+#include "core/sim/corotated_tet.h"
+#include "core/sim/rigid_body.h"
+
+namespace handlab::sim {
+
+// Physical parameters, SI units; docs/simulator.md says where each value comes from.
+struct SimParameters {
+  double time_step = 1.0 / 120.0;  // s
+  Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0);
+  // Flesh: soft tissue of the fingertip pad, ν near incompressible.
+  Material flesh = {100e3, 0.45};
+  double flesh_density = 1050.0;  // kg/m^3
+  // Stiffening: beyond this corotated strain norm the tissue stiffens by this factor's modulus
+  // (an energy (factor E V / 2)(|e| - threshold)^2 on top of the linear one).
+  double stiffening_strain = 0.25;
+  double stiffening_factor = 20.0;
+  double bone_density = 1500.0;       // kg/m^3 (bone with marrow)
+  double coupling_stiffness = 1e8;    // N/m per m^2 of bone surface a coupling point stands for
+  double joint_stiffness = 2e4;       // N/m, the penalty joints
+  double tracking_stiffness = 500.0;  // N/m per bone, towards the intermediate hand
+  double tracking_torsion = 0.5;      // N m/rad per bone
+  // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
+  // coefficient (skin on wood or plastic: 0.5-1).
+  double contact_stiffness = 2000.0;  // N/m, a flesh node against the cube or floor
+  double cube_floor_stiffness = 1e4;  // N/m, a cube corner against the floor
+  double friction = 0.8;
+  bool hand_floor_contact = false;  // the study: off
+  Eigen::Vector3d floor_normal = Eigen::Vector3d::UnitY();
+  double floor_height = 0.0;    // the floor: floor_normal . x = floor_height
+  double cube_size = 0.01;      // m (the study: 0.06 gross, 0.01 fine)
+  double cube_density = 500.0;  // kg/m^3 (wood)
+};
+
+// A bone as a rigid body: its frame is the skeleton bone's frame moved to the centre of mass.
+struct SimBone {
+  int parent = -1;
+  RigidInertia inertia;            // about the centre of mass, bone-frame axes
+  Eigen::Vector3d centre_in_bone;  // the centre of mass in the skeleton bone's frame
+};
+
+// The penalty joint between a bone and its parent (Eq. 2.10): the child's joint centre,
+// seen from both bodies' centres of mass, kept together by a stiff spring.
+struct SimJoint {
+  int parent = 0, child = 0;
+  Eigen::Vector3d in_parent, in_child;  // body frames
+};
+
+// A bone-flesh coupling spring (Eq. 2.11): a point of the flesh (barycentric in a tet) tied to
+// a point of a bone.
+struct SimCoupling {
+  int bone = 0;
+  std::array<int, 4> nodes{};
+  Eigen::Vector4d weights;
+  Eigen::Vector3d in_bone;  // body frame
+  double stiffness = 0.0;   // N/m
+};
+
+struct HandSimModel {
+  SimParameters parameters;
+  // Flesh
+  std::vector<Eigen::Vector3d> rest;  // nodes at rest, in the hand's root frame
+  std::vector<TetElement> tets;
+  std::vector<double> node_mass;
+  std::vector<int> surface_nodes;  // nodes on the flesh's boundary: the contact points
+  // Bones
+  std::vector<SimBone> bones;
+  std::vector<SimJoint> joints;
+  std::vector<SimCoupling> coupling;
+  // The cube
+  RigidInertia cube;
+  Eigen::Vector3d cube_half = Eigen::Vector3d::Zero();
+
+  int node_count() const { return int(rest.size()); }
+  int bone_count() const { return int(bones.size()); }
+  // Unknowns: 3 per node, 6 per bone, 6 for the cube.
+  int dof_count() const { return 3 * node_count() + 6 * bone_count() + 6; }
+};
+
+// The study's hand: the skeleton and its flesh (hand/flesh.h), in the root frame at rest.
+HandSimModel make_hand_sim_model(const hand::Skeleton& skeleton, const hand::HandFlesh& flesh,
+                                 const SimParameters& parameters = {});
+// Only the cube and the floor (no hand), for rigid-body and contact tests.
+HandSimModel make_cube_sim_model(const SimParameters& parameters = {});
+
+// The nodes on a tet mesh's boundary (on a face that only one tet has).
+std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int node_count);
+
+}  // namespace handlab::sim

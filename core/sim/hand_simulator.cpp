@@ -1,0 +1,590 @@
+#include "core/sim/hand_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include "core/sim/box_distance.h"
+#include "core/sim/rotation_extraction.h"
+
+namespace handlab::sim {
+namespace {
+
+std::array<Eigen::Vector3d, 4> gather(const std::vector<Eigen::Vector3d>& x,
+                                      const std::array<int, 4>& nodes) {
+  return {x[std::size_t(nodes[0])], x[std::size_t(nodes[1])], x[std::size_t(nodes[2])],
+          x[std::size_t(nodes[3])]};
+}
+
+// A point's position as a linear function of the unknowns' increments: dp = sum_k J_k dq_k,
+// over at most 6 blocks of 3 unknowns (a tet's nodes, a body's translation and rotation).
+struct PointJacobian {
+  int count = 0;
+  std::array<int, 6> block{};
+  std::array<Eigen::Matrix3d, 6> j;
+  void add(int b, const Eigen::Matrix3d& m) {
+    block[std::size_t(count)] = b;
+    j[std::size_t(count++)] = m;
+  }
+};
+
+// A contact found at the predicted state.
+struct Contact {
+  enum Kind { kNodeCube, kNodeFloor, kCornerFloor } kind;
+  int point;                // node or corner
+  Eigen::Vector3d normal;   // world, out of the other surface (for the cube: cube frame)
+  Eigen::Vector3d surface;  // the surface point under the contact (cube frame, or world)
+  Eigen::Vector3d anchor;   // friction anchor (cube frame, or world)
+  bool active = false;      // penetrating, in the current pass
+  // Sliding (the predicted state leaves the friction cone): kinetic friction of magnitude
+  // mu f_n against the slip direction (anchor frame) replaces the anchor spring, whose
+  // stiffness would otherwise hold back any acceleration of the slide.
+  bool sliding = false;
+  Eigen::Vector3d slip = Eigen::Vector3d::Zero();
+  double friction_force = 0.0;  // N
+};
+
+// How many times a step re-solves with the contacts its solution touches (see step()).
+constexpr int kContactPasses = 4;
+// Points this close to a surface (m), beyond what they can move in a step, are candidates.
+constexpr double kContactMargin = 0.001;
+
+// Coulomb's cone on a friction anchor: the normal and friction springs have the same stiffness,
+// so the friction force k|t| may reach mu k depth; beyond, the anchor slides towards the point
+// until it does.
+Eigen::Vector3d coulomb_anchor(const Eigen::Vector3d& x, const Eigen::Vector3d& n, double depth,
+                               Eigen::Vector3d anchor, double mu) {
+  const Eigen::Vector3d t = (Eigen::Matrix3d::Identity() - n * n.transpose()) * (x - anchor);
+  const double stretch = t.norm(), limit = mu * std::max(depth, 0.0);
+  if (stretch > limit) anchor += t * (1.0 - limit / stretch);
+  return anchor;
+}
+
+// A contact candidate at the predicted state: `x` the point and `surface` the surface point
+// under it, in the frame of the surface (the cube's, or the world for the floor), `gap` its
+// signed distance, `old` the anchor it held the step before.
+Contact predicted_contact(Contact::Kind kind, int point, const Eigen::Vector3d& x,
+                          const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
+                          const ContactAnchor* old, double mu, double stiffness) {
+  Contact c{kind, point, normal, surface, old ? old->anchor : surface, gap < 0};
+  if (!old || gap >= 0) return c;
+  const Eigen::Vector3d t =
+      (Eigen::Matrix3d::Identity() - normal * normal.transpose()) * (x - old->anchor);
+  const double stretch = t.norm(), limit = -mu * gap;
+  if (stretch > limit) {
+    c.sliding = true;
+    c.slip = t / stretch;
+    c.friction_force = stiffness * limit;
+    c.anchor = old->anchor + t * (1.0 - limit / stretch);
+  }
+  return c;
+}
+
+const std::array<Eigen::Vector3d, 8>& corner_signs() {
+  static const std::array<Eigen::Vector3d, 8> signs = [] {
+    std::array<Eigen::Vector3d, 8> s;
+    for (int k = 0; k < 8; ++k)
+      s[std::size_t(k)] = Eigen::Vector3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+    return s;
+  }();
+  return signs;
+}
+
+}  // namespace
+
+struct HandSimulator::Impl {
+  const HandSimModel& model;
+  SimOptions options;
+  int nodes = 0, bones = 0, blocks = 0, dofs = 0;
+  Eigen::SparseMatrix<double> matrix;
+  std::vector<std::array<int, 48>> tet_entries;  // value index of (3a, 3b + c) per tet pair
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::VectorXd gradient;
+  double scale = 1.0;  // h^2: the potential's terms enter the system scaled by it
+  ElementEvaluation element;
+  std::vector<Contact> contacts;
+
+  int bone_block(int b) const { return nodes + 2 * b; }
+  int cube_block() const { return nodes + 2 * bones; }
+
+  explicit Impl(const HandSimModel& m, SimOptions o) : model(m), options(o) {
+    nodes = m.node_count();
+    bones = m.bone_count();
+    blocks = nodes + 2 * bones + 2;
+    dofs = 3 * blocks;
+    // Block sparsity: every pair of blocks some energy couples.
+    std::vector<std::set<int>> pairs(static_cast<std::size_t>(blocks));
+    auto couple = [&](const std::vector<int>& group) {
+      for (int a : group)
+        for (int b : group) pairs[std::size_t(a)].insert(b);
+    };
+    for (int b = 0; b < blocks; ++b) pairs[std::size_t(b)].insert(b);
+    for (const TetElement& t : m.tets) couple({t.nodes[0], t.nodes[1], t.nodes[2], t.nodes[3]});
+    for (const SimCoupling& c : m.coupling)
+      couple({c.nodes[0], c.nodes[1], c.nodes[2], c.nodes[3], bone_block(c.bone),
+              bone_block(c.bone) + 1});
+    for (const SimJoint& j : m.joints)
+      couple({bone_block(j.parent), bone_block(j.parent) + 1, bone_block(j.child),
+              bone_block(j.child) + 1});
+    for (int n : m.surface_nodes) couple({n, cube_block(), cube_block() + 1});
+    couple({cube_block(), cube_block() + 1});
+    for (int b = 0; b < bones; ++b) couple({bone_block(b), bone_block(b) + 1});
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int j = 0; j < blocks; ++j)
+      for (int i : pairs[std::size_t(j)])
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + r, 3 * j + c, 1.0);
+    matrix.resize(dofs, dofs);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    matrix.makeCompressed();
+    for (const TetElement& t : m.tets) {
+      std::array<int, 48> e;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          for (int c = 0; c < 3; ++c)
+            e[std::size_t(12 * a + 3 * b + c)] =
+                entry(3 * t.nodes[std::size_t(a)], 3 * t.nodes[std::size_t(b)] + c);
+      tet_entries.push_back(e);
+    }
+    ldlt.analyzePattern(matrix);
+  }
+
+  // The value index of (row, col); the rows of a 3x3 block follow it.
+  int entry(int row, int col) const {
+    const int* rows = matrix.innerIndexPtr();
+    const int begin = matrix.outerIndexPtr()[col], end = matrix.outerIndexPtr()[col + 1];
+    return int(std::lower_bound(rows + begin, rows + end, row) - rows);
+  }
+
+  void add_block(int bi, int bj, const Eigen::Matrix3d& m) {
+    double* values = matrix.valuePtr();
+    for (int c = 0; c < 3; ++c) {
+      double* column = values + entry(3 * bi, 3 * bj + c);
+      for (int r = 0; r < 3; ++r) column[r] += m(r, c);
+    }
+  }
+
+  // The energy 1/2 d'Kd of a point's offset d (K symmetric positive semidefinite): gradient
+  // J'Kd, Gauss-Newton Hessian J'KJ.
+  void add_spring(const PointJacobian& p, const Eigen::Matrix3d& k, const Eigen::Vector3d& d) {
+    const Eigen::Vector3d f = scale * (k * d);
+    for (int a = 0; a < p.count; ++a) {
+      gradient.segment<3>(3 * p.block[std::size_t(a)]) += p.j[std::size_t(a)].transpose() * f;
+      const Eigen::Matrix3d jk = scale * p.j[std::size_t(a)].transpose() * k;
+      for (int b = 0; b < p.count; ++b)
+        add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], jk * p.j[std::size_t(b)]);
+    }
+  }
+
+  double stiffness(const Contact& c) const {
+    return c.kind == Contact::kCornerFloor ? model.parameters.cube_floor_stiffness
+                                           : model.parameters.contact_stiffness;
+  }
+
+  // A constant force -f on the point (the energy f . p).
+  void add_force(const PointJacobian& p, const Eigen::Vector3d& f) {
+    for (int a = 0; a < p.count; ++a)
+      gradient.segment<3>(3 * p.block[std::size_t(a)]) +=
+          scale * p.j[std::size_t(a)].transpose() * f;
+  }
+
+  void add_body_point(PointJacobian& p, int block, const Eigen::Vector3d& arm, double sign) const {
+    p.add(block, sign * Eigen::Matrix3d::Identity());
+    p.add(block + 1, -sign * cross_matrix(arm));  // d(c + r) = dc + dtheta x r
+  }
+
+  void flesh(const HandSimState& s) {
+    const SimParameters& par = model.parameters;
+    double* values = matrix.valuePtr();
+    for (std::size_t e = 0; e < model.tets.size(); ++e) {
+      const TetElement& t = model.tets[e];
+      const std::array<Eigen::Vector3d, 4> x = gather(s.node_position, t.nodes);
+      const Eigen::Matrix3d r = s.tet_rotation[e].toRotationMatrix();
+      evaluate_corotated(t, gather(model.rest, t.nodes), x, r, element, true);
+      // Stiffening beyond a strain threshold: (k V / 2)(|e| - e0)^2 on the corotated strain,
+      // whose gradient per node is R eps grad N_a / |e|. Hessian: k V [(e0/|e|) g g' +
+      // (1 - e0/|e|) B'B], both positive semidefinite.
+      const Eigen::Matrix3d strain = corotated_strain(t, x, r);
+      const double norm = strain.norm();
+      if (norm > par.stiffening_strain) {
+        const double k = par.stiffening_factor * par.flesh.youngs_modulus * t.volume;
+        const double ratio = par.stiffening_strain / norm;
+        Vector12d g;
+        for (int a = 0; a < 4; ++a) g.segment<3>(3 * a) = r * strain * t.gradients.col(a) / norm;
+        element.gradient += k * (norm - par.stiffening_strain) * g;
+        element.hessian += k * ratio * g * g.transpose();
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b) {
+            const Eigen::Vector3d ga = t.gradients.col(a), gb = t.gradients.col(b);
+            element.hessian.block<3, 3>(3 * a, 3 * b) +=
+                k * (1 - ratio) * 0.5 * r *
+                (ga.dot(gb) * Eigen::Matrix3d::Identity() + gb * ga.transpose()) * r.transpose();
+          }
+      }
+      for (int a = 0; a < 4; ++a)
+        gradient.segment<3>(3 * t.nodes[std::size_t(a)]) +=
+            scale * element.gradient.segment<3>(3 * a);
+      const auto& entries = tet_entries[e];
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          for (int c = 0; c < 3; ++c) {
+            double* column = values + entries[std::size_t(12 * a + 3 * b + c)];
+            for (int row = 0; row < 3; ++row)
+              column[row] += scale * element.hessian(3 * a + row, 3 * b + c);
+          }
+    }
+  }
+
+  void bodies(const HandSimState& s, const std::vector<RigidPose>& targets) {
+    const SimParameters& par = model.parameters;
+    for (const SimCoupling& c : model.coupling) {
+      const RigidPose& bone = s.bone_pose[std::size_t(c.bone)];
+      const Eigen::Vector3d arm = bone.rotation * c.in_bone;
+      PointJacobian p;
+      Eigen::Vector3d flesh_point = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 4; ++a) {
+        p.add(c.nodes[std::size_t(a)], c.weights(a) * Eigen::Matrix3d::Identity());
+        flesh_point += c.weights(a) * s.node_position[std::size_t(c.nodes[std::size_t(a)])];
+      }
+      add_body_point(p, bone_block(c.bone), arm, -1.0);
+      add_spring(p, c.stiffness * Eigen::Matrix3d::Identity(), flesh_point - bone.position - arm);
+    }
+    for (const SimJoint& j : model.joints) {
+      const RigidPose &parent = s.bone_pose[std::size_t(j.parent)],
+                      &child = s.bone_pose[std::size_t(j.child)];
+      const Eigen::Vector3d arm_p = parent.rotation * j.in_parent,
+                            arm_c = child.rotation * j.in_child;
+      PointJacobian p;
+      add_body_point(p, bone_block(j.parent), arm_p, 1.0);
+      add_body_point(p, bone_block(j.child), arm_c, -1.0);
+      add_spring(p, par.joint_stiffness * Eigen::Matrix3d::Identity(),
+                 parent.position + arm_p - child.position - arm_c);
+    }
+    for (int b = 0; b < bones; ++b) {
+      const RigidPose& pose = s.bone_pose[std::size_t(b)];
+      const RigidPose& target = targets[std::size_t(b)];
+      // Tracking: the centre of mass towards the target's, and the rotation by the rotation
+      // vector that separates them (its derivative is the identity near the target).
+      const int tb = bone_block(b);
+      gradient.segment<3>(3 * tb) +=
+          scale * par.tracking_stiffness * (pose.position - target.position);
+      add_block(tb, tb, scale * par.tracking_stiffness * Eigen::Matrix3d::Identity());
+      const Eigen::Vector3d phi = rotation_vector(pose.rotation * target.rotation.conjugate());
+      gradient.segment<3>(3 * (tb + 1)) += scale * par.tracking_torsion * phi;
+      add_block(tb + 1, tb + 1, scale * par.tracking_torsion * Eigen::Matrix3d::Identity());
+      gradient.segment<3>(3 * tb) -= scale * model.bones[std::size_t(b)].inertia.mass * par.gravity;
+    }
+    gradient.segment<3>(3 * cube_block()) -= scale * model.cube.mass * par.gravity;
+    for (int n = 0; n < nodes; ++n)
+      gradient.segment<3>(3 * n) -= scale * model.node_mass[std::size_t(n)] * par.gravity;
+  }
+
+  void contact_energies(const HandSimState& s) {
+    const SimParameters& par = model.parameters;
+    const Eigen::Matrix3d cube_r = s.cube_pose.rotation.toRotationMatrix();
+    for (const Contact& c : contacts) {
+      if (!c.active) continue;
+      PointJacobian p;
+      Eigen::Vector3d x, n, surface, anchor;
+      double k = par.contact_stiffness;
+      if (c.kind == Contact::kCornerFloor) {
+        const Eigen::Vector3d arm =
+            cube_r * corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half);
+        x = s.cube_pose.position + arm;
+        add_body_point(p, cube_block(), arm, 1.0);
+        n = c.normal;
+        surface = c.surface;
+        anchor = c.anchor;
+        k = par.cube_floor_stiffness;
+      } else {
+        x = s.node_position[std::size_t(c.point)];
+        p.add(c.point, Eigen::Matrix3d::Identity());
+        n = c.normal;
+        surface = c.surface;
+        anchor = c.anchor;
+      }
+      if (c.kind == Contact::kNodeCube) {
+        // The surface point and the anchor move with the cube.
+        n = cube_r * c.normal;
+        surface = s.cube_pose.point(c.surface);
+        anchor = s.cube_pose.point(c.anchor);
+        PointJacobian normal_part = p, friction_part = p;
+        add_body_point(normal_part, cube_block(), surface - s.cube_pose.position, -1.0);
+        add_body_point(friction_part, cube_block(), anchor - s.cube_pose.position, -1.0);
+        add_spring(normal_part, k * n * n.transpose(), x - surface);
+        if (c.sliding)
+          add_force(friction_part, c.friction_force * (cube_r * c.slip));
+        else
+          add_spring(friction_part, k * (Eigen::Matrix3d::Identity() - n * n.transpose()),
+                     x - anchor);
+        continue;
+      }
+      add_spring(p, k * n * n.transpose(), x - surface);
+      if (c.sliding)
+        add_force(p, c.friction_force * c.slip);
+      else
+        add_spring(p, k * (Eigen::Matrix3d::Identity() - n * n.transpose()), x - anchor);
+    }
+  }
+
+  // Contact candidates at the predicted state: every point within a margin of a surface that
+  // covers what the bodies can move in a step; those penetrating start active, sticking or
+  // sliding as the predicted state says.
+  void find_contacts(const HandSimState& s) {
+    const SimParameters& par = model.parameters;
+    const double h = par.time_step;
+    contacts.clear();
+    const Eigen::Vector3d nf = par.floor_normal.normalized();
+    auto previous = [](const std::vector<ContactAnchor>& list, int point) -> const ContactAnchor* {
+      const auto it = std::lower_bound(list.begin(), list.end(), point,
+                                       [](const ContactAnchor& a, int p) { return a.point < p; });
+      return it != list.end() && it->point == point ? &*it : nullptr;
+    };
+    const double cube_speed =
+        s.cube_velocity.linear.norm() + s.cube_velocity.angular.norm() * model.cube_half.norm();
+    const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
+    for (int node : model.surface_nodes) {
+      const Eigen::Vector3d& x = s.node_position[std::size_t(node)];
+      const double speed = s.node_velocity[std::size_t(node)].norm();
+      const Eigen::Vector3d q = cube_inv * (x - s.cube_pose.position);
+      const BoxProximity b = box_proximity(model.cube_half, q);
+      if (b.distance < kContactMargin + 2 * h * (speed + cube_speed)) {
+        const ContactAnchor* old = previous(s.node_cube, node);
+        contacts.push_back(predicted_contact(Contact::kNodeCube, node, q, b.normal, b.closest,
+                                             b.distance, old, par.friction, par.contact_stiffness));
+      }
+      if (par.hand_floor_contact) {
+        const double height = nf.dot(x) - par.floor_height;
+        if (height < kContactMargin + 2 * h * speed) {
+          const Eigen::Vector3d on_floor = x - height * nf;
+          const ContactAnchor* old = previous(s.node_floor, node);
+          contacts.push_back(predicted_contact(Contact::kNodeFloor, node, x, nf, on_floor, height,
+                                               old, par.friction, par.contact_stiffness));
+        }
+      }
+    }
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3d x =
+          s.cube_pose.point(corner_signs()[std::size_t(k)].cwiseProduct(model.cube_half));
+      const double height = nf.dot(x) - par.floor_height;
+      if (height < kContactMargin + 2 * h * cube_speed) {
+        const Eigen::Vector3d on_floor = x - height * nf;
+        const ContactAnchor* old = previous(s.corner_floor, k);
+        contacts.push_back(predicted_contact(Contact::kCornerFloor, k, x, nf, on_floor, height, old,
+                                             par.friction, par.cube_floor_stiffness));
+      }
+    }
+  }
+
+  // A contact once the increment dq is applied (to first order for flesh nodes, exactly for
+  // the cube's motion): its gap (negative: penetrating) and the tangential offset of the
+  // point from its anchor, in the anchor's frame.
+  struct Separation {
+    double gap;
+    Eigen::Vector3d offset;
+  };
+  Separation after(const Contact& c, const HandSimState& s, const Eigen::VectorXd& dq) const {
+    const SimParameters& par = model.parameters;
+    const int cb = cube_block();
+    const Eigen::Vector3d cube_position = s.cube_pose.position + dq.segment<3>(3 * cb);
+    const Eigen::Quaterniond cube_rotation =
+        rotation_from_vector(dq.segment<3>(3 * (cb + 1))) * s.cube_pose.rotation;
+    Eigen::Vector3d x;  // in the anchor's frame
+    if (c.kind == Contact::kCornerFloor)
+      x = cube_position +
+          cube_rotation * corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half);
+    else
+      x = s.node_position[std::size_t(c.point)] + dq.segment<3>(3 * c.point);
+    if (c.kind == Contact::kNodeCube) x = cube_rotation.conjugate() * (x - cube_position);
+    const double gap = c.kind == Contact::kNodeCube ? c.normal.dot(x - c.surface)
+                                                    : c.normal.dot(x) - par.floor_height;
+    return {gap, (Eigen::Matrix3d::Identity() - c.normal * c.normal.transpose()) * (x - c.anchor)};
+  }
+
+  // After the step: contacts that separated let go of their anchors; the others stick, or
+  // slide to the edge of the friction cone (|f_t| = mu f_n).
+  void update_anchors(HandSimState& s, double& max_penetration) const {
+    const SimParameters& par = model.parameters;
+    const Eigen::Vector3d nf = par.floor_normal.normalized();
+    s.node_cube.clear();
+    s.node_floor.clear();
+    s.corner_floor.clear();
+    max_penetration = 0.0;
+    const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
+    auto slide = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& n, double depth,
+                     const Eigen::Vector3d& anchor) {
+      return coulomb_anchor(x, n, depth, anchor, par.friction);
+    };
+    for (const Contact& c : contacts) {
+      if (!c.active) continue;
+      if (c.kind == Contact::kNodeCube) {
+        const Eigen::Vector3d& x = s.node_position[std::size_t(c.point)];
+        const BoxProximity b =
+            box_proximity(model.cube_half, cube_inv * (x - s.cube_pose.position));
+        if (b.distance >= 0) continue;
+        max_penetration = std::max(max_penetration, -b.distance);
+        const Eigen::Vector3d anchor =
+            slide(x, s.cube_pose.rotation * b.normal, -b.distance, s.cube_pose.point(c.anchor));
+        s.node_cube.push_back({c.point, cube_inv * (anchor - s.cube_pose.position)});
+        continue;
+      }
+      const Eigen::Vector3d x =
+          c.kind == Contact::kNodeFloor
+              ? s.node_position[std::size_t(c.point)]
+              : s.cube_pose.point(
+                    corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half));
+      const double height = nf.dot(x) - par.floor_height;
+      if (height >= 0) continue;
+      (c.kind == Contact::kNodeFloor ? s.node_floor : s.corner_floor)
+          .push_back({c.point, slide(x, nf, -height, c.anchor)});
+    }
+  }
+};
+
+HandSimulator::HandSimulator(const HandSimModel& model, SimOptions options)
+    : impl_(std::make_unique<Impl>(model, options)) {}
+HandSimulator::~HandSimulator() = default;
+const HandSimModel& HandSimulator::model() const {
+  return impl_->model;
+}
+
+SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPose>& targets) {
+  Impl& im = *impl_;
+  const HandSimModel& m = im.model;
+  if (int(targets.size()) != m.bone_count())
+    throw std::invalid_argument("HandSimulator::step: one target per bone");
+  for (const RigidPose& t : targets)
+    if (!t.position.allFinite() || !t.rotation.coeffs().allFinite() ||
+        std::abs(t.rotation.norm() - 1.0) > 1e-6)
+      throw std::invalid_argument("HandSimulator::step: a target that is not a finite pose");
+  const double h = m.parameters.time_step;
+  im.scale = h * h;
+  // Predicted state: every body carried on by its velocity.
+  const HandSimState start = state;
+  std::vector<Eigen::Vector3d> turned(std::size_t(m.bone_count() + 1));  // rotation since start
+  for (int n = 0; n < im.nodes; ++n)
+    state.node_position[std::size_t(n)] += h * state.node_velocity[std::size_t(n)];
+  auto predict = [&](RigidPose& pose, const RigidVelocity& v, Eigen::Vector3d& rotated) {
+    pose.position += h * v.linear;
+    rotated = h * v.angular;
+    pose.rotation = (rotation_from_vector(rotated) * pose.rotation).normalized();
+  };
+  for (int b = 0; b < im.bones; ++b)
+    predict(state.bone_pose[std::size_t(b)], state.bone_velocity[std::size_t(b)],
+            turned[std::size_t(b)]);
+  predict(state.cube_pose, state.cube_velocity, turned.back());
+  im.find_contacts(state);
+
+  SimStepReport report;
+  for (int it = 0; it < im.options.newton_iterations; ++it) {
+    for (std::size_t e = 0; e < m.tets.size(); ++e)
+      extract_rotation(
+          deformation_gradient(m.tets[e], gather(state.node_position, m.tets[e].nodes)),
+          state.tet_rotation[e]);
+    im.gradient.setZero(im.dofs);
+    std::fill(im.matrix.valuePtr(), im.matrix.valuePtr() + im.matrix.nonZeros(), 0.0);
+    im.flesh(state);
+    im.bodies(state, targets);
+    // Kinetic terms: M (q - q_pred), with the rotations' inertia in the world frame.
+    for (int n = 0; n < im.nodes; ++n) {
+      const double mass = m.node_mass[std::size_t(n)];
+      im.gradient.segment<3>(3 * n) +=
+          mass * (state.node_position[std::size_t(n)] - start.node_position[std::size_t(n)] -
+                  h * start.node_velocity[std::size_t(n)]);
+      im.add_block(n, n, mass * Eigen::Matrix3d::Identity());
+    }
+    auto kinetic = [&](int block, const RigidInertia& inertia, const RigidPose& pose,
+                       const RigidPose& from, const RigidVelocity& v,
+                       const Eigen::Vector3d& rotated) {
+      im.gradient.segment<3>(3 * block) +=
+          inertia.mass * (pose.position - from.position - h * v.linear);
+      im.add_block(block, block, inertia.mass * Eigen::Matrix3d::Identity());
+      const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
+      const Eigen::Matrix3d world = r * inertia.inertia * r.transpose();
+      im.gradient.segment<3>(3 * (block + 1)) += world * (rotated - h * v.angular);
+      im.add_block(block + 1, block + 1, world);
+    };
+    for (int b = 0; b < im.bones; ++b)
+      kinetic(im.bone_block(b), m.bones[std::size_t(b)].inertia, state.bone_pose[std::size_t(b)],
+              start.bone_pose[std::size_t(b)], start.bone_velocity[std::size_t(b)],
+              turned[std::size_t(b)]);
+    kinetic(im.cube_block(), m.cube, state.cube_pose, start.cube_pose, start.cube_velocity,
+            turned.back());
+    // Contacts make the energy piecewise quadratic: solve with the contacts active that
+    // penetrate, then again with those the solution penetrates, until they agree (a step that
+    // ignored a contact its solution crosses would land deep in it and bounce out next step).
+    const Eigen::VectorXd base_gradient = im.gradient;
+    const std::vector<double> base_values(im.matrix.valuePtr(),
+                                          im.matrix.valuePtr() + im.matrix.nonZeros());
+    Eigen::VectorXd dq;
+    for (int pass = 0; pass < kContactPasses; ++pass) {
+      if (pass > 0) {
+        im.gradient = base_gradient;
+        std::copy(base_values.begin(), base_values.end(), im.matrix.valuePtr());
+      }
+      im.contact_energies(state);
+      report.residual = im.gradient.lpNorm<Eigen::Infinity>() / im.scale;
+      im.ldlt.factorize(im.matrix);
+      if (im.ldlt.info() != Eigen::Success)
+        throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
+      dq = im.ldlt.solve(-im.gradient);
+      // Coulomb at the solution: a sticking contact whose anchor spring leaves the cone slides;
+      // a sliding one whose point stops short of the cone's edge (its slip would reverse)
+      // sticks; sliding friction follows the solution's normal force within 10%.
+      bool changed = false;
+      const double mu = m.parameters.friction;
+      for (Contact& c : im.contacts) {
+        const Impl::Separation a = im.after(c, state, dq);
+        changed |= (a.gap < 0) != c.active;
+        c.active = a.gap < 0;
+        if (!c.active) continue;
+        const double limit = mu * -a.gap, force = im.stiffness(c) * limit;
+        if (!c.sliding && a.offset.norm() > 1.01 * limit) {
+          c.sliding = changed = true;
+          c.slip = a.offset.normalized();
+          c.friction_force = force;
+        } else if (c.sliding && a.offset.dot(c.slip) < limit) {
+          c.sliding = false;
+          changed = true;
+        } else if (c.sliding) {
+          changed |= std::abs(force - c.friction_force) > 0.1 * c.friction_force;
+          c.friction_force = force;
+        }
+      }
+      if (!changed) break;
+    }
+    for (int n = 0; n < im.nodes; ++n) state.node_position[std::size_t(n)] += dq.segment<3>(3 * n);
+    auto apply = [&](int block, RigidPose& pose, Eigen::Vector3d& rotated) {
+      pose.position += dq.segment<3>(3 * block);
+      const Eigen::Vector3d d_theta = dq.segment<3>(3 * (block + 1));
+      rotated += d_theta;
+      pose.rotation = (rotation_from_vector(d_theta) * pose.rotation).normalized();
+    };
+    for (int b = 0; b < im.bones; ++b)
+      apply(im.bone_block(b), state.bone_pose[std::size_t(b)], turned[std::size_t(b)]);
+    apply(im.cube_block(), state.cube_pose, turned.back());
+    report.newton_iterations = it + 1;
+  }
+  // Velocities from the step taken.
+  for (int n = 0; n < im.nodes; ++n)
+    state.node_velocity[std::size_t(n)] =
+        (state.node_position[std::size_t(n)] - start.node_position[std::size_t(n)]) / h;
+  for (int b = 0; b < im.bones; ++b) {
+    state.bone_velocity[std::size_t(b)].linear =
+        (state.bone_pose[std::size_t(b)].position - start.bone_pose[std::size_t(b)].position) / h;
+    state.bone_velocity[std::size_t(b)].angular = turned[std::size_t(b)] / h;
+  }
+  state.cube_velocity.linear = (state.cube_pose.position - start.cube_pose.position) / h;
+  state.cube_velocity.angular = turned.back() / h;
+  im.update_anchors(state, report.max_penetration);
+  report.contacts =
+      int(state.node_cube.size() + state.node_floor.size() + state.corner_floor.size());
+  state.time += h;
+  return report;
+}
+
+}  // namespace handlab::sim

@@ -1,0 +1,46 @@
+// One backward-Euler step of the soft hand and the cube: every energy of the model (flesh,
+// stiffening, joints, coupling, tracking, contact and friction, gravity) summed with the
+// kinetic term into E(q) = 1/(2h^2) |q - q_pred|^2_M + U(q), minimised by Newton (one
+// iteration by default, as Verschoor et al. do). Contacts are found at the predicted state;
+// after the step each friction anchor sticks, or slides to the edge of Coulomb's cone.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/sim/hand_sim_model.h"
+#include "core/sim/hand_sim_state.h"
+
+namespace handlab::sim {
+
+struct SimOptions {
+  int newton_iterations = 1;
+};
+
+struct SimStepReport {
+  int newton_iterations = 0;
+  int contacts = 0;              // active contact points (hand-cube, hand-floor, cube-floor)
+  double max_penetration = 0.0;  // m, deepest flesh node inside the cube after the step
+  double residual = 0.0;         // max |gradient| where the last Newton solve started (N)
+};
+
+class HandSimulator {
+ public:
+  explicit HandSimulator(const HandSimModel& model, SimOptions options = {});
+  ~HandSimulator();
+  HandSimulator(const HandSimulator&) = delete;
+  HandSimulator& operator=(const HandSimulator&) = delete;
+
+  // Advances `state` by one time step towards the bones' targets (one per bone, centres of
+  // mass: see bone_targets). A target that is not finite, or of another hand, is rejected
+  // with std::invalid_argument and the state is left as it was.
+  SimStepReport step(HandSimState& state, const std::vector<RigidPose>& targets);
+
+  const HandSimModel& model() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace handlab::sim

@@ -1,0 +1,160 @@
+// The simulator's rigid bodies and contact against known answers: inertia of solids, the
+// box distance, a dropped cube (free fall at g, then rest on the floor) and a cube on a tilted
+// floor (sticks below atan(mu), slides above).
+#include <cmath>
+#include <iostream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "core/sim/box_distance.h"
+#include "core/sim/hand_simulator.h"
+#include "core/sim/rigid_body.h"
+
+namespace handlab::sim {
+namespace {
+
+TEST(RigidBody, SolidInertias) {
+  const RigidInertia box = box_inertia(Eigen::Vector3d(0.02, 0.04, 0.06), 1000.0);
+  EXPECT_NEAR(box.mass, 0.048, 1e-15);
+  EXPECT_NEAR(box.inertia(0, 0), 0.048 / 12 * (0.04 * 0.04 + 0.06 * 0.06), 1e-18);
+  // A capsule shrinks to a sphere (2/5 m r^2) and stretches to a rod (m L^2 / 12).
+  const RigidInertia sphere =
+      capsule_inertia(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.01, 1000.0);
+  EXPECT_NEAR(sphere.mass, 1000.0 * 4.0 / 3.0 * std::numbers::pi * 1e-6, 1e-15);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(sphere.inertia(k, k), 0.4 * sphere.mass * 1e-4, 1e-15);
+  const RigidInertia rod =
+      capsule_inertia(Eigen::Vector3d(0, -0.5, 0), Eigen::Vector3d(0, 0.5, 0), 1e-4, 1000.0);
+  EXPECT_NEAR(rod.inertia(0, 0) / (rod.mass / 12.0), 1.0, 1e-3);
+  EXPECT_NEAR(rod.inertia(1, 1) / rod.inertia(0, 0), 0.0, 1e-6);
+  // Two parts as one: parallel axes.
+  RigidInertia a = box_inertia(Eigen::Vector3d::Constant(0.01), 1000.0), b = a;
+  a.centre = Eigen::Vector3d(-0.05, 0, 0);
+  b.centre = Eigen::Vector3d(0.05, 0, 0);
+  const RigidInertia both = combine({a, b});
+  EXPECT_NEAR(both.centre.norm(), 0.0, 1e-15);
+  EXPECT_NEAR(both.inertia(1, 1), 2 * a.inertia(1, 1) + 2 * a.mass * 0.0025, 1e-15);
+  EXPECT_NEAR(both.inertia(0, 0), 2 * a.inertia(0, 0), 1e-15);
+}
+
+TEST(RigidBody, RotationVectorRoundTrips) {
+  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0.3, -0.2, 0.1), Eigen::Vector3d(0, 0, 3.1),
+                                   Eigen::Vector3d(1e-9, 0, 0), Eigen::Vector3d::Zero().eval()}) {
+    EXPECT_LT((rotation_vector(rotation_from_vector(v)) - v).norm(), 1e-12) << v.transpose();
+  }
+  const Eigen::Vector3d u(0.1, 0.2, 0.3), w(-0.3, 0.5, 0.2);
+  EXPECT_LT((cross_matrix(u) * w - u.cross(w)).norm(), 1e-15);
+}
+
+TEST(BoxDistance, OutsideInsideAndOnEdges) {
+  const Eigen::Vector3d half(0.01, 0.02, 0.03);
+  BoxProximity p = box_proximity(half, Eigen::Vector3d(0.015, 0, 0));
+  EXPECT_NEAR(p.distance, 0.005, 1e-15);
+  EXPECT_EQ(p.normal, Eigen::Vector3d::UnitX());
+  p = box_proximity(half, Eigen::Vector3d(0.013, 0.024, 0));  // beyond an edge
+  EXPECT_NEAR(p.distance, 0.005, 1e-15);
+  EXPECT_LT((p.closest - Eigen::Vector3d(0.01, 0.02, 0)).norm(), 1e-15);
+  p = box_proximity(half, Eigen::Vector3d(0.0, -0.018, 0.01));  // inside, nearest face -y
+  EXPECT_NEAR(p.distance, -0.002, 1e-15);
+  EXPECT_EQ(p.normal, -Eigen::Vector3d::UnitY());
+  EXPECT_LT((p.closest - Eigen::Vector3d(0.0, -0.02, 0.01)).norm(), 1e-15);
+}
+
+// The lowest point of the cube above the floor.
+double clearance(const HandSimModel& m, const HandSimState& s) {
+  double lowest = INFINITY;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d corner(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+    lowest = std::min(
+        lowest, m.parameters.floor_normal.dot(s.cube_pose.point(corner.cwiseProduct(m.cube_half))) -
+                    m.parameters.floor_height);
+  }
+  return lowest;
+}
+
+class DroppedCube : public testing::TestWithParam<double> {};
+
+TEST_P(DroppedCube, FallsAtGThenRests) {
+  SimParameters p;
+  p.cube_size = GetParam();
+  const HandSimModel m = make_cube_sim_model(p);
+  HandSimulator sim(m);
+  RigidPose start;
+  start.position = Eigen::Vector3d(0, 0.1 + p.cube_size / 2, 0);
+  HandSimState s = initial_state(m, {}, Eigen::Isometry3d::Identity(), start);
+  const double h = p.time_step, g = 9.81;
+  int touched = -1;
+  for (int i = 1; i <= 240; ++i) {
+    const SimStepReport r = sim.step(s, {});
+    if (touched < 0 && r.contacts > 0) touched = i;
+    if (touched < 0) {
+      // Free fall: the velocity grows by g h a step (backward Euler is exact on it).
+      EXPECT_NEAR(-s.cube_velocity.linear.y() / (g * i * h), 1.0, 0.01) << "step " << i;
+    }
+  }
+  ASSERT_GT(touched, 0) << "the cube should reach the floor";
+  // The fall took sqrt(2 * 0.1 / g) = 0.143 s.
+  EXPECT_NEAR(touched * h, std::sqrt(0.2 / g), 2 * h);
+  double highest = -INFINITY, deepest = INFINITY;
+  for (int i = 0; i < 240; ++i) {
+    sim.step(s, {});
+    highest = std::max(highest, clearance(m, s));
+    deepest = std::min(deepest, clearance(m, s));
+  }
+  EXPECT_LT(highest, 1e-4) << "bounced away";
+  EXPECT_GT(deepest, -0.5e-3) << "sank";
+  EXPECT_LT(s.cube_velocity.linear.norm(), 1e-3);
+  EXPECT_LT(s.cube_velocity.angular.norm(), 1e-2);
+}
+
+INSTANTIATE_TEST_SUITE_P(StudyCubes, DroppedCube, testing::Values(0.01, 0.06));
+
+// A cube resting on a floor tilted by `tilt` about z: how far it slides in `seconds`.
+double slide_on_tilted_floor(double tilt, double seconds, double* creep_speed = nullptr) {
+  SimParameters p;
+  p.cube_size = 0.06;
+  p.floor_normal = Eigen::Vector3d(-std::sin(tilt), std::cos(tilt), 0);
+  const HandSimModel m = make_cube_sim_model(p);
+  HandSimulator sim(m);
+  RigidPose start;
+  start.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitZ()));
+  start.position = p.floor_normal * (p.cube_size / 2);
+  HandSimState s = initial_state(m, {}, Eigen::Isometry3d::Identity(), start);
+  const int steps = int(std::lround(seconds / p.time_step));
+  Eigen::Vector3d settled = s.cube_pose.position;
+  for (int i = 0; i < steps; ++i) {
+    sim.step(s, {});
+    if (i == steps / 2) settled = s.cube_pose.position;
+  }
+  if (creep_speed) *creep_speed = (s.cube_pose.position - settled).norm() / (seconds / 2);
+  return (s.cube_pose.position - start.position).norm();
+}
+
+TEST(TiltedFloor, CubeSticksBelowTheFrictionAngleAndSlidesAbove) {
+  const double mu = SimParameters{}.friction, friction_angle = std::atan(mu);
+  double creep = 0.0;
+  slide_on_tilted_floor(0.8 * friction_angle, 2.0, &creep);
+  EXPECT_LT(creep, 1e-3) << "m/s at 0.8 of the friction angle";
+  // Onset: the first angle (0.25 degree steps) at which it slides more than 1 cm in 1 s.
+  const double degree = std::numbers::pi / 180;
+  double onset = NAN;
+  for (double a = friction_angle - 3 * degree; a < friction_angle + 3 * degree; a += 0.25 * degree)
+    if (slide_on_tilted_floor(a, 1.0) > 0.01) {
+      onset = a;
+      break;
+    }
+  ASSERT_FALSE(std::isnan(onset)) << "never slid";
+  std::cout << "friction angle " << friction_angle / degree << " deg; slides from "
+            << onset / degree << " deg; creep at 0.8 of it " << creep * 1000 << " mm/s\n";
+  EXPECT_NEAR(onset / degree, friction_angle / degree, 1.0);
+}
+
+TEST(HandSimulator, RejectsTargetsThatAreNotFinite) {
+  const HandSimModel m = make_cube_sim_model();
+  HandSimulator sim(m);
+  HandSimState s = initial_state(m, {}, Eigen::Isometry3d::Identity(), RigidPose{});
+  EXPECT_THROW(sim.step(s, {RigidPose{}}), std::invalid_argument);  // the cube model has no bones
+}
+
+}  // namespace
+}  // namespace handlab::sim
