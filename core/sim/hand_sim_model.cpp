@@ -46,21 +46,26 @@ HandSimModel make_cube_sim_model(const SimParameters& parameters) {
   return m;
 }
 
-HandSimModel make_hand_sim_model(const hand::Skeleton& skeleton, const hand::HandFlesh& flesh,
-                                 const SimParameters& parameters) {
+HandSimModel make_soft_body_sim_model(const mesh::TetMesh& mesh, const SimParameters& parameters) {
   HandSimModel m = make_cube_sim_model(parameters);
   const SimParameters& p = m.parameters;
-  // Flesh
-  m.rest = flesh.tets.nodes;
+  m.rest = mesh.nodes;
   m.node_mass.assign(m.rest.size(), 0.0);
-  for (const auto& ids : flesh.tets.tets) {
+  for (const auto& ids : mesh.tets) {
     const std::array<Eigen::Vector3d, 4> x = {
         m.rest[std::size_t(ids[0])], m.rest[std::size_t(ids[1])], m.rest[std::size_t(ids[2])],
         m.rest[std::size_t(ids[3])]};
     m.tets.push_back(make_tet_element(x, ids, p.flesh));
     for (int id : ids) m.node_mass[std::size_t(id)] += p.flesh_density * m.tets.back().volume / 4;
   }
-  m.surface_nodes = boundary_nodes(flesh.tets.tets, int(m.rest.size()));
+  m.surface_nodes = boundary_nodes(mesh.tets, int(m.rest.size()));
+  return m;
+}
+
+HandSimModel make_hand_sim_model(const hand::Skeleton& skeleton, const hand::HandFlesh& flesh,
+                                 const SimParameters& parameters) {
+  HandSimModel m = make_soft_body_sim_model(flesh.tets, parameters);
+  const SimParameters& p = m.parameters;
   // Bones: mass and inertia of their capsules (the palm has one per metacarpal).
   std::vector<std::vector<RigidInertia>> parts(skeleton.bones.size());
   for (const hand::Capsule& c : flesh.capsules)

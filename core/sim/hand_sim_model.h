@@ -12,6 +12,7 @@
 
 #include "core/hand/flesh.h"
 #include "core/hand/skeleton.h"
+#include "core/mesh/tet_mesh.h"
 #include "core/sim/corotated_tet.h"
 #include "core/sim/rigid_body.h"
 
@@ -95,6 +96,9 @@ HandSimModel make_hand_sim_model(const hand::Skeleton& skeleton, const hand::Han
                                  const SimParameters& parameters = {});
 // Only the cube and the floor (no hand), for rigid-body and contact tests.
 HandSimModel make_cube_sim_model(const SimParameters& parameters = {});
+// A free body of flesh (no bones), the cube and the floor, for contact tests.
+HandSimModel make_soft_body_sim_model(const mesh::TetMesh& mesh,
+                                      const SimParameters& parameters = {});
 
 // The nodes on a tet mesh's boundary (on a face that only one tet has).
 std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int node_count);

@@ -32,57 +32,27 @@ struct PointJacobian {
   }
 };
 
-// A contact found at the predicted state.
+// A contact candidate, found at the predicted state. Its normal penalty acts whenever the
+// point is inside the surface; its friction is decided at the predicted state: an anchor
+// spring (sticking) or a kinetic force of mu f_n against the slip (sliding), the latter so that
+// the anchor spring's stiffness does not hold back a slide's acceleration.
 struct Contact {
   enum Kind { kNodeCube, kNodeFloor, kCornerFloor } kind;
-  int point;                // node or corner
-  Eigen::Vector3d normal;   // world, out of the other surface (for the cube: cube frame)
-  Eigen::Vector3d surface;  // the surface point under the contact (cube frame, or world)
-  Eigen::Vector3d anchor;   // friction anchor (cube frame, or world)
-  bool active = false;      // penetrating, in the current pass
-  // Sliding (the predicted state leaves the friction cone): kinetic friction of magnitude
-  // mu f_n against the slip direction (anchor frame) replaces the anchor spring, whose
-  // stiffness would otherwise hold back any acceleration of the slide.
+  int point;               // node or corner
+  Eigen::Vector3d normal;  // at the predicted state, in the surface's frame (cube or world)
+  Eigen::Vector3d anchor;  // friction anchor, in the surface's frame
+  bool touching = false;   // inside the surface at the predicted state: friction acts
   bool sliding = false;
-  Eigen::Vector3d slip = Eigen::Vector3d::Zero();
-  double friction_force = 0.0;  // N
+  Eigen::Vector3d slip = Eigen::Vector3d::Zero();  // surface frame
+  double friction_force = 0.0;                     // N
+  int switches = 0;  // between sticking and sliding, in this step's passes
 };
 
-// How many times a step re-solves with the contacts its solution touches (see step()).
-constexpr int kContactPasses = 4;
 // Points this close to a surface (m), beyond what they can move in a step, are candidates.
 constexpr double kContactMargin = 0.001;
-
-// Coulomb's cone on a friction anchor: the normal and friction springs have the same stiffness,
-// so the friction force k|t| may reach mu k depth; beyond, the anchor slides towards the point
-// until it does.
-Eigen::Vector3d coulomb_anchor(const Eigen::Vector3d& x, const Eigen::Vector3d& n, double depth,
-                               Eigen::Vector3d anchor, double mu) {
-  const Eigen::Vector3d t = (Eigen::Matrix3d::Identity() - n * n.transpose()) * (x - anchor);
-  const double stretch = t.norm(), limit = mu * std::max(depth, 0.0);
-  if (stretch > limit) anchor += t * (1.0 - limit / stretch);
-  return anchor;
-}
-
-// A contact candidate at the predicted state: `x` the point and `surface` the surface point
-// under it, in the frame of the surface (the cube's, or the world for the floor), `gap` its
-// signed distance, `old` the anchor it held the step before.
-Contact predicted_contact(Contact::Kind kind, int point, const Eigen::Vector3d& x,
-                          const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
-                          const ContactAnchor* old, double mu, double stiffness) {
-  Contact c{kind, point, normal, surface, old ? old->anchor : surface, gap < 0};
-  if (!old || gap >= 0) return c;
-  const Eigen::Vector3d t =
-      (Eigen::Matrix3d::Identity() - normal * normal.transpose()) * (x - old->anchor);
-  const double stretch = t.norm(), limit = -mu * gap;
-  if (stretch > limit) {
-    c.sliding = true;
-    c.slip = t / stretch;
-    c.friction_force = stiffness * limit;
-    c.anchor = old->anchor + t * (1.0 - limit / stretch);
-  }
-  return c;
-}
+// How many times a step is taken again when its result disagrees with the friction it
+// assumed (a slide that stopped, a stick that left the cone).
+constexpr int kFrictionPasses = 3;
 
 const std::array<Eigen::Vector3d, 8>& corner_signs() {
   static const std::array<Eigen::Vector3d, 8> signs = [] {
@@ -93,6 +63,23 @@ const std::array<Eigen::Vector3d, 8>& corner_signs() {
   }();
   return signs;
 }
+
+// Coulomb's cone on a friction anchor: the normal and friction springs have the same
+// stiffness, so the friction force k|t| may reach mu k depth; beyond, the anchor slides
+// towards the point until it does.
+Eigen::Vector3d coulomb_anchor(const Eigen::Vector3d& x, const Eigen::Vector3d& n, double depth,
+                               Eigen::Vector3d anchor, double mu) {
+  const Eigen::Vector3d t = (Eigen::Matrix3d::Identity() - n * n.transpose()) * (x - anchor);
+  const double stretch = t.norm(), limit = mu * std::max(depth, 0.0);
+  if (stretch > limit) anchor += t * (1.0 - limit / stretch);
+  return anchor;
+}
+
+// What the step holds fixed while Newton iterates: where it started and its targets.
+struct StepFrame {
+  const HandSimState* start = nullptr;
+  const std::vector<RigidPose>* targets = nullptr;
+};
 
 }  // namespace
 
@@ -105,6 +92,8 @@ struct HandSimulator::Impl {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   Eigen::VectorXd gradient;
   double scale = 1.0;  // h^2: the potential's terms enter the system scaled by it
+  bool with_hessian = true;
+  double energy = 0.0;
   ElementEvaluation element;
   std::vector<Contact> contacts;
 
@@ -161,6 +150,7 @@ struct HandSimulator::Impl {
   }
 
   void add_block(int bi, int bj, const Eigen::Matrix3d& m) {
+    if (!with_hessian) return;
     double* values = matrix.valuePtr();
     for (int c = 0; c < 3; ++c) {
       double* column = values + entry(3 * bi, 3 * bj + c);
@@ -172,21 +162,20 @@ struct HandSimulator::Impl {
   // J'Kd, Gauss-Newton Hessian J'KJ.
   void add_spring(const PointJacobian& p, const Eigen::Matrix3d& k, const Eigen::Vector3d& d) {
     const Eigen::Vector3d f = scale * (k * d);
+    energy += 0.5 * d.dot(f);
     for (int a = 0; a < p.count; ++a) {
       gradient.segment<3>(3 * p.block[std::size_t(a)]) += p.j[std::size_t(a)].transpose() * f;
+      if (!with_hessian) continue;
       const Eigen::Matrix3d jk = scale * p.j[std::size_t(a)].transpose() * k;
       for (int b = 0; b < p.count; ++b)
         add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], jk * p.j[std::size_t(b)]);
     }
   }
 
-  double stiffness(const Contact& c) const {
-    return c.kind == Contact::kCornerFloor ? model.parameters.cube_floor_stiffness
-                                           : model.parameters.contact_stiffness;
-  }
-
-  // A constant force -f on the point (the energy f . p).
-  void add_force(const PointJacobian& p, const Eigen::Vector3d& f) {
+  // A constant force -f on a point at `position` (the energy f . position).
+  void add_force(const PointJacobian& p, const Eigen::Vector3d& f,
+                 const Eigen::Vector3d& position) {
+    energy += scale * f.dot(position);
     for (int a = 0; a < p.count; ++a)
       gradient.segment<3>(3 * p.block[std::size_t(a)]) +=
           scale * p.j[std::size_t(a)].transpose() * f;
@@ -204,7 +193,7 @@ struct HandSimulator::Impl {
       const TetElement& t = model.tets[e];
       const std::array<Eigen::Vector3d, 4> x = gather(s.node_position, t.nodes);
       const Eigen::Matrix3d r = s.tet_rotation[e].toRotationMatrix();
-      evaluate_corotated(t, gather(model.rest, t.nodes), x, r, element, true);
+      evaluate_corotated(t, gather(model.rest, t.nodes), x, r, element, with_hessian);
       // Stiffening beyond a strain threshold: (k V / 2)(|e| - e0)^2 on the corotated strain,
       // whose gradient per node is R eps grad N_a / |e|. Hessian: k V [(e0/|e|) g g' +
       // (1 - e0/|e|) B'B], both positive semidefinite.
@@ -212,22 +201,27 @@ struct HandSimulator::Impl {
       const double norm = strain.norm();
       if (norm > par.stiffening_strain) {
         const double k = par.stiffening_factor * par.flesh.youngs_modulus * t.volume;
-        const double ratio = par.stiffening_strain / norm;
+        const double excess = norm - par.stiffening_strain, ratio = par.stiffening_strain / norm;
         Vector12d g;
         for (int a = 0; a < 4; ++a) g.segment<3>(3 * a) = r * strain * t.gradients.col(a) / norm;
-        element.gradient += k * (norm - par.stiffening_strain) * g;
-        element.hessian += k * ratio * g * g.transpose();
-        for (int a = 0; a < 4; ++a)
-          for (int b = 0; b < 4; ++b) {
-            const Eigen::Vector3d ga = t.gradients.col(a), gb = t.gradients.col(b);
-            element.hessian.block<3, 3>(3 * a, 3 * b) +=
-                k * (1 - ratio) * 0.5 * r *
-                (ga.dot(gb) * Eigen::Matrix3d::Identity() + gb * ga.transpose()) * r.transpose();
-          }
+        element.energy += 0.5 * k * excess * excess;
+        element.gradient += k * excess * g;
+        if (with_hessian) {
+          element.hessian += k * ratio * g * g.transpose();
+          for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b) {
+              const Eigen::Vector3d ga = t.gradients.col(a), gb = t.gradients.col(b);
+              element.hessian.block<3, 3>(3 * a, 3 * b) +=
+                  k * (1 - ratio) * 0.5 * r *
+                  (ga.dot(gb) * Eigen::Matrix3d::Identity() + gb * ga.transpose()) * r.transpose();
+            }
+        }
       }
+      energy += scale * element.energy;
       for (int a = 0; a < 4; ++a)
         gradient.segment<3>(3 * t.nodes[std::size_t(a)]) +=
             scale * element.gradient.segment<3>(3 * a);
+      if (!with_hessian) continue;
       const auto& entries = tet_entries[e];
       for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)
@@ -241,17 +235,18 @@ struct HandSimulator::Impl {
 
   void bodies(const HandSimState& s, const std::vector<RigidPose>& targets) {
     const SimParameters& par = model.parameters;
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
     for (const SimCoupling& c : model.coupling) {
       const RigidPose& bone = s.bone_pose[std::size_t(c.bone)];
       const Eigen::Vector3d arm = bone.rotation * c.in_bone;
       PointJacobian p;
       Eigen::Vector3d flesh_point = Eigen::Vector3d::Zero();
       for (int a = 0; a < 4; ++a) {
-        p.add(c.nodes[std::size_t(a)], c.weights(a) * Eigen::Matrix3d::Identity());
+        p.add(c.nodes[std::size_t(a)], c.weights(a) * identity);
         flesh_point += c.weights(a) * s.node_position[std::size_t(c.nodes[std::size_t(a)])];
       }
       add_body_point(p, bone_block(c.bone), arm, -1.0);
-      add_spring(p, c.stiffness * Eigen::Matrix3d::Identity(), flesh_point - bone.position - arm);
+      add_spring(p, c.stiffness * identity, flesh_point - bone.position - arm);
     }
     for (const SimJoint& j : model.joints) {
       const RigidPose &parent = s.bone_pose[std::size_t(j.parent)],
@@ -261,7 +256,7 @@ struct HandSimulator::Impl {
       PointJacobian p;
       add_body_point(p, bone_block(j.parent), arm_p, 1.0);
       add_body_point(p, bone_block(j.child), arm_c, -1.0);
-      add_spring(p, par.joint_stiffness * Eigen::Matrix3d::Identity(),
+      add_spring(p, par.joint_stiffness * identity,
                  parent.position + arm_p - child.position - arm_c);
     }
     for (int b = 0; b < bones; ++b) {
@@ -270,79 +265,114 @@ struct HandSimulator::Impl {
       // Tracking: the centre of mass towards the target's, and the rotation by the rotation
       // vector that separates them (its derivative is the identity near the target).
       const int tb = bone_block(b);
-      gradient.segment<3>(3 * tb) +=
-          scale * par.tracking_stiffness * (pose.position - target.position);
-      add_block(tb, tb, scale * par.tracking_stiffness * Eigen::Matrix3d::Identity());
+      PointJacobian centre;
+      centre.add(tb, identity);
+      add_spring(centre, par.tracking_stiffness * identity, pose.position - target.position);
       const Eigen::Vector3d phi = rotation_vector(pose.rotation * target.rotation.conjugate());
+      energy += 0.5 * scale * par.tracking_torsion * phi.squaredNorm();
       gradient.segment<3>(3 * (tb + 1)) += scale * par.tracking_torsion * phi;
-      add_block(tb + 1, tb + 1, scale * par.tracking_torsion * Eigen::Matrix3d::Identity());
-      gradient.segment<3>(3 * tb) -= scale * model.bones[std::size_t(b)].inertia.mass * par.gravity;
+      add_block(tb + 1, tb + 1, scale * par.tracking_torsion * identity);
+      const double mass = model.bones[std::size_t(b)].inertia.mass;
+      energy -= scale * mass * par.gravity.dot(pose.position);
+      gradient.segment<3>(3 * tb) -= scale * mass * par.gravity;
     }
+    energy -= scale * model.cube.mass * par.gravity.dot(s.cube_pose.position);
     gradient.segment<3>(3 * cube_block()) -= scale * model.cube.mass * par.gravity;
-    for (int n = 0; n < nodes; ++n)
-      gradient.segment<3>(3 * n) -= scale * model.node_mass[std::size_t(n)] * par.gravity;
+    for (int n = 0; n < nodes; ++n) {
+      const double mass = model.node_mass[std::size_t(n)];
+      energy -= scale * mass * par.gravity.dot(s.node_position[std::size_t(n)]);
+      gradient.segment<3>(3 * n) -= scale * mass * par.gravity;
+    }
   }
 
+  double stiffness(const Contact& c) const {
+    return c.kind == Contact::kCornerFloor ? model.parameters.cube_floor_stiffness
+                                           : model.parameters.contact_stiffness;
+  }
+
+  // Contact energies at the state: the normal penalty k/2 d^2 wherever the point is inside
+  // (the exact distance, so that a point passing beside an edge feels nothing), friction as
+  // decided at the predicted state.
   void contact_energies(const HandSimState& s) {
     const SimParameters& par = model.parameters;
+    const Eigen::Vector3d nf = par.floor_normal.normalized();
     const Eigen::Matrix3d cube_r = s.cube_pose.rotation.toRotationMatrix();
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
     for (const Contact& c : contacts) {
-      if (!c.active) continue;
+      const double k = stiffness(c);
       PointJacobian p;
-      Eigen::Vector3d x, n, surface, anchor;
-      double k = par.contact_stiffness;
+      Eigen::Vector3d x;
       if (c.kind == Contact::kCornerFloor) {
         const Eigen::Vector3d arm =
             cube_r * corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half);
         x = s.cube_pose.position + arm;
         add_body_point(p, cube_block(), arm, 1.0);
-        n = c.normal;
-        surface = c.surface;
-        anchor = c.anchor;
-        k = par.cube_floor_stiffness;
       } else {
         x = s.node_position[std::size_t(c.point)];
-        p.add(c.point, Eigen::Matrix3d::Identity());
-        n = c.normal;
-        surface = c.surface;
-        anchor = c.anchor;
+        p.add(c.point, identity);
       }
-      if (c.kind == Contact::kNodeCube) {
-        // The surface point and the anchor move with the cube.
-        n = cube_r * c.normal;
-        surface = s.cube_pose.point(c.surface);
-        anchor = s.cube_pose.point(c.anchor);
-        PointJacobian normal_part = p, friction_part = p;
-        add_body_point(normal_part, cube_block(), surface - s.cube_pose.position, -1.0);
-        add_body_point(friction_part, cube_block(), anchor - s.cube_pose.position, -1.0);
-        add_spring(normal_part, k * n * n.transpose(), x - surface);
+      if (c.kind != Contact::kNodeCube) {
+        const double height = nf.dot(x) - par.floor_height;
+        if (height < 0) add_spring(p, k * nf * nf.transpose(), height * nf);
+        if (!c.touching) continue;
         if (c.sliding)
-          add_force(friction_part, c.friction_force * (cube_r * c.slip));
+          add_force(p, c.friction_force * c.slip, x);
         else
-          add_spring(friction_part, k * (Eigen::Matrix3d::Identity() - n * n.transpose()),
-                     x - anchor);
+          add_spring(p, k * (identity - c.normal * c.normal.transpose()), x - c.anchor);
         continue;
       }
-      add_spring(p, k * n * n.transpose(), x - surface);
+      // Against the cube: the surface point and the anchor move with it.
+      const BoxProximity b = box_proximity(
+          model.cube_half, s.cube_pose.rotation.conjugate() * (x - s.cube_pose.position));
+      if (b.distance < 0) {
+        const Eigen::Vector3d n = cube_r * b.normal, surface = s.cube_pose.point(b.closest);
+        PointJacobian normal_part = p;
+        add_body_point(normal_part, cube_block(), surface - s.cube_pose.position, -1.0);
+        add_spring(normal_part, k * n * n.transpose(), b.distance * n);
+      }
+      if (!c.touching) continue;
+      const Eigen::Vector3d anchor = s.cube_pose.point(c.anchor), n = cube_r * c.normal;
+      PointJacobian friction_part = p;
+      add_body_point(friction_part, cube_block(), anchor - s.cube_pose.position, -1.0);
       if (c.sliding)
-        add_force(p, c.friction_force * c.slip);
+        add_force(friction_part, c.friction_force * (cube_r * c.slip), x - anchor);
       else
-        add_spring(p, k * (Eigen::Matrix3d::Identity() - n * n.transpose()), x - anchor);
+        add_spring(friction_part, k * (identity - n * n.transpose()), x - anchor);
     }
   }
 
   // Contact candidates at the predicted state: every point within a margin of a surface that
-  // covers what the bodies can move in a step; those penetrating start active, sticking or
-  // sliding as the predicted state says.
+  // covers what the bodies can move in a step. Those inside it take friction: their anchor
+  // (from the step before, or where they entered) sticks, or, if the predicted state pulls it
+  // out of Coulomb's cone, they slide.
   void find_contacts(const HandSimState& s) {
     const SimParameters& par = model.parameters;
-    const double h = par.time_step;
+    const double h = par.time_step, mu = par.friction;
     contacts.clear();
     const Eigen::Vector3d nf = par.floor_normal.normalized();
     auto previous = [](const std::vector<ContactAnchor>& list, int point) -> const ContactAnchor* {
       const auto it = std::lower_bound(list.begin(), list.end(), point,
                                        [](const ContactAnchor& a, int p) { return a.point < p; });
       return it != list.end() && it->point == point ? &*it : nullptr;
+    };
+    // `x` and `surface` in the surface's frame, `gap` the signed distance.
+    auto add = [&](Contact::Kind kind, int point, const Eigen::Vector3d& x,
+                   const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
+                   const ContactAnchor* old, double k) {
+      Contact c{kind, point, normal, old ? old->anchor : surface};
+      c.touching = gap < 0;
+      if (c.touching && old) {
+        const Eigen::Vector3d t =
+            (Eigen::Matrix3d::Identity() - normal * normal.transpose()) * (x - old->anchor);
+        const double stretch = t.norm(), limit = -mu * gap;
+        if (stretch > limit) {
+          c.sliding = true;
+          c.slip = t / stretch;
+          c.friction_force = k * limit;
+          c.anchor = old->anchor + t * (1.0 - limit / stretch);
+        }
+      }
+      contacts.push_back(c);
     };
     const double cube_speed =
         s.cube_velocity.linear.norm() + s.cube_velocity.angular.norm() * model.cube_half.norm();
@@ -352,57 +382,68 @@ struct HandSimulator::Impl {
       const double speed = s.node_velocity[std::size_t(node)].norm();
       const Eigen::Vector3d q = cube_inv * (x - s.cube_pose.position);
       const BoxProximity b = box_proximity(model.cube_half, q);
-      if (b.distance < kContactMargin + 2 * h * (speed + cube_speed)) {
-        const ContactAnchor* old = previous(s.node_cube, node);
-        contacts.push_back(predicted_contact(Contact::kNodeCube, node, q, b.normal, b.closest,
-                                             b.distance, old, par.friction, par.contact_stiffness));
-      }
+      if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
+        add(Contact::kNodeCube, node, q, b.normal, b.closest, b.distance,
+            previous(s.node_cube, node), par.contact_stiffness);
       if (par.hand_floor_contact) {
         const double height = nf.dot(x) - par.floor_height;
-        if (height < kContactMargin + 2 * h * speed) {
-          const Eigen::Vector3d on_floor = x - height * nf;
-          const ContactAnchor* old = previous(s.node_floor, node);
-          contacts.push_back(predicted_contact(Contact::kNodeFloor, node, x, nf, on_floor, height,
-                                               old, par.friction, par.contact_stiffness));
-        }
+        if (height < kContactMargin + 2 * h * speed)
+          add(Contact::kNodeFloor, node, x, nf, x - height * nf, height,
+              previous(s.node_floor, node), par.contact_stiffness);
       }
     }
     for (int k = 0; k < 8; ++k) {
       const Eigen::Vector3d x =
           s.cube_pose.point(corner_signs()[std::size_t(k)].cwiseProduct(model.cube_half));
       const double height = nf.dot(x) - par.floor_height;
-      if (height < kContactMargin + 2 * h * cube_speed) {
-        const Eigen::Vector3d on_floor = x - height * nf;
-        const ContactAnchor* old = previous(s.corner_floor, k);
-        contacts.push_back(predicted_contact(Contact::kCornerFloor, k, x, nf, on_floor, height, old,
-                                             par.friction, par.cube_floor_stiffness));
-      }
+      if (height < kContactMargin + 2 * h * cube_speed)
+        add(Contact::kCornerFloor, k, x, nf, x - height * nf, height, previous(s.corner_floor, k),
+            par.cube_floor_stiffness);
     }
   }
 
-  // A contact once the increment dq is applied (to first order for flesh nodes, exactly for
-  // the cube's motion): its gap (negative: penetrating) and the tangential offset of the
-  // point from its anchor, in the anchor's frame.
-  struct Separation {
-    double gap;
-    Eigen::Vector3d offset;
-  };
-  Separation after(const Contact& c, const HandSimState& s, const Eigen::VectorXd& dq) const {
+  // Coulomb at the step's result: a sliding contact whose point stopped short of the cone's
+  // edge (its slip would reverse) sticks; a sticking one whose spring left the cone slides.
+  // True when some contact changed (each may change twice a step, so that passes end).
+  bool friction_changed(const HandSimState& s) {
     const SimParameters& par = model.parameters;
-    const int cb = cube_block();
-    const Eigen::Vector3d cube_position = s.cube_pose.position + dq.segment<3>(3 * cb);
-    const Eigen::Quaterniond cube_rotation =
-        rotation_from_vector(dq.segment<3>(3 * (cb + 1))) * s.cube_pose.rotation;
-    Eigen::Vector3d x;  // in the anchor's frame
-    if (c.kind == Contact::kCornerFloor)
-      x = cube_position +
-          cube_rotation * corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half);
-    else
-      x = s.node_position[std::size_t(c.point)] + dq.segment<3>(3 * c.point);
-    if (c.kind == Contact::kNodeCube) x = cube_rotation.conjugate() * (x - cube_position);
-    const double gap = c.kind == Contact::kNodeCube ? c.normal.dot(x - c.surface)
-                                                    : c.normal.dot(x) - par.floor_height;
-    return {gap, (Eigen::Matrix3d::Identity() - c.normal * c.normal.transpose()) * (x - c.anchor)};
+    const double mu = par.friction;
+    const Eigen::Vector3d nf = par.floor_normal.normalized();
+    const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
+    bool changed = false;
+    for (Contact& c : contacts) {
+      // Flesh nodes on the cube keep the friction the predicted state gave them: re-solving
+      // for them made the light cube ring (measured: a soft block dropped on the 1 cm cube).
+      if (!c.touching || c.switches >= 2 || c.kind == Contact::kNodeCube) continue;
+      Eigen::Vector3d x;  // surface frame
+      double depth;
+      if (c.kind == Contact::kNodeCube) {
+        x = cube_inv * (s.node_position[std::size_t(c.point)] - s.cube_pose.position);
+        depth = -box_proximity(model.cube_half, x).distance;
+      } else {
+        x = c.kind == Contact::kNodeFloor
+                ? s.node_position[std::size_t(c.point)]
+                : s.cube_pose.point(
+                      corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half));
+        depth = par.floor_height - nf.dot(x);
+      }
+      if (depth <= 0) continue;
+      const Eigen::Vector3d offset =
+          (Eigen::Matrix3d::Identity() - c.normal * c.normal.transpose()) * (x - c.anchor);
+      const double limit = mu * depth;
+      if (c.sliding && offset.dot(c.slip) < limit) {
+        c.sliding = false;
+      } else if (!c.sliding && offset.norm() > 1.01 * limit) {
+        c.sliding = true;
+        c.slip = offset.normalized();
+        c.friction_force = stiffness(c) * limit;
+      } else {
+        continue;
+      }
+      ++c.switches;
+      changed = true;
+    }
+    return changed;
   }
 
   // After the step: contacts that separated let go of their anchors; the others stick, or
@@ -415,21 +456,16 @@ struct HandSimulator::Impl {
     s.corner_floor.clear();
     max_penetration = 0.0;
     const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
-    auto slide = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& n, double depth,
-                     const Eigen::Vector3d& anchor) {
-      return coulomb_anchor(x, n, depth, anchor, par.friction);
-    };
     for (const Contact& c : contacts) {
-      if (!c.active) continue;
       if (c.kind == Contact::kNodeCube) {
-        const Eigen::Vector3d& x = s.node_position[std::size_t(c.point)];
-        const BoxProximity b =
-            box_proximity(model.cube_half, cube_inv * (x - s.cube_pose.position));
+        const Eigen::Vector3d q =
+            cube_inv * (s.node_position[std::size_t(c.point)] - s.cube_pose.position);
+        const BoxProximity b = box_proximity(model.cube_half, q);
         if (b.distance >= 0) continue;
         max_penetration = std::max(max_penetration, -b.distance);
-        const Eigen::Vector3d anchor =
-            slide(x, s.cube_pose.rotation * b.normal, -b.distance, s.cube_pose.point(c.anchor));
-        s.node_cube.push_back({c.point, cube_inv * (anchor - s.cube_pose.position)});
+        s.node_cube.push_back(
+            {c.point, coulomb_anchor(q, b.normal, -b.distance, c.touching ? c.anchor : b.closest,
+                                     par.friction)});
         continue;
       }
       const Eigen::Vector3d x =
@@ -440,13 +476,83 @@ struct HandSimulator::Impl {
       const double height = nf.dot(x) - par.floor_height;
       if (height >= 0) continue;
       (c.kind == Contact::kNodeFloor ? s.node_floor : s.corner_floor)
-          .push_back({c.point, slide(x, nf, -height, c.anchor)});
+          .push_back(
+              {c.point, coulomb_anchor(x, nf, -height, c.touching ? c.anchor : x - height * nf,
+                                       par.friction)});
     }
+  }
+
+  // h^2 times the backward-Euler energy at `s` (and its gradient, and with_hessian its
+  // Gauss-Newton Hessian), with `turned` the bodies' rotation vectors since the step began.
+  double evaluate(HandSimState& s, const std::vector<Eigen::Vector3d>& turned,
+                  const StepFrame& frame, bool hessian) {
+    const HandSimModel& m = model;
+    const HandSimState& start = *frame.start;
+    const double h = m.parameters.time_step;
+    with_hessian = hessian;
+    energy = 0.0;
+    gradient.setZero(dofs);
+    if (hessian) std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
+    for (std::size_t e = 0; e < m.tets.size(); ++e)
+      extract_rotation(deformation_gradient(m.tets[e], gather(s.node_position, m.tets[e].nodes)),
+                       s.tet_rotation[e]);
+    flesh(s);
+    bodies(s, *frame.targets);
+    contact_energies(s);
+    // Kinetic terms: 1/2 |q - q_pred|^2_M, the rotations' inertia in the world at the start.
+    for (int n = 0; n < nodes; ++n) {
+      const double mass = m.node_mass[std::size_t(n)];
+      const Eigen::Vector3d d = s.node_position[std::size_t(n)] -
+                                start.node_position[std::size_t(n)] -
+                                h * start.node_velocity[std::size_t(n)];
+      energy += 0.5 * mass * d.squaredNorm();
+      gradient.segment<3>(3 * n) += mass * d;
+      add_block(n, n, mass * Eigen::Matrix3d::Identity());
+    }
+    auto kinetic = [&](int block, const RigidInertia& inertia, const RigidPose& pose,
+                       const RigidPose& from, const RigidVelocity& v,
+                       const Eigen::Vector3d& rotated) {
+      const Eigen::Vector3d d = pose.position - from.position - h * v.linear;
+      energy += 0.5 * inertia.mass * d.squaredNorm();
+      gradient.segment<3>(3 * block) += inertia.mass * d;
+      add_block(block, block, inertia.mass * Eigen::Matrix3d::Identity());
+      const Eigen::Matrix3d r = from.rotation.toRotationMatrix();
+      const Eigen::Matrix3d world = r * inertia.inertia * r.transpose();
+      const Eigen::Vector3d a = rotated - h * v.angular;
+      energy += 0.5 * a.dot(world * a);
+      gradient.segment<3>(3 * (block + 1)) += world * a;
+      add_block(block + 1, block + 1, world);
+    };
+    for (int b = 0; b < bones; ++b)
+      kinetic(bone_block(b), m.bones[std::size_t(b)].inertia, s.bone_pose[std::size_t(b)],
+              start.bone_pose[std::size_t(b)], start.bone_velocity[std::size_t(b)],
+              turned[std::size_t(b)]);
+    kinetic(cube_block(), m.cube, s.cube_pose, start.cube_pose, start.cube_velocity, turned.back());
+    return energy;
+  }
+
+  // The state moved by `length` times the increment dq.
+  void apply(HandSimState& s, std::vector<Eigen::Vector3d>& turned, const Eigen::VectorXd& dq,
+             double length) const {
+    for (int n = 0; n < nodes; ++n)
+      s.node_position[std::size_t(n)] += length * dq.segment<3>(3 * n);
+    auto move = [&](int block, RigidPose& pose, Eigen::Vector3d& rotated) {
+      pose.position += length * dq.segment<3>(3 * block);
+      const Eigen::Vector3d d_theta = length * dq.segment<3>(3 * (block + 1));
+      rotated += d_theta;
+      pose.rotation = (rotation_from_vector(d_theta) * pose.rotation).normalized();
+    };
+    for (int b = 0; b < bones; ++b)
+      move(bone_block(b), s.bone_pose[std::size_t(b)], turned[std::size_t(b)]);
+    move(cube_block(), s.cube_pose, turned.back());
   }
 };
 
 HandSimulator::HandSimulator(const HandSimModel& model, SimOptions options)
-    : impl_(std::make_unique<Impl>(model, options)) {}
+    : impl_(std::make_unique<Impl>(model, options)) {
+  if (options.newton_iterations < 1)
+    throw std::invalid_argument("HandSimulator: at least one Newton iteration a step");
+}
 HandSimulator::~HandSimulator() = default;
 const HandSimModel& HandSimulator::model() const {
   return impl_->model;
@@ -479,95 +585,42 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   predict(state.cube_pose, state.cube_velocity, turned.back());
   im.find_contacts(state);
 
+  // Newton on the step's energy, each step backtracked until the energy decreases (Armijo):
+  // contacts make the energy piecewise quadratic, and a full step that runs into a surface the
+  // linearisation did not see would land deep inside it.
+  const StepFrame frame{&start, &targets};
   SimStepReport report;
-  for (int it = 0; it < im.options.newton_iterations; ++it) {
-    for (std::size_t e = 0; e < m.tets.size(); ++e)
-      extract_rotation(
-          deformation_gradient(m.tets[e], gather(state.node_position, m.tets[e].nodes)),
-          state.tet_rotation[e]);
-    im.gradient.setZero(im.dofs);
-    std::fill(im.matrix.valuePtr(), im.matrix.valuePtr() + im.matrix.nonZeros(), 0.0);
-    im.flesh(state);
-    im.bodies(state, targets);
-    // Kinetic terms: M (q - q_pred), with the rotations' inertia in the world frame.
-    for (int n = 0; n < im.nodes; ++n) {
-      const double mass = m.node_mass[std::size_t(n)];
-      im.gradient.segment<3>(3 * n) +=
-          mass * (state.node_position[std::size_t(n)] - start.node_position[std::size_t(n)] -
-                  h * start.node_velocity[std::size_t(n)]);
-      im.add_block(n, n, mass * Eigen::Matrix3d::Identity());
+  const HandSimState predicted = state;
+  const std::vector<Eigen::Vector3d> predicted_turned = turned;
+  for (int pass = 0; pass < kFrictionPasses; ++pass) {
+    if (pass > 0) {
+      state = predicted;
+      turned = predicted_turned;
     }
-    auto kinetic = [&](int block, const RigidInertia& inertia, const RigidPose& pose,
-                       const RigidPose& from, const RigidVelocity& v,
-                       const Eigen::Vector3d& rotated) {
-      im.gradient.segment<3>(3 * block) +=
-          inertia.mass * (pose.position - from.position - h * v.linear);
-      im.add_block(block, block, inertia.mass * Eigen::Matrix3d::Identity());
-      const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
-      const Eigen::Matrix3d world = r * inertia.inertia * r.transpose();
-      im.gradient.segment<3>(3 * (block + 1)) += world * (rotated - h * v.angular);
-      im.add_block(block + 1, block + 1, world);
-    };
-    for (int b = 0; b < im.bones; ++b)
-      kinetic(im.bone_block(b), m.bones[std::size_t(b)].inertia, state.bone_pose[std::size_t(b)],
-              start.bone_pose[std::size_t(b)], start.bone_velocity[std::size_t(b)],
-              turned[std::size_t(b)]);
-    kinetic(im.cube_block(), m.cube, state.cube_pose, start.cube_pose, start.cube_velocity,
-            turned.back());
-    // Contacts make the energy piecewise quadratic: solve with the contacts active that
-    // penetrate, then again with those the solution penetrates, until they agree (a step that
-    // ignored a contact its solution crosses would land deep in it and bounce out next step).
-    const Eigen::VectorXd base_gradient = im.gradient;
-    const std::vector<double> base_values(im.matrix.valuePtr(),
-                                          im.matrix.valuePtr() + im.matrix.nonZeros());
-    Eigen::VectorXd dq;
-    for (int pass = 0; pass < kContactPasses; ++pass) {
-      if (pass > 0) {
-        im.gradient = base_gradient;
-        std::copy(base_values.begin(), base_values.end(), im.matrix.valuePtr());
-      }
-      im.contact_energies(state);
+    double current = im.evaluate(state, turned, frame, true);
+    for (int it = 0; it < im.options.newton_iterations; ++it) {
       report.residual = im.gradient.lpNorm<Eigen::Infinity>() / im.scale;
       im.ldlt.factorize(im.matrix);
       if (im.ldlt.info() != Eigen::Success)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
-      dq = im.ldlt.solve(-im.gradient);
-      // Coulomb at the solution: a sticking contact whose anchor spring leaves the cone slides;
-      // a sliding one whose point stops short of the cone's edge (its slip would reverse)
-      // sticks; sliding friction follows the solution's normal force within 10%.
-      bool changed = false;
-      const double mu = m.parameters.friction;
-      for (Contact& c : im.contacts) {
-        const Impl::Separation a = im.after(c, state, dq);
-        changed |= (a.gap < 0) != c.active;
-        c.active = a.gap < 0;
-        if (!c.active) continue;
-        const double limit = mu * -a.gap, force = im.stiffness(c) * limit;
-        if (!c.sliding && a.offset.norm() > 1.01 * limit) {
-          c.sliding = changed = true;
-          c.slip = a.offset.normalized();
-          c.friction_force = force;
-        } else if (c.sliding && a.offset.dot(c.slip) < limit) {
-          c.sliding = false;
-          changed = true;
-        } else if (c.sliding) {
-          changed |= std::abs(force - c.friction_force) > 0.1 * c.friction_force;
-          c.friction_force = force;
-        }
+      const Eigen::VectorXd dq = im.ldlt.solve(-im.gradient);
+      const double slope = im.gradient.dot(dq);
+      HandSimState trial = state;
+      std::vector<Eigen::Vector3d> trial_turned = turned;
+      double length = 1.0;
+      for (int halving = 0; halving < 12; ++halving, length *= 0.5) {
+        trial = state;
+        trial_turned = turned;
+        im.apply(trial, trial_turned, dq, length);
+        if (im.evaluate(trial, trial_turned, frame, false) <= current + 1e-4 * length * slope)
+          break;
       }
-      if (!changed) break;
+      state = std::move(trial);
+      turned = std::move(trial_turned);
+      report.newton_iterations += 1;
+      if (it + 1 < im.options.newton_iterations) current = im.evaluate(state, turned, frame, true);
     }
-    for (int n = 0; n < im.nodes; ++n) state.node_position[std::size_t(n)] += dq.segment<3>(3 * n);
-    auto apply = [&](int block, RigidPose& pose, Eigen::Vector3d& rotated) {
-      pose.position += dq.segment<3>(3 * block);
-      const Eigen::Vector3d d_theta = dq.segment<3>(3 * (block + 1));
-      rotated += d_theta;
-      pose.rotation = (rotation_from_vector(d_theta) * pose.rotation).normalized();
-    };
-    for (int b = 0; b < im.bones; ++b)
-      apply(im.bone_block(b), state.bone_pose[std::size_t(b)], turned[std::size_t(b)]);
-    apply(im.cube_block(), state.cube_pose, turned.back());
-    report.newton_iterations = it + 1;
+    if (!im.friction_changed(state)) break;
   }
   // Velocities from the step taken.
   for (int n = 0; n < im.nodes; ++n)
@@ -580,10 +633,10 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   }
   state.cube_velocity.linear = (state.cube_pose.position - start.cube_pose.position) / h;
   state.cube_velocity.angular = turned.back() / h;
+  state.time = start.time + h;
   im.update_anchors(state, report.max_penetration);
   report.contacts =
       int(state.node_cube.size() + state.node_floor.size() + state.corner_floor.size());
-  state.time += h;
   return report;
 }
 
