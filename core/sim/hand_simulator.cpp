@@ -52,7 +52,9 @@ struct Contact {
 constexpr double kContactMargin = 0.001;
 // How many times a step is taken again when its result disagrees with the friction it
 // assumed (a slide that stopped, a stick that left the cone).
-constexpr int kFrictionPasses = 3;
+constexpr int kFrictionPasses = 4;
+// The largest rotation of a body in one Newton iteration (rad).
+constexpr double kMaxTurn = 0.25;
 
 const std::array<Eigen::Vector3d, 8>& corner_signs() {
   static const std::array<Eigen::Vector3d, 8> signs = [] {
@@ -330,7 +332,7 @@ struct HandSimulator::Impl {
         add_body_point(normal_part, cube_block(), surface - s.cube_pose.position, -1.0);
         add_spring(normal_part, k * n * n.transpose(), b.distance * n);
       }
-      if (!c.touching) continue;
+      if (!c.touching || b.distance >= 0) continue;  // no pull from a point that left
       const Eigen::Vector3d anchor = s.cube_pose.point(c.anchor), n = cube_r * c.normal;
       PointJacobian friction_part = p;
       add_body_point(friction_part, cube_block(), anchor - s.cube_pose.position, -1.0);
@@ -366,10 +368,15 @@ struct HandSimulator::Impl {
             (Eigen::Matrix3d::Identity() - normal * normal.transpose()) * (x - old->anchor);
         const double stretch = t.norm(), limit = -mu * gap;
         if (stretch > limit) {
-          c.sliding = true;
-          c.slip = t / stretch;
-          c.friction_force = k * limit;
           c.anchor = old->anchor + t * (1.0 - limit / stretch);
+          // Flesh on the cube keeps an anchor spring, its anchor moved to the cone's edge: a
+          // constant kinetic force, fixed for the step, set the light cube ringing when a
+          // node's slip reversed within it (measured: a soft block resting on the cube).
+          if (kind != Contact::kNodeCube) {
+            c.sliding = true;
+            c.slip = t / stretch;
+            c.friction_force = k * limit;
+          }
         }
       }
       contacts.push_back(c);
@@ -404,7 +411,8 @@ struct HandSimulator::Impl {
 
   // Coulomb at the step's result: a sliding contact whose point stopped short of the cone's
   // edge (its slip would reverse) sticks; a sticking one whose spring left the cone slides.
-  // True when some contact changed (each may change twice a step, so that passes end).
+  // True when some contact changed (each may change twice a step and then sticks, so that
+  // passes end).
   bool friction_changed(const HandSimState& s) {
     const SimParameters& par = model.parameters;
     const double mu = par.friction;
@@ -412,9 +420,17 @@ struct HandSimulator::Impl {
     const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
     bool changed = false;
     for (Contact& c : contacts) {
-      // Flesh nodes on the cube keep the friction the predicted state gave them: re-solving
-      // for them made the light cube ring (measured: a soft block dropped on the 1 cm cube).
-      if (!c.touching || c.switches >= 2 || c.kind == Contact::kNodeCube) continue;
+      if (!c.touching || c.kind == Contact::kNodeCube) continue;
+      if (c.switches >= 2) {
+        // A contact that keeps switching ends sticking: the anchor spring is conservative,
+        // a kinetic force that disagrees with the motion is not.
+        if (c.sliding) {
+          c.sliding = false;
+          ++c.switches;
+          changed = true;
+        }
+        continue;
+      }
       Eigen::Vector3d x;  // surface frame
       double depth;
       if (c.kind == Contact::kNodeCube) {
@@ -607,7 +623,13 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
       const double slope = im.gradient.dot(dq);
       HandSimState trial = state;
       std::vector<Eigen::Vector3d> trial_turned = turned;
-      double length = 1.0;
+      // No body turns by more than kMaxTurn in one iteration: the linearisation of a rotation
+      // holds over a fraction of a radian, and a cube, symmetric under quarter turns, can
+      // lower the energy by a turn of several radians that no physical step takes.
+      double largest_turn = 0.0;
+      for (int b = 0; b <= im.bones; ++b)
+        largest_turn = std::max(largest_turn, dq.segment<3>(3 * (im.nodes + 2 * b + 1)).norm());
+      double length = largest_turn > kMaxTurn ? kMaxTurn / largest_turn : 1.0;
       for (int halving = 0; halving < 12; ++halving, length *= 0.5) {
         trial = state;
         trial_turned = turned;
