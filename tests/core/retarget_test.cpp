@@ -120,7 +120,9 @@ TEST_P(FingertipSolverKkt, HoldAtTheSolution) {
     for (int a = n; a < x.size(); ++a)  // the root shift is unbounded
       EXPECT_NEAR(g(a), 0.0, 1e-8) << "root shift " << a - n << " trial " << trial;
   }
-  if (root_weight == 0) EXPECT_GT(with_active, 5) << "the test should exercise active bounds";
+  if (root_weight == 0) {
+    EXPECT_GT(with_active, 5) << "the test should exercise active bounds";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(RootFixedAndFree, FingertipSolverKkt, testing::Values(0.0, 1e-2));
