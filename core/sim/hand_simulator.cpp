@@ -14,12 +14,6 @@
 namespace handlab::sim {
 namespace {
 
-std::array<Eigen::Vector3d, 4> gather(const std::vector<Eigen::Vector3d>& x,
-                                      const std::array<int, 4>& nodes) {
-  return {x[std::size_t(nodes[0])], x[std::size_t(nodes[1])], x[std::size_t(nodes[2])],
-          x[std::size_t(nodes[3])]};
-}
-
 // A point's position as a linear function of the unknowns' increments: dp = sum_k J_k dq_k,
 // over at most 6 blocks of 3 unknowns (a tet's nodes, a body's translation and rotation).
 struct PointJacobian {
@@ -90,14 +84,15 @@ struct HandSimulator::Impl {
   SimOptions options;
   int nodes = 0, bones = 0, blocks = 0, dofs = 0;
   Eigen::SparseMatrix<double> matrix;
-  std::vector<std::array<int, 48>> tet_entries;  // value index of (3a, 3b + c) per tet pair
+  std::vector<std::array<int, 48>> tet_entries;      // value index of (3a, 3b + c) per tet pair
+  std::vector<int> coupling_entries, joint_entries;  // add_spring's caches, 108 and 48 each
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   Eigen::VectorXd gradient;
   double scale = 1.0;  // h^2: the potential's terms enter the system scaled by it
   bool with_hessian = true;
   double energy = 0.0;
-  ElementEvaluation element;
   std::vector<Contact> contacts;
+  bool factorised = false, stale = false;
 
   int bone_block(int b) const { return nodes + 2 * b; }
   int cube_block() const { return nodes + 2 * bones; }
@@ -141,6 +136,14 @@ struct HandSimulator::Impl {
                 entry(3 * t.nodes[std::size_t(a)], 3 * t.nodes[std::size_t(b)] + c);
       tet_entries.push_back(e);
     }
+    for (const SimCoupling& c : m.coupling)
+      spring_entries({c.nodes[0], c.nodes[1], c.nodes[2], c.nodes[3], bone_block(c.bone),
+                      bone_block(c.bone) + 1},
+                     coupling_entries);
+    for (const SimJoint& j : m.joints)
+      spring_entries({bone_block(j.parent), bone_block(j.parent) + 1, bone_block(j.child),
+                      bone_block(j.child) + 1},
+                     joint_entries);
     ldlt.analyzePattern(matrix);
   }
 
@@ -162,16 +165,36 @@ struct HandSimulator::Impl {
 
   // The energy 1/2 d'Kd of a point's offset d (K symmetric positive semidefinite): gradient
   // J'Kd, Gauss-Newton Hessian J'KJ.
-  void add_spring(const PointJacobian& p, const Eigen::Matrix3d& k, const Eigen::Vector3d& d) {
+  // `cached`, when given, holds the value index of each block pair's columns (see
+  // spring_entries), so that the fixed springs (coupling, joints) need no search.
+  void add_spring(const PointJacobian& p, const Eigen::Matrix3d& k, const Eigen::Vector3d& d,
+                  const int* cached = nullptr) {
     const Eigen::Vector3d f = scale * (k * d);
     energy += 0.5 * d.dot(f);
+    double* values = matrix.valuePtr();
     for (int a = 0; a < p.count; ++a) {
       gradient.segment<3>(3 * p.block[std::size_t(a)]) += p.j[std::size_t(a)].transpose() * f;
       if (!with_hessian) continue;
       const Eigen::Matrix3d jk = scale * p.j[std::size_t(a)].transpose() * k;
-      for (int b = 0; b < p.count; ++b)
-        add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], jk * p.j[std::size_t(b)]);
+      for (int b = 0; b < p.count; ++b) {
+        const Eigen::Matrix3d block = jk * p.j[std::size_t(b)];
+        if (!cached) {
+          add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], block);
+          continue;
+        }
+        for (int c = 0; c < 3; ++c) {
+          double* column = values + cached[3 * (p.count * a + b) + c];
+          for (int r = 0; r < 3; ++r) column[r] += block(r, c);
+        }
+      }
     }
+  }
+
+  // The value indices add_spring's `cached` takes for a spring on these blocks.
+  void spring_entries(const std::vector<int>& blocks_of_point, std::vector<int>& out) const {
+    for (int a : blocks_of_point)
+      for (int b : blocks_of_point)
+        for (int c = 0; c < 3; ++c) out.push_back(entry(3 * a, 3 * b + c));
   }
 
   // A constant force -f on a point at `position` (the energy f . position).
@@ -188,57 +211,72 @@ struct HandSimulator::Impl {
     p.add(block + 1, -sign * cross_matrix(arm));  // d(c + r) = dc + dtheta x r
   }
 
-  void flesh(const HandSimState& s) {
+  // Linear co-rotational flesh with the stiffening term, per tet: F from the edge vectors, R
+  // (extracted where Newton linearises, held in its line search), the strain e = sym(R'F) - I,
+  // the stress s = 2 mu e + lambda tr(e) I, node forces V R s grad N_a, and the Hessian
+  // R K R' assembled from the rotated shape gradients without forming 12x12 products.
+  void flesh(HandSimState& s) {
     const SimParameters& par = model.parameters;
+    const double mu = par.flesh.mu(), lambda = par.flesh.lambda();
+    const double stiffening = par.stiffening_factor * par.flesh.youngs_modulus;
     double* values = matrix.valuePtr();
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
     for (std::size_t e = 0; e < model.tets.size(); ++e) {
       const TetElement& t = model.tets[e];
-      const std::array<Eigen::Vector3d, 4> x = gather(s.node_position, t.nodes);
+      const Eigen::Vector3d& x0 = s.node_position[std::size_t(t.nodes[0])];
+      Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
+      for (int a = 1; a < 4; ++a)
+        f += (s.node_position[std::size_t(t.nodes[std::size_t(a)])] - x0) *
+             t.gradients.col(a).transpose();
+      if (with_hessian) extract_rotation(f, s.tet_rotation[e]);
       const Eigen::Matrix3d r = s.tet_rotation[e].toRotationMatrix();
-      evaluate_corotated(t, gather(model.rest, t.nodes), x, r, element, with_hessian);
-      // Stiffening beyond a strain threshold: (k V / 2)(|e| - e0)^2 on the corotated strain,
-      // whose gradient per node is R eps grad N_a / |e|. Hessian: k V [(e0/|e|) g g' +
-      // (1 - e0/|e|) B'B], both positive semidefinite.
-      const Eigen::Matrix3d strain = corotated_strain(t, x, r);
+      const Eigen::Matrix3d g = r.transpose() * f;
+      const Eigen::Matrix3d strain = 0.5 * (g + g.transpose()) - identity;
+      const double trace = strain.trace();
+      Eigen::Matrix3d stress = 2.0 * mu * strain + lambda * trace * identity;
+      double element_energy = t.volume * (mu * strain.squaredNorm() + 0.5 * lambda * trace * trace);
+      // Stiffening beyond a strain threshold: (k V / 2)(|e| - e0)^2, whose stress is
+      // k (|e| - e0) e / |e|; its Hessian k V [(e0/|e|) q q' + (1 - e0/|e|) B'B] (q the
+      // gradient direction, B the strain map) is positive semidefinite.
       const double norm = strain.norm();
+      double extra_mu = 0.0, ratio = 0.0, k = 0.0;
       if (norm > par.stiffening_strain) {
-        const double k = par.stiffening_factor * par.flesh.youngs_modulus * t.volume;
-        const double excess = norm - par.stiffening_strain, ratio = par.stiffening_strain / norm;
-        Vector12d g;
-        for (int a = 0; a < 4; ++a) g.segment<3>(3 * a) = r * strain * t.gradients.col(a) / norm;
-        element.energy += 0.5 * k * excess * excess;
-        element.gradient += k * excess * g;
-        if (with_hessian) {
-          element.hessian += k * ratio * g * g.transpose();
-          for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b) {
-              const Eigen::Vector3d ga = t.gradients.col(a), gb = t.gradients.col(b);
-              element.hessian.block<3, 3>(3 * a, 3 * b) +=
-                  k * (1 - ratio) * 0.5 * r *
-                  (ga.dot(gb) * Eigen::Matrix3d::Identity() + gb * ga.transpose()) * r.transpose();
-            }
-        }
+        k = stiffening * t.volume;
+        const double excess = norm - par.stiffening_strain;
+        ratio = par.stiffening_strain / norm;
+        element_energy += 0.5 * k * excess * excess;
+        stress += (stiffening * excess / norm) * strain;
+        extra_mu = 0.5 * k * (1.0 - ratio);
       }
-      energy += scale * element.energy;
-      for (int a = 0; a < 4; ++a)
-        gradient.segment<3>(3 * t.nodes[std::size_t(a)]) +=
-            scale * element.gradient.segment<3>(3 * a);
+      energy += scale * element_energy;
+      Eigen::Matrix<double, 3, 4> rotated = r * t.gradients;  // R grad N_a
+      const Eigen::Matrix<double, 3, 4> force = (scale * t.volume) * (r * stress * t.gradients);
+      for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * t.nodes[std::size_t(a)]) += force.col(a);
       if (!with_hessian) continue;
+      const double vmu = scale * (t.volume * mu + extra_mu), vlambda = scale * t.volume * lambda;
+      Eigen::Matrix<double, 3, 4> q;
+      if (k > 0) q = (std::sqrt(scale * k * ratio) / norm) * (r * strain * t.gradients);
       const auto& entries = tet_entries[e];
       for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b)
+        for (int b = 0; b < 4; ++b) {
+          // H_ab = V [mu (g_a . g_b) I + mu g_b g_a' + lambda g_a g_b'] in the rotated gradients.
+          Eigen::Matrix3d block = vmu * rotated.col(b) * rotated.col(a).transpose() +
+                                  vlambda * rotated.col(a) * rotated.col(b).transpose();
+          block.diagonal().array() += vmu * rotated.col(a).dot(rotated.col(b));
+          if (k > 0) block += q.col(a) * q.col(b).transpose();
           for (int c = 0; c < 3; ++c) {
             double* column = values + entries[std::size_t(12 * a + 3 * b + c)];
-            for (int row = 0; row < 3; ++row)
-              column[row] += scale * element.hessian(3 * a + row, 3 * b + c);
+            for (int row = 0; row < 3; ++row) column[row] += block(row, c);
           }
+        }
     }
   }
 
   void bodies(const HandSimState& s, const std::vector<RigidPose>& targets) {
     const SimParameters& par = model.parameters;
     const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-    for (const SimCoupling& c : model.coupling) {
+    for (std::size_t i = 0; i < model.coupling.size(); ++i) {
+      const SimCoupling& c = model.coupling[i];
       const RigidPose& bone = s.bone_pose[std::size_t(c.bone)];
       const Eigen::Vector3d arm = bone.rotation * c.in_bone;
       PointJacobian p;
@@ -248,9 +286,11 @@ struct HandSimulator::Impl {
         flesh_point += c.weights(a) * s.node_position[std::size_t(c.nodes[std::size_t(a)])];
       }
       add_body_point(p, bone_block(c.bone), arm, -1.0);
-      add_spring(p, c.stiffness * identity, flesh_point - bone.position - arm);
+      add_spring(p, c.stiffness * identity, flesh_point - bone.position - arm,
+                 coupling_entries.data() + 108 * i);
     }
-    for (const SimJoint& j : model.joints) {
+    for (std::size_t i = 0; i < model.joints.size(); ++i) {
+      const SimJoint& j = model.joints[i];
       const RigidPose &parent = s.bone_pose[std::size_t(j.parent)],
                       &child = s.bone_pose[std::size_t(j.child)];
       const Eigen::Vector3d arm_p = parent.rotation * j.in_parent,
@@ -259,7 +299,7 @@ struct HandSimulator::Impl {
       add_body_point(p, bone_block(j.parent), arm_p, 1.0);
       add_body_point(p, bone_block(j.child), arm_c, -1.0);
       add_spring(p, par.joint_stiffness * identity,
-                 parent.position + arm_p - child.position - arm_c);
+                 parent.position + arm_p - child.position - arm_c, joint_entries.data() + 48 * i);
     }
     for (int b = 0; b < bones; ++b) {
       const RigidPose& pose = s.bone_pose[std::size_t(b)];
@@ -509,9 +549,8 @@ struct HandSimulator::Impl {
     energy = 0.0;
     gradient.setZero(dofs);
     if (hessian) std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
-    for (std::size_t e = 0; e < m.tets.size(); ++e)
-      extract_rotation(deformation_gradient(m.tets[e], gather(s.node_position, m.tets[e].nodes)),
-                       s.tet_rotation[e]);
+    // The tets' rotations are found where Newton linearises and held through its line search:
+    // there the flesh energy is the quadratic that the Hessian describes.
     flesh(s);
     bodies(s, *frame.targets);
     contact_energies(s);
@@ -545,6 +584,55 @@ struct HandSimulator::Impl {
               turned[std::size_t(b)]);
     kinetic(cube_block(), m.cube, s.cube_pose, start.cube_pose, start.cube_velocity, turned.back());
     return energy;
+  }
+
+  // The Newton increment: preconditioned conjugate gradients on the current Hessian with the
+  // factorisation of an earlier one (the step's matrix changes slowly: element rotations,
+  // contacts that come and go), factorised anew when CG needs more than a few iterations.
+  // Measured on the study hand (docs/performance.md): a factorisation costs 10 ms, a CG
+  // iteration a matrix product and two triangular solves, 0.4 ms.
+  Eigen::VectorXd solve(SimStepReport& report) {
+    const Eigen::VectorXd b = -gradient;
+    auto refactor = [&] {
+      ldlt.factorize(matrix);
+      if (ldlt.info() != Eigen::Success)
+        throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
+      factorised = true;
+      ++report.factorizations;
+    };
+    if (!factorised || stale) {
+      // A direct solve, whose factorisation then preconditions the next steps.
+      refactor();
+      stale = false;
+      ++report.linear_iterations;
+      return ldlt.solve(b);
+    }
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = ldlt.solve(r), p = z, ap;
+    double rz = r.dot(z);
+    const double stop = options.linear_tolerance * options.linear_tolerance * rz;
+    int it = 0;
+    for (; it < options.max_linear_iterations && rz > stop; ++it) {
+      ap.noalias() = matrix * p;
+      const double pap = p.dot(ap);
+      if (!(pap > 0)) break;
+      const double alpha = rz / pap;
+      x += alpha * p;
+      r -= alpha * ap;
+      z = ldlt.solve(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    report.linear_iterations += it;
+    stale = it > options.refactor_iterations;
+    if (rz > stop) {
+      // CG did not converge with this preconditioner: factorise the matrix itself.
+      refactor();
+      stale = false;
+      ++report.linear_iterations;
+      return ldlt.solve(b);
+    }
+    return x;
   }
 
   // The state moved by `length` times the increment dq.
@@ -616,10 +704,7 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
     double current = im.evaluate(state, turned, frame, true);
     for (int it = 0; it < im.options.newton_iterations; ++it) {
       report.residual = im.gradient.lpNorm<Eigen::Infinity>() / im.scale;
-      im.ldlt.factorize(im.matrix);
-      if (im.ldlt.info() != Eigen::Success)
-        throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
-      const Eigen::VectorXd dq = im.ldlt.solve(-im.gradient);
+      const Eigen::VectorXd dq = im.solve(report);
       const double slope = im.gradient.dot(dq);
       HandSimState trial = state;
       std::vector<Eigen::Vector3d> trial_turned = turned;

@@ -15,10 +15,18 @@ namespace handlab::sim {
 
 struct SimOptions {
   int newton_iterations = 1;
+  // The linear solves: conjugate gradients to this decrease of the preconditioned residual
+  // norm, preconditioned by the factorisation of an earlier step's matrix, which is renewed
+  // after a solve that took more than refactor_iterations (or did not converge).
+  double linear_tolerance = 1e-6;
+  int max_linear_iterations = 40;
+  int refactor_iterations = 6;
 };
 
 struct SimStepReport {
   int newton_iterations = 0;
+  int linear_iterations = 0;     // CG iterations (a direct solve counts one)
+  int factorizations = 0;        // numeric factorisations of the Newton matrix
   int contacts = 0;              // active contact points (hand-cube, hand-floor, cube-floor)
   double max_penetration = 0.0;  // m, deepest flesh node inside the cube after the step
   double residual = 0.0;         // max |gradient| where the last Newton solve started (N)

@@ -2,11 +2,45 @@
 
 #include <cmath>
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 
 namespace handlab::sim {
+namespace {
+
+// Newton's method on the polar condition "R'F is symmetric": with G = R'F = S + W (symmetric
+// and skew parts), a body-frame turn d with (tr(S) I - S) d = axial(G - G') cancels W to first
+// order. Converges quadratically while S is positive definite (F not inverted relative to R).
+bool newton_polar(const Eigen::Matrix3d& f, Eigen::Quaterniond& q) {
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Matrix3d g = q.toRotationMatrix().transpose() * f;
+    const Eigen::Vector3d skew(g(2, 1) - g(1, 2), g(0, 2) - g(2, 0), g(1, 0) - g(0, 1));
+    const Eigen::Matrix3d s = 0.5 * (g + g.transpose());
+    const Eigen::Matrix3d m = s.trace() * Eigen::Matrix3d::Identity() - s;
+    // m positive definite (Sylvester), by a margin relative to F's size.
+    const double scale = f.cwiseAbs().maxCoeff() + 1e-300;
+    if (!(m(0, 0) > 1e-3 * scale) ||
+        !(m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) > 1e-6 * scale * scale) ||
+        !(m.determinant() > 1e-9 * scale * scale * scale))
+      return false;
+    const Eigen::Vector3d d = m.inverse() * skew;
+    const double angle = d.norm();
+    if (!(angle < 0.5)) return false;
+    // The exact turn by d (the half-angle quaternion), so that q stays a rotation.
+    const double half = 0.5 * angle;
+    const Eigen::Vector3d axis = angle > 0 ? Eigen::Vector3d(d / angle) : Eigen::Vector3d::Zero();
+    q = q * Eigen::Quaterniond(std::cos(half), std::sin(half) * axis.x(), std::sin(half) * axis.y(),
+                               std::sin(half) * axis.z());
+    q.normalize();
+    if (angle < 1e-11) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 void extract_rotation(const Eigen::Matrix3d& f, Eigen::Quaterniond& q, int max_iterations) {
+  if (newton_polar(f, q)) return;
   for (int i = 0; i < max_iterations; ++i) {
     const Eigen::Matrix3d r = q.toRotationMatrix();
     // The torque that turns R's columns towards F's, over their alignment.
@@ -17,6 +51,8 @@ void extract_rotation(const Eigen::Matrix3d& f, Eigen::Quaterniond& q, int max_i
     if (w < 1e-12) return;
     q = Eigen::Quaterniond(Eigen::AngleAxisd(w, omega / w)) * q;
     q.normalize();
+    // Once near, Newton finishes quadratically.
+    if (w < 0.05 && newton_polar(f, q)) return;
   }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d u = svd.matrixU();
