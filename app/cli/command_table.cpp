@@ -11,6 +11,8 @@ const std::vector<Command>& all_commands() {
        run_hand},
       {"retarget", "retarget a recording onto the simulated hand (naive or ours) and report errors",
        run_retarget},
+      {"sim", "the soft-hand simulator: time its steps, pinch and lift a cube (bench, pinch)",
+       run_sim},
       {"tracking", "read Leap Motion recordings: info, convert to CSV or .hlrec", run_tracking},
       {"render", "draw the task scene offscreen into a PNG (no display needed)", run_render},
       {"study", "create a study database from a protocol; show its progress", run_study},

@@ -29,14 +29,14 @@ struct SimParameters {
   // (an energy (factor E V / 2)(|e| - threshold)^2 on top of the linear one).
   double stiffening_strain = 0.25;
   double stiffening_factor = 20.0;
-  double bone_density = 1500.0;       // kg/m^3 (bone with marrow)
-  double coupling_stiffness = 1e8;    // N/m per m^2 of bone surface a coupling point stands for
-  double joint_stiffness = 2e4;       // N/m, the penalty joints
-  double tracking_stiffness = 500.0;  // N/m per bone, towards the intermediate hand
-  double tracking_torsion = 0.5;      // N m/rad per bone
+  double bone_density = 1500.0;        // kg/m^3 (bone with marrow)
+  double coupling_stiffness = 1e8;     // N/m per m^2 of bone surface a coupling point stands for
+  double joint_stiffness = 2e4;        // N/m, the penalty joints
+  double tracking_stiffness = 2000.0;  // N/m per bone, towards the intermediate hand
+  double tracking_torsion = 2.0;       // N m/rad per bone
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
   // coefficient (skin on wood or plastic: 0.5-1).
-  double contact_stiffness = 2000.0;  // N/m, a flesh node against the cube or floor
+  double contact_stiffness = 2e4;     // N/m, a flesh node against the cube or floor
   double cube_floor_stiffness = 1e4;  // N/m, a cube corner against the floor
   double friction = 0.8;
   bool hand_floor_contact = false;  // the study: off

@@ -20,6 +20,9 @@ struct PointJacobian {
   int count = 0;
   std::array<int, 6> block{};
   std::array<Eigen::Matrix3d, 6> j;
+  PointJacobian() {
+    for (Eigen::Matrix3d& m : j) m.setZero();  // copies read them all
+  }
   void add(int b, const Eigen::Matrix3d& m) {
     block[std::size_t(count)] = b;
     j[std::size_t(count++)] = m;
@@ -36,6 +39,11 @@ struct Contact {
   Eigen::Vector3d normal;  // at the predicted state, in the surface's frame (cube or world)
   Eigen::Vector3d anchor;  // friction anchor, in the surface's frame
   bool touching = false;   // inside the surface at the predicted state: friction acts
+  // The normal penalty's curvature is in Newton's matrix even where the point is outside:
+  // from the start for points inside at the prediction, and from the next pass for points
+  // that a pass without it carried inside (contacts_entered), so that a step lands where the
+  // penalty balances the push instead of deep inside, and a resting cube does not chatter.
+  bool curved = false;
   bool sliding = false;
   Eigen::Vector3d slip = Eigen::Vector3d::Zero();  // surface frame
   double friction_force = 0.0;                     // N
@@ -44,8 +52,9 @@ struct Contact {
 
 // Points this close to a surface (m), beyond what they can move in a step, are candidates.
 constexpr double kContactMargin = 0.001;
-// How many times a step is taken again when its result disagrees with the friction it
-// assumed (a slide that stopped, a stick that left the cone).
+// How many times a step is taken again when its result disagrees with the contacts it
+// assumed (a point that entered a surface unseen, a slide that stopped, a stick that left the
+// cone).
 constexpr int kFrictionPasses = 4;
 // The largest rotation of a body in one Newton iteration (rad).
 constexpr double kMaxTurn = 0.25;
@@ -206,6 +215,16 @@ struct HandSimulator::Impl {
           scale * p.j[std::size_t(a)].transpose() * f;
   }
 
+  // Only the Hessian J'KJ of a spring (no energy or force).
+  void add_curvature(const PointJacobian& p, const Eigen::Matrix3d& k) {
+    if (!with_hessian) return;
+    for (int a = 0; a < p.count; ++a) {
+      const Eigen::Matrix3d jk = scale * p.j[std::size_t(a)].transpose() * k;
+      for (int b = 0; b < p.count; ++b)
+        add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], jk * p.j[std::size_t(b)]);
+    }
+  }
+
   void add_body_point(PointJacobian& p, int block, const Eigen::Vector3d& arm, double sign) const {
     p.add(block, sign * Eigen::Matrix3d::Identity());
     p.add(block + 1, -sign * cross_matrix(arm));  // d(c + r) = dc + dtheta x r
@@ -355,8 +374,11 @@ struct HandSimulator::Impl {
       }
       if (c.kind != Contact::kNodeCube) {
         const double height = nf.dot(x) - par.floor_height;
-        if (height < 0) add_spring(p, k * nf * nf.transpose(), height * nf);
-        if (!c.touching) continue;
+        if (height < 0)
+          add_spring(p, k * nf * nf.transpose(), height * nf);
+        else if (c.curved)
+          add_curvature(p, k * nf * nf.transpose());
+        if (!c.touching || height >= 0) continue;  // no friction from a point that left
         if (c.sliding)
           add_force(p, c.friction_force * c.slip, x);
         else
@@ -366,11 +388,14 @@ struct HandSimulator::Impl {
       // Against the cube: the surface point and the anchor move with it.
       const BoxProximity b = box_proximity(
           model.cube_half, s.cube_pose.rotation.conjugate() * (x - s.cube_pose.position));
-      if (b.distance < 0) {
+      if (b.distance < 0 || c.curved) {
         const Eigen::Vector3d n = cube_r * b.normal, surface = s.cube_pose.point(b.closest);
         PointJacobian normal_part = p;
         add_body_point(normal_part, cube_block(), surface - s.cube_pose.position, -1.0);
-        add_spring(normal_part, k * n * n.transpose(), b.distance * n);
+        if (b.distance < 0)
+          add_spring(normal_part, k * n * n.transpose(), b.distance * n);
+        else
+          add_curvature(normal_part, k * n * n.transpose());
       }
       if (!c.touching || b.distance >= 0) continue;  // no pull from a point that left
       const Eigen::Vector3d anchor = s.cube_pose.point(c.anchor), n = cube_r * c.normal;
@@ -403,16 +428,19 @@ struct HandSimulator::Impl {
                    const ContactAnchor* old, double k) {
       Contact c{kind, point, normal, old ? old->anchor : surface};
       c.touching = gap < 0;
+      c.curved = c.touching;
       if (c.touching && old) {
         const Eigen::Vector3d t =
             (Eigen::Matrix3d::Identity() - normal * normal.transpose()) * (x - old->anchor);
         const double stretch = t.norm(), limit = -mu * gap;
         if (stretch > limit) {
-          c.anchor = old->anchor + t * (1.0 - limit / stretch);
-          // Flesh on the cube keeps an anchor spring, its anchor moved to the cone's edge: a
-          // constant kinetic force, fixed for the step, set the light cube ringing when a
-          // node's slip reversed within it (measured: a soft block resting on the cube).
-          if (kind != Contact::kNodeCube) {
+          if (kind == Contact::kNodeCube) {
+            // Flesh on the cube keeps an anchor spring, its anchor moved to the cone's edge: a
+            // constant kinetic force, fixed for the step, set the light cube ringing when a
+            // node's slip reversed within it (measured: a soft block resting on the cube).
+            c.anchor = old->anchor + t * (1.0 - limit / stretch);
+          } else {
+            // Sliding: the anchor stays where the point held, in case the slide stops.
             c.sliding = true;
             c.slip = t / stretch;
             c.friction_force = k * limit;
@@ -449,6 +477,33 @@ struct HandSimulator::Impl {
     }
   }
 
+  // Contacts whose curvature the solve left out but whose point ended inside the surface:
+  // they take it in the next pass (it is never taken out again, so that passes end).
+  bool contacts_entered(const HandSimState& s) {
+    const SimParameters& par = model.parameters;
+    const Eigen::Vector3d nf = par.floor_normal.normalized();
+    const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
+    bool entered = false;
+    for (Contact& c : contacts) {
+      if (c.curved) continue;
+      double gap;
+      if (c.kind == Contact::kNodeCube) {
+        gap = box_proximity(model.cube_half, cube_inv * (s.node_position[std::size_t(c.point)] -
+                                                         s.cube_pose.position))
+                  .distance;
+      } else {
+        const Eigen::Vector3d x =
+            c.kind == Contact::kNodeFloor
+                ? s.node_position[std::size_t(c.point)]
+                : s.cube_pose.point(
+                      corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half));
+        gap = nf.dot(x) - par.floor_height;
+      }
+      if (gap < 0) c.curved = entered = true;
+    }
+    return entered;
+  }
+
   // Coulomb at the step's result: a sliding contact whose point stopped short of the cone's
   // edge (its slip would reverse) sticks; a sticking one whose spring left the cone slides.
   // True when some contact changed (each may change twice a step and then sticks, so that
@@ -483,12 +538,21 @@ struct HandSimulator::Impl {
                       corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half));
         depth = par.floor_height - nf.dot(x);
       }
-      if (depth <= 0) continue;
+      if (depth <= 0) continue;  // left the surface: it felt no friction
       const Eigen::Vector3d offset =
           (Eigen::Matrix3d::Identity() - c.normal * c.normal.transpose()) * (x - c.anchor);
       const double limit = mu * depth;
-      if (c.sliding && offset.dot(c.slip) < limit) {
+      if (c.sliding && offset.dot(c.slip) <= 0) {
+        // The kinetic force turned the slide back past where the point held: it stops there.
         c.sliding = false;
+      } else if (c.sliding &&
+                 std::abs(stiffness(c) * limit - c.friction_force) > 0.25 * c.friction_force) {
+        // Coulomb's force follows the normal force at the result, not at the prediction (a
+        // corner predicted deep that bounced out must not take the friction of the depth).
+        // Not a switch: the passes' limit ends these updates.
+        c.friction_force = stiffness(c) * limit;
+        changed = true;
+        continue;
       } else if (!c.sliding && offset.norm() > 1.01 * limit) {
         c.sliding = true;
         c.slip = offset.normalized();
@@ -607,11 +671,18 @@ struct HandSimulator::Impl {
       ++report.linear_iterations;
       return ldlt.solve(b);
     }
+    // Converged when what is left of the residual would move no unknown, on its own, by more
+    // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
+    // lets a light cube's unknowns go unsolved.
+    const Eigen::VectorXd inverse_diagonal = matrix.diagonal().cwiseInverse();
+    auto converged = [&](const Eigen::VectorXd& residual) {
+      return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>() <=
+             options.linear_tolerance;
+    };
     Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = ldlt.solve(r), p = z, ap;
     double rz = r.dot(z);
-    const double stop = options.linear_tolerance * options.linear_tolerance * rz;
     int it = 0;
-    for (; it < options.max_linear_iterations && rz > stop; ++it) {
+    for (; it < options.max_linear_iterations && !converged(r); ++it) {
       ap.noalias() = matrix * p;
       const double pap = p.dot(ap);
       if (!(pap > 0)) break;
@@ -625,7 +696,7 @@ struct HandSimulator::Impl {
     }
     report.linear_iterations += it;
     stale = it > options.refactor_iterations;
-    if (rz > stop) {
+    if (!converged(r)) {
       // CG did not converge with this preconditioner: factorise the matrix itself.
       refactor();
       stale = false;
@@ -727,7 +798,8 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
       report.newton_iterations += 1;
       if (it + 1 < im.options.newton_iterations) current = im.evaluate(state, turned, frame, true);
     }
-    if (!im.friction_changed(state)) break;
+    const bool entered = im.contacts_entered(state);
+    if (!im.friction_changed(state) && !entered) break;
   }
   // Velocities from the step taken.
   for (int n = 0; n < im.nodes; ++n)

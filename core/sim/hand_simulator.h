@@ -15,10 +15,11 @@ namespace handlab::sim {
 
 struct SimOptions {
   int newton_iterations = 1;
-  // The linear solves: conjugate gradients to this decrease of the preconditioned residual
-  // norm, preconditioned by the factorisation of an earlier step's matrix, which is renewed
-  // after a solve that took more than refactor_iterations (or did not converge).
-  double linear_tolerance = 1e-6;
+  // The linear solves: conjugate gradients until the residual left would move no unknown on
+  // its own by more than linear_tolerance (m or rad), preconditioned by the factorisation of
+  // an earlier step's matrix, which is renewed after a solve that took more than
+  // refactor_iterations (or did not converge).
+  double linear_tolerance = 1e-8;
   int max_linear_iterations = 40;
   int refactor_iterations = 6;
 };

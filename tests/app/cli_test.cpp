@@ -10,6 +10,7 @@
 
 #include "core/render/image.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/test_files.h"
 
 namespace handlab {
 namespace {
@@ -165,6 +166,22 @@ TEST(CliRetarget, DrawsThePinchPicture) {
   EXPECT_EQ(width, 1500);
   EXPECT_EQ(height, 600);
   EXPECT_EQ(cli("retarget " + recording + " --picture " + png + " --frame 1").status, 1);
+}
+
+TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
+  const std::string json = test::fresh_path("sim_bench.json");
+  const Result r = cli("sim bench --duration 0.1 --json " + json);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
+  const std::string text = test::file_bytes(json);
+  for (const char* key : {"\"scale\": 1", "\"tets\"", "\"nodes\"", "\"dofs\"", "\"steps\": 12",
+                          "\"step_ms\"", "\"median\"", "\"p95\"", "\"newton_iterations\"",
+                          "\"linear_iterations\"", "\"factorizations\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
+  EXPECT_EQ(cli("sim bench --scale 3").status, 2);
+  EXPECT_EQ(cli("sim pinch --cube 2").status, 2);
+  EXPECT_EQ(cli("sim wobble").status, 2);
+  EXPECT_EQ(cli("sim pinch --help").status, 0);
 }
 
 TEST(CliAnalyze, ReportsAndWritesJson) {

@@ -149,6 +149,36 @@ TEST(TiltedFloor, CubeSticksBelowTheFrictionAngleAndSlidesAbove) {
   EXPECT_NEAR(onset / degree, friction_angle / degree, 1.0);
 }
 
+// A cube pushed along the floor slides to a stop under Coulomb's kinetic friction: backward
+// Euler takes mu g h off its speed every step, so it covers h sum_k max(0, v0 - k mu g h).
+class SlidingCube : public testing::TestWithParam<double> {};
+
+TEST_P(SlidingCube, StopsUnderKineticFriction) {
+  SimParameters p;
+  p.cube_size = GetParam();
+  const HandSimModel m = make_cube_sim_model(p);
+  HandSimulator sim(m);
+  RigidPose start;
+  start.position = Eigen::Vector3d(0, p.cube_size / 2, 0);
+  HandSimState s = initial_state(m, {}, Eigen::Isometry3d::Identity(), start);
+  for (int i = 0; i < 30; ++i) sim.step(s, {});  // settled, its anchors in place
+  const double v0 = 0.5, h = p.time_step, decrement = p.friction * 9.81 * h;
+  double expected = 0.0;
+  for (int k = 1; v0 - k * decrement > 0; ++k) expected += h * (v0 - k * decrement);
+  s.cube_velocity.linear = Eigen::Vector3d(v0, 0, 0);
+  const double x0 = s.cube_pose.position.x();
+  for (int i = 0; i < 60; ++i) sim.step(s, {});
+  const double distance = s.cube_pose.position.x() - x0;
+  std::cout << "slid " << distance * 1000 << " mm, backward Euler with Coulomb: " << expected * 1000
+            << " mm, continuous: " << v0 * v0 / (2 * decrement / h) * 1000 << " mm\n";
+  EXPECT_NEAR(distance, expected, 0.05 * expected);
+  EXPECT_LT(s.cube_velocity.linear.norm(), 1e-3) << "it should have stopped";
+  EXPECT_LT(s.cube_velocity.angular.norm(), 1e-2);
+  EXPECT_LT(std::abs(s.cube_pose.position.z()), 1e-4) << "it should slide straight";
+}
+
+INSTANTIATE_TEST_SUITE_P(StudyCubes, SlidingCube, testing::Values(0.01, 0.06));
+
 TEST(HandSimulator, RejectsTargetsThatAreNotFinite) {
   const HandSimModel m = make_cube_sim_model();
   HandSimulator sim(m);

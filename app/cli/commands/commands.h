@@ -10,6 +10,7 @@ int run_analyze(const std::vector<std::string>& args);
 int run_hand(const std::vector<std::string>& args);
 int run_tracking(const std::vector<std::string>& args);
 int run_retarget(const std::vector<std::string>& args);
+int run_sim(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);
 int run_participant(const std::vector<std::string>& args);

@@ -1,0 +1,253 @@
+// handlab-cli sim: the soft-hand simulator on its scripted pinch-and-lift. `bench` measures the
+// step time (the study mesh, or 4x and 16x finer ones); `pinch` runs the whole script and says
+// whether the cube was held, how far it slipped and how deep the flesh went into it.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <numeric>
+#include <optional>
+#include <sstream>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/hand/flesh.h"
+#include "core/hand/simulated_hand.h"
+#include "core/render/hand_drawing.h"
+#include "core/render/offscreen_context.h"
+#include "core/render/scene_drawing.h"
+#include "core/sim/pinch_script.h"
+#include "core/util/json_writer.h"
+
+namespace handlab::cli {
+namespace {
+
+struct SimSetup {
+  hand::HandShape shape = hand::HandShape::with_length(0.214);
+  hand::Skeleton skeleton = hand::build_simulated_hand(shape);
+  hand::HandFlesh flesh;
+  sim::HandSimModel model;
+  sim::PinchScript script;
+};
+
+SimSetup make_setup(int resolution, double cube_size, double squeeze) {
+  SimSetup setup;
+  hand::FleshOptions options;
+  options.resolution = resolution;
+  setup.flesh = hand::build_flesh(setup.skeleton, setup.shape, options);
+  sim::SimParameters parameters;
+  parameters.cube_size = cube_size;
+  setup.model = sim::make_hand_sim_model(setup.skeleton, setup.flesh, parameters);
+  setup.script = sim::make_pinch_script(setup.skeleton, setup.model, squeeze);
+  return setup;
+}
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double at = q * double(values.size() - 1);
+  const std::size_t below = std::size_t(std::floor(at));
+  const std::size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (at - double(below)) * (values[above] - values[below]);
+}
+
+template <typename T>
+double mean(const std::vector<T>& values) {
+  return values.empty()
+             ? 0.0
+             : double(std::accumulate(values.begin(), values.end(), T(0))) / double(values.size());
+}
+
+double cube_option(const Arguments& args) {
+  const double cube = args.number("cube");
+  if (!(cube >= 0.005 && cube <= 0.1)) throw UsageError("--cube must be between 0.005 and 0.1 m");
+  return cube;
+}
+
+void write_timing(util::JsonWriter& json, const SimSetup& setup, const sim::PinchReport& r) {
+  const std::vector<int>& lin = r.linear_iterations;
+  json.field("tets", setup.model.tets.size())
+      .field("nodes", setup.model.node_count())
+      .field("bones", setup.model.bone_count())
+      .field("dofs", setup.model.dof_count())
+      .field("steps", r.step_ms.size())
+      .field("time_step_s", setup.model.parameters.time_step);
+  json.key("step_ms")
+      .begin_object()
+      .field("median", quantile(r.step_ms, 0.5))
+      .field("p95", quantile(r.step_ms, 0.95))
+      .field("max", quantile(r.step_ms, 1.0))
+      .field("mean", mean(r.step_ms))
+      .end_object();
+  json.key("newton_iterations")
+      .begin_object()
+      .field("mean", mean(r.newton_iterations))
+      .field("max", *std::max_element(r.newton_iterations.begin(), r.newton_iterations.end()))
+      .end_object();
+  json.key("linear_iterations")
+      .begin_object()
+      .field("mean", mean(lin))
+      .field("max", *std::max_element(lin.begin(), lin.end()))
+      .end_object();
+  json.field("factorizations",
+             std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0));
+}
+
+void print_timing(const SimSetup& setup, const sim::PinchReport& r) {
+  std::cout << std::fixed << std::setprecision(2) << setup.model.tets.size() << " tets, "
+            << setup.model.node_count() << " nodes, " << setup.model.bone_count() << " bones, "
+            << setup.model.dof_count() << " DOFs; " << r.step_ms.size() << " steps: median "
+            << quantile(r.step_ms, 0.5) << " ms, p95 " << quantile(r.step_ms, 0.95) << " ms, max "
+            << quantile(r.step_ms, 1.0) << " ms; Newton " << mean(r.newton_iterations) << ", CG "
+            << mean(r.linear_iterations) << " a step, "
+            << std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0)
+            << " factorisations\n";
+}
+
+int sim_bench(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"scale", "N", "the flesh mesh: 1 (the study's), 4 or 16 times more tets", "1"},
+      {"cube", "METRES", "the cube's side", "0.01"},
+      {"duration", "SECONDS", "how much of the script to run (default: to 0.5 s after the lift)"},
+      {"json", "OUT", "write the figures as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n\n"
+                 "Times the simulator's steps on the scripted pinch-and-lift of the cube (come "
+                 "down, close thumb\nand index, lift 10 cm).\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  const long scale = args.integer("scale");
+  if (scale != 1 && scale != 4 && scale != 16) throw UsageError("--scale must be 1, 4 or 16");
+  const SimSetup setup = make_setup(int(scale), cube_option(args), 0.003);
+  const double duration =
+      args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
+  if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
+  const sim::PinchReport report =
+      sim::run_pinch(setup.model, setup.skeleton, setup.script, {}, duration);
+  print_timing(setup, report);
+  if (args.has("json")) {
+    write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter json(out);
+      json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
+      json.field("duration_s", duration);
+      write_timing(json, setup, report);
+      json.end_object();
+    });
+  }
+  return 0;
+}
+
+// Frames of the run, seen from the thumb's side and a little above.
+class FrameWriter {
+ public:
+  FrameWriter(const SimSetup& setup, std::filesystem::path directory, double interval)
+      : setup_(setup), directory_(std::move(directory)), interval_(interval), renderer_(640, 480) {
+    std::filesystem::create_directories(directory_);
+    camera_.target = Eigen::Vector3f(0, 0.06f, 0);
+    camera_.distance = 0.32f;
+    camera_.yaw = 0.5f;
+    camera_.pitch = 0.35f;
+  }
+  void operator()(const sim::HandSimState& state) {
+    if (state.time + 1e-9 < next_) return;
+    next_ += interval_;
+    task::SceneLayout layout;
+    layout.cube_size = setup_.script.cube_size;
+    layout.zone_a = Eigen::Vector3d(0.3, 0, 0);  // out of the picture
+    layout.zone_b = Eigen::Vector3d(0.6, 0, 0);
+    Eigen::Isometry3d cube = Eigen::Isometry3d::Identity();
+    cube.linear() = state.cube_pose.rotation.toRotationMatrix();
+    cube.translation() = state.cube_pose.position;
+    render::DrawList list = render::draw_task_scene(layout, cube);
+    render::draw_skin(
+        list, hand::embedded_positions(setup_.flesh.render, setup_.flesh.tets, state.node_position),
+        setup_.flesh.render.triangles, Eigen::Isometry3d::Identity(), {0.86f, 0.67f, 0.56f, 1.0f});
+    std::ostringstream name;
+    name << "frame_" << std::setw(3) << std::setfill('0') << count_++ << ".png";
+    render::write_png(renderer_.render(list, camera_), (directory_ / name.str()).string());
+  }
+
+ private:
+  const SimSetup& setup_;
+  std::filesystem::path directory_;
+  double interval_, next_ = 0.0;
+  int count_ = 0;
+  render::OffscreenRenderer renderer_;
+  render::OrbitCamera camera_;
+};
+
+int sim_pinch(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"cube", "METRES", "the cube's side (the study: 0.01 fine, 0.06 gross)", "0.01"},
+      {"squeeze", "METRES", "how far inside the faces the pads' targets are", "0.003"},
+      {"frames", "DIR", "draw the run offscreen into DIR/frame_NNN.png"},
+      {"frame-interval", "SECONDS", "with --frames: time between frames", "0.25"},
+      {"json", "OUT", "write the result as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli sim pinch --cube 0.01|0.06 [--json OUT]\n\n"
+                 "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and "
+                 "opens the fingers.\nReports whether it was held, its slip between the pads and "
+                 "the flesh's deepest penetration.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  const double squeeze = args.number("squeeze");
+  if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
+  const SimSetup setup = make_setup(1, cube_option(args), squeeze);
+  std::function<void(const sim::HandSimState&)> observer;
+  std::optional<FrameWriter> frames;
+  if (args.has("frames")) {
+    const double interval = args.number("frame-interval");
+    if (!(interval > 0)) throw UsageError("--frame-interval must be positive");
+    frames.emplace(setup, args.text("frames"), interval);
+    observer = [&](const sim::HandSimState& s) { (*frames)(s); };
+  }
+  const sim::PinchReport r =
+      sim::run_pinch(setup.model, setup.skeleton, setup.script, {}, 0.0, observer);
+  std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
+            << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
+            << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
+            << " mm, " << (r.released ? "released" : "NOT released")
+            << " (the scripted pads miss their "
+            << "targets by " << setup.script.pinch_error * 1000 << " mm)\n";
+  print_timing(setup, r);
+  if (args.has("json")) {
+    write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter json(out);
+      json.begin_object()
+          .field("cube_size_m", setup.script.cube_size)
+          .field("held", r.held)
+          .field("released", r.released)
+          .field("lift_m", r.lift)
+          .field("slip_mm", r.slip_mm)
+          .field("max_penetration_mm", r.max_penetration_mm);
+      write_timing(json, setup, r);
+      json.end_object();
+    });
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_sim(const std::vector<std::string>& argv) {
+  if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+    std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n"
+                 "       handlab-cli sim pinch --cube 0.01|0.06 [--json OUT] [--frames DIR]\n";
+    return 0;
+  }
+  if (argv.empty()) throw UsageError("sim needs a command: bench or pinch");
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "bench") return sim_bench(rest);
+  if (argv[0] == "pinch") return sim_pinch(rest);
+  throw UsageError("unknown sim command '" + argv[0] + "' (bench, pinch)");
+}
+
+}  // namespace handlab::cli

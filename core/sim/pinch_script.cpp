@@ -1,0 +1,198 @@
+#include "core/sim/pinch_script.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/retarget/fingertip_solver.h"
+
+namespace handlab::sim {
+namespace {
+
+double smooth(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3 - 2 * x);
+}
+
+hand::HandPose blend(const hand::HandPose& a, const hand::HandPose& b, double w) {
+  hand::HandPose q = a;
+  q.angles = a.angles + w * (b.angles - a.angles);
+  return q;
+}
+
+// How far the flesh reaches on the palmar side (+z of the bone frame) of a bone's middle, at
+// rest: where the pad is.
+double pad_depth(const hand::Skeleton& skeleton, const HandSimModel& model, int bone) {
+  const hand::BoneFrames rest = hand::forward_kinematics(skeleton, hand::HandPose::rest(skeleton));
+  const double length = skeleton.bones[std::size_t(bone)].length;
+  double depth = 0.0;
+  for (int node : model.surface_nodes) {
+    const Eigen::Vector3d local = rest.rotation[std::size_t(bone)].transpose() *
+                                  (model.rest[std::size_t(node)] - rest.origin[std::size_t(bone)]);
+    // Within the finger's cross-section: the finger is under 2 cm thick.
+    if (local.y() < 0.4 * length || local.y() > 0.7 * length || std::abs(local.x()) > 0.004 ||
+        std::abs(local.z()) > 0.02)
+      continue;
+    depth = std::max(depth, local.z());
+  }
+  if (depth <= 0) throw std::invalid_argument("make_pinch_script: no flesh on the finger pad");
+  return depth;
+}
+
+}  // namespace
+
+hand::HandPose PinchScript::target(double t) const {
+  hand::HandPose pose;
+  if (t < approach_end) {
+    hand::HandPose flat = open;
+    flat.angles.setZero();
+    pose = blend(flat, open, smooth(t / shape_end));
+  } else if (t < hold_end) {
+    pose = blend(open, pinch, smooth((t - approach_end) / (close_end - approach_end)));
+  } else {
+    pose = blend(pinch, open, smooth((t - hold_end) / (release_end - hold_end)));
+  }
+  pose.root_rotation = pinch.root_rotation;
+  pose.root_position =
+      pinch.root_position +
+      Eigen::Vector3d(0,
+                      approach_height * (1 - smooth((t - shape_end) / (approach_end - shape_end))) +
+                          lift_height * smooth((t - lift_start) / (lift_end - lift_start)),
+                      0);
+  return pose;
+}
+
+Eigen::Isometry3d PinchScript::start_root() const {
+  const hand::HandPose first = target(0.0);
+  Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
+  root.linear() = first.root_rotation;
+  root.translation() = first.root_position;
+  return root;
+}
+
+PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel& model,
+                              double squeeze) {
+  PinchScript script;
+  script.cube_size = 2 * model.cube_half.x();
+  script.squeeze = squeeze;
+  script.cube_centre = Eigen::Vector3d(0, script.cube_size / 2, 0);
+  script.thumb_bone = skeleton.bone_index("thumb3");
+  script.index_bone = skeleton.bone_index("index3");
+  if (script.thumb_bone < 0 || script.index_bone < 0)
+    throw std::invalid_argument("make_pinch_script: a hand without thumb3 and index3");
+  // Pads as markers: on the palmar side of the distal bones' middles, and 12 mm further in,
+  // so that aiming both at the cube's axis turns the pads to face each other.
+  hand::Skeleton ik = skeleton;
+  const int first = int(ik.markers.size());
+  for (const int bone : {script.thumb_bone, script.index_bone}) {
+    const double along = 0.55 * skeleton.bones[std::size_t(bone)].length;
+    const double depth = pad_depth(skeleton, model, bone);
+    ik.markers.push_back({"pad", bone, Eigen::Vector3d(0, along, depth)});
+    ik.markers.push_back({"pad_in", bone, Eigen::Vector3d(0, along, depth - 0.012)});
+  }
+  const std::vector<retarget::Feature> features = {
+      {first, -1, 1.0}, {first + 2, -1, 1.0}, {first + 1, -1, 0.3}, {first + 3, -1, 0.3}};
+  // Palm down, fingers along the floor, rolled 60 degrees towards the thumb so that thumb and
+  // index can oppose across the cube.
+  Eigen::Matrix3d palm_down;
+  palm_down.col(0) = Eigen::Vector3d(0, 0, -1);
+  palm_down.col(1) = Eigen::Vector3d(1, 0, 0);
+  palm_down.col(2) = Eigen::Vector3d(0, -1, 0);
+  hand::HandPose pose = hand::HandPose::rest(ik);
+  // Middle, ring and pinky curled out of the way, as people pinch.
+  for (std::size_t k = 0; k < ik.dofs.size(); ++k) {
+    const hand::Dof& dof = ik.dofs[k];
+    const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
+                       dof.name.rfind("pinky", 0) == 0;
+    if (other && dof.name.find("flexion") != std::string::npos)
+      pose.angles(Eigen::Index(k)) = 0.7 * dof.upper;
+  }
+  pose.root_rotation =
+      Eigen::AngleAxisd(-M_PI / 3, Eigen::Vector3d::UnitX()).toRotationMatrix() * palm_down;
+  const hand::BoneFrames frames = hand::forward_kinematics(ik, pose);
+  const Eigen::Vector3d thumb = hand::marker_position(ik, frames, first),
+                        index = hand::marker_position(ik, frames, first + 2);
+  // The faces the pads go to: across the cube along z, the thumb on its own side.
+  const Eigen::Vector3d axis(0, 0, (thumb - index).z() > 0 ? 1.0 : -1.0);
+  // Where the pads take the faces: 12 mm under the top, so that the curled fingers clear it,
+  // but not above 0.4 of the side, so that a finger that touches first slides a light cube
+  // instead of tipping it (pushed at height z, a cube on a floor of friction mu tips before it
+  // slides when z > side / (2 mu)).
+  const double pad_height = std::max(0.4 * script.cube_size, script.cube_size - 0.012);
+  const Eigen::Vector3d centre(script.cube_centre.x(), pad_height, script.cube_centre.z());
+  pose.root_position = centre + Eigen::Vector3d(0, 0.01, 0) - 0.5 * (thumb + index);
+  auto goals = [&](double gap) {
+    const double half = script.cube_size / 2 + gap;
+    // In the features' order: the pads, then the points behind them.
+    return std::vector<Eigen::Vector3d>{centre + axis * half, centre - axis * half,
+                                        centre + axis * (half + 0.012),
+                                        centre - axis * (half + 0.012)};
+  };
+  retarget::SolverOptions options;
+  options.root_translation_weight = 1e-3;  // the wrist may move to where both pads reach
+  options.max_iterations = options.cold_start_iterations = 200;
+  options.relative_decrease_tolerance = 0.0;
+  const retarget::SolverResult closed =
+      retarget::FingertipSolver(ik, features, options).solve(pose, goals(-squeeze), true);
+  script.pinch_error = closed.max_feature_error;
+  script.pinch = pose;
+  script.pinch.angles = closed.angles;
+  script.pinch.root_position += closed.root_shift;
+  options.root_translation_weight = 0.0;  // the same wrist, the pads 15 mm off the faces
+  const retarget::SolverResult opened =
+      retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
+  script.open = script.pinch;
+  script.open.angles = opened.angles;
+  return script;
+}
+
+PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
+                      const PinchScript& script, const SimOptions& options, double duration,
+                      const std::function<void(const HandSimState&)>& observer) {
+  if (duration <= 0) duration = script.end;
+  RigidPose cube;
+  cube.position = script.cube_centre;
+  HandSimState state = initial_state(model, skeleton, script.start_root(), cube);
+  HandSimulator simulator(model, options);
+  const double h = model.parameters.time_step;
+  const int steps = int(std::ceil(duration / h - 1e-9));
+  PinchReport report;
+  bool holding = true, reference_set = false;
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+  for (int i = 0; i < steps; ++i) {
+    const double t = (i + 1) * h;  // the time the step reaches
+    const std::vector<RigidPose> targets = bone_targets(model, skeleton, script.target(t));
+    const auto begin = std::chrono::steady_clock::now();
+    const SimStepReport step = simulator.step(state, targets);
+    report.step_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
+            .count());
+    report.newton_iterations.push_back(step.newton_iterations);
+    report.linear_iterations.push_back(step.linear_iterations);
+    report.factorizations.push_back(step.factorizations);
+    if (observer) observer(state);
+    if (t < script.lift_end - 1e-9 || t > script.hold_end + 1e-9) continue;
+    // The hold: the cube seen from the distal bones, relative to the midpoint of their origins.
+    const hand::BoneFrames frames = simulated_bone_frames(model, state);
+    const std::size_t ti = std::size_t(script.thumb_bone), ii = std::size_t(script.index_bone);
+    const Eigen::Vector3d between =
+        frames.rotation[ii].transpose() *
+        (state.cube_pose.position - 0.5 * (frames.origin[ti] + frames.origin[ii]));
+    if (!reference_set) {
+      reference = between;
+      reference_set = true;
+    }
+    report.slip_mm = std::max(report.slip_mm, 1000 * (between - reference).norm());
+    report.max_penetration_mm = std::max(report.max_penetration_mm, 1000 * step.max_penetration);
+    report.lift = state.cube_pose.position.y() - script.cube_centre.y();
+    holding = holding && report.lift >= 0.8 * script.lift_height;
+  }
+  report.held = reference_set && holding;
+  report.released = duration >= script.end &&
+                    std::abs(state.cube_pose.position.y() - script.cube_centre.y()) < 0.002 &&
+                    state.node_cube.empty();
+  return report;
+}
+
+}  // namespace handlab::sim

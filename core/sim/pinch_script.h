@@ -1,0 +1,59 @@
+// The scripted pinch-and-lift the simulator is tested and measured on: the study hand, palm
+// down, comes down over a cube on the floor, closes thumb and index on two opposite faces
+// (target poses from inverse kinematics on the finger pads), lifts it 10 cm, holds it 5 s and
+// opens. run_pinch steps the simulator through it and reports whether the cube was held, how
+// far it slipped between the fingers, how deep the flesh went into it, and the step times.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "core/hand/skeleton.h"
+#include "core/sim/hand_simulator.h"
+
+namespace handlab::sim {
+
+struct PinchScript {
+  double cube_size = 0.01;                                // m
+  Eigen::Vector3d cube_centre = Eigen::Vector3d::Zero();  // at the start, on the floor
+  hand::HandPose open, pinch;  // above the cube: fingers around it, pads on its faces
+  // Timeline (s): open the fingers 5 cm above the cube, come down, close, settle, lift 10 cm,
+  // hold 5 s, open, let the cube fall.
+  double shape_end = 0.3, approach_end = 0.8, close_end = 1.3, lift_start = 1.5, lift_end = 2.5;
+  double hold_end = 7.5, release_end = 7.9, end = 8.7;
+  double approach_height = 0.05, lift_height = 0.10;  // m
+  double squeeze = 0.0;                  // m: how far inside the faces the pads' targets are
+  int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
+  double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
+
+  hand::HandPose target(double t) const;  // the intermediate hand at time t
+  Eigen::Isometry3d start_root() const;   // the wrist at t = 0
+};
+
+// The script for the model's cube and a skeleton (the simulated hand's, whose flesh the model
+// holds: the pads' depth is read from its rest nodes). `squeeze`: the pads' targets lie this
+// far inside the faces, so that the tracking springs press them on.
+PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel& model,
+                              double squeeze = 0.003);
+
+struct PinchReport {
+  bool held = false;      // lifted to at least 80% of the lift and kept there through the hold
+  bool released = false;  // back on the floor, no flesh touching it, at the end
+  double lift = 0.0;      // m: the cube's rise at the end of the hold
+  double slip_mm = 0.0;   // the cube's largest displacement between the pads during the hold
+  double max_penetration_mm = 0.0;  // deepest flesh node inside the cube during the hold
+  std::vector<double> step_ms;      // wall time of every step
+  std::vector<int> newton_iterations, linear_iterations, factorizations;  // per step
+};
+
+// Runs the script up to `duration` seconds (its end when 0). `observer`, if given, sees the
+// state after every step.
+PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
+                      const PinchScript& script, const SimOptions& options = {},
+                      double duration = 0.0,
+                      const std::function<void(const HandSimState&)>& observer = {});
+
+}  // namespace handlab::sim
