@@ -145,17 +145,21 @@ int sim_bench(const std::vector<std::string>& argv) {
 // Frames of the run, seen from the thumb's side and a little above.
 class FrameWriter {
  public:
-  FrameWriter(const SimSetup& setup, std::filesystem::path directory, double interval)
+  FrameWriter(const SimSetup& setup, std::filesystem::path directory, double interval,
+              double yaw)
       : setup_(setup), directory_(std::move(directory)), interval_(interval), renderer_(640, 480) {
     std::filesystem::create_directories(directory_);
-    camera_.target = Eigen::Vector3f(0, 0.06f, 0);
-    camera_.distance = 0.32f;
-    camera_.yaw = 0.5f;
-    camera_.pitch = 0.35f;
+    camera_.distance = float(0.3 + 2 * setup.script.cube_size);
+    camera_.yaw = float(yaw);
+    camera_.pitch = 0.25f;
   }
   void operator()(const sim::HandSimState& state) {
     if (state.time + 1e-9 < next_) return;
     next_ += interval_;
+    // The camera follows the cube across the floor, looking at half the lift's height.
+    camera_.target = Eigen::Vector3f(float(state.cube_pose.position.x()),
+                                     float(setup_.script.cube_centre.y() + 0.05),
+                                     float(state.cube_pose.position.z()));
     task::SceneLayout layout;
     layout.cube_size = setup_.script.cube_size;
     layout.zone_a = Eigen::Vector3d(0.3, 0, 0);  // out of the picture
@@ -187,6 +191,7 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"squeeze", "METRES", "how far inside the faces the pads' targets are", "0.003"},
       {"frames", "DIR", "draw the run offscreen into DIR/frame_NNN.png"},
       {"frame-interval", "SECONDS", "with --frames: time between frames", "0.25"},
+      {"view-yaw", "RAD", "with --frames: the camera's turn about the vertical", "-0.8"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
   const Arguments args(specs, argv);
@@ -206,7 +211,7 @@ int sim_pinch(const std::vector<std::string>& argv) {
   if (args.has("frames")) {
     const double interval = args.number("frame-interval");
     if (!(interval > 0)) throw UsageError("--frame-interval must be positive");
-    frames.emplace(setup, args.text("frames"), interval);
+    frames.emplace(setup, args.text("frames"), interval, args.number("view-yaw"));
     observer = [&](const sim::HandSimState& s) { (*frames)(s); };
   }
   const sim::PinchReport r =
