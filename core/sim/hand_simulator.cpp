@@ -268,7 +268,7 @@ struct HandSimulator::Impl {
         extra_mu = 0.5 * k * (1.0 - ratio);
       }
       energy += scale * element_energy;
-      Eigen::Matrix<double, 3, 4> rotated = r * t.gradients;  // R grad N_a
+      const Eigen::Matrix<double, 3, 4> rotated = r * t.gradients;  // R grad N_a
       const Eigen::Matrix<double, 3, 4> force = (scale * t.volume) * (r * stress * t.gradients);
       for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * t.nodes[std::size_t(a)]) += force.col(a);
       if (!with_hessian) continue;

@@ -111,6 +111,9 @@ int sim_bench(const std::vector<std::string>& argv) {
       {"scale", "N", "the flesh mesh: 1 (the study's), 4 or 16 times more tets", "1"},
       {"cube", "METRES", "the cube's side", "0.01"},
       {"duration", "SECONDS", "how much of the script to run (default: to 0.5 s after the lift)"},
+      {"newton-iterations", "N", "Newton iterations a step", "1"},
+      {"refactor-iterations", "N",
+       "factorise the matrix anew after a solve that needed more CG iterations than this", "6"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
   };
   const Arguments args(specs, argv);
@@ -127,8 +130,14 @@ int sim_bench(const std::vector<std::string>& argv) {
   const double duration =
       args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
   if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
+  sim::SimOptions options;
+  options.newton_iterations = int(args.integer("newton-iterations"));
+  options.refactor_iterations = int(args.integer("refactor-iterations"));
+  if (options.newton_iterations < 1 || options.newton_iterations > 20)
+    throw UsageError("--newton-iterations must be 1 to 20");
+  if (options.refactor_iterations < 0) throw UsageError("--refactor-iterations must be >= 0");
   const sim::PinchReport report =
-      sim::run_pinch(setup.model, setup.skeleton, setup.script, {}, duration);
+      sim::run_pinch(setup.model, setup.skeleton, setup.script, options, duration);
   print_timing(setup, report);
   if (args.has("json")) {
     write_output(args.text("json"), [&](std::ostream& out) {
@@ -145,8 +154,7 @@ int sim_bench(const std::vector<std::string>& argv) {
 // Frames of the run, seen from the thumb's side and a little above.
 class FrameWriter {
  public:
-  FrameWriter(const SimSetup& setup, std::filesystem::path directory, double interval,
-              double yaw)
+  FrameWriter(const SimSetup& setup, std::filesystem::path directory, double interval, double yaw)
       : setup_(setup), directory_(std::move(directory)), interval_(interval), renderer_(640, 480) {
     std::filesystem::create_directories(directory_);
     camera_.distance = float(0.3 + 2 * setup.script.cube_size);
