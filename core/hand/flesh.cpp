@@ -82,6 +82,16 @@ class TetLocator {
   std::unordered_map<long, std::vector<int>> grid_;
 };
 
+// The distal capsule, in units of the bone's radius: its radius and its shift to the back
+// (calibrated with the fingertip test: about 1.2 mm of indentation at 1 N).
+constexpr double kDistalRadius = 0.55, kDistalShift = 0.35;
+
+bool is_distal(const Skeleton& skeleton, int bone) {
+  for (const Bone& b : skeleton.bones)
+    if (b.parent == bone) return false;
+  return bone > 0;
+}
+
 }  // namespace
 
 std::vector<Capsule> bone_capsules(const Skeleton& skeleton, const HandShape& shape) {
@@ -100,8 +110,19 @@ std::vector<Capsule> bone_capsules(const Skeleton& skeleton, const HandShape& sh
     const Bone& bone = skeleton.bones[b];
     // Keep clear of the joints so neighbouring capsules do not overlap much.
     const double trim = 0.25 * bone.radius;
-    capsules.push_back({int(b), Eigen::Vector3d(0, trim, 0),
-                        Eigen::Vector3d(0, bone.length - trim, 0), bone.radius});
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    double radius = bone.radius;
+    if (is_distal(skeleton, int(b))) {
+      // The distal phalanx is a slender bone on the nail's side: the pulp under it is what a
+      // press on the fingertip compresses (the tip's stiffness depends on its thickness).
+      const Eigen::Vector3d palmar = skeleton.dofs[std::size_t(bone.first_dof)]
+                                         .axis.cross(Eigen::Vector3d::UnitY())
+                                         .normalized();
+      offset = -kDistalShift * bone.radius * palmar;
+      radius = kDistalRadius * bone.radius;
+    }
+    capsules.push_back({int(b), offset + Eigen::Vector3d(0, trim, 0),
+                        offset + Eigen::Vector3d(0, bone.length - trim, 0), radius});
   }
   (void)rest;
   return capsules;

@@ -23,7 +23,7 @@ struct SimParameters {
   double time_step = 1.0 / 120.0;  // s
   Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0);
   // Flesh: soft tissue of the fingertip pad, ν near incompressible.
-  Material flesh = {100e3, 0.45};
+  Material flesh = {50e3, 0.45};
   double flesh_density = 1050.0;  // kg/m^3
   // Stiffening: beyond this corotated strain norm the tissue stiffens by this factor's modulus
   // (an energy (factor E V / 2)(|e| - threshold)^2 on top of the linear one).

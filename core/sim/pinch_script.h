@@ -46,7 +46,7 @@ struct PinchReport {
   double slip_mm = 0.0;   // the cube's largest displacement between the pads during the hold
   double max_penetration_mm = 0.0;  // deepest flesh node inside the cube during the hold
   std::vector<double> step_ms;      // wall time of every step
-  std::vector<int> newton_iterations, linear_iterations, factorizations;  // per step
+  std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
 };
 
 // Runs the script up to `duration` seconds (its end when 0). `observer`, if given, sees the

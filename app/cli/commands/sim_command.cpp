@@ -114,7 +114,11 @@ int sim_bench(const std::vector<std::string>& argv) {
       {"newton-iterations", "N", "Newton iterations a step", "1"},
       {"refactor-iterations", "N",
        "factorise the matrix anew after a solve that needed more CG iterations than this", "6"},
+      {"linear-tolerance", "METRES",
+       "CG stops when the residual left would move no unknown by more than this", "1e-8"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
+      {"steps", "CSV",
+       "write every step's time (ms), Newton and CG iterations, factorisations and contacts"},
   };
   const Arguments args(specs, argv);
   if (args.help_requested()) {
@@ -136,9 +140,22 @@ int sim_bench(const std::vector<std::string>& argv) {
   if (options.newton_iterations < 1 || options.newton_iterations > 20)
     throw UsageError("--newton-iterations must be 1 to 20");
   if (options.refactor_iterations < 0) throw UsageError("--refactor-iterations must be >= 0");
+  options.linear_tolerance = args.number("linear-tolerance");
+  if (!(options.linear_tolerance > 0 && options.linear_tolerance < 1e-3))
+    throw UsageError("--linear-tolerance must be in (0, 1e-3) m");
   const sim::PinchReport report =
       sim::run_pinch(setup.model, setup.skeleton, setup.script, options, duration);
   print_timing(setup, report);
+  if (args.has("steps")) {
+    write_output(args.text("steps"), [&](std::ostream& out) {
+      out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts\n";
+      const double h = setup.model.parameters.time_step;
+      for (std::size_t i = 0; i < report.step_ms.size(); ++i)
+        out << i << ',' << double(i + 1) * h << ',' << report.step_ms[i] << ','
+            << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
+            << report.factorizations[i] << ',' << report.contacts[i] << '\n';
+    });
+  }
   if (args.has("json")) {
     write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
