@@ -12,6 +12,7 @@
 #include <QTableWidget>
 #include <QTextStream>
 
+#include "app/gui/pinch_simulation.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/study_panel.h"
 #include "handlab/version.h"
@@ -52,12 +53,63 @@ void MainWindow::build_menus() {
   hands->setChecked(view_->show_hands());
   connect(hands, &QAction::toggled, view_, &SceneView::set_show_hands);
 
+  QMenu* simulation = menuBar()->addMenu(tr("S&imulation"));
+  simulation->addAction(tr("Run Scripted &Pinch-and-Lift"), this, [this] { start_pinch(); });
+  simulation->addAction(tr("&Stop"), this, &MainWindow::stop_pinch);
+  simulation->addSeparator();
+  QAction* contacts = simulation->addAction(tr("Show &Contact Points"));
+  contacts->setCheckable(true);
+  connect(contacts, &QAction::toggled, this, &MainWindow::set_show_contacts);
+
   QMenu* analysis = menuBar()->addMenu(tr("&Analysis"));
   analysis->addAction(tr("Open Data &Table (CSV)…"), this, &MainWindow::open_csv_table);
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About handlab"), this, &MainWindow::show_about);
   help->addAction(tr("About &Qt"), qApp, &QApplication::aboutQt);
+}
+
+PinchSimulation* MainWindow::start_pinch(double until) {
+  stop_pinch();
+  pinch_ = new PinchSimulation(view_->layout().cube_size, until, this);
+  connect(pinch_, &PinchSimulation::advanced, this, &MainWindow::show_pinch_state);
+  connect(pinch_, &PinchSimulation::done, this, [this, sim = pinch_] {
+    if (sim != pinch_) return;
+    show_pinch_state();
+    const QString error = sim->error();
+    statusBar()->showMessage(
+        error.isEmpty()
+            ? tr("Simulated pinch-and-lift: finished at %1 s").arg(sim->progress().time, 0, 'f', 2)
+            : tr("Simulation stopped: %1").arg(error));
+  });
+  statusBar()->showMessage(tr("Building the soft hand…"));
+  return pinch_;
+}
+
+void MainWindow::stop_pinch() {
+  if (!pinch_) return;
+  delete pinch_;  // stops and joins its worker
+  pinch_ = nullptr;
+  view_->set_frame(nullptr);
+  statusBar()->showMessage(tr("Drag to orbit, scroll to zoom"));
+}
+
+void MainWindow::set_show_contacts(bool show) {
+  show_contacts_ = show;
+  show_pinch_state();
+}
+
+void MainWindow::show_pinch_state() {
+  if (!pinch_ || !pinch_->has_state()) return;
+  view_->set_frame(
+      std::make_shared<const render::DrawList>(pinch_->draw(view_->layout(), show_contacts_)));
+  if (pinch_->finished()) return;
+  const PinchSimulation::Progress p = pinch_->progress();
+  statusBar()->showMessage(tr("Simulated pinch-and-lift: t = %1 s, last step %2 ms, %3 contact "
+                              "points")
+                               .arg(p.time, 0, 'f', 2)
+                               .arg(p.step_ms, 0, 'f', 1)
+                               .arg(p.contacts));
 }
 
 void MainWindow::save_view_image() {

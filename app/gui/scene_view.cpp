@@ -80,6 +80,10 @@ class SceneCanvas : public QOpenGLWidget {
   void paintGL() override {
     if (!renderer_) return;
     const qreal ratio = devicePixelRatioF();
+    if (const auto& frame = view_->frame()) {
+      renderer_->render(*frame, view_->camera(), int(width() * ratio), int(height() * ratio));
+      return;
+    }
     const task::SceneLayout& layout = view_->layout();
     render::DrawList list = render::draw_task_scene(layout, task::cube_start_pose(layout));
     if (view_->show_hands()) {
@@ -134,6 +138,11 @@ void SceneView::set_camera(const render::OrbitCamera& camera) {
 
 void SceneView::set_show_hands(bool show) {
   show_hands_ = show;
+  redraw();
+}
+
+void SceneView::set_frame(std::shared_ptr<const render::DrawList> frame) {
+  frame_ = std::move(frame);
   redraw();
 }
 

@@ -3,11 +3,14 @@
 // the platform offers OpenGL; without it the view says so instead of drawing.
 #pragma once
 
+#include <memory>
+
 #include <QPoint>
 #include <QWidget>
 
 #include <Eigen/Geometry>
 
+#include "core/render/draw_list.h"
 #include "core/render/orbit_camera.h"
 #include "core/task/scene_layout.h"
 
@@ -30,6 +33,9 @@ class SceneView : public QWidget {
   bool show_hands() const { return show_hands_; }
   // Where the simulated hand's palm centre is drawn (scene coordinates), for tests.
   static Eigen::Vector3f simulated_palm_position();
+  // A frame to show instead of the static scene (a simulation's state); null: the scene.
+  void set_frame(std::shared_ptr<const render::DrawList> frame);
+  const std::shared_ptr<const render::DrawList>& frame() const { return frame_; }
   // Null when the platform has no OpenGL 3.3 (e.g. the offscreen platform).
   SceneCanvas* canvas() const { return canvas_; }
   // The picture currently shown (empty without OpenGL).
@@ -54,6 +60,7 @@ class SceneView : public QWidget {
   QPoint last_mouse_;
   bool dragging_ = false;
   bool show_hands_ = true;
+  std::shared_ptr<const render::DrawList> frame_;
 };
 
 // True when an OpenGL 3.3 core context can be created on this platform (checked once).

@@ -20,6 +20,9 @@ struct DrawItem {
   // Meshes whose vertices change every frame (deforming skin) are uploaded again each frame;
   // static ones once, cached by address.
   bool dynamic = false;
+  // Drawn after the others and over them (no depth test): markers that must stay visible,
+  // such as contact points inside the flesh.
+  bool overlay = false;
 };
 
 struct DrawList {

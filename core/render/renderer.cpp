@@ -191,8 +191,8 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
   gl.UniformMatrix4fv(impl_->u_view_projection, 1, GL_FALSE, view_projection.data());
   gl.Uniform3fv(impl_->u_eye, 1, eye.data());
 
-  for (const DrawItem& item : list.items) {
-    if (!item.mesh || item.mesh->indices.empty()) continue;
+  auto draw = [&](const DrawItem& item) {
+    if (!item.mesh || item.mesh->indices.empty()) return;
     GpuMesh& gpu = impl_->prepare(item);
     const Eigen::Matrix3f normal_matrix = item.model.block<3, 3>(0, 0).inverse().transpose();
     gl.UniformMatrix4fv(impl_->u_model, 1, GL_FALSE, item.model.data());
@@ -201,7 +201,13 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
     gl.Uniform1f(impl_->u_shading, static_cast<float>(item.shading));
     gl.BindVertexArray(gpu.vao);
     gl.DrawElements(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr);
-  }
+  };
+  for (const DrawItem& item : list.items)
+    if (!item.overlay) draw(item);
+  gl.Disable(GL_DEPTH_TEST);
+  for (const DrawItem& item : list.items)
+    if (item.overlay) draw(item);
+  gl.Enable(GL_DEPTH_TEST);
   gl.BindVertexArray(0);
   gl.UseProgram(0);
 }

@@ -40,4 +40,9 @@ HandSimState initial_state(const HandSimModel& model, const hand::Skeleton& skel
   return s;
 }
 
+Eigen::Vector3d cube_corner(const HandSimModel& model, const RigidPose& pose, int k) {
+  const Eigen::Vector3d sign(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+  return pose.point(sign.cwiseProduct(model.cube_half));
+}
+
 }  // namespace handlab::sim

@@ -36,6 +36,10 @@ struct HandSimState {
 HandSimState initial_state(const HandSimModel& model, const hand::Skeleton& skeleton,
                            const Eigen::Isometry3d& root, const RigidPose& cube);
 
+// Corner k (0..7) of the cube at `pose`: its x, y and z signs are bits 0, 1 and 2 of k (set:
+// +, clear: -), the numbering of ContactAnchor::point for corners.
+Eigen::Vector3d cube_corner(const HandSimModel& model, const RigidPose& pose, int k);
+
 // The bodies' targets (centres of mass) for the bone frames of a pose of the skeleton.
 std::vector<RigidPose> bone_targets(const HandSimModel& model, const hand::Skeleton& skeleton,
                                     const hand::HandPose& pose);

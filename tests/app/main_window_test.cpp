@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "app/gui/main_window.h"
+#include "app/gui/pinch_simulation.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/study_panel.h"
+#include "core/render/scene_drawing.h"
 #include "core/store/study_store.h"
 #include "studies/session/session_runner.h"
 
@@ -16,13 +18,55 @@
 namespace handlab::gui {
 namespace {
 
-TEST(MainWindow, HasTheFourMenus) {
+TEST(MainWindow, HasTheFiveMenus) {
   MainWindow window;
   window.show();
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
   QStringList titles;
   for (QAction* action : window.menuBar()->actions()) titles << action->text().remove('&');
-  EXPECT_EQ(titles, (QStringList{"File", "Study", "Analysis", "Help"}));
+  EXPECT_EQ(titles, (QStringList{"File", "Study", "Simulation", "Analysis", "Help"}));
+}
+
+// The scripted pinch runs on the simulator in the background and the view shows its newest
+// state: the task scene with the cube where the simulation has it, the deforming skin and,
+// on request, the contact points (here the 1 cm cube's four corners on the floor, drawn over
+// everything).
+TEST(MainWindow, ShowsTheSimulatedPinch) {
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  SceneView* view = window.scene_view();
+  task::SceneLayout layout = view->layout();
+  layout.cube_size = 0.01;
+  view->set_layout(layout);
+  window.set_show_contacts(true);
+  PinchSimulation* pinch = window.start_pinch(0.25);
+  ASSERT_NE(pinch, nullptr);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return pinch->finished(); }, 120000));
+  QTest::qWait(50);  // the queued notifications
+  EXPECT_TRUE(pinch->error().isEmpty()) << pinch->error().toStdString();
+  EXPECT_NEAR(pinch->progress().time, 0.25, 1e-9);
+  ASSERT_NE(view->frame(), nullptr);
+  const render::DrawList scene =
+      render::draw_task_scene(view->layout(), task::cube_start_pose(view->layout()));
+  const std::vector<render::DrawItem>& items = view->frame()->items;
+  ASSERT_EQ(items.size(), scene.items.size() + 1 + 4);  // the skin, four corners
+  int overlays = 0, dynamic = 0;
+  for (const render::DrawItem& item : items) {
+    overlays += item.overlay;
+    dynamic += item.dynamic;
+  }
+  EXPECT_EQ(overlays, 4);
+  EXPECT_EQ(dynamic, 1);  // the skin, uploaded anew with every state
+  // Hiding the contact points redraws the same state without them; stopping returns the view
+  // to the static scene.
+  window.set_show_contacts(false);
+  EXPECT_EQ(view->frame()->items.size(), scene.items.size() + 1);
+  window.start_pinch(0.0);  // a second run replaces the first
+  QTest::qWait(100);
+  window.stop_pinch();  // mid-run: joins the worker without waiting for the script's end
+  EXPECT_EQ(window.pinch(), nullptr);
+  EXPECT_EQ(view->frame(), nullptr);
 }
 
 TEST(MainWindow, MouseDragOrbitsTheCamera) {

@@ -7,6 +7,8 @@
 #include "core/render/image.h"
 #include "core/render/offscreen_context.h"
 #include "core/render/scene_drawing.h"
+#include "core/render/sim_drawing.h"
+#include "core/sim/pinch_scene.h"
 
 namespace handlab::render {
 namespace {
@@ -80,6 +82,50 @@ TEST_F(OffscreenRender, PngRoundTripKeepsTheSize) {
   EXPECT_EQ(w, kWidth);
   EXPECT_EQ(h, kHeight);
   EXPECT_LT(std::filesystem::file_size(path), image_.rgba.size() / 4);  // compressed
+}
+
+// A simulator state: the cube where the state has it (lifted here), the flesh's skin where its
+// nodes are, and contact points over everything when asked: a flesh node inside the cube
+// shows red through the cube's face, a corner on the floor blue.
+TEST(OffscreenSimState, DrawsTheCubeTheSkinAndTheContactPoints) {
+  const sim::PinchScene scene = sim::make_pinch_scene(0.06);
+  sim::HandSimState state = scene.start();
+  state.cube_pose.position += Eigen::Vector3d(0, 0.02, 0);
+  const Eigen::Vector3d centre = state.cube_pose.position;
+  state.node_position[0] = centre;  // as if pushed into the cube
+  state.node_cube.push_back({0, Eigen::Vector3d::Zero()});
+  state.corner_floor.push_back({1, Eigen::Vector3d::Zero()});  // +x, -y, -z
+  task::SceneLayout layout;
+  layout.cube_size = 0.06;
+  OrbitCamera camera;
+  camera.target = centre.cast<float>();
+  camera.distance = 0.5f;
+  OffscreenRenderer renderer(kWidth, kHeight, 4);
+  SimDrawStyle style;
+  const Image plain =
+      renderer.render(draw_sim_state(layout, scene.flesh, scene.model, state, style), camera);
+  style.contacts = true;
+  const Image marked =
+      renderer.render(draw_sim_state(layout, scene.flesh, scene.model, state, style), camera);
+  const Rgb cube = at(plain, camera, centre.cast<float>());
+  EXPECT_GT(cube.r, cube.g + 60) << "the lifted cube is drawn where the state has it";
+  EXPECT_GT(cube.g, cube.b + 30);
+  const Rgb inside = at(marked, camera, centre.cast<float>());
+  EXPECT_GT(inside.r, 180);
+  EXPECT_LT(inside.g, 60) << "the contact point inside the cube shows red";
+  const Rgb corner =
+      at(marked, camera, sim::cube_corner(scene.model, state.cube_pose, 1).cast<float>());
+  EXPECT_GT(corner.b, corner.r + 80) << "the corner's contact point shows blue";
+  // The skin: the middle of the flesh's nodes is on the hand, whose colour differs from the
+  // background's and the floor's.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t n = 1; n < state.node_position.size(); ++n) mean += state.node_position[n];
+  mean /= double(state.node_position.size() - 1);
+  camera.target = mean.cast<float>();
+  const Image hand =
+      renderer.render(draw_sim_state(layout, scene.flesh, scene.model, state, style), camera);
+  const auto px = hand.pixel(kWidth / 2, kHeight / 2);
+  EXPECT_GT(px[0], px[2] + 40) << "skin colour at the hand's middle";
 }
 
 TEST(OffscreenRenderer, RejectsAbsurdSizes) {

@@ -17,32 +17,12 @@
 #include "core/hand/simulated_hand.h"
 #include "core/render/hand_drawing.h"
 #include "core/render/offscreen_context.h"
-#include "core/render/scene_drawing.h"
-#include "core/sim/pinch_script.h"
+#include "core/render/sim_drawing.h"
+#include "core/sim/pinch_scene.h"
 #include "core/util/json_writer.h"
 
 namespace handlab::cli {
 namespace {
-
-struct SimSetup {
-  hand::HandShape shape = hand::HandShape::with_length(0.214);
-  hand::Skeleton skeleton = hand::build_simulated_hand(shape);
-  hand::HandFlesh flesh;
-  sim::HandSimModel model;
-  sim::PinchScript script;
-};
-
-SimSetup make_setup(int resolution, double cube_size, double squeeze) {
-  SimSetup setup;
-  hand::FleshOptions options;
-  options.resolution = resolution;
-  setup.flesh = hand::build_flesh(setup.skeleton, setup.shape, options);
-  sim::SimParameters parameters;
-  parameters.cube_size = cube_size;
-  setup.model = sim::make_hand_sim_model(setup.skeleton, setup.flesh, parameters);
-  setup.script = sim::make_pinch_script(setup.skeleton, setup.model, squeeze);
-  return setup;
-}
 
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -66,7 +46,7 @@ double cube_option(const Arguments& args) {
   return cube;
 }
 
-void write_timing(util::JsonWriter& json, const SimSetup& setup, const sim::PinchReport& r) {
+void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const sim::PinchReport& r) {
   const std::vector<int>& lin = r.linear_iterations;
   json.field("tets", setup.model.tets.size())
       .field("nodes", setup.model.node_count())
@@ -95,7 +75,7 @@ void write_timing(util::JsonWriter& json, const SimSetup& setup, const sim::Pinc
              std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0));
 }
 
-void print_timing(const SimSetup& setup, const sim::PinchReport& r) {
+void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
   std::cout << std::fixed << std::setprecision(2) << setup.model.tets.size() << " tets, "
             << setup.model.node_count() << " nodes, " << setup.model.bone_count() << " bones, "
             << setup.model.dof_count() << " DOFs; " << r.step_ms.size() << " steps: median "
@@ -130,7 +110,7 @@ int sim_bench(const std::vector<std::string>& argv) {
   }
   const long scale = args.integer("scale");
   if (scale != 1 && scale != 4 && scale != 16) throw UsageError("--scale must be 1, 4 or 16");
-  const SimSetup setup = make_setup(int(scale), cube_option(args), 0.003);
+  const sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), int(scale));
   const double duration =
       args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
   if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
@@ -171,8 +151,13 @@ int sim_bench(const std::vector<std::string>& argv) {
 // Frames of the run, seen from the thumb's side and a little above.
 class FrameWriter {
  public:
-  FrameWriter(const SimSetup& setup, std::filesystem::path directory, double interval, double yaw)
-      : setup_(setup), directory_(std::move(directory)), interval_(interval), renderer_(640, 480) {
+  FrameWriter(const sim::PinchScene& setup, std::filesystem::path directory, double interval,
+              double yaw, bool contacts)
+      : setup_(setup),
+        directory_(std::move(directory)),
+        interval_(interval),
+        contacts_(contacts),
+        renderer_(640, 480) {
     std::filesystem::create_directories(directory_);
     camera_.distance = float(0.3 + 2 * setup.script.cube_size);
     camera_.yaw = float(yaw);
@@ -189,22 +174,20 @@ class FrameWriter {
     layout.cube_size = setup_.script.cube_size;
     layout.zone_a = Eigen::Vector3d(0.3, 0, 0);  // out of the picture
     layout.zone_b = Eigen::Vector3d(0.6, 0, 0);
-    Eigen::Isometry3d cube = Eigen::Isometry3d::Identity();
-    cube.linear() = state.cube_pose.rotation.toRotationMatrix();
-    cube.translation() = state.cube_pose.position;
-    render::DrawList list = render::draw_task_scene(layout, cube);
-    render::draw_skin(
-        list, hand::embedded_positions(setup_.flesh.render, setup_.flesh.tets, state.node_position),
-        setup_.flesh.render.triangles, Eigen::Isometry3d::Identity(), {0.86f, 0.67f, 0.56f, 1.0f});
+    render::SimDrawStyle style;
+    style.contacts = contacts_;
+    const render::DrawList list =
+        render::draw_sim_state(layout, setup_.flesh, setup_.model, state, style);
     std::ostringstream name;
     name << "frame_" << std::setw(3) << std::setfill('0') << count_++ << ".png";
     render::write_png(renderer_.render(list, camera_), (directory_ / name.str()).string());
   }
 
  private:
-  const SimSetup& setup_;
+  const sim::PinchScene& setup_;
   std::filesystem::path directory_;
   double interval_, next_ = 0.0;
+  bool contacts_;
   int count_ = 0;
   render::OffscreenRenderer renderer_;
   render::OrbitCamera camera_;
@@ -217,6 +200,7 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"frames", "DIR", "draw the run offscreen into DIR/frame_NNN.png"},
       {"frame-interval", "SECONDS", "with --frames: time between frames", "0.25"},
       {"view-yaw", "RAD", "with --frames: the camera's turn about the vertical", "-0.8"},
+      {"contacts", "", "with --frames: draw the contact points"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
   const Arguments args(specs, argv);
@@ -230,13 +214,14 @@ int sim_pinch(const std::vector<std::string>& argv) {
   }
   const double squeeze = args.number("squeeze");
   if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
-  const SimSetup setup = make_setup(1, cube_option(args), squeeze);
+  const sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), 1, squeeze);
   std::function<void(const sim::HandSimState&)> observer;
   std::optional<FrameWriter> frames;
   if (args.has("frames")) {
     const double interval = args.number("frame-interval");
     if (!(interval > 0)) throw UsageError("--frame-interval must be positive");
-    frames.emplace(setup, args.text("frames"), interval, args.number("view-yaw"));
+    frames.emplace(setup, args.text("frames"), interval, args.number("view-yaw"),
+                   args.flag("contacts"));
     observer = [&](const sim::HandSimState& s) { (*frames)(s); };
   }
   const sim::PinchReport r =
