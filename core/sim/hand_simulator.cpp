@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -88,11 +89,33 @@ struct StepFrame {
 
 }  // namespace
 
+// The Newton matrix as the sum of the terms an evaluation found, kept instead of assembled:
+// conjugate gradients multiply by it term by term (cheaper than assembling it for the few
+// iterations a step takes), and it is assembled only when it is to be factorised.
+struct TetTerm {  // V [mu (g_a . g_b) I + mu g_b g_a' + lambda g_a g_b'] + q_a q_b', per node pair
+  Eigen::Matrix<double, 3, 4> rotated;  // R grad N_a
+  Eigen::Matrix<double, 3, 4> q;        // the stiffening's rank-one part (zero below threshold)
+  double vmu = 0.0, vlambda = 0.0;
+  bool stiffened = false;
+};
+struct SpringTerm {  // J'KJ
+  PointJacobian p;
+  Eigen::Matrix3d k;
+  const int* cached;  // value indices for assembly (see spring_entries), or null
+};
+struct BlockTerm {  // on one diagonal block
+  int block;
+  Eigen::Matrix3d m;
+};
+
 struct HandSimulator::Impl {
   const HandSimModel& model;
   SimOptions options;
   int nodes = 0, bones = 0, blocks = 0, dofs = 0;
-  Eigen::SparseMatrix<double> matrix;
+  std::vector<TetTerm> tet_terms;
+  std::vector<SpringTerm> spring_terms;
+  std::vector<BlockTerm> block_terms;
+  Eigen::SparseMatrix<double> matrix;                // assembled from the terms for a factorisation
   std::vector<std::array<int, 48>> tet_entries;      // value index of (3a, 3b + c) per tet pair
   std::vector<int> coupling_entries, joint_entries;  // add_spring's caches, 108 and 48 each
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
@@ -163,40 +186,129 @@ struct HandSimulator::Impl {
     return int(std::lower_bound(rows + begin, rows + end, row) - rows);
   }
 
-  void add_block(int bi, int bj, const Eigen::Matrix3d& m) {
-    if (!with_hessian) return;
-    double* values = matrix.valuePtr();
-    for (int c = 0; c < 3; ++c) {
-      double* column = values + entry(3 * bi, 3 * bj + c);
-      for (int r = 0; r < 3; ++r) column[r] += m(r, c);
-    }
+  // A term on a diagonal block of the Newton matrix.
+  void add_block(int b, const Eigen::Matrix3d& m) {
+    if (with_hessian) block_terms.push_back({b, m});
   }
 
   // The energy 1/2 d'Kd of a point's offset d (K symmetric positive semidefinite): gradient
-  // J'Kd, Gauss-Newton Hessian J'KJ.
-  // `cached`, when given, holds the value index of each block pair's columns (see
-  // spring_entries), so that the fixed springs (coupling, joints) need no search.
+  // J'Kd, Gauss-Newton Hessian J'KJ. `cached`, when given, holds the value index of each
+  // block pair's columns (see spring_entries), so that assembling the fixed springs (coupling,
+  // joints) needs no search.
   void add_spring(const PointJacobian& p, const Eigen::Matrix3d& k, const Eigen::Vector3d& d,
                   const int* cached = nullptr) {
     const Eigen::Vector3d f = scale * (k * d);
     energy += 0.5 * d.dot(f);
-    double* values = matrix.valuePtr();
-    for (int a = 0; a < p.count; ++a) {
+    for (int a = 0; a < p.count; ++a)
       gradient.segment<3>(3 * p.block[std::size_t(a)]) += p.j[std::size_t(a)].transpose() * f;
-      if (!with_hessian) continue;
-      const Eigen::Matrix3d jk = scale * p.j[std::size_t(a)].transpose() * k;
-      for (int b = 0; b < p.count; ++b) {
-        const Eigen::Matrix3d block = jk * p.j[std::size_t(b)];
-        if (!cached) {
-          add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], block);
-          continue;
+    if (with_hessian) spring_terms.push_back({p, scale * k, cached});
+  }
+
+  // Only the Hessian J'KJ of a spring (no energy or force).
+  void add_curvature(const PointJacobian& p, const Eigen::Matrix3d& k) {
+    if (with_hessian) spring_terms.push_back({p, scale * k, nullptr});
+  }
+
+  // y = A x, term by term.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    y.resize(dofs);
+    for (int n = 0; n < nodes; ++n)
+      y.segment<3>(3 * n) = model.node_mass[std::size_t(n)] * x.segment<3>(3 * n);
+    y.tail(dofs - 3 * nodes).setZero();
+    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+      const TetTerm& t = tet_terms[e];
+      const auto& ids = model.tets[e].nodes;
+      Eigen::Matrix<double, 3, 4> p;
+      for (int a = 0; a < 4; ++a) p.col(a) = x.segment<3>(3 * ids[std::size_t(a)]);
+      // With D = sum_b p_b r_b', the blocks' sum is vmu (D + D') r_a + vlambda tr(D) r_a.
+      const Eigen::Matrix3d d = p * t.rotated.transpose();
+      Eigen::Matrix3d stress = t.vmu * (d + d.transpose());
+      stress.diagonal().array() += t.vlambda * d.trace();
+      Eigen::Matrix<double, 3, 4> out = stress * t.rotated;
+      if (t.stiffened) out += t.q * (t.q.cwiseProduct(p)).sum();
+      for (int a = 0; a < 4; ++a) y.segment<3>(3 * ids[std::size_t(a)]) += out.col(a);
+    }
+    for (const SpringTerm& t : spring_terms) {
+      Eigen::Vector3d u = Eigen::Vector3d::Zero();
+      for (int a = 0; a < t.p.count; ++a)
+        u += t.p.j[std::size_t(a)] * x.segment<3>(3 * t.p.block[std::size_t(a)]);
+      const Eigen::Vector3d v = t.k * u;
+      for (int a = 0; a < t.p.count; ++a)
+        y.segment<3>(3 * t.p.block[std::size_t(a)]) += t.p.j[std::size_t(a)].transpose() * v;
+    }
+    for (const BlockTerm& t : block_terms)
+      y.segment<3>(3 * t.block) += t.m * x.segment<3>(3 * t.block);
+  }
+
+  // The matrix's diagonal, term by term.
+  Eigen::VectorXd diagonal() const {
+    Eigen::VectorXd diag = Eigen::VectorXd::Zero(dofs);
+    for (int n = 0; n < nodes; ++n)
+      diag.segment<3>(3 * n).setConstant(model.node_mass[std::size_t(n)]);
+    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+      const TetTerm& t = tet_terms[e];
+      for (int a = 0; a < 4; ++a) {
+        const Eigen::Vector3d r = t.rotated.col(a);
+        Eigen::Vector3d d = (t.vmu + t.vlambda) * r.cwiseAbs2();
+        d.array() += t.vmu * r.squaredNorm();
+        if (t.stiffened) d += t.q.col(a).cwiseAbs2();
+        diag.segment<3>(3 * model.tets[e].nodes[std::size_t(a)]) += d;
+      }
+    }
+    for (const SpringTerm& t : spring_terms)
+      for (int a = 0; a < t.p.count; ++a) {
+        const Eigen::Matrix3d& j = t.p.j[std::size_t(a)];
+        diag.segment<3>(3 * t.p.block[std::size_t(a)]) += (j.transpose() * t.k * j).diagonal();
+      }
+    for (const BlockTerm& t : block_terms) diag.segment<3>(3 * t.block) += t.m.diagonal();
+    return diag;
+  }
+
+  // The matrix written into its cached sparsity pattern, for a factorisation.
+  void assemble() {
+    double* values = matrix.valuePtr();
+    std::fill(values, values + matrix.nonZeros(), 0.0);
+    auto add = [&](int bi, int bj, const Eigen::Matrix3d& m) {
+      for (int c = 0; c < 3; ++c) {
+        double* column = values + entry(3 * bi, 3 * bj + c);
+        for (int r = 0; r < 3; ++r) column[r] += m(r, c);
+      }
+    };
+    for (int n = 0; n < nodes; ++n)
+      add(n, n, model.node_mass[std::size_t(n)] * Eigen::Matrix3d::Identity());
+    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+      const TetTerm& t = tet_terms[e];
+      const auto& entries = tet_entries[e];
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+          Eigen::Matrix3d block = t.vmu * t.rotated.col(b) * t.rotated.col(a).transpose() +
+                                  t.vlambda * t.rotated.col(a) * t.rotated.col(b).transpose();
+          block.diagonal().array() += t.vmu * t.rotated.col(a).dot(t.rotated.col(b));
+          if (t.stiffened) block += t.q.col(a) * t.q.col(b).transpose();
+          for (int c = 0; c < 3; ++c) {
+            double* column = values + entries[std::size_t(12 * a + 3 * b + c)];
+            for (int row = 0; row < 3; ++row) column[row] += block(row, c);
+          }
         }
-        for (int c = 0; c < 3; ++c) {
-          double* column = values + cached[3 * (p.count * a + b) + c];
-          for (int r = 0; r < 3; ++r) column[r] += block(r, c);
+    }
+    for (const SpringTerm& t : spring_terms) {
+      const PointJacobian& p = t.p;
+      for (int a = 0; a < p.count; ++a) {
+        const Eigen::Matrix3d jk = p.j[std::size_t(a)].transpose() * t.k;
+        for (int b = 0; b < p.count; ++b) {
+          const Eigen::Matrix3d block = jk * p.j[std::size_t(b)];
+          if (!t.cached) {
+            add(p.block[std::size_t(a)], p.block[std::size_t(b)], block);
+            continue;
+          }
+          for (int c = 0; c < 3; ++c) {
+            double* column = values + t.cached[3 * (p.count * a + b) + c];
+            for (int r = 0; r < 3; ++r) column[r] += block(r, c);
+          }
         }
       }
     }
+    for (const BlockTerm& t : block_terms) add(t.block, t.block, t.m);
   }
 
   // The value indices add_spring's `cached` takes for a spring on these blocks.
@@ -215,16 +327,6 @@ struct HandSimulator::Impl {
           scale * p.j[std::size_t(a)].transpose() * f;
   }
 
-  // Only the Hessian J'KJ of a spring (no energy or force).
-  void add_curvature(const PointJacobian& p, const Eigen::Matrix3d& k) {
-    if (!with_hessian) return;
-    for (int a = 0; a < p.count; ++a) {
-      const Eigen::Matrix3d jk = scale * p.j[std::size_t(a)].transpose() * k;
-      for (int b = 0; b < p.count; ++b)
-        add_block(p.block[std::size_t(a)], p.block[std::size_t(b)], jk * p.j[std::size_t(b)]);
-    }
-  }
-
   void add_body_point(PointJacobian& p, int block, const Eigen::Vector3d& arm, double sign) const {
     p.add(block, sign * Eigen::Matrix3d::Identity());
     p.add(block + 1, -sign * cross_matrix(arm));  // d(c + r) = dc + dtheta x r
@@ -238,7 +340,7 @@ struct HandSimulator::Impl {
     const SimParameters& par = model.parameters;
     const double mu = par.flesh.mu(), lambda = par.flesh.lambda();
     const double stiffening = par.stiffening_factor * par.flesh.youngs_modulus;
-    double* values = matrix.valuePtr();
+    if (with_hessian) tet_terms.resize(model.tets.size());
     const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
     for (std::size_t e = 0; e < model.tets.size(); ++e) {
       const TetElement& t = model.tets[e];
@@ -272,22 +374,13 @@ struct HandSimulator::Impl {
       const Eigen::Matrix<double, 3, 4> force = (scale * t.volume) * (r * stress * t.gradients);
       for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * t.nodes[std::size_t(a)]) += force.col(a);
       if (!with_hessian) continue;
-      const double vmu = scale * (t.volume * mu + extra_mu), vlambda = scale * t.volume * lambda;
-      Eigen::Matrix<double, 3, 4> q;
-      if (k > 0) q = (std::sqrt(scale * k * ratio) / norm) * (r * strain * t.gradients);
-      const auto& entries = tet_entries[e];
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b) {
-          // H_ab = V [mu (g_a . g_b) I + mu g_b g_a' + lambda g_a g_b'] in the rotated gradients.
-          Eigen::Matrix3d block = vmu * rotated.col(b) * rotated.col(a).transpose() +
-                                  vlambda * rotated.col(a) * rotated.col(b).transpose();
-          block.diagonal().array() += vmu * rotated.col(a).dot(rotated.col(b));
-          if (k > 0) block += q.col(a) * q.col(b).transpose();
-          for (int c = 0; c < 3; ++c) {
-            double* column = values + entries[std::size_t(12 * a + 3 * b + c)];
-            for (int row = 0; row < 3; ++row) column[row] += block(row, c);
-          }
-        }
+      TetTerm& term = tet_terms[e];
+      term.rotated = rotated;
+      term.vmu = scale * (t.volume * mu + extra_mu);
+      term.vlambda = scale * t.volume * lambda;
+      term.stiffened = k > 0;
+      if (term.stiffened)
+        term.q = (std::sqrt(scale * k * ratio) / norm) * (r * strain * t.gradients);
     }
   }
 
@@ -332,7 +425,7 @@ struct HandSimulator::Impl {
       const Eigen::Vector3d phi = rotation_vector(pose.rotation * target.rotation.conjugate());
       energy += 0.5 * scale * par.tracking_torsion * phi.squaredNorm();
       gradient.segment<3>(3 * (tb + 1)) += scale * par.tracking_torsion * phi;
-      add_block(tb + 1, tb + 1, scale * par.tracking_torsion * identity);
+      add_block(tb + 1, scale * par.tracking_torsion * identity);
       const double mass = model.bones[std::size_t(b)].inertia.mass;
       energy -= scale * mass * par.gravity.dot(pose.position);
       gradient.segment<3>(3 * tb) -= scale * mass * par.gravity;
@@ -612,7 +705,10 @@ struct HandSimulator::Impl {
     with_hessian = hessian;
     energy = 0.0;
     gradient.setZero(dofs);
-    if (hessian) std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
+    if (hessian) {
+      spring_terms.clear();
+      block_terms.clear();
+    }
     // The tets' rotations are found where Newton linearises and held through its line search:
     // there the flesh energy is the quadratic that the Hessian describes.
     flesh(s);
@@ -625,8 +721,7 @@ struct HandSimulator::Impl {
                                 start.node_position[std::size_t(n)] -
                                 h * start.node_velocity[std::size_t(n)];
       energy += 0.5 * mass * d.squaredNorm();
-      gradient.segment<3>(3 * n) += mass * d;
-      add_block(n, n, mass * Eigen::Matrix3d::Identity());
+      gradient.segment<3>(3 * n) += mass * d;  // its Hessian, the mass, is the model's
     }
     auto kinetic = [&](int block, const RigidInertia& inertia, const RigidPose& pose,
                        const RigidPose& from, const RigidVelocity& v,
@@ -634,13 +729,13 @@ struct HandSimulator::Impl {
       const Eigen::Vector3d d = pose.position - from.position - h * v.linear;
       energy += 0.5 * inertia.mass * d.squaredNorm();
       gradient.segment<3>(3 * block) += inertia.mass * d;
-      add_block(block, block, inertia.mass * Eigen::Matrix3d::Identity());
+      add_block(block, inertia.mass * Eigen::Matrix3d::Identity());
       const Eigen::Matrix3d r = from.rotation.toRotationMatrix();
       const Eigen::Matrix3d world = r * inertia.inertia * r.transpose();
       const Eigen::Vector3d a = rotated - h * v.angular;
       energy += 0.5 * a.dot(world * a);
       gradient.segment<3>(3 * (block + 1)) += world * a;
-      add_block(block + 1, block + 1, world);
+      add_block(block + 1, world);
     };
     for (int b = 0; b < bones; ++b)
       kinetic(bone_block(b), m.bones[std::size_t(b)].inertia, s.bone_pose[std::size_t(b)],
@@ -658,6 +753,7 @@ struct HandSimulator::Impl {
   Eigen::VectorXd solve(SimStepReport& report) {
     const Eigen::VectorXd b = -gradient;
     auto refactor = [&] {
+      assemble();
       ldlt.factorize(matrix);
       if (ldlt.info() != Eigen::Success)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
@@ -674,7 +770,7 @@ struct HandSimulator::Impl {
     // Converged when what is left of the residual would move no unknown, on its own, by more
     // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
     // lets a light cube's unknowns go unsolved.
-    const Eigen::VectorXd inverse_diagonal = matrix.diagonal().cwiseInverse();
+    const Eigen::VectorXd inverse_diagonal = diagonal().cwiseInverse();
     auto converged = [&](const Eigen::VectorXd& residual) {
       return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>() <=
              options.linear_tolerance;
@@ -683,7 +779,8 @@ struct HandSimulator::Impl {
     double rz = r.dot(z);
     int it = 0;
     for (; it < options.max_linear_iterations && !converged(r); ++it) {
-      ap.noalias() = matrix * p;
+      multiply(p, ap);
+      if (options.check_products) check_product(p, ap);
       const double pap = p.dot(ap);
       if (!(pap > 0)) break;
       const double alpha = rz / pap;
@@ -704,6 +801,20 @@ struct HandSimulator::Impl {
       return ldlt.solve(b);
     }
     return x;
+  }
+
+  // Tests: the term-by-term product and diagonal against the assembled matrix's.
+  void check_product(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+    assemble();
+    const Eigen::VectorXd expected = matrix * x;
+    const double error = (y - expected).lpNorm<Eigen::Infinity>(),
+                 size = expected.lpNorm<Eigen::Infinity>();
+    const double diagonal_error = (diagonal() - matrix.diagonal()).lpNorm<Eigen::Infinity>();
+    if (!(error <= 1e-12 * size) ||
+        !(diagonal_error <= 1e-12 * matrix.diagonal().lpNorm<Eigen::Infinity>()))
+      throw std::logic_error("HandSimulator: the Newton matrix's product (error " +
+                             std::to_string(error / size) + ") or diagonal (" +
+                             std::to_string(diagonal_error) + ") differs from the assembled one");
   }
 
   // The state moved by `length` times the increment dq.

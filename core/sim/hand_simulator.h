@@ -22,6 +22,9 @@ struct SimOptions {
   double linear_tolerance = 1e-8;
   int max_linear_iterations = 40;
   int refactor_iterations = 6;
+  // Tests: compare every matrix-free product of CG with the assembled matrix's (slow; a
+  // mismatch throws std::logic_error).
+  bool check_products = false;
 };
 
 struct SimStepReport {

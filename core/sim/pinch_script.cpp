@@ -190,9 +190,14 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
     holding = holding && report.lift >= 0.8 * script.lift_height;
   }
   report.held = reference_set && holding;
-  report.released = duration >= script.end &&
-                    std::abs(state.cube_pose.position.y() - script.cube_centre.y()) < 0.002 &&
-                    state.node_cube.empty();
+  // Released: no flesh on the cube and the cube back down, a corner within 1 mm of the floor
+  // (dropped from the lift's height it may still be tumbling, as a real one does).
+  double lowest = INFINITY;
+  const Eigen::Vector3d up = model.parameters.floor_normal.normalized();
+  for (int k = 0; k < 8; ++k)
+    lowest = std::min(
+        lowest, up.dot(cube_corner(model, state.cube_pose, k)) - model.parameters.floor_height);
+  report.released = duration >= script.end && lowest < 0.001 && state.node_cube.empty();
   return report;
 }
 
