@@ -11,6 +11,7 @@
 
 #include "core/sim/box_distance.h"
 #include "core/sim/rotation_extraction.h"
+#include "core/sim/supernodal_ldlt.h"
 
 namespace handlab::sim {
 namespace {
@@ -119,6 +120,7 @@ struct HandSimulator::Impl {
   std::vector<std::array<int, 48>> tet_entries;      // value index of (3a, 3b + c) per tet pair
   std::vector<int> coupling_entries, joint_entries;  // add_spring's caches, 108 and 48 each
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  SupernodalLdlt preconditioner;  // ldlt's factor in panels, for the solves
   Eigen::VectorXd gradient;
   double scale = 1.0;  // h^2: the potential's terms enter the system scaled by it
   bool with_hessian = true;
@@ -757,6 +759,7 @@ struct HandSimulator::Impl {
       ldlt.factorize(matrix);
       if (ldlt.info() != Eigen::Success)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
+      preconditioner.set(ldlt);
       factorised = true;
       ++report.factorizations;
     };
@@ -765,7 +768,7 @@ struct HandSimulator::Impl {
       refactor();
       stale = false;
       ++report.linear_iterations;
-      return ldlt.solve(b);
+      return preconditioner.solve(b);
     }
     // Converged when what is left of the residual would move no unknown, on its own, by more
     // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
@@ -775,7 +778,7 @@ struct HandSimulator::Impl {
       return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>() <=
              options.linear_tolerance;
     };
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = ldlt.solve(r), p = z, ap;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r), p = z, ap;
     double rz = r.dot(z);
     int it = 0;
     for (; it < options.max_linear_iterations && !converged(r); ++it) {
@@ -786,7 +789,7 @@ struct HandSimulator::Impl {
       const double alpha = rz / pap;
       x += alpha * p;
       r -= alpha * ap;
-      z = ldlt.solve(r);
+      z = preconditioner.solve(r);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
@@ -798,7 +801,7 @@ struct HandSimulator::Impl {
       refactor();
       stale = false;
       ++report.linear_iterations;
-      return ldlt.solve(b);
+      return preconditioner.solve(b);
     }
     return x;
   }
