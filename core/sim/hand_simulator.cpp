@@ -10,6 +10,7 @@
 #include <Eigen/SparseCore>
 
 #include "core/sim/box_distance.h"
+#include "core/sim/lanes.h"
 #include "core/sim/rotation_extraction.h"
 #include "core/sim/supernodal_ldlt.h"
 
@@ -120,8 +121,12 @@ struct HandSimulator::Impl {
   std::vector<std::array<int, 48>> tet_entries;      // value index of (3a, 3b + c) per tet pair
   std::vector<int> coupling_entries, joint_entries;  // add_spring's caches, 108 and 48 each
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-  SupernodalLdlt preconditioner;  // ldlt's factor in panels, for the solves
+  SupernodalLdlt preconditioner;  // the factorisation in panels, for the solves
+  bool analysed = false;          // preconditioner has its structure
   Eigen::VectorXd gradient;
+  mutable Lanes lanes;
+  mutable std::vector<Eigen::VectorXd> lane_forces;  // lanes 1.. (lane 0 writes in place)
+  std::vector<double> lane_energy;
   double scale = 1.0;  // h^2: the potential's terms enter the system scaled by it
   bool with_hessian = true;
   double energy = 0.0;
@@ -131,7 +136,12 @@ struct HandSimulator::Impl {
   int bone_block(int b) const { return nodes + 2 * b; }
   int cube_block() const { return nodes + 2 * bones; }
 
-  explicit Impl(const HandSimModel& m, SimOptions o) : model(m), options(o) {
+  explicit Impl(const HandSimModel& m, SimOptions o)
+      : model(m),
+        options(o),
+        lanes(o.threads),
+        lane_forces(std::size_t(o.threads)),
+        lane_energy(std::size_t(o.threads)) {
     nodes = m.node_count();
     bones = m.bone_count();
     blocks = nodes + 2 * bones + 2;
@@ -211,13 +221,10 @@ struct HandSimulator::Impl {
     if (with_hessian) spring_terms.push_back({p, scale * k, nullptr});
   }
 
-  // y = A x, term by term.
-  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-    y.resize(dofs);
-    for (int n = 0; n < nodes; ++n)
-      y.segment<3>(3 * n) = model.node_mass[std::size_t(n)] * x.segment<3>(3 * n);
-    y.tail(dofs - 3 * nodes).setZero();
-    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+  // out += (tets [begin, end) of A) x.
+  void tet_products(const Eigen::VectorXd& x, std::size_t begin, std::size_t end,
+                    double* out) const {
+    for (std::size_t e = begin; e < end; ++e) {
       const TetTerm& t = tet_terms[e];
       const auto& ids = model.tets[e].nodes;
       Eigen::Matrix<double, 3, 4> p;
@@ -226,10 +233,20 @@ struct HandSimulator::Impl {
       const Eigen::Matrix3d d = p * t.rotated.transpose();
       Eigen::Matrix3d stress = t.vmu * (d + d.transpose());
       stress.diagonal().array() += t.vlambda * d.trace();
-      Eigen::Matrix<double, 3, 4> out = stress * t.rotated;
-      if (t.stiffened) out += t.q * (t.q.cwiseProduct(p)).sum();
-      for (int a = 0; a < 4; ++a) y.segment<3>(3 * ids[std::size_t(a)]) += out.col(a);
+      Eigen::Matrix<double, 3, 4> product = stress * t.rotated;
+      if (t.stiffened) product += t.q * (t.q.cwiseProduct(p)).sum();
+      for (int a = 0; a < 4; ++a)
+        Eigen::Map<Eigen::Vector3d>(out + 3 * ids[std::size_t(a)]) += product.col(a);
     }
+  }
+
+  // y = A x, term by term.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    y.resize(dofs);
+    y.tail(dofs - 3 * nodes).setZero();
+    for (int n = 0; n < nodes; ++n)
+      y.segment<3>(3 * n) = model.node_mass[std::size_t(n)] * x.segment<3>(3 * n);
+    tet_products(x, 0, tet_terms.size(), y.data());
     for (const SpringTerm& t : spring_terms) {
       Eigen::Vector3d u = Eigen::Vector3d::Zero();
       for (int a = 0; a < t.p.count; ++a)
@@ -338,13 +355,33 @@ struct HandSimulator::Impl {
   // (extracted where Newton linearises, held in its line search), the strain e = sym(R'F) - I,
   // the stress s = 2 mu e + lambda tr(e) I, node forces V R s grad N_a, and the Hessian
   // R K R' assembled from the rotated shape gradients without forming 12x12 products.
+  // The tets split over the lanes, each lane's forces into its own buffer (lane 0's into the
+  // gradient), added in lane order.
   void flesh(HandSimState& s) {
+    if (with_hessian) tet_terms.resize(model.tets.size());
+    lanes.run([&](int lane) {
+      const auto [begin, end] = lanes.range(lane, int(model.tets.size()));
+      double* forces = gradient.data();
+      if (lane > 0) {
+        lane_forces[std::size_t(lane)].setZero(3 * nodes);
+        forces = lane_forces[std::size_t(lane)].data();
+      }
+      lane_energy[std::size_t(lane)] = flesh_range(s, std::size_t(begin), std::size_t(end), forces);
+    });
+    for (int lane = 0; lane < lanes.count(); ++lane) {
+      energy += lane_energy[std::size_t(lane)];
+      if (lane > 0) gradient.head(3 * nodes) += lane_forces[std::size_t(lane)];
+    }
+  }
+
+  // Tets [begin, end): their energy, their forces added to `forces` (node DOFs).
+  double flesh_range(HandSimState& s, std::size_t begin, std::size_t end, double* forces) {
     const SimParameters& par = model.parameters;
     const double mu = par.flesh.mu(), lambda = par.flesh.lambda();
     const double stiffening = par.stiffening_factor * par.flesh.youngs_modulus;
-    if (with_hessian) tet_terms.resize(model.tets.size());
     const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-    for (std::size_t e = 0; e < model.tets.size(); ++e) {
+    double total = 0.0;
+    for (std::size_t e = begin; e < end; ++e) {
       const TetElement& t = model.tets[e];
       const Eigen::Vector3d& x0 = s.node_position[std::size_t(t.nodes[0])];
       Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
@@ -371,10 +408,11 @@ struct HandSimulator::Impl {
         stress += (stiffening * excess / norm) * strain;
         extra_mu = 0.5 * k * (1.0 - ratio);
       }
-      energy += scale * element_energy;
+      total += scale * element_energy;
       const Eigen::Matrix<double, 3, 4> rotated = r * t.gradients;  // R grad N_a
       const Eigen::Matrix<double, 3, 4> force = (scale * t.volume) * (r * stress * t.gradients);
-      for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * t.nodes[std::size_t(a)]) += force.col(a);
+      for (int a = 0; a < 4; ++a)
+        Eigen::Map<Eigen::Vector3d>(forces + 3 * t.nodes[std::size_t(a)]) += force.col(a);
       if (!with_hessian) continue;
       TetTerm& term = tet_terms[e];
       term.rotated = rotated;
@@ -384,6 +422,7 @@ struct HandSimulator::Impl {
       if (term.stiffened)
         term.q = (std::sqrt(scale * k * ratio) / norm) * (r * strain * t.gradients);
     }
+    return total;
   }
 
   void bodies(const HandSimState& s, const std::vector<RigidPose>& targets) {
@@ -756,10 +795,18 @@ struct HandSimulator::Impl {
     const Eigen::VectorXd b = -gradient;
     auto refactor = [&] {
       assemble();
-      ldlt.factorize(matrix);
-      if (ldlt.info() != Eigen::Success)
+      bool definite;
+      if (!analysed) {
+        // Eigen's factorisation once, for the ordering and L's structure; panels thereafter.
+        ldlt.factorize(matrix);
+        definite = ldlt.info() == Eigen::Success;
+        if (definite) preconditioner.analyze(ldlt, matrix);
+        analysed = definite;
+      } else {
+        definite = preconditioner.factorize(matrix);
+      }
+      if (!definite)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
-      preconditioner.set(ldlt);
       factorised = true;
       ++report.factorizations;
     };
@@ -837,11 +884,17 @@ struct HandSimulator::Impl {
   }
 };
 
-HandSimulator::HandSimulator(const HandSimModel& model, SimOptions options)
-    : impl_(std::make_unique<Impl>(model, options)) {
+namespace {
+const SimOptions& checked(const SimOptions& options) {
   if (options.newton_iterations < 1)
     throw std::invalid_argument("HandSimulator: at least one Newton iteration a step");
+  if (options.threads < 1) throw std::invalid_argument("HandSimulator: at least one thread");
+  return options;
 }
+}  // namespace
+
+HandSimulator::HandSimulator(const HandSimModel& model, SimOptions options)
+    : impl_(std::make_unique<Impl>(model, checked(options))) {}
 HandSimulator::~HandSimulator() = default;
 const HandSimModel& HandSimulator::model() const {
   return impl_->model;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
+
 namespace handlab::sim {
 
 void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
@@ -64,6 +66,117 @@ void SupernodalLdlt::set(const Factor& factor) {
   inverse_diagonal_ = factor.vectorD().cwiseInverse();
   p_ = factor.permutationP();
   p_inverse_ = factor.permutationPinv();
+}
+
+int SupernodalLdlt::panel_row(int t, int row) const {
+  const Supernode& s = nodes_[std::size_t(t)];
+  if (row >= s.first && row < s.first + s.width) return row - s.first;
+  const auto begin = rows_.begin() + s.row_begin, end = begin + s.below;
+  const auto it = std::lower_bound(begin, end, row);
+  return it != end && *it == row ? s.width + int(it - begin) : -1;
+}
+
+void SupernodalLdlt::analyze(const Factor& factor, const Eigen::SparseMatrix<double>& a) {
+  if (!a.isCompressed()) throw std::invalid_argument("SupernodalLdlt: compress the matrix");
+  set(factor);
+  const int n = int(a.cols());
+  column_node_.assign(std::size_t(n), 0);
+  for (std::size_t t = 0; t < nodes_.size(); ++t)
+    for (int c = 0; c < nodes_[t].width; ++c)
+      column_node_[std::size_t(nodes_[t].first + c)] = int(t);
+  // Each supernode's rank update, split by the supernodes that own its columns.
+  update_begin_.assign(nodes_.size() + 1, 0);
+  updates_.clear();
+  relative_.clear();
+  int widest = 0;
+  for (std::size_t s = 0; s < nodes_.size(); ++s) {
+    const Supernode& node = nodes_[s];
+    widest = std::max(widest, node.below);
+    const int* rows = rows_.data() + node.row_begin;
+    for (int j = 0; j < node.below;) {
+      Update u;
+      u.target = column_node_[std::size_t(rows[j])];
+      u.begin = j;
+      u.end = j + 1;
+      while (u.end < node.below && column_node_[std::size_t(rows[u.end])] == u.target) ++u.end;
+      u.relative_begin = int(relative_.size());
+      for (int i = j; i < node.below; ++i) {
+        const int r = panel_row(u.target, rows[i]);
+        if (r < 0) throw std::logic_error("SupernodalLdlt: a row outside its target's structure");
+        relative_.push_back(r);
+      }
+      updates_.push_back(u);
+      j = u.end;
+    }
+    update_begin_[s + 1] = int(updates_.size());
+  }
+  rank_update_.resize(widest, widest);
+  // Where each stored entry of the lower triangle (after the ordering) goes.
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  const int* permuted = p_.indices().data();
+  scatter_.assign(std::size_t(a.nonZeros()), -1);
+  for (int col = 0; col < n; ++col)
+    for (int v = outer[col]; v < outer[col + 1]; ++v) {
+      const int pr = permuted[inner[v]], pc = permuted[col];
+      if (pr < pc) continue;
+      const int t = column_node_[std::size_t(pc)];
+      const Supernode& node = nodes_[std::size_t(t)];
+      const int r = panel_row(t, pr);
+      if (r < 0) throw std::logic_error("SupernodalLdlt: an entry outside L's structure");
+      scatter_[std::size_t(v)] =
+          node.value_begin + (pc - node.first) * (node.width + node.below) + r;
+    }
+  matrix_entries_ = int(a.nonZeros());
+}
+
+bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a) {
+  if (int(a.nonZeros()) != matrix_entries_ || !a.isCompressed())
+    throw std::invalid_argument("SupernodalLdlt: factorize a matrix of the analysed pattern");
+  std::fill(values_.begin(), values_.end(), 0.0);
+  const double* av = a.valuePtr();
+  for (std::size_t v = 0; v < scatter_.size(); ++v)
+    if (scatter_[v] >= 0) values_[std::size_t(scatter_[v])] += av[v];
+  Eigen::VectorXd diagonal(inverse_diagonal_.size());
+  for (std::size_t s = 0; s < nodes_.size(); ++s) {
+    const Supernode& node = nodes_[s];
+    const int height = node.width + node.below;
+    Eigen::Map<Eigen::MatrixXd> panel(values_.data() + node.value_begin, height, node.width);
+    auto block = panel.topRows(node.width);
+    // The diagonal block's Cholesky factor L_d, then the rows below: L_b = A_b L_d^-T.
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);
+    if (llt.info() != Eigen::Success) return false;
+    if (node.below > 0) {
+      auto below = panel.bottomRows(node.below);
+      block.triangularView<Eigen::Lower>().solveInPlace(below.transpose());
+      // Its rank update L_b L_b' (lower half) to the later supernodes that own its rows.
+      auto update = rank_update_.topLeftCorner(node.below, node.below);
+      update.triangularView<Eigen::Lower>().setZero();
+      update.selfadjointView<Eigen::Lower>().rankUpdate(below);
+      const int* rows = rows_.data() + node.row_begin;
+      for (int k = update_begin_[s]; k < update_begin_[s + 1]; ++k) {
+        const Update& u = updates_[std::size_t(k)];
+        const Supernode& target = nodes_[std::size_t(u.target)];
+        const int target_height = target.width + target.below;
+        const int* relative = relative_.data() + u.relative_begin - u.begin;
+        for (int j = u.begin; j < u.end; ++j) {
+          double* column =
+              values_.data() + target.value_begin + (rows[j] - target.first) * target_height;
+          const double* source = update.col(j).data();
+          for (int i = j; i < node.below; ++i) column[relative[i]] -= source[i];
+        }
+      }
+    }
+    // L L' = L_unit D L_unit': D the squared diagonal, the columns divided by it.
+    for (int c = 0; c < node.width; ++c) {
+      const double l = panel(c, c);
+      diagonal[node.first + c] = l * l;
+      panel.col(c).tail(height - c - 1) /= l;
+      panel(c, c) = 1.0;
+    }
+  }
+  inverse_diagonal_ = diagonal.cwiseInverse();
+  return true;
 }
 
 void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b) const {

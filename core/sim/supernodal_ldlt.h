@@ -1,8 +1,10 @@
-// Solves with a sparse LDL' factorisation rearranged into supernodes: runs of consecutive
-// columns of L that share their rows below the run. Each run is stored as one dense panel, so
-// that a solve applies small dense kernels to it and reads a row index once per panel row
-// rather than once per nonzero. The simulator's preconditioner is applied several times a
-// step and changes rarely: the panels are filled once per factorisation.
+// A sparse LDL' factorisation in supernodes: runs of consecutive columns of L that share their
+// rows below the run, each stored as one dense panel. Factorising and solving then apply dense
+// kernels to panels (a blocked Cholesky of each diagonal block, a triangular solve and a
+// symmetric rank update below it) and read a row index once per panel row rather than once
+// per nonzero. The structure (fill-reducing ordering and L's pattern) is taken from a
+// factorisation by Eigen's SimplicialLDLT on the same pattern; the simulator then factorises
+// its Newton matrix, whose pattern is fixed, into the panels directly.
 #pragma once
 
 #include <vector>
@@ -18,6 +20,11 @@ class SupernodalLdlt {
 
   // Takes the factor's values (and its structure, found again only when its pattern changed).
   void set(const Factor& factor);
+  // Takes the structure of `factor`, a factorisation of `a`, and learns where each of a's
+  // stored entries goes, so that factorize() can take any matrix with a's pattern.
+  void analyze(const Factor& factor, const Eigen::SparseMatrix<double>& a);
+  // Factorises `a` (the analysed pattern) into the panels; false if it is not positive definite.
+  bool factorize(const Eigen::SparseMatrix<double>& a);
   // b <- A^-1 b for the factorised A.
   void solve_in_place(Eigen::VectorXd& b) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
@@ -34,6 +41,15 @@ class SupernodalLdlt {
     int value_begin = 0;           // its (width + below) x width panel, column-major
   };
   void find_structure(const Eigen::SparseMatrix<double>& l);
+  // Position of (permuted) row `row` in supernode t's panel rows.
+  int panel_row(int t, int row) const;
+
+  // A run of supernode s's rows below its diagonal block whose columns belong to one later
+  // supernode: the rank update's columns there go to that supernode's panel, rows
+  // [begin, below) of s landing at relative_[relative_begin + i - begin].
+  struct Update {
+    int target = 0, begin = 0, end = 0, relative_begin = 0;
+  };
 
   std::vector<Supernode> nodes_;
   std::vector<int> rows_;
@@ -44,6 +60,15 @@ class SupernodalLdlt {
   std::vector<int> pattern_outer_;  // the structure the supernodes were found for
   std::vector<int> pattern_inner_;
   mutable Eigen::VectorXd work_, gathered_;
+  // For factorize(): each supernode's updates, the matrix's entries' panel positions (-1 for
+  // the upper triangle), the owning supernode of each column.
+  std::vector<int> update_begin_;  // updates_[update_begin_[s], update_begin_[s + 1])
+  std::vector<Update> updates_;
+  std::vector<int> relative_;
+  std::vector<int> scatter_;
+  std::vector<int> column_node_;
+  int matrix_entries_ = -1;
+  Eigen::MatrixXd rank_update_;
 };
 
 }  // namespace handlab::sim

@@ -138,6 +138,9 @@ TEST(HandSimulator, RejectsATargetThatIsNotANumberAndKeepsItsState) {
   EXPECT_THROW(sim.step(s, targets), std::invalid_argument);
   targets.pop_back();
   EXPECT_THROW(sim.step(s, targets), std::invalid_argument);
+  SimOptions no_threads;
+  no_threads.threads = 0;
+  EXPECT_THROW(HandSimulator(h.model, no_threads), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The panel solve of a sparse LDL' factorisation (core/sim/supernodal_ldlt.h) on matrices with
 // the simulator's structure: the study hand's TetGen mesh, 3x3 blocks per node pair of a tet,
 // and the bones' 6 DOFs coupled to the nodes of the tets their coupling points lie in.
+#include <cmath>
 #include <initializer_list>
 #include <random>
 
@@ -96,6 +97,34 @@ TEST(SupernodalLdlt, FollowsNewValuesAndNewPatterns) {
   panels.set(ldlt);
   const Eigen::VectorXd c = Eigen::VectorXd::LinSpaced(third.cols(), -1.0, 1.0);
   EXPECT_LT((third * panels.solve(c) - c).norm(), 1e-9 * c.norm());
+}
+
+// Analysed once on Eigen's factorisation, it factorises other matrices of that pattern itself.
+TEST(SupernodalLdlt, FactorisesMatricesOfTheAnalysedPattern) {
+  const Sparse first = hand_like_matrix(study_flesh(), 16, 7);
+  SupernodalLdlt::Factor ldlt(first);
+  ASSERT_EQ(ldlt.info(), Eigen::Success);
+  SupernodalLdlt panels;
+  panels.analyze(ldlt, first);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> scale(0.5, 2.0);
+  for (int trial = 0; trial < 3; ++trial) {
+    // Same pattern, other values: each entry and its mirror scaled alike, the diagonal raised.
+    Sparse a = first;
+    for (int k = 0; k < a.outerSize(); ++k)
+      for (Sparse::InnerIterator it(a, k); it; ++it) {
+        const double f = 1.0 + 0.3 * std::sin(double(it.row() + it.col() + trial));
+        it.valueRef() *= it.row() == it.col() ? 2.0 * scale(rng) : f;
+      }
+    ASSERT_TRUE(panels.factorize(a));
+    const SupernodalLdlt::Factor reference(a);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(a.cols(), -1.0, 2.0);
+    const Eigen::VectorXd x = panels.solve(b);
+    EXPECT_LT((a * x - b).norm(), 1e-9 * b.norm()) << trial;
+    EXPECT_LT((x - reference.solve(b)).norm(), 1e-9 * x.norm()) << trial;
+  }
+  const Sparse indefinite = -first;
+  EXPECT_FALSE(panels.factorize(indefinite));
 }
 
 }  // namespace

@@ -96,6 +96,7 @@ int sim_bench(const std::vector<std::string>& argv) {
        "factorise the matrix anew after a solve that needed more CG iterations than this", "6"},
       {"linear-tolerance", "METRES",
        "CG stops when the residual left would move no unknown by more than this", "1e-8"},
+      {"threads", "N", "threads the per-tet work is split over", "2"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
        "write every step's time (ms), Newton and CG iterations, factorisations and contacts"},
@@ -123,6 +124,8 @@ int sim_bench(const std::vector<std::string>& argv) {
   options.linear_tolerance = args.number("linear-tolerance");
   if (!(options.linear_tolerance > 0 && options.linear_tolerance < 1e-3))
     throw UsageError("--linear-tolerance must be in (0, 1e-3) m");
+  options.threads = int(args.integer("threads"));
+  if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
   const sim::PinchReport report =
       sim::run_pinch(setup.model, setup.skeleton, setup.script, options, duration);
   print_timing(setup, report);
@@ -140,7 +143,7 @@ int sim_bench(const std::vector<std::string>& argv) {
     write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
-      json.field("duration_s", duration);
+      json.field("duration_s", duration).field("threads", options.threads);
       write_timing(json, setup, report);
       json.end_object();
     });
