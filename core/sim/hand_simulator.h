@@ -17,10 +17,11 @@ struct SimOptions {
   int newton_iterations = 1;
   // The linear solves: conjugate gradients until the residual left would move no unknown on
   // its own by more than linear_tolerance (m or rad), preconditioned by the factorisation of
-  // an earlier step's matrix, which is renewed after a solve that took more than
-  // refactor_iterations (or did not converge).
+  // an earlier matrix; when CG has not converged in max_linear_iterations, the matrix is
+  // factorised anew and solved directly, and after a converged solve that took more than
+  // refactor_iterations the next solve factorises first.
   double linear_tolerance = 1e-8;
-  int max_linear_iterations = 40;
+  int max_linear_iterations = 6;
   int refactor_iterations = 6;
   // Tests: compare every matrix-free product of CG with the assembled matrix's (slow; a
   // mismatch throws std::logic_error).

@@ -96,6 +96,8 @@ int sim_bench(const std::vector<std::string>& argv) {
        "factorise the matrix anew after a solve that needed more CG iterations than this", "6"},
       {"linear-tolerance", "METRES",
        "CG stops when the residual left would move no unknown by more than this", "1e-8"},
+      {"max-linear-iterations", "N",
+       "CG iterations before the matrix is factorised anew and solved directly", "6"},
       {"threads", "N", "threads the per-tet work is split over", "2"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
@@ -124,6 +126,8 @@ int sim_bench(const std::vector<std::string>& argv) {
   options.linear_tolerance = args.number("linear-tolerance");
   if (!(options.linear_tolerance > 0 && options.linear_tolerance < 1e-3))
     throw UsageError("--linear-tolerance must be in (0, 1e-3) m");
+  options.max_linear_iterations = int(args.integer("max-linear-iterations"));
+  if (options.max_linear_iterations < 0) throw UsageError("--max-linear-iterations must be >= 0");
   options.threads = int(args.integer("threads"));
   if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
   const sim::PinchReport report =
