@@ -46,6 +46,53 @@ double cube_option(const Arguments& args) {
   return cube;
 }
 
+// The script's phases and the steps each took (a step belongs to the phase its end time is in).
+struct Phase {
+  const char* name = "";
+  double from = 0.0, to = 0.0;  // s
+  std::vector<double> ms;
+  double linear = 0.0, passes = 0.0;
+  int factorizations = 0;
+};
+
+std::vector<Phase> phases(const sim::PinchScene& setup, const sim::PinchReport& r) {
+  const sim::PinchScript& s = setup.script;
+  const std::vector<std::pair<const char*, double>> ends = {
+      {"shape", s.shape_end},  {"approach", s.approach_end},
+      {"close", s.close_end},  {"settle", s.lift_start},
+      {"lift", s.lift_end},    {"hold", s.hold_end},
+      {"open", s.release_end}, {"fall", s.end}};
+  std::vector<Phase> list;
+  double from = 0.0;
+  for (const auto& [name, to] : ends) {
+    Phase p;
+    p.name = name;
+    p.from = from;
+    p.to = to;
+    list.push_back(std::move(p));
+    from = to;
+  }
+  const double h = setup.model.parameters.time_step;
+  for (std::size_t i = 0; i < r.step_ms.size(); ++i) {
+    const double t = double(i + 1) * h;
+    for (Phase& p : list)
+      if (t > p.from + 1e-9 && t <= p.to + 1e-9) {
+        p.ms.push_back(r.step_ms[i]);
+        p.linear += r.linear_iterations[i];
+        p.passes += r.newton_iterations[i];
+        p.factorizations += r.factorizations[i];
+      }
+  }
+  std::vector<Phase> taken;
+  for (Phase& p : list)
+    if (!p.ms.empty()) {
+      p.linear /= double(p.ms.size());
+      p.passes /= double(p.ms.size());
+      taken.push_back(std::move(p));
+    }
+  return taken;
+}
+
 void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const sim::PinchReport& r) {
   const std::vector<int>& lin = r.linear_iterations;
   json.field("tets", setup.model.tets.size())
@@ -73,6 +120,20 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
       .end_object();
   json.field("factorizations",
              std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0));
+  json.key("phases").begin_array();
+  for (const Phase& p : phases(setup, r))
+    json.begin_object()
+        .field("name", p.name)
+        .field("from_s", p.from)
+        .field("to_s", p.to)
+        .field("steps", p.ms.size())
+        .field("median_ms", quantile(p.ms, 0.5))
+        .field("p95_ms", quantile(p.ms, 0.95))
+        .field("newton_iterations_mean", p.passes)
+        .field("linear_iterations_mean", p.linear)
+        .field("factorizations", p.factorizations)
+        .end_object();
+  json.end_array();
 }
 
 void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
@@ -84,6 +145,11 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
             << mean(r.linear_iterations) << " a step, "
             << std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0)
             << " factorisations\n";
+  for (const Phase& p : phases(setup, r))
+    std::cout << "  " << std::left << std::setw(9) << p.name << std::right << std::setw(4)
+              << p.ms.size() << " steps: median " << quantile(p.ms, 0.5) << " ms, p95 "
+              << quantile(p.ms, 0.95) << " ms; Newton " << p.passes << ", CG " << p.linear
+              << " a step, " << p.factorizations << " factorisations\n";
 }
 
 int sim_bench(const std::vector<std::string>& argv) {
