@@ -287,10 +287,11 @@ struct HandSimulator::Impl {
   void assemble() {
     double* values = matrix.valuePtr();
     std::fill(values, values + matrix.nonZeros(), 0.0);
+    auto write = [values](int v, double x) { values[v] += x; };
     auto add = [&](int bi, int bj, const Eigen::Matrix3d& m) {
       for (int c = 0; c < 3; ++c) {
-        double* column = values + entry(3 * bi, 3 * bj + c);
-        for (int r = 0; r < 3; ++r) column[r] += m(r, c);
+        const int column = entry(3 * bi, 3 * bj + c);
+        for (int r = 0; r < 3; ++r) write(column + r, m(r, c));
       }
     };
     for (int n = 0; n < nodes; ++n)
@@ -299,14 +300,20 @@ struct HandSimulator::Impl {
       const TetTerm& t = tet_terms[e];
       const auto& entries = tet_entries[e];
       for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b) {
+        for (int b = a; b < 4; ++b) {
+          // Block (a, b); block (b, a) is its transpose.
           Eigen::Matrix3d block = t.vmu * t.rotated.col(b) * t.rotated.col(a).transpose() +
                                   t.vlambda * t.rotated.col(a) * t.rotated.col(b).transpose();
           block.diagonal().array() += t.vmu * t.rotated.col(a).dot(t.rotated.col(b));
           if (t.stiffened) block += t.q.col(a) * t.q.col(b).transpose();
           for (int c = 0; c < 3; ++c) {
-            double* column = values + entries[std::size_t(12 * a + 3 * b + c)];
-            for (int row = 0; row < 3; ++row) column[row] += block(row, c);
+            const int column = entries[std::size_t(12 * a + 3 * b + c)];
+            for (int row = 0; row < 3; ++row) write(column + row, block(row, c));
+          }
+          if (a == b) continue;
+          for (int c = 0; c < 3; ++c) {
+            const int column = entries[std::size_t(12 * b + 3 * a + c)];
+            for (int row = 0; row < 3; ++row) write(column + row, block(c, row));
           }
         }
     }
@@ -321,8 +328,8 @@ struct HandSimulator::Impl {
             continue;
           }
           for (int c = 0; c < 3; ++c) {
-            double* column = values + t.cached[3 * (p.count * a + b) + c];
-            for (int r = 0; r < 3; ++r) column[r] += block(r, c);
+            const int column = t.cached[3 * (p.count * a + b) + c];
+            for (int r = 0; r < 3; ++r) write(column + r, block(r, c));
           }
         }
       }

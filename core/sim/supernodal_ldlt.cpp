@@ -137,6 +137,10 @@ bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a) {
   const double* av = a.valuePtr();
   for (std::size_t v = 0; v < scatter_.size(); ++v)
     if (scatter_[v] >= 0) values_[std::size_t(scatter_[v])] += av[v];
+  return factorize_panels();
+}
+
+bool SupernodalLdlt::factorize_panels() {
   Eigen::VectorXd diagonal(inverse_diagonal_.size());
   for (std::size_t s = 0; s < nodes_.size(); ++s) {
     const Supernode& node = nodes_[s];

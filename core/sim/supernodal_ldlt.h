@@ -25,6 +25,7 @@ class SupernodalLdlt {
   void analyze(const Factor& factor, const Eigen::SparseMatrix<double>& a);
   // Factorises `a` (the analysed pattern) into the panels; false if it is not positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& a);
+
   // b <- A^-1 b for the factorised A.
   void solve_in_place(Eigen::VectorXd& b) const;
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
@@ -41,6 +42,7 @@ class SupernodalLdlt {
     int value_begin = 0;           // its (width + below) x width panel, column-major
   };
   void find_structure(const Eigen::SparseMatrix<double>& l);
+  bool factorize_panels();  // the panels hold the ordered matrix's lower triangle
   // Position of (permuted) row `row` in supernode t's panel rows.
   int panel_row(int t, int row) const;
 
