@@ -4,7 +4,6 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
-#include <string>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -124,8 +123,8 @@ struct HandSimulator::Impl {
   SupernodalLdlt preconditioner;  // the factorisation in panels, for the solves
   bool analysed = false;          // preconditioner has its structure
   Eigen::VectorXd gradient;
-  mutable Lanes lanes;
-  mutable std::vector<Eigen::VectorXd> lane_forces;  // lanes 1.. (lane 0 writes in place)
+  Lanes lanes;                               // the per-tet work split (flesh_range)
+  std::vector<Eigen::VectorXd> lane_forces;  // lanes 1.. (lane 0 writes into the gradient)
   std::vector<double> lane_energy;
   double scale = 1.0;  // h^2: the potential's terms enter the system scaled by it
   bool with_hessian = true;
@@ -221,10 +220,9 @@ struct HandSimulator::Impl {
     if (with_hessian) spring_terms.push_back({p, scale * k, nullptr});
   }
 
-  // out += (tets [begin, end) of A) x.
-  void tet_products(const Eigen::VectorXd& x, std::size_t begin, std::size_t end,
-                    double* out) const {
-    for (std::size_t e = begin; e < end; ++e) {
+  // y += (the tets' part of A) x.
+  void tet_products(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
       const TetTerm& t = tet_terms[e];
       const auto& ids = model.tets[e].nodes;
       Eigen::Matrix<double, 3, 4> p;
@@ -235,8 +233,7 @@ struct HandSimulator::Impl {
       stress.diagonal().array() += t.vlambda * d.trace();
       Eigen::Matrix<double, 3, 4> product = stress * t.rotated;
       if (t.stiffened) product += t.q * (t.q.cwiseProduct(p)).sum();
-      for (int a = 0; a < 4; ++a)
-        Eigen::Map<Eigen::Vector3d>(out + 3 * ids[std::size_t(a)]) += product.col(a);
+      for (int a = 0; a < 4; ++a) y.segment<3>(3 * ids[std::size_t(a)]) += product.col(a);
     }
   }
 
@@ -246,7 +243,7 @@ struct HandSimulator::Impl {
     y.tail(dofs - 3 * nodes).setZero();
     for (int n = 0; n < nodes; ++n)
       y.segment<3>(3 * n) = model.node_mass[std::size_t(n)] * x.segment<3>(3 * n);
-    tet_products(x, 0, tet_terms.size(), y.data());
+    tet_products(x, y);
     for (const SpringTerm& t : spring_terms) {
       Eigen::Vector3d u = Eigen::Vector3d::Zero();
       for (int a = 0; a < t.p.count; ++a)

@@ -4,7 +4,7 @@
 
 namespace handlab::sim {
 namespace {
-constexpr int kSpins = 20000;  // about 0.1-0.5 ms of polling before a waiting thread sleeps
+constexpr int kSpins = 20000;  // some tens of microseconds of polling before a thread sleeps
 }
 
 Lanes::Lanes(int count) : count_(count) {

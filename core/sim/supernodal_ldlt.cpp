@@ -162,12 +162,12 @@ bool SupernodalLdlt::factorize_panels() {
         const Update& u = updates_[std::size_t(k)];
         const Supernode& target = nodes_[std::size_t(u.target)];
         const int target_height = target.width + target.below;
-        const int* relative = relative_.data() + u.relative_begin - u.begin;
+        const int* relative = relative_.data() + u.relative_begin;  // of rows u.begin, ...
         for (int j = u.begin; j < u.end; ++j) {
           double* column =
               values_.data() + target.value_begin + (rows[j] - target.first) * target_height;
           const double* source = update.col(j).data();
-          for (int i = j; i < node.below; ++i) column[relative[i]] -= source[i];
+          for (int i = j; i < node.below; ++i) column[relative[i - u.begin]] -= source[i];
         }
       }
     }
