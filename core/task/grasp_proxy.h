@@ -2,9 +2,9 @@
 // cube is a rigid body under gravity on the floor, and a pinch attaches it. The cube is
 // grasped when the thumb and index fingertips (spheres of the distal bones' radii) both
 // touch it from opposite sides, follows their midpoint while both stay within a release
-// margin, and falls when either leaves. This is the attachment model common in VR toolkits;
-// handlab runs trials on it until the soft-hand simulator of issue #7 provides contact
-// forces (docs/study.md says what differs).
+// margin, and falls when either leaves. This is the attachment model common in VR toolkits,
+// and the trials' default; SoftHandWorld runs them on the soft-hand simulator instead
+// (docs/study.md says what differs).
 #pragma once
 
 #include "core/hand/skeleton.h"

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
+#include "core/sim/hand_sim_model.h"
 #include "core/task/cube_task.h"
 #include "core/task/grasp_proxy.h"
+#include "core/task/soft_hand_world.h"
 #include "core/tracking/hand_fitting.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/portable_random.h"
@@ -60,8 +63,18 @@ void fill_record(store::FrameRecord& r, double time, const tracking::TrackedFram
 
 }  // namespace
 
-PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz)
-    : tracker_(std::move(tracker)), rate_hz_(rate_hz) {
+struct PipelineTrialDriver::SoftHand {
+  hand::HandShape shape;
+  double cube_size = 0.0;
+  hand::Skeleton skeleton;
+  hand::HandFlesh flesh;
+  sim::HandSimModel model;
+};
+
+PipelineTrialDriver::~PipelineTrialDriver() = default;
+
+PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz, WorldKind world)
+    : tracker_(std::move(tracker)), rate_hz_(rate_hz), world_(world) {
   if (!tracker_.is_scripted()) {
     recording_ = tracking::read_recording(tracker_.path()).frames;
     const bool any = std::any_of(recording_.begin(), recording_.end(),
@@ -145,9 +158,36 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   }
   retarget::Retargeter retargeter(naive ? retarget::Strategy::kNaive : retarget::Strategy::kOurs,
                                   sim, setup.calibration, fitter);
-  task::GraspProxySettings world_settings;
-  world_settings.cube_size = layout.cube_size;
-  task::GraspProxyWorld world(sim, world_settings, task::cube_start_pose(layout).translation());
+  const Eigen::Vector3d cube_start = task::cube_start_pose(layout).translation();
+  std::unique_ptr<task::HandCubeWorld> physics;
+  if (world_ == WorldKind::kSoftHand) {
+    const hand::HandShape& shape = setup.condition.simulated_hand;
+    auto same = [&](const std::unique_ptr<SoftHand>& h) {
+      return h->shape.length == shape.length && h->shape.hand_breadth() == shape.hand_breadth() &&
+             h->shape.left == shape.left && h->cube_size == layout.cube_size;
+    };
+    auto found = std::find_if(soft_hands_.begin(), soft_hands_.end(), same);
+    if (found == soft_hands_.end()) {
+      // The flesh is meshed (TetGen) once per simulated hand and cube.
+      auto h = std::make_unique<SoftHand>();
+      h->shape = shape;
+      h->cube_size = layout.cube_size;
+      h->skeleton = sim;
+      h->flesh = hand::build_flesh(sim, shape);
+      sim::SimParameters parameters;
+      parameters.cube_size = layout.cube_size;
+      h->model = sim::make_hand_sim_model(sim, h->flesh, parameters);
+      soft_hands_.push_back(std::move(h));
+      found = soft_hands_.end() - 1;
+    }
+    physics =
+        std::make_unique<task::SoftHandWorld>((*found)->model, (*found)->skeleton, cube_start);
+  } else {
+    task::GraspProxySettings world_settings;
+    world_settings.cube_size = layout.cube_size;
+    physics = std::make_unique<task::GraspProxyWorld>(sim, world_settings, cube_start);
+  }
+  task::HandCubeWorld& world = *physics;
   task::TaskSettings task_settings;
   task_settings.layout = layout;
   task_settings.rest_time = protocol.rest_time_s;

@@ -59,9 +59,16 @@ class TrackerKind {
   std::string path_;
 };
 
+// The hand-cube physics a trial runs on: the grasp proxy (the cube attaches to a pinch,
+// core/task/grasp_proxy.h) or the soft-hand simulator (contact and friction only,
+// core/task/soft_hand_world.h, docs/simulator.md).
+enum class WorldKind { kGraspProxy, kSoftHand };
+
 class PipelineTrialDriver : public TrialDriver {
  public:
-  explicit PipelineTrialDriver(TrackerKind tracker, double rate_hz = 120.0);
+  explicit PipelineTrialDriver(TrackerKind tracker, double rate_hz = 120.0,
+                               WorldKind world = WorldKind::kGraspProxy);
+  ~PipelineTrialDriver() override;
   retarget::Calibration calibrate(const Protocol& protocol,
                                   const store::Participant& participant) override;
   TrialRun run(const TrialSetup& setup, const FrameSink& sink) override;
@@ -73,7 +80,10 @@ class PipelineTrialDriver : public TrialDriver {
 
   TrackerKind tracker_;
   double rate_hz_;
+  WorldKind world_;
   std::vector<tracking::TrackedFrame> recording_;  // loaded once
+  struct SoftHand;  // the soft hand's flesh and model for a simulated hand and cube
+  std::vector<std::unique_ptr<SoftHand>> soft_hands_;  // built once each, kept
 };
 
 }  // namespace handlab::studies

@@ -151,6 +151,8 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   const std::string newer_bytes = handlab::test::file_bytes(newer);
   one_line_error(cli("study status --db " + newer), "newer handlab");
   one_line_error(cli("session run --db " + newer + " --participant P01"), "newer handlab");
+  one_line_error(cli("session run --db " + newer + " --participant P01 --world rigid"),
+                 "--world must be proxy or soft");
   EXPECT_EQ(handlab::test::file_bytes(newer), newer_bytes);
 
   const std::string corrupt = handlab::test::fresh_path("cli_corrupt.db");

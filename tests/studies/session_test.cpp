@@ -72,6 +72,36 @@ TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
   }
 }
 
+// The soft-hand simulator as the trial's physics: frames carry its bones and contacts, and the
+// cube moves only once the flesh touches it (nothing attaches it). The built-in participant's
+// open-loop pinch is planned for the proxy; on the soft hand it does not lift the cube
+// (docs/study.md), so the trial's outcome is not asserted here.
+TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
+  const Protocol protocol = read_protocol(kStudy);
+  PipelineTrialDriver driver(TrackerKind::scripted(), 120.0, WorldKind::kSoftHand);
+  const store::Participant p = person("S", 0.18);
+  TrialSetup setup;
+  setup.protocol = &protocol;
+  setup.condition = protocol.conditions().front();
+  setup.participant = p;
+  setup.calibration = driver.calibrate(protocol, p);
+  long frames = 0, touching = 0, moved_untouched = 0;
+  bool touched = false;
+  Eigen::Vector3f start = Eigen::Vector3f::Constant(NAN);
+  const TrialRun run = driver.run(setup, [&](const store::FrameRecord& f) {
+    ++frames;
+    ASSERT_EQ(f.bone_positions.size(), 16u);
+    ASSERT_TRUE(f.bone_positions[0].allFinite());
+    if (!start.allFinite()) start = f.cube_position;
+    touched = touched || f.thumb_contact || f.index_contact;
+    touching += f.thumb_contact || f.index_contact;
+    if (!touched && (f.cube_position - start).norm() > 1e-4f) ++moved_untouched;
+  });
+  EXPECT_EQ(run.frames, frames);
+  EXPECT_GT(touching, 10) << "frames with thumb or index on the cube";
+  EXPECT_EQ(moved_untouched, 0) << "the cube moved before the hand touched it";
+}
+
 TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) {
   const std::string path = test::fresh_path("session_runner.db");
   const Protocol protocol = read_protocol(kStudy);

@@ -24,6 +24,10 @@ int session_run(const std::vector<std::string>& argv) {
       {"resume", "",
        "continue a started schedule (after a crash: the interrupted trial is "
        "kept as aborted and run again)"},
+      {"world", "proxy|soft",
+       "the hand-cube physics: the grasp proxy (the cube attaches to a pinch) or the soft-hand "
+       "simulator (contact and friction only; slower)",
+       "proxy"},
       {"quiet", "", "no line per trial"},
       {"json", "OUT", "write a summary as JSON (- for standard output)"},
   };
@@ -39,17 +43,21 @@ int session_run(const std::vector<std::string>& argv) {
   }
   args.require({"db", "participant"});
   const std::string tracker = args.text("tracker");
+  const std::string world = args.text("world");
+  if (world != "proxy" && world != "soft") throw UsageError("--world must be proxy or soft");
   store::StudyStore store(args.text("db"));
-  studies::PipelineTrialDriver driver(tracker == "scripted"
-                                          ? studies::TrackerKind::scripted()
-                                          : studies::TrackerKind::recording(tracker));
+  studies::PipelineTrialDriver driver(
+      tracker == "scripted" ? studies::TrackerKind::scripted()
+                            : studies::TrackerKind::recording(tracker),
+      120.0, world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy);
   studies::SessionRunner runner(store, driver, studies::fixed_responder());
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   const auto start = std::chrono::steady_clock::now();
-  const studies::SessionReport report = runner.run(
-      args.text("participant"), tracker, args.flag("resume"), [&](const std::string& line) {
-        if (!quiet) std::cout << line << std::endl;
-      });
+  const studies::SessionReport report =
+      runner.run(args.text("participant"), world == "soft" ? tracker + " (soft hand)" : tracker,
+                 args.flag("resume"), [&](const std::string& line) {
+                   if (!quiet) std::cout << line << std::endl;
+                 });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (args.text("json") != "-") {
