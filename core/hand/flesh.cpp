@@ -205,7 +205,7 @@ HandFlesh build_flesh(const Skeleton& skeleton, const HandShape& shape,
   const mesh::SurfaceMesh render = mesh::triangulate(finer);
   flesh.render.triangles = render.triangles;
   for (const auto& p : render.vertices) {
-    Eigen::Vector4d w;
+    Eigen::Vector4d w = Eigen::Vector4d::Zero();
     const int tet = locator.locate(p, &w, false);
     if (tet < 0) throw std::runtime_error("flesh: a render vertex lies far outside the tets");
     flesh.render.tet.push_back(tet);

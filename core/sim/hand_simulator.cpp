@@ -131,6 +131,10 @@ struct HandSimulator::Impl {
   double energy = 0.0;
   std::vector<Contact> contacts;
   bool factorised = false, stale = false;
+  // Steps taken, the step of the last factorisation, the solves of this step so far, and the
+  // step before which a step's first solve factorises at once (see solve).
+  long step_index = 0, factorised_at = -1, direct_until = 0;
+  int solves_this_step = 0;
 
   int bone_block(int b) const { return nodes + 2 * b; }
   int cube_block() const { return nodes + 2 * bones; }
@@ -812,9 +816,11 @@ struct HandSimulator::Impl {
       if (!definite)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
       factorised = true;
+      factorised_at = step_index;
       ++report.factorizations;
     };
-    if (!factorised || stale) {
+    const bool first = solves_this_step++ == 0;
+    if (!factorised || stale || (first && step_index < direct_until)) {
       // A direct solve, whose factorisation then preconditions the next steps.
       refactor();
       stale = false;
@@ -848,7 +854,12 @@ struct HandSimulator::Impl {
     report.linear_iterations += it;
     stale = it > options.refactor_iterations;
     if (!converged(r)) {
-      // CG did not converge with this preconditioner: factorise the matrix itself.
+      // CG did not converge with this preconditioner: factorise the matrix itself. If the
+      // preconditioner was the previous step's matrix, the matrix is changing faster than CG
+      // follows (tets crossing the stiffening threshold, contacts coming and going): the next
+      // steps factorise at once rather than spend CG iterations first.
+      if (first && factorised_at == step_index - 1)
+        direct_until = step_index + 1 + options.direct_steps;
       refactor();
       stale = false;
       ++report.linear_iterations;
@@ -918,6 +929,8 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   im.scale = h * h;
   // Predicted state: every body carried on by its velocity.
   const HandSimState start = state;
+  ++im.step_index;
+  im.solves_this_step = 0;
   std::vector<Eigen::Vector3d> turned(std::size_t(m.bone_count() + 1));  // rotation since start
   for (int n = 0; n < im.nodes; ++n)
     state.node_position[std::size_t(n)] += h * state.node_velocity[std::size_t(n)];

@@ -23,6 +23,11 @@ struct SimOptions {
   double linear_tolerance = 1e-8;
   int max_linear_iterations = 6;
   int refactor_iterations = 6;
+  // After a step's first solve failed in CG with the previous step's factorisation as its
+  // preconditioner (the matrix changes faster than CG follows: tets crossing the stiffening
+  // threshold, contacts coming and going), this many steps factorise at their first solve
+  // instead of trying CG first.
+  int direct_steps = 0;
   // Tests: compare every matrix-free product of CG with the assembled matrix's (slow; a
   // mismatch throws std::logic_error).
   bool check_products = false;

@@ -7,42 +7,91 @@
 
 namespace handlab::sim {
 
+namespace {
+
+// Entries of a supernode's lower trapezoid: its diagonal block's lower triangle and the rows
+// below it.
+long trapezoid(long width, long below) {
+  return width * (width + 1) / 2 + width * below;
+}
+
+// Whether a supernode of `width` columns whose panel would hold `zeros` of its `entries` as
+// explicit zeros is worth its denser kernels: CHOLMOD's relaxed amalgamation rule and
+// defaults (any merge up to 4 columns, up to 80% zeros up to 16 columns, 10% up to 48, 5%
+// beyond).
+bool worth_merging(long width, long zeros, long entries) {
+  const double z = double(zeros) / double(entries);
+  if (width <= 4) return true;
+  if (width <= 16) return z < 0.8;
+  if (width <= 48) return z < 0.1;
+  return z < 0.05;
+}
+
+}  // namespace
+
 void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
   const int n = int(l.cols());
   const int* outer = l.outerIndexPtr();
   const int* inner = l.innerIndexPtr();
   auto count = [&](int j) { return outer[j + 1] - outer[j]; };
-  // Column j + 1 continues j's supernode when j's rows are j + 1 followed by exactly j + 1's.
+  // Fundamental supernodes: column j + 1 continues j's when j's rows are j + 1 followed by
+  // exactly j + 1's.
   auto continues = [&](int j) {
     return count(j) == count(j + 1) + 1 && inner[outer[j]] == j + 1 &&
            std::equal(inner + outer[j] + 1, inner + outer[j + 1], inner + outer[j + 1]);
   };
+  // Relaxed amalgamation: a supernode whose parent (the supernode of its first row below)
+  // starts right after it merges into it when the explicit zeros that adds are few (its
+  // columns then take the parent's rows); the many two- and three-column supernodes of a
+  // tet mesh become panels wide enough for the dense kernels to pay. The elimination tree
+  // guarantees a child's rows below lie within its parent's columns and rows.
+  struct Run {
+    int first = 0, width = 0, last = 0;  // columns; `last` the column whose rows it has below
+    long entries = 0;                    // structural nonzeros of L in it (its columns')
+  };
+  std::vector<Run> runs;
+  for (int j = 0; j < n;) {
+    Run f;
+    f.first = j;
+    f.width = 1;
+    while (j + f.width < n && continues(j + f.width - 1)) ++f.width;
+    f.last = j + f.width - 1;
+    f.entries = trapezoid(f.width, count(f.last));
+    j += f.width;
+    if (!runs.empty()) {
+      const Run& c = runs.back();
+      const bool parent = count(c.last) > 0 && inner[outer[c.last]] <= f.last;
+      const long width = c.width + f.width, merged = trapezoid(width, count(f.last));
+      if (parent && worth_merging(width, merged - c.entries - f.entries, merged)) {
+        runs.back() = {c.first, int(width), f.last, c.entries + f.entries};
+        continue;
+      }
+    }
+    runs.push_back(f);
+  }
   nodes_.clear();
   rows_.clear();
-  column_to_panel_.assign(std::size_t(n), 0);
   int values = 0;
-  for (int j = 0; j < n;) {
+  for (const Run& r : runs) {
     Supernode s;
-    s.first = j;
-    s.width = 1;
-    while (j + s.width < n && continues(j + s.width - 1)) ++s.width;
-    const int last = j + s.width - 1;
-    s.below = count(last);
+    s.first = r.first;
+    s.width = r.width;
+    s.below = count(r.last);
     s.row_begin = int(rows_.size());
-    rows_.insert(rows_.end(), inner + outer[last], inner + outer[last + 1]);
+    rows_.insert(rows_.end(), inner + outer[r.last], inner + outer[r.last + 1]);
     s.value_begin = values;
-    const int height = s.width + s.below;
-    for (int c = 0; c < s.width; ++c)
-      column_to_panel_[std::size_t(j + c)] = values + c * height + c + 1;
-    values += height * s.width;
+    values += (s.width + s.below) * s.width;
     nodes_.push_back(s);
-    j += s.width;
   }
   // The diagonal blocks' unit diagonal and zero upper parts stay; set() fills the rest.
   values_.assign(std::size_t(values), 0.0);
   for (const Supernode& s : nodes_)
     for (int c = 0; c < s.width; ++c)
       values_[std::size_t(s.value_begin + c * (s.width + s.below) + c)] = 1.0;
+  column_node_.assign(std::size_t(n), 0);
+  for (std::size_t t = 0; t < nodes_.size(); ++t)
+    for (int c = 0; c < nodes_[t].width; ++c)
+      column_node_[std::size_t(nodes_[t].first + c)] = int(t);
   gathered_.resize(n);
   pattern_outer_.assign(outer, outer + n + 1);
   pattern_inner_.assign(inner, inner + outer[n]);
@@ -61,8 +110,12 @@ void SupernodalLdlt::set(const Factor& factor) {
       !std::equal(inner, inner + outer[n], pattern_inner_.begin()))
     find_structure(l);
   const double* lx = l.valuePtr();
-  for (int j = 0; j < n; ++j)
-    std::copy(lx + outer[j], lx + outer[j + 1], values_.begin() + column_to_panel_[std::size_t(j)]);
+  for (int j = 0; j < n; ++j) {
+    const int t = column_node_[std::size_t(j)];
+    const Supernode& s = nodes_[std::size_t(t)];
+    double* column = values_.data() + s.value_begin + (j - s.first) * (s.width + s.below);
+    for (int v = outer[j]; v < outer[j + 1]; ++v) column[panel_row(t, inner[v])] = lx[v];
+  }
   inverse_diagonal_ = factor.vectorD().cwiseInverse();
   p_ = factor.permutationP();
   p_inverse_ = factor.permutationPinv();
@@ -80,10 +133,6 @@ void SupernodalLdlt::analyze(const Factor& factor, const Eigen::SparseMatrix<dou
   if (!a.isCompressed()) throw std::invalid_argument("SupernodalLdlt: compress the matrix");
   set(factor);
   const int n = int(a.cols());
-  column_node_.assign(std::size_t(n), 0);
-  for (std::size_t t = 0; t < nodes_.size(); ++t)
-    for (int c = 0; c < nodes_[t].width; ++c)
-      column_node_[std::size_t(nodes_[t].first + c)] = int(t);
   // Each supernode's rank update, split by the supernodes that own its columns.
   update_begin_.assign(nodes_.size() + 1, 0);
   updates_.clear();

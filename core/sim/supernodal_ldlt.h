@@ -56,7 +56,6 @@ class SupernodalLdlt {
   std::vector<Supernode> nodes_;
   std::vector<int> rows_;
   std::vector<double> values_;
-  std::vector<int> column_to_panel_;  // values_ index of each column's first strict-lower entry
   Eigen::VectorXd inverse_diagonal_;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p_, p_inverse_;
   std::vector<int> pattern_outer_;  // the structure the supernodes were found for

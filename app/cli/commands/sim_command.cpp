@@ -164,6 +164,8 @@ int sim_bench(const std::vector<std::string>& argv) {
        "CG stops when the residual left would move no unknown by more than this", "1e-8"},
       {"max-linear-iterations", "N",
        "CG iterations before the matrix is factorised anew and solved directly", "6"},
+      {"direct-steps", "N",
+       "after CG failed with the previous step's factorisation, steps that factorise at once", "0"},
       {"threads", "N", "threads the per-tet work is split over", "2"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
@@ -194,6 +196,8 @@ int sim_bench(const std::vector<std::string>& argv) {
     throw UsageError("--linear-tolerance must be in (0, 1e-3) m");
   options.max_linear_iterations = int(args.integer("max-linear-iterations"));
   if (options.max_linear_iterations < 0) throw UsageError("--max-linear-iterations must be >= 0");
+  options.direct_steps = int(args.integer("direct-steps"));
+  if (options.direct_steps < 0) throw UsageError("--direct-steps must be >= 0");
   options.threads = int(args.integer("threads"));
   if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
   const sim::PinchReport report =
@@ -214,6 +218,7 @@ int sim_bench(const std::vector<std::string>& argv) {
       util::JsonWriter json(out);
       json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
       json.field("duration_s", duration).field("threads", options.threads);
+      json.field("direct_steps", options.direct_steps);
       write_timing(json, setup, report);
       json.end_object();
     });
