@@ -123,6 +123,8 @@ struct HandSimulator::Impl {
   SupernodalLdlt preconditioner;  // the factorisation in panels, for the solves
   bool analysed = false;          // preconditioner has its structure
   Eigen::VectorXd gradient;
+  Eigen::VectorXd flesh_gradient;  // the flesh's part of an evaluation (FleshUse::kKeep)
+  double flesh_energy = 0.0;
   Lanes lanes;                               // the per-tet work split (flesh_range)
   std::vector<Eigen::VectorXd> lane_forces;  // lanes 1.. (lane 0 writes into the gradient)
   std::vector<double> lane_energy;
@@ -364,13 +366,13 @@ struct HandSimulator::Impl {
   // the stress s = 2 mu e + lambda tr(e) I, node forces V R s grad N_a, and the Hessian
   // R K R' assembled from the rotated shape gradients without forming 12x12 products.
   // The tets split over the lanes, each lane's forces into its own buffer (lane 0's into the
-  // gradient), added in lane order.
+  // gradient), added in lane order. Without the Hessian (the line search), the energy alone.
   void flesh(HandSimState& s) {
     if (with_hessian) tet_terms.resize(model.tets.size());
     lanes.run([&](int lane) {
       const auto [begin, end] = lanes.range(lane, int(model.tets.size()));
       double* forces = gradient.data();
-      if (lane > 0) {
+      if (lane > 0 && with_hessian) {
         lane_forces[std::size_t(lane)].setZero(3 * nodes);
         forces = lane_forces[std::size_t(lane)].data();
       }
@@ -378,7 +380,7 @@ struct HandSimulator::Impl {
     });
     for (int lane = 0; lane < lanes.count(); ++lane) {
       energy += lane_energy[std::size_t(lane)];
-      if (lane > 0) gradient.head(3 * nodes) += lane_forces[std::size_t(lane)];
+      if (lane > 0 && with_hessian) gradient.head(3 * nodes) += lane_forces[std::size_t(lane)];
     }
   }
 
@@ -417,11 +419,11 @@ struct HandSimulator::Impl {
         extra_mu = 0.5 * k * (1.0 - ratio);
       }
       total += scale * element_energy;
+      if (!with_hessian) continue;  // the line search needs the energy alone
       const Eigen::Matrix<double, 3, 4> rotated = r * t.gradients;  // R grad N_a
       const Eigen::Matrix<double, 3, 4> force = (scale * t.volume) * (r * stress * t.gradients);
       for (int a = 0; a < 4; ++a)
         Eigen::Map<Eigen::Vector3d>(forces + 3 * t.nodes[std::size_t(a)]) += force.col(a);
-      if (!with_hessian) continue;
       TetTerm& term = tet_terms[e];
       term.rotated = rotated;
       term.vmu = scale * (t.volume * mu + extra_mu);
@@ -744,10 +746,16 @@ struct HandSimulator::Impl {
     }
   }
 
-  // h^2 times the backward-Euler energy at `s` (and its gradient, and with_hessian its
-  // Gauss-Newton Hessian), with `turned` the bodies' rotation vectors since the step began.
+  // h^2 times the backward-Euler energy at `s`, and with `hessian` its gradient and
+  // Gauss-Newton Hessian (without, as the line search needs, the gradient lacks the flesh's
+  // forces and is not to be used), with `turned` the bodies' rotation vectors since the step
+  // began.
+  // `flesh_use`: kKeep keeps the flesh's energy and forces, kKept takes them from the last
+  // kKeep, for the state it was at, its tets' rotations as that evaluation found them (a
+  // step's later passes start where its first did), and its Hessian terms with them.
+  enum class FleshUse { kEvaluate, kKeep, kKept };
   double evaluate(HandSimState& s, const std::vector<Eigen::Vector3d>& turned,
-                  const StepFrame& frame, bool hessian) {
+                  const StepFrame& frame, bool hessian, FleshUse flesh_use = FleshUse::kEvaluate) {
     const HandSimModel& m = model;
     const HandSimState& start = *frame.start;
     const double h = m.parameters.time_step;
@@ -760,7 +768,16 @@ struct HandSimulator::Impl {
     }
     // The tets' rotations are found where Newton linearises and held through its line search:
     // there the flesh energy is the quadratic that the Hessian describes.
-    flesh(s);
+    if (flesh_use == FleshUse::kKept) {
+      gradient = flesh_gradient;
+      energy = flesh_energy;
+    } else {
+      flesh(s);
+      if (flesh_use == FleshUse::kKeep) {
+        flesh_gradient = gradient;
+        flesh_energy = energy;
+      }
+    }
     bodies(s, *frame.targets);
     contact_energies(s);
     // Kinetic terms: 1/2 |q - q_pred|^2_M, the rotations' inertia in the world at the start.
@@ -950,14 +967,19 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   // linearisation did not see would land deep inside it.
   const StepFrame frame{&start, &targets};
   SimStepReport report;
-  const HandSimState predicted = state;
+  // Every pass starts from the prediction, the tets' rotations as the first pass found them
+  // there, and takes the flesh's terms from the first pass: only contacts differ.
+  HandSimState predicted;
   const std::vector<Eigen::Vector3d> predicted_turned = turned;
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
     if (pass > 0) {
       state = predicted;
       turned = predicted_turned;
     }
-    double current = im.evaluate(state, turned, frame, true);
+    using FleshUse = Impl::FleshUse;
+    double current =
+        im.evaluate(state, turned, frame, true, pass > 0 ? FleshUse::kKept : FleshUse::kKeep);
+    if (pass == 0 && kFrictionPasses > 1) predicted = state;
     for (int it = 0; it < im.options.newton_iterations; ++it) {
       report.residual = im.gradient.lpNorm<Eigen::Infinity>() / im.scale;
       const Eigen::VectorXd dq = im.solve(report);
