@@ -136,6 +136,7 @@ struct HandSimulator::Impl {
   // Steps taken, the step of the last factorisation, the solves of this step so far, and the
   // step before which a step's first solve factorises at once (see solve).
   long step_index = 0, factorised_at = -1, direct_until = 0;
+  int slow_steps = 0;  // consecutive steps whose first solve took two CG iterations or more
   int solves_this_step = 0;
 
   int bone_block(int b) const { return nodes + 2 * b; }
@@ -834,6 +835,7 @@ struct HandSimulator::Impl {
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
       factorised = true;
       factorised_at = step_index;
+      slow_steps = 0;
       ++report.factorizations;
     };
     const bool first = solves_this_step++ == 0;
@@ -870,6 +872,15 @@ struct HandSimulator::Impl {
     }
     report.linear_iterations += it;
     stale = it > options.refactor_iterations;
+    if (first) {
+      // A preconditioner that has drifted from the matrix, if not enough to fail CG: renewed
+      // after refresh_steps steps in a row that needed two iterations or more.
+      slow_steps = it >= 2 ? slow_steps + 1 : 0;
+      if (options.refresh_steps > 0 && slow_steps >= options.refresh_steps) {
+        stale = true;
+        slow_steps = 0;
+      }
+    }
     if (!converged(r)) {
       // CG did not converge with this preconditioner: factorise the matrix itself. If the
       // preconditioner was the previous step's matrix, the matrix is changing faster than CG

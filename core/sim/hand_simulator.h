@@ -27,7 +27,10 @@ struct SimOptions {
   // preconditioner (the matrix changes faster than CG follows: tets crossing the stiffening
   // threshold, contacts coming and going), this many steps factorise at their first solve
   // instead of trying CG first.
-  int direct_steps = 0;
+  int direct_steps = 3;
+  // After this many steps in a row whose first solve took two CG iterations or more, the
+  // next solve factorises: the preconditioner has drifted (0: never).
+  int refresh_steps = 20;
   // Tests: compare every matrix-free product of CG with the assembled matrix's (slow; a
   // mismatch throws std::logic_error).
   bool check_products = false;

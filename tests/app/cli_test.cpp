@@ -177,13 +177,14 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string text = test::file_bytes(json);
   for (const char* key :
        {"\"scale\": 1", "\"tets\"", "\"nodes\"", "\"dofs\"", "\"steps\": 48", "\"threads\": 1",
-        "\"direct_steps\": 2", "\"step_ms\"", "\"median\"", "\"p95\"", "\"newton_iterations\"",
-        "\"linear_iterations\"", "\"factorizations\"", "\"phases\"", "\"name\": \"shape\"",
-        "\"name\": \"approach\"", "\"median_ms\""})
+        "\"direct_steps\": 2", "\"refresh_steps\": 20", "\"step_ms\"", "\"median\"", "\"p95\"",
+        "\"newton_iterations\"", "\"linear_iterations\"", "\"factorizations\"", "\"phases\"",
+        "\"name\": \"shape\"", "\"name\": \"approach\"", "\"median_ms\""})
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   EXPECT_EQ(cli("sim bench --threads 0").status, 2);
   EXPECT_EQ(cli("sim bench --max-linear-iterations -1").status, 2);
   EXPECT_EQ(cli("sim bench --direct-steps -1").status, 2);
+  EXPECT_EQ(cli("sim bench --refresh-steps -1").status, 2);
   EXPECT_EQ(cli("sim bench --scale 3").status, 2);
   EXPECT_EQ(cli("sim pinch --cube 2").status, 2);
   EXPECT_EQ(cli("sim wobble").status, 2);

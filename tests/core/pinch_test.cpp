@@ -72,6 +72,7 @@ TEST(PinchDirectSteps, SkipCgThatWouldFailAndReachTheSameStates) {
   auto run = [&](int direct_steps, std::vector<Eigen::Vector3d>& nodes) {
     SimOptions options;
     options.direct_steps = direct_steps;
+    options.refresh_steps = 0;
     return run_pinch(scene.model, scene.skeleton, scene.script, options, scene.script.shape_end,
                      [&](const HandSimState& s) { nodes = s.node_position; });
   };
@@ -90,6 +91,30 @@ TEST(PinchDirectSteps, SkipCgThatWouldFailAndReachTheSameStates) {
   EXPECT_LT(largest, 1e-5) << "m, the nodes after the fingers opened";
 }
 
+// Coming down over the cube, CG converges with an older factorisation, in two or three
+// iterations a step as the matrix drifts; refresh_steps renews it after that many such steps.
+TEST(PinchRefreshSteps, RenewADriftedPreconditioner) {
+  const PinchScene scene = make_pinch_scene(SimParameters{}.cube_size);
+  // The longest run of steps without a factorisation whose solves took two CG iterations or
+  // more (one pass a step: its CG iterations are its first solve's).
+  auto longest_drift = [&](int refresh_steps) {
+    SimOptions options;
+    options.refresh_steps = refresh_steps;
+    const PinchReport r =
+        run_pinch(scene.model, scene.skeleton, scene.script, options, scene.script.approach_end);
+    int run = 0, longest = 0;
+    for (std::size_t i = 0; i < r.linear_iterations.size(); ++i) {
+      const bool drifted =
+          r.newton_iterations[i] == 1 && r.factorizations[i] == 0 && r.linear_iterations[i] >= 2;
+      run = drifted ? run + 1 : 0;
+      longest = std::max(longest, run);
+    }
+    return longest;
+  };
+  EXPECT_GT(longest_drift(0), 20) << "steps: the approach drifts without renewal";
+  EXPECT_LE(longest_drift(20), 20);
+}
+
 // Conjugate gradients multiply by the Newton matrix term by term, never assembling it; through
 // the approach, the closing (contacts appear, stick and slip) and the start of the lift, every
 // such product and the diagonal the preconditioner's test uses equal the assembled matrix's.
@@ -100,6 +125,7 @@ TEST(PinchNewtonMatrix, ProductsTermByTermEqualTheAssembledMatrix) {
   const PinchScript& script = scene.script;
   SimOptions options;
   options.check_products = true;
+  options.direct_steps = 0;  // CG at every step's first solve: more products to compare
   PinchReport r;
   EXPECT_NO_THROW(r = run_pinch(model, skeleton, script, options, script.lift_start + 0.1));
   int products = 0, touching = 0;  // a direct solve counts one linear iteration, no product

@@ -165,7 +165,10 @@ int sim_bench(const std::vector<std::string>& argv) {
       {"max-linear-iterations", "N",
        "CG iterations before the matrix is factorised anew and solved directly", "6"},
       {"direct-steps", "N",
-       "after CG failed with the previous step's factorisation, steps that factorise at once", "0"},
+       "after CG failed with the previous step's factorisation, steps that factorise at once", "3"},
+      {"refresh-steps", "N",
+       "factorise after this many steps in a row needed two CG iterations or more (0: never)",
+       "20"},
       {"threads", "N", "threads the per-tet work is split over", "2"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
@@ -198,6 +201,8 @@ int sim_bench(const std::vector<std::string>& argv) {
   if (options.max_linear_iterations < 0) throw UsageError("--max-linear-iterations must be >= 0");
   options.direct_steps = int(args.integer("direct-steps"));
   if (options.direct_steps < 0) throw UsageError("--direct-steps must be >= 0");
+  options.refresh_steps = int(args.integer("refresh-steps"));
+  if (options.refresh_steps < 0) throw UsageError("--refresh-steps must be >= 0");
   options.threads = int(args.integer("threads"));
   if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
   const sim::PinchReport report =
@@ -218,7 +223,8 @@ int sim_bench(const std::vector<std::string>& argv) {
       util::JsonWriter json(out);
       json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
       json.field("duration_s", duration).field("threads", options.threads);
-      json.field("direct_steps", options.direct_steps);
+      json.field("direct_steps", options.direct_steps)
+          .field("refresh_steps", options.refresh_steps);
       write_timing(json, setup, report);
       json.end_object();
     });
