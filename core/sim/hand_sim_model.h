@@ -36,7 +36,8 @@ struct SimParameters {
   double tracking_torsion = 2.0;       // N m/rad per bone
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
   // coefficient (skin on wood or plastic: 0.5-1).
-  double contact_stiffness = 2e4;     // N/m, a flesh node against the cube or floor
+  double contact_stiffness = 5e3;     // N/m, a flesh node against the cube or floor, at first
+  double contact_stiffening = 2.5e7;  // N/m^2: its force k d + k3 d^2 at a depth d
   double cube_floor_stiffness = 1e4;  // N/m, a cube corner against the floor
   double friction = 0.8;
   bool hand_floor_contact = false;  // the study: off

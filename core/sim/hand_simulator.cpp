@@ -71,13 +71,12 @@ const std::array<Eigen::Vector3d, 8>& corner_signs() {
   return signs;
 }
 
-// Coulomb's cone on a friction anchor: the normal and friction springs have the same
-// stiffness, so the friction force k|t| may reach mu k depth; beyond, the anchor slides
-// towards the point until it does.
-Eigen::Vector3d coulomb_anchor(const Eigen::Vector3d& x, const Eigen::Vector3d& n, double depth,
-                               Eigen::Vector3d anchor, double mu) {
+// Coulomb's cone on a friction anchor: the friction spring's force k|t| may reach mu f_n, so
+// the anchor may be `limit` = mu f_n / k away; beyond, it slides towards the point until it is.
+Eigen::Vector3d coulomb_anchor(const Eigen::Vector3d& x, const Eigen::Vector3d& n, double limit,
+                               Eigen::Vector3d anchor) {
   const Eigen::Vector3d t = (Eigen::Matrix3d::Identity() - n * n.transpose()) * (x - anchor);
-  const double stretch = t.norm(), limit = mu * std::max(depth, 0.0);
+  const double stretch = t.norm();
   if (stretch > limit) anchor += t * (1.0 - limit / stretch);
   return anchor;
 }
@@ -491,12 +490,37 @@ struct HandSimulator::Impl {
     }
   }
 
+  // The normal penalty's stiffness at the surface (and the friction spring's).
   double stiffness(const Contact& c) const {
     return c.kind == Contact::kCornerFloor ? model.parameters.cube_floor_stiffness
                                            : model.parameters.contact_stiffness;
   }
+  // Its growth with depth: a flesh node's penalty force is k d + k3 d^2 (soft where the skin
+  // first touches, so that the pad takes a light cube on several nodes; stiff deeper in, so
+  // that a heavy one does not sink).
+  double stiffening(const Contact& c) const {
+    return c.kind == Contact::kCornerFloor ? 0.0 : model.parameters.contact_stiffening;
+  }
+  // The friction cone's radius about the anchor at a depth: mu f_n / k.
+  double cone(const Contact& c, double depth) const {
+    depth = std::max(depth, 0.0);
+    return model.parameters.friction * depth * (1.0 + stiffening(c) * depth / stiffness(c));
+  }
 
-  // Contact energies at the state: the normal penalty k/2 d^2 wherever the point is inside
+  // The normal penalty of a point at a signed distance < 0 from a surface of outward normal n:
+  // the energy k d^2/2 + k3 d^3/3 of the depth d, its force (k d + k3 d^2) n, its curvature
+  // (k + 2 k3 d) n n'.
+  void add_penalty(const PointJacobian& p, const Eigen::Vector3d& n, double distance, double k,
+                   double k3) {
+    const double d = -distance;
+    energy += scale * d * d * (0.5 * k + k3 * d / 3.0);
+    const Eigen::Vector3d f = (scale * (k + k3 * d) * distance) * n;
+    for (int a = 0; a < p.count; ++a)
+      gradient.segment<3>(3 * p.block[std::size_t(a)]) += p.j[std::size_t(a)].transpose() * f;
+    add_curvature(p, (k + 2.0 * k3 * d) * n * n.transpose());
+  }
+
+  // Contact energies at the state: the normal penalty (add_penalty) wherever the point is inside
   // (the exact distance, so that a point passing beside an edge feels nothing), friction as
   // decided at the predicted state.
   void contact_energies(const HandSimState& s) {
@@ -520,7 +544,7 @@ struct HandSimulator::Impl {
       if (c.kind != Contact::kNodeCube) {
         const double height = nf.dot(x) - par.floor_height;
         if (height < 0)
-          add_spring(p, k * nf * nf.transpose(), height * nf);
+          add_penalty(p, nf, height, k, stiffening(c));
         else if (c.curved)
           add_curvature(p, k * nf * nf.transpose());
         if (!c.touching || height >= 0) continue;  // no friction from a point that left
@@ -538,7 +562,7 @@ struct HandSimulator::Impl {
         PointJacobian normal_part = p;
         add_body_point(normal_part, cube_block(), surface - s.cube_pose.position, -1.0);
         if (b.distance < 0)
-          add_spring(normal_part, k * n * n.transpose(), b.distance * n);
+          add_penalty(normal_part, n, b.distance, k, stiffening(c));
         else
           add_curvature(normal_part, k * n * n.transpose());
       }
@@ -559,7 +583,7 @@ struct HandSimulator::Impl {
   // out of Coulomb's cone, they slide.
   void find_contacts(const HandSimState& s) {
     const SimParameters& par = model.parameters;
-    const double h = par.time_step, mu = par.friction;
+    const double h = par.time_step;
     contacts.clear();
     const Eigen::Vector3d nf = par.floor_normal.normalized();
     auto previous = [](const std::vector<ContactAnchor>& list, int point) -> const ContactAnchor* {
@@ -577,7 +601,7 @@ struct HandSimulator::Impl {
       if (c.touching && old) {
         const Eigen::Vector3d t =
             (Eigen::Matrix3d::Identity() - normal * normal.transpose()) * (x - old->anchor);
-        const double stretch = t.norm(), limit = -mu * gap;
+        const double stretch = t.norm(), limit = cone(c, -gap);
         if (stretch > limit) {
           if (kind == Contact::kNodeCube) {
             // Flesh on the cube keeps an anchor spring, its anchor moved to the cone's edge: a
@@ -655,7 +679,6 @@ struct HandSimulator::Impl {
   // passes end).
   bool friction_changed(const HandSimState& s) {
     const SimParameters& par = model.parameters;
-    const double mu = par.friction;
     const Eigen::Vector3d nf = par.floor_normal.normalized();
     const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
     bool changed = false;
@@ -686,7 +709,7 @@ struct HandSimulator::Impl {
       if (depth <= 0) continue;  // left the surface: it felt no friction
       const Eigen::Vector3d offset =
           (Eigen::Matrix3d::Identity() - c.normal * c.normal.transpose()) * (x - c.anchor);
-      const double limit = mu * depth;
+      const double limit = cone(c, depth);
       if (c.sliding && offset.dot(c.slip) <= 0) {
         // The kinetic force turned the slide back past where the point held: it stops there.
         c.sliding = false;
@@ -728,9 +751,8 @@ struct HandSimulator::Impl {
         const BoxProximity b = box_proximity(model.cube_half, q);
         if (b.distance >= 0) continue;
         max_penetration = std::max(max_penetration, -b.distance);
-        s.node_cube.push_back(
-            {c.point, coulomb_anchor(q, b.normal, -b.distance, c.touching ? c.anchor : b.closest,
-                                     par.friction)});
+        s.node_cube.push_back({c.point, coulomb_anchor(q, b.normal, cone(c, -b.distance),
+                                                       c.touching ? c.anchor : b.closest)});
         continue;
       }
       const Eigen::Vector3d x =
@@ -741,9 +763,8 @@ struct HandSimulator::Impl {
       const double height = nf.dot(x) - par.floor_height;
       if (height >= 0) continue;
       (c.kind == Contact::kNodeFloor ? s.node_floor : s.corner_floor)
-          .push_back(
-              {c.point, coulomb_anchor(x, nf, -height, c.touching ? c.anchor : x - height * nf,
-                                       par.friction)});
+          .push_back({c.point, coulomb_anchor(x, nf, cone(c, -height),
+                                              c.touching ? c.anchor : x - height * nf)});
     }
   }
 
