@@ -50,6 +50,11 @@ struct Contact {
   Eigen::Vector3d slip = Eigen::Vector3d::Zero();  // surface frame
   double friction_force = 0.0;                     // N
   int switches = 0;  // between sticking and sliding, in this step's passes
+  // The normal in the world at the predicted state: the friction spring acts across it, held
+  // through the step, so that its energy's gradient is exactly the force it exerts (a normal
+  // turning with the cube would add a torque the spring's gradient leaves out, and the line
+  // search would find the Newton step uphill).
+  Eigen::Vector3d across = Eigen::Vector3d::Zero();
 };
 
 // Points this close to a surface (m), beyond what they can move in a step, are candidates.
@@ -567,7 +572,7 @@ struct HandSimulator::Impl {
           add_curvature(normal_part, k * n * n.transpose());
       }
       if (!c.touching || b.distance >= 0) continue;  // no pull from a point that left
-      const Eigen::Vector3d anchor = s.cube_pose.point(c.anchor), n = cube_r * c.normal;
+      const Eigen::Vector3d anchor = s.cube_pose.point(c.anchor), &n = c.across;
       PointJacobian friction_part = p;
       add_body_point(friction_part, cube_block(), anchor - s.cube_pose.position, -1.0);
       if (c.sliding)
@@ -596,6 +601,7 @@ struct HandSimulator::Impl {
                    const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
                    const ContactAnchor* old, double k) {
       Contact c{kind, point, normal, old ? old->anchor : surface};
+      c.across = kind == Contact::kNodeCube ? s.cube_pose.rotation * normal : normal;
       c.touching = gap < 0;
       c.curved = c.touching;
       if (c.touching && old) {
