@@ -1031,12 +1031,15 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
       for (int b = 0; b <= im.bones; ++b)
         largest_turn = std::max(largest_turn, dq.segment<3>(3 * (im.nodes + 2 * b + 1)).norm());
       double length = largest_turn > kMaxTurn ? kMaxTurn / largest_turn : 1.0;
-      for (int halving = 0; halving < 12; ++halving, length *= 0.5) {
+      // Where the state already solves the step (CG's first residual within its tolerance, so
+      // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
+      for (int halving = 0; halving < 12 && slope < 0; ++halving, length *= 0.5) {
         trial = state;
         trial_turned = turned;
         im.apply(trial, trial_turned, dq, length);
         if (im.evaluate(trial, trial_turned, frame, false) <= current + 1e-4 * length * slope)
           break;
+        ++report.halvings;
       }
       state = std::move(trial);
       turned = std::move(trial_turned);

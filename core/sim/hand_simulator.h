@@ -41,8 +41,11 @@ struct SimOptions {
 
 struct SimStepReport {
   int newton_iterations = 0;
-  int linear_iterations = 0;     // CG iterations (a direct solve counts one)
-  int factorizations = 0;        // numeric factorisations of the Newton matrix
+  int linear_iterations = 0;  // CG iterations (a direct solve counts one)
+  int factorizations = 0;     // numeric factorisations of the Newton matrix
+  // Step lengths the line search rejected (each halves the next; after 12 the last is taken).
+  // With an energy and gradient that agree, rare: a step that runs into a surface or a kink.
+  int halvings = 0;
   int contacts = 0;              // active contact points (hand-cube, hand-floor, cube-floor)
   double max_penetration = 0.0;  // m, deepest flesh node inside the cube after the step
   double residual = 0.0;         // max |gradient| where the last Newton solve started (N)

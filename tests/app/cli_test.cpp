@@ -170,7 +170,9 @@ TEST(CliRetarget, DrawsThePinchPicture) {
 
 TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string json = test::fresh_path("sim_bench.json");
-  const Result r = cli("sim bench --duration 0.4 --threads 1 --direct-steps 2 --json " + json);
+  const std::string steps = test::fresh_path("sim_steps.csv");
+  const Result r = cli("sim bench --duration 0.4 --threads 1 --direct-steps 2 --json " + json +
+                       " --steps " + steps);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("approach"), std::string::npos) << "the phases: " << r.out;
@@ -181,6 +183,13 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
         "\"newton_iterations\"", "\"linear_iterations\"", "\"factorizations\"", "\"phases\"",
         "\"name\": \"shape\"", "\"name\": \"approach\"", "\"median_ms\""})
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
+  const std::string csv = test::file_bytes(steps);
+  EXPECT_EQ(csv.rfind("step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,"
+                      "contacts,halvings\n",
+                      0),
+            0u)
+      << csv.substr(0, 200);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 49) << "a header and 48 steps";
   EXPECT_EQ(cli("sim bench --threads 0").status, 2);
   EXPECT_EQ(cli("sim bench --max-linear-iterations -1").status, 2);
   EXPECT_EQ(cli("sim bench --direct-steps -1").status, 2);

@@ -31,6 +31,19 @@ TEST_P(Pinch, LiftsHoldsAndReleasesTheCube) {
   EXPECT_LT(r.max_penetration_mm, 0.5);
   EXPECT_TRUE(r.released) << "opening the fingers should drop it back on the floor";
   EXPECT_LT(highest - script.cube_centre.y(), script.lift_height + 0.01) << "m: flung upwards";
+  // Holding still, the energy and its gradient agree: the line search takes Newton's step
+  // whole (a friction spring whose normal turned with the cube once made it halve the step
+  // seven times a step in the hold).
+  const double h = model.parameters.time_step;
+  int hold_steps = 0, halvings = 0;
+  for (std::size_t i = 0; i < r.halvings.size(); ++i) {
+    const double t = double(i + 1) * h;
+    if (t < script.lift_end + 0.5 || t > script.hold_end) continue;
+    ++hold_steps;
+    halvings += r.halvings[i];
+  }
+  EXPECT_LT(halvings, hold_steps / 10)
+      << "line-search halvings in " << hold_steps << " steps of the hold";
 }
 
 INSTANTIATE_TEST_SUITE_P(StudyCubes, Pinch, testing::Values(0.01, 0.06));

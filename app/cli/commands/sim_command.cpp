@@ -172,7 +172,8 @@ int sim_bench(const std::vector<std::string>& argv) {
       {"threads", "N", "threads the per-tet work is split over", "2"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
-       "write every step's time (ms), Newton and CG iterations, factorisations and contacts"},
+       "write every step's time (ms), Newton and CG iterations, factorisations, contacts and "
+       "line-search halvings"},
   };
   const Arguments args(specs, argv);
   if (args.help_requested()) {
@@ -210,12 +211,14 @@ int sim_bench(const std::vector<std::string>& argv) {
   print_timing(setup, report);
   if (args.has("steps")) {
     write_output(args.text("steps"), [&](std::ostream& out) {
-      out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts\n";
+      out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
+             "halvings\n";
       const double h = setup.model.parameters.time_step;
       for (std::size_t i = 0; i < report.step_ms.size(); ++i)
         out << i << ',' << double(i + 1) * h << ',' << report.step_ms[i] << ','
             << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
-            << report.factorizations[i] << ',' << report.contacts[i] << '\n';
+            << report.factorizations[i] << ',' << report.contacts[i] << ',' << report.halvings[i]
+            << '\n';
     });
   }
   if (args.has("json")) {
