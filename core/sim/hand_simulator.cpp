@@ -1006,7 +1006,8 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   const StepFrame frame{&start, &targets};
   SimStepReport report;
   // Every pass starts from the prediction, the tets' rotations as the first pass found them
-  // there, and takes the flesh's terms from the first pass: only contacts differ.
+  // there, and (one Newton iteration a pass, so that its Hessian terms are still the first
+  // evaluation's) takes the flesh's terms from the first pass: only contacts differ.
   HandSimState predicted;
   const std::vector<Eigen::Vector3d> predicted_turned = turned;
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
@@ -1015,9 +1016,10 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
       turned = predicted_turned;
     }
     using FleshUse = Impl::FleshUse;
+    const bool kept = pass > 0 && im.options.newton_iterations == 1;
     double current =
-        im.evaluate(state, turned, frame, true, pass > 0 ? FleshUse::kKept : FleshUse::kKeep);
-    if (pass == 0 && kFrictionPasses > 1) predicted = state;
+        im.evaluate(state, turned, frame, true, kept ? FleshUse::kKept : FleshUse::kKeep);
+    if (pass == 0) predicted = state;
     for (int it = 0; it < im.options.newton_iterations; ++it) {
       report.residual = im.gradient.lpNorm<Eigen::Infinity>() / im.scale;
       const Eigen::VectorXd dq = im.solve(report);
