@@ -856,7 +856,7 @@ struct HandSimulator::Impl {
         if (definite) preconditioner.analyze(ldlt, matrix);
         analysed = definite;
       } else {
-        definite = preconditioner.factorize(matrix);
+        definite = preconditioner.factorize(matrix, &lanes);
       }
       if (!definite)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");

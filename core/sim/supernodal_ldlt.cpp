@@ -5,6 +5,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "core/sim/lanes.h"
+
 namespace handlab::sim {
 
 namespace {
@@ -93,6 +95,9 @@ void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
     for (int c = 0; c < nodes_[t].width; ++c)
       column_node_[std::size_t(nodes_[t].first + c)] = int(t);
   gathered_.resize(n);
+  // A new structure: factorize() waits for analyze() to map a matrix and plan the split.
+  matrix_entries_ = -1;
+  top_first_ = int(nodes_.size());
   pattern_outer_.assign(outer, outer + n + 1);
   pattern_inner_.assign(inner, inner + outer[n]);
 }
@@ -177,58 +182,145 @@ void SupernodalLdlt::analyze(const Factor& factor, const Eigen::SparseMatrix<dou
           node.value_begin + (pc - node.first) * (node.width + node.below) + r;
     }
   matrix_entries_ = int(a.nonZeros());
+  rank_update_second_.resize(widest, widest);
+  plan_split();
 }
 
-bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a) {
+void SupernodalLdlt::plan_split() {
+  const int count = int(nodes_.size());
+  // Each supernode's parent (the supernode of its first row below) and its work (flops of its
+  // Cholesky, triangular solve and rank update), and each subtree's.
+  std::vector<int> parent(static_cast<std::size_t>(count), -1);
+  std::vector<double> work(static_cast<std::size_t>(count)), subtree(work.size());
+  for (int t = 0; t < count; ++t) {
+    const Supernode& n = nodes_[std::size_t(t)];
+    if (n.below > 0)
+      parent[std::size_t(t)] = column_node_[std::size_t(rows_[std::size_t(n.row_begin)])];
+    const double w = n.width, b = n.below;
+    work[std::size_t(t)] = w * w * w / 3 + w * w * b + w * b * b;
+    subtree[std::size_t(t)] += work[std::size_t(t)];
+    if (parent[std::size_t(t)] >= 0)
+      subtree[std::size_t(parent[std::size_t(t)])] += subtree[std::size_t(t)];
+  }
+  // The top is a tail of supernodes (a parent comes after its children, so a tail holds its
+  // members' ancestors); the subtrees under it are dealt to two groups, largest first. The
+  // tail is chosen for the least time: its work, then the larger group's.
+  double best = 0.0;
+  for (int t = 0; t < count; ++t) best += work[std::size_t(t)];
+  top_first_ = count;
+  std::vector<int> best_group(std::size_t(count), 2);
+  double top_work = 0.0;
+  for (int first = count - 1; first > 0; --first) {
+    top_work += work[std::size_t(first)];
+    std::vector<int> roots;
+    for (int t = 0; t < first; ++t)
+      if (parent[std::size_t(t)] < 0 || parent[std::size_t(t)] >= first) roots.push_back(t);
+    std::sort(roots.begin(), roots.end(),
+              [&](int a, int b) { return subtree[std::size_t(a)] > subtree[std::size_t(b)]; });
+    double load[2] = {0.0, 0.0};
+    std::vector<int> group(std::size_t(count), 2);
+    for (int r : roots) {
+      const int g = load[1] < load[0] ? 1 : 0;
+      load[g] += subtree[std::size_t(r)];
+      group[std::size_t(r)] = g;
+    }
+    const double time = top_work + std::max(load[0], load[1]);
+    if (time < best) {
+      best = time;
+      top_first_ = first;
+      // Each supernode in its root's group: parents come later, so go down from the top.
+      for (int t = first - 1; t >= 0; --t)
+        if (group[std::size_t(t)] == 2)
+          group[std::size_t(t)] = group[std::size_t(parent[std::size_t(t)])];
+      best_group = group;
+    }
+  }
+  group_ = best_group;
+  const int top_values =
+      top_first_ < count ? int(values_.size()) - nodes_[std::size_t(top_first_)].value_begin : 0;
+  top_updates_ = Eigen::VectorXd::Zero(top_values);
+}
+
+bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, Lanes* lanes) {
   if (int(a.nonZeros()) != matrix_entries_ || !a.isCompressed())
     throw std::invalid_argument("SupernodalLdlt: factorize a matrix of the analysed pattern");
   std::fill(values_.begin(), values_.end(), 0.0);
   const double* av = a.valuePtr();
   for (std::size_t v = 0; v < scatter_.size(); ++v)
     if (scatter_[v] >= 0) values_[std::size_t(scatter_[v])] += av[v];
-  return factorize_panels();
+  return factorize_panels(lanes);
 }
 
-bool SupernodalLdlt::factorize_panels() {
-  Eigen::VectorXd diagonal(inverse_diagonal_.size());
-  for (std::size_t s = 0; s < nodes_.size(); ++s) {
-    const Supernode& node = nodes_[s];
-    const int height = node.width + node.below;
-    Eigen::Map<Eigen::MatrixXd> panel(values_.data() + node.value_begin, height, node.width);
-    auto block = panel.topRows(node.width);
-    // The diagonal block's Cholesky factor L_d, then the rows below: L_b = A_b L_d^-T.
-    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);
-    if (llt.info() != Eigen::Success) return false;
-    if (node.below > 0) {
-      auto below = panel.bottomRows(node.below);
-      block.triangularView<Eigen::Lower>().solveInPlace(below.transpose());
-      // Its rank update L_b L_b' (lower half) to the later supernodes that own its rows.
-      auto update = rank_update_.topLeftCorner(node.below, node.below);
-      update.triangularView<Eigen::Lower>().setZero();
-      update.selfadjointView<Eigen::Lower>().rankUpdate(below);
-      const int* rows = rows_.data() + node.row_begin;
-      for (int k = update_begin_[s]; k < update_begin_[s + 1]; ++k) {
-        const Update& u = updates_[std::size_t(k)];
-        const Supernode& target = nodes_[std::size_t(u.target)];
-        const int target_height = target.width + target.below;
-        const int* relative = relative_.data() + u.relative_begin;  // of rows u.begin, ...
-        for (int j = u.begin; j < u.end; ++j) {
-          double* column =
-              values_.data() + target.value_begin + (rows[j] - target.first) * target_height;
-          const double* source = update.col(j).data();
-          for (int i = j; i < node.below; ++i) column[relative[i - u.begin]] -= source[i];
-        }
+bool SupernodalLdlt::factorize_panels(Lanes* lanes) {
+  diagonal_.resize(inverse_diagonal_.size());
+  const int count = int(nodes_.size());
+  int first = 0;
+  if (lanes && lanes->count() >= 2 && top_first_ < count) {
+    bool definite[2] = {true, true};
+    // Lane 0 updates the top's panels in place, lane 1 into its own copy, added afterwards.
+    lanes->run([&](int lane) {
+      if (lane > 1) return;
+      double* top = nullptr;
+      if (lane == 1) {
+        top_updates_.setZero();
+        top = top_updates_.data();
+      }
+      Eigen::MatrixXd& scratch = lane == 0 ? rank_update_ : rank_update_second_;
+      for (int t = 0; t < top_first_ && definite[lane]; ++t)
+        if (group_[std::size_t(t)] == lane)
+          definite[lane] = factorize_node(std::size_t(t), scratch, top);
+    });
+    if (!definite[0] || !definite[1]) return false;
+    const std::size_t top_begin = std::size_t(nodes_[std::size_t(top_first_)].value_begin);
+    Eigen::Map<Eigen::VectorXd>(values_.data() + top_begin, top_updates_.size()) += top_updates_;
+    first = top_first_;
+  }
+  for (int t = first; t < count; ++t)
+    if (!factorize_node(std::size_t(t), rank_update_, nullptr)) return false;
+  inverse_diagonal_ = diagonal_.cwiseInverse();
+  return true;
+}
+
+bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top) {
+  const Supernode& node = nodes_[s];
+  const int height = node.width + node.below;
+  Eigen::Map<Eigen::MatrixXd> panel(values_.data() + node.value_begin, height, node.width);
+  auto block = panel.topRows(node.width);
+  // The diagonal block's Cholesky factor L_d, then the rows below: L_b = A_b L_d^-T.
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);
+  if (llt.info() != Eigen::Success) return false;
+  if (node.below > 0) {
+    auto below = panel.bottomRows(node.below);
+    block.triangularView<Eigen::Lower>().solveInPlace(below.transpose());
+    // Its rank update L_b L_b' (lower half) to the later supernodes that own its rows.
+    auto update = scratch.topLeftCorner(node.below, node.below);
+    update.triangularView<Eigen::Lower>().setZero();
+    update.selfadjointView<Eigen::Lower>().rankUpdate(below);
+    const int* rows = rows_.data() + node.row_begin;
+    const int top_begin =
+        top_first_ < int(nodes_.size()) ? nodes_[std::size_t(top_first_)].value_begin : 0;
+    for (int k = update_begin_[s]; k < update_begin_[s + 1]; ++k) {
+      const Update& u = updates_[std::size_t(k)];
+      const Supernode& target = nodes_[std::size_t(u.target)];
+      const int target_height = target.width + target.below;
+      const int* relative = relative_.data() + u.relative_begin;  // of rows u.begin, ...
+      double* destination = values_.data();
+      if (top && u.target >= top_first_) destination = top - top_begin;
+      for (int j = u.begin; j < u.end; ++j) {
+        double* column =
+            destination + target.value_begin + (rows[j] - target.first) * target_height;
+        const double* source = update.col(j).data();
+        for (int i = j; i < node.below; ++i) column[relative[i - u.begin]] -= source[i];
       }
     }
-    // L L' = L_unit D L_unit': D the squared diagonal, the columns divided by it.
-    for (int c = 0; c < node.width; ++c) {
-      const double l = panel(c, c);
-      diagonal[node.first + c] = l * l;
-      panel.col(c).tail(height - c - 1) /= l;
-      panel(c, c) = 1.0;
-    }
   }
-  inverse_diagonal_ = diagonal.cwiseInverse();
+  // L L' = L_unit D L_unit': D the squared diagonal, the columns divided by it.
+  for (int c = 0; c < node.width; ++c) {
+    const double l = panel(c, c);
+    diagonal_[node.first + c] = l * l;
+    panel.col(c).tail(height - c - 1) /= l;
+    panel(c, c) = 1.0;
+  }
   return true;
 }
 

@@ -14,6 +14,8 @@
 
 namespace handlab::sim {
 
+class Lanes;
+
 class SupernodalLdlt {
  public:
   using Factor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
@@ -24,7 +26,10 @@ class SupernodalLdlt {
   // stored entries goes, so that factorize() can take any matrix with a's pattern.
   void analyze(const Factor& factor, const Eigen::SparseMatrix<double>& a);
   // Factorises `a` (the analysed pattern) into the panels; false if it is not positive definite.
-  bool factorize(const Eigen::SparseMatrix<double>& a);
+  // With `lanes` of two or more, the elimination tree's two largest groups of subtrees are
+  // factorised on lanes 0 and 1 at once, then the supernodes above them; the result depends
+  // on whether lanes are given, never on timing.
+  bool factorize(const Eigen::SparseMatrix<double>& a, Lanes* lanes = nullptr);
 
   // b <- A^-1 b for the factorised A.
   void solve_in_place(Eigen::VectorXd& b) const;
@@ -42,7 +47,14 @@ class SupernodalLdlt {
     int value_begin = 0;           // its (width + below) x width panel, column-major
   };
   void find_structure(const Eigen::SparseMatrix<double>& l);
-  bool factorize_panels();  // the panels hold the ordered matrix's lower triangle
+  void plan_split();  // group_, top_first_ (see below)
+  // The panels hold the ordered matrix's lower triangle.
+  bool factorize_panels(Lanes* lanes);
+  // Supernode s: its diagonal block, the rows below, its part of D, and its rank update to
+  // later supernodes (through `scratch`); the update of a supernode from top_first_ on goes to
+  // `top` (indexed from that supernode's first value) when given. False if the diagonal block
+  // is not positive definite.
+  bool factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top);
   // Position of (permuted) row `row` in supernode t's panel rows.
   int panel_row(int t, int row) const;
 
@@ -70,6 +82,14 @@ class SupernodalLdlt {
   std::vector<int> column_node_;
   int matrix_entries_ = -1;
   Eigen::MatrixXd rank_update_;
+  // The split over two lanes: supernodes before top_first_ belong to whole subtrees, each in
+  // group 0 or 1 (group_); group 1's updates to supernodes from top_first_ on go into a copy
+  // of their values (top_updates_), added to them before they are factorised.
+  std::vector<int> group_;
+  int top_first_ = 0;
+  Eigen::VectorXd top_updates_;
+  Eigen::MatrixXd rank_update_second_;
+  Eigen::VectorXd diagonal_;  // D, as factorize_node finds it
 };
 
 }  // namespace handlab::sim

@@ -6,6 +6,7 @@
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/sim/elastic_body.h"
+#include "core/sim/lanes.h"
 #include "core/sim/supernodal_ldlt.h"
 #include "tests/support/hand_like_matrix.h"
 
@@ -38,19 +39,20 @@ void BM_FleshStep(benchmark::State& state) {
 BENCHMARK(BM_FleshStep)->Arg(1)->Arg(4)->ArgName("resolution")->Unit(benchmark::kMillisecond);
 
 // The sparse factorisation the simulator's solves use (core/sim/supernodal_ldlt.h), on a
-// matrix of the study hand's structure (flesh nodes and 16 bones): one numeric factorisation,
-// and one solve with it.
+// matrix of the study hand's structure (flesh nodes and 16 bones): one numeric factorisation
+// (on one lane, or split over two), and one solve with it.
 void BM_SupernodalFactorize(benchmark::State& state) {
   using namespace handlab;
   const Eigen::SparseMatrix<double> a = test::hand_like_matrix(test::study_flesh(), 16, 1);
   sim::SupernodalLdlt::Factor ldlt(a);
   sim::SupernodalLdlt panels;
   panels.analyze(ldlt, a);
-  for (auto _ : state) benchmark::DoNotOptimize(panels.factorize(a));
+  sim::Lanes lanes(int(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(panels.factorize(a, &lanes));
   state.counters["supernodes"] = panels.supernodes();
   state.counters["dofs"] = double(a.cols());
 }
-BENCHMARK(BM_SupernodalFactorize)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SupernodalFactorize)->Arg(1)->Arg(2)->ArgName("lanes")->Unit(benchmark::kMillisecond);
 
 void BM_SupernodalSolve(benchmark::State& state) {
   using namespace handlab;

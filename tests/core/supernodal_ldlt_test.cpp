@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/sim/lanes.h"
 #include "core/sim/supernodal_ldlt.h"
 #include "tests/support/hand_like_matrix.h"
 
@@ -85,6 +86,31 @@ TEST(SupernodalLdlt, FactorisesMatricesOfTheAnalysedPattern) {
   }
   const Sparse indefinite = -first;
   EXPECT_FALSE(panels.factorize(indefinite));
+}
+
+// Split over two lanes (the elimination tree's subtrees at once, then the supernodes above
+// them), the factorisation solves as the serial one does, and gives the same factor bit for
+// bit from call to call; an indefinite matrix is refused on either lane.
+TEST(SupernodalLdlt, FactorisesOnTwoLanesAsOnOne) {
+  const Sparse a = hand_like_matrix(study_flesh(), 16, 11);
+  SupernodalLdlt::Factor ldlt(a);
+  ASSERT_EQ(ldlt.info(), Eigen::Success);
+  SupernodalLdlt serial, split;
+  serial.analyze(ldlt, a);
+  split.analyze(ldlt, a);
+  Lanes lanes(2);
+  ASSERT_TRUE(serial.factorize(a));
+  ASSERT_TRUE(split.factorize(a, &lanes));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(a.cols(), -1.0, 2.0);
+  const Eigen::VectorXd x = split.solve(b), reference = serial.solve(b);
+  EXPECT_LT((x - reference).norm(), 1e-10 * reference.norm());
+  EXPECT_LT((a * x - b).norm(), 1e-9 * b.norm());
+  for (int again = 0; again < 3; ++again) {
+    ASSERT_TRUE(split.factorize(a, &lanes));
+    ASSERT_EQ(split.solve(b), x) << "call " << again;
+  }
+  const Sparse indefinite = -a;
+  EXPECT_FALSE(split.factorize(indefinite, &lanes));
 }
 
 }  // namespace
