@@ -39,6 +39,8 @@ class SupernodalLdlt {
     return x;
   }
   int supernodes() const { return int(nodes_.size()); }
+  // Whether factorize() with lanes splits the work (analyze found subtrees to deal out).
+  bool splits() const { return top_first_ < int(nodes_.size()); }
 
  private:
   struct Supernode {

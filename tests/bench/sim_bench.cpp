@@ -41,12 +41,23 @@ BENCHMARK(BM_FleshStep)->Arg(1)->Arg(4)->ArgName("resolution")->Unit(benchmark::
 // The sparse factorisation the simulator's solves use (core/sim/supernodal_ldlt.h), on a
 // matrix of the study hand's structure (flesh nodes and 16 bones): one numeric factorisation
 // (on one lane, or split over two), and one solve with it.
+const Eigen::SparseMatrix<double>& hand_like_system() {
+  static const Eigen::SparseMatrix<double> a =
+      handlab::test::hand_like_matrix(handlab::test::study_flesh(), 16, 1);
+  return a;
+}
+
+// The panels analysed for the hand-like system.
+void analyse(handlab::sim::SupernodalLdlt& panels) {
+  const handlab::sim::SupernodalLdlt::Factor ldlt(hand_like_system());
+  panels.analyze(ldlt, hand_like_system());
+}
+
 void BM_SupernodalFactorize(benchmark::State& state) {
   using namespace handlab;
-  const Eigen::SparseMatrix<double> a = test::hand_like_matrix(test::study_flesh(), 16, 1);
-  sim::SupernodalLdlt::Factor ldlt(a);
+  const Eigen::SparseMatrix<double>& a = hand_like_system();
   sim::SupernodalLdlt panels;
-  panels.analyze(ldlt, a);
+  analyse(panels);
   sim::Lanes lanes(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(panels.factorize(a, &lanes));
   state.counters["supernodes"] = panels.supernodes();
@@ -56,10 +67,9 @@ BENCHMARK(BM_SupernodalFactorize)->Arg(1)->Arg(2)->ArgName("lanes")->Unit(benchm
 
 void BM_SupernodalSolve(benchmark::State& state) {
   using namespace handlab;
-  const Eigen::SparseMatrix<double> a = test::hand_like_matrix(test::study_flesh(), 16, 1);
-  sim::SupernodalLdlt::Factor ldlt(a);
+  const Eigen::SparseMatrix<double>& a = hand_like_system();
   sim::SupernodalLdlt panels;
-  panels.analyze(ldlt, a);
+  analyse(panels);
   panels.factorize(a);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(a.cols(), -1.0, 1.0);
   Eigen::VectorXd x;
