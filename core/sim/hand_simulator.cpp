@@ -103,10 +103,18 @@ struct TetTerm {  // V [mu (g_a . g_b) I + mu g_b g_a' + lambda g_a g_b'] + q_a 
   double vmu = 0.0, vlambda = 0.0;
   bool stiffened = false;
 };
+// Where a 3x3 block of the matrix lies among the factorisation's panels (the ordering keeps a
+// block's unknowns together): entry (r, c) of the block at at + r + stride c, or of its
+// transpose when the ordering stores the block as its mirror. at = -1: a block whose mirror
+// writes the place.
+struct PanelBlock {
+  int at = -1, stride = 0;
+  bool transposed = false;
+};
 struct SpringTerm {  // J'KJ
   PointJacobian p;
   Eigen::Matrix3d k;
-  const int* cached;  // value indices for assembly (see spring_entries), or null
+  const PanelBlock* cached;  // its blocks' places (see spring_blocks), or null
 };
 struct BlockTerm {  // on one diagonal block
   int block;
@@ -120,15 +128,23 @@ struct HandSimulator::Impl {
   std::vector<TetTerm> tet_terms;
   std::vector<SpringTerm> spring_terms;
   std::vector<BlockTerm> block_terms;
-  Eigen::SparseMatrix<double> matrix;                // assembled from the terms for a factorisation
-  std::vector<std::array<int, 48>> tet_entries;      // value index of (3a, 3b + c) per tet pair
-  std::vector<int> coupling_entries, joint_entries;  // add_spring's caches, 108 and 48 each
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::SparseMatrix<double> matrix;  // assembled from the terms for a factorisation
+  // Places in the panels: each tet's 10 node pairs (a <= b), each coupling's and joint's block
+  // pairs (add_spring's caches: 36 and 16), each block's diagonal block.
+  std::vector<std::array<PanelBlock, 10>> tet_blocks;
+  std::vector<PanelBlock> coupling_blocks, joint_blocks, diagonal_blocks;
+  SupernodalLdlt::Factor ldlt;
   SupernodalLdlt preconditioner;  // the factorisation in panels, for the solves
   bool analysed = false;          // preconditioner has its structure
   Eigen::VectorXd gradient;
-  Eigen::VectorXd flesh_gradient;  // the flesh's part of an evaluation (FleshUse::kKeep)
-  double flesh_energy = 0.0;
+  // An evaluation's terms but the contacts' (Reuse::kKeep): their gradient and energy, and how
+  // many of the spring and block terms are theirs (those come first).
+  Eigen::VectorXd kept_gradient;
+  double kept_energy = 0.0;
+  std::size_t kept_springs = 0, kept_blocks = 0;
+  // The diagonal of those terms (see diagonal()).
+  mutable Eigen::VectorXd base_diagonal;
+  mutable bool base_diagonal_known = false;
   Lanes lanes;                               // the per-tet work split (flesh_range)
   std::vector<Eigen::VectorXd> lane_forces;  // lanes 1.. (lane 0 writes into the gradient)
   std::vector<double> lane_energy;
@@ -142,6 +158,13 @@ struct HandSimulator::Impl {
   long step_index = 0, factorised_at = -1, direct_until = 0;
   int slow_steps = 0;  // consecutive steps whose first solve took two CG iterations or more
   int solves_this_step = 0;
+  // The cube's unknowns; whether the ordering put them last (its many contact candidates make
+  // them dense rows), so that the factor's last block can follow the cube's own terms
+  // (SupernodalLdlt::modify_trailing); those terms' block when the matrix was last factorised,
+  // and the change since that the factor has taken.
+  std::vector<int> cube_dofs;
+  bool cube_trailing = false;
+  Eigen::MatrixXd cube_factorised, cube_applied;
 
   int bone_block(int b) const { return nodes + 2 * b; }
   int cube_block() const { return nodes + 2 * bones; }
@@ -156,6 +179,7 @@ struct HandSimulator::Impl {
     bones = m.bone_count();
     blocks = nodes + 2 * bones + 2;
     dofs = 3 * blocks;
+    for (int k = 0; k < 6; ++k) cube_dofs.push_back(3 * cube_block() + k);
     // Block sparsity: every pair of blocks some energy couples.
     std::vector<std::set<int>> pairs(static_cast<std::size_t>(blocks));
     auto couple = [&](const std::vector<int>& group) {
@@ -181,23 +205,6 @@ struct HandSimulator::Impl {
     matrix.resize(dofs, dofs);
     matrix.setFromTriplets(entries.begin(), entries.end());
     matrix.makeCompressed();
-    for (const TetElement& t : m.tets) {
-      std::array<int, 48> e;
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b)
-          for (int c = 0; c < 3; ++c)
-            e[std::size_t(12 * a + 3 * b + c)] =
-                entry(3 * t.nodes[std::size_t(a)], 3 * t.nodes[std::size_t(b)] + c);
-      tet_entries.push_back(e);
-    }
-    for (const SimCoupling& c : m.coupling)
-      spring_entries({c.nodes[0], c.nodes[1], c.nodes[2], c.nodes[3], bone_block(c.bone),
-                      bone_block(c.bone) + 1},
-                     coupling_entries);
-    for (const SimJoint& j : m.joints)
-      spring_entries({bone_block(j.parent), bone_block(j.parent) + 1, bone_block(j.child),
-                      bone_block(j.child) + 1},
-                     joint_entries);
     ldlt.analyzePattern(matrix);
   }
 
@@ -208,17 +215,66 @@ struct HandSimulator::Impl {
     return int(std::lower_bound(rows + begin, rows + end, row) - rows);
   }
 
+  // The panels' places, once the factorisation has its structure.
+  void find_panel_blocks() {
+    tet_blocks.clear();
+    for (const TetElement& t : model.tets) {
+      std::array<PanelBlock, 10> e;
+      std::size_t k = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a; b < 4; ++b)
+          e[k++] = panel_block(t.nodes[std::size_t(a)], t.nodes[std::size_t(b)]);
+      tet_blocks.push_back(e);
+    }
+    coupling_blocks.clear();
+    for (const SimCoupling& c : model.coupling)
+      spring_blocks({c.nodes[0], c.nodes[1], c.nodes[2], c.nodes[3], bone_block(c.bone),
+                     bone_block(c.bone) + 1},
+                    coupling_blocks);
+    joint_blocks.clear();
+    for (const SimJoint& j : model.joints)
+      spring_blocks({bone_block(j.parent), bone_block(j.parent) + 1, bone_block(j.child),
+                     bone_block(j.child) + 1},
+                    joint_blocks);
+    diagonal_blocks.clear();
+    for (int b = 0; b < blocks; ++b) diagonal_blocks.push_back(panel_block(b, b));
+  }
+
+  // Block (bi, bj)'s place; checked to be a 3x3 block of a panel.
+  PanelBlock panel_block(int bi, int bj) const {
+    const SupernodalLdlt& f = preconditioner;
+    PanelBlock p;
+    p.transposed = !f.ordered_after(3 * bi, 3 * bj);
+    const int row = p.transposed ? 3 * bj : 3 * bi, col = p.transposed ? 3 * bi : 3 * bj;
+    p.at = f.position(row, col);
+    p.stride = f.column_stride(col);
+    for (int c = 0; c < 3; ++c)
+      for (int r = bi == bj ? c : 0; r < 3; ++r)
+        if (p.at < 0 || f.position(row + r, col + c) != p.at + r + p.stride * c)
+          throw std::logic_error("HandSimulator: a 3x3 block split across the panels");
+    return p;
+  }
+
+  // The places add_spring's `cached` takes for a spring on these blocks: 3x3 of them for each
+  // pair, at = -1 where the pair's mirror writes.
+  void spring_blocks(const std::vector<int>& point_blocks, std::vector<PanelBlock>& out) const {
+    for (int a : point_blocks)
+      for (int b : point_blocks)
+        out.push_back(a == b || preconditioner.ordered_after(3 * a, 3 * b) ? panel_block(a, b)
+                                                                           : PanelBlock{});
+  }
+
   // A term on a diagonal block of the Newton matrix.
   void add_block(int b, const Eigen::Matrix3d& m) {
     if (with_hessian) block_terms.push_back({b, m});
   }
 
   // The energy 1/2 d'Kd of a point's offset d (K symmetric positive semidefinite): gradient
-  // J'Kd, Gauss-Newton Hessian J'KJ. `cached`, when given, holds the value index of each
-  // block pair's columns (see spring_entries), so that assembling the fixed springs (coupling,
-  // joints) needs no search.
+  // J'Kd, Gauss-Newton Hessian J'KJ. `cached`, when given, holds each block pair's place
+  // in the panels (see spring_blocks), so that assembling the fixed springs (coupling, joints)
+  // needs no search.
   void add_spring(const PointJacobian& p, const Eigen::Matrix3d& k, const Eigen::Vector3d& d,
-                  const int* cached = nullptr) {
+                  const PanelBlock* cached = nullptr) {
     const Eigen::Vector3d f = scale * (k * d);
     energy += 0.5 * d.dot(f);
     for (int a = 0; a < p.count; ++a)
@@ -267,62 +323,142 @@ struct HandSimulator::Impl {
       y.segment<3>(3 * t.block) += t.m * x.segment<3>(3 * t.block);
   }
 
-  // The matrix's diagonal, term by term.
+  // The matrix's diagonal, term by term: that of the terms a later pass keeps, found once,
+  // and the contacts'.
   Eigen::VectorXd diagonal() const {
-    Eigen::VectorXd diag = Eigen::VectorXd::Zero(dofs);
-    for (int n = 0; n < nodes; ++n)
-      diag.segment<3>(3 * n).setConstant(model.node_mass[std::size_t(n)]);
-    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
-      const TetTerm& t = tet_terms[e];
-      for (int a = 0; a < 4; ++a) {
-        const Eigen::Vector3d r = t.rotated.col(a);
-        Eigen::Vector3d d = (t.vmu + t.vlambda) * r.cwiseAbs2();
-        d.array() += t.vmu * r.squaredNorm();
-        if (t.stiffened) d += t.q.col(a).cwiseAbs2();
-        diag.segment<3>(3 * model.tets[e].nodes[std::size_t(a)]) += d;
+    auto add_springs = [&](Eigen::VectorXd& diag, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const SpringTerm& t = spring_terms[i];
+        for (int a = 0; a < t.p.count; ++a) {
+          const Eigen::Matrix3d& j = t.p.j[std::size_t(a)];
+          diag.segment<3>(3 * t.p.block[std::size_t(a)]) += (j.transpose() * t.k * j).diagonal();
+        }
       }
+    };
+    auto add_blocks = [&](Eigen::VectorXd& diag, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        diag.segment<3>(3 * block_terms[i].block) += block_terms[i].m.diagonal();
+    };
+    if (!base_diagonal_known) {
+      Eigen::VectorXd& diag = base_diagonal;
+      diag.setZero(dofs);
+      for (int n = 0; n < nodes; ++n)
+        diag.segment<3>(3 * n).setConstant(model.node_mass[std::size_t(n)]);
+      for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+        const TetTerm& t = tet_terms[e];
+        for (int a = 0; a < 4; ++a) {
+          const Eigen::Vector3d r = t.rotated.col(a);
+          Eigen::Vector3d d = (t.vmu + t.vlambda) * r.cwiseAbs2();
+          d.array() += t.vmu * r.squaredNorm();
+          if (t.stiffened) d += t.q.col(a).cwiseAbs2();
+          diag.segment<3>(3 * model.tets[e].nodes[std::size_t(a)]) += d;
+        }
+      }
+      add_springs(diag, 0, kept_springs);
+      add_blocks(diag, 0, kept_blocks);
+      base_diagonal_known = true;
     }
-    for (const SpringTerm& t : spring_terms)
-      for (int a = 0; a < t.p.count; ++a) {
-        const Eigen::Matrix3d& j = t.p.j[std::size_t(a)];
-        diag.segment<3>(3 * t.p.block[std::size_t(a)]) += (j.transpose() * t.k * j).diagonal();
-      }
-    for (const BlockTerm& t : block_terms) diag.segment<3>(3 * t.block) += t.m.diagonal();
+    Eigen::VectorXd diag = base_diagonal;
+    add_springs(diag, kept_springs, spring_terms.size());
+    add_blocks(diag, kept_blocks, block_terms.size());
     return diag;
   }
 
-  // The matrix written into its cached sparsity pattern, for a factorisation.
+  // The part of the matrix's cube-cube block from terms on the cube alone (its inertia, the
+  // floor's contacts with its corners), term by term.
+  Eigen::MatrixXd cube_matrix() const {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(6, 6);
+    const int cube = cube_block();
+    for (const SpringTerm& t : spring_terms) {
+      bool alone = true;
+      for (int a = 0; a < t.p.count; ++a) alone = alone && t.p.block[std::size_t(a)] >= cube;
+      if (!alone) continue;
+      for (int a = 0; a < t.p.count; ++a) {
+        const int ba = t.p.block[std::size_t(a)] - cube;
+        if (ba < 0) continue;
+        const Eigen::Matrix3d jk = t.p.j[std::size_t(a)].transpose() * t.k;
+        for (int b = 0; b < t.p.count; ++b) {
+          const int bb = t.p.block[std::size_t(b)] - cube;
+          if (bb >= 0) m.block<3, 3>(3 * ba, 3 * bb) += jk * t.p.j[std::size_t(b)];
+        }
+      }
+    }
+    for (const BlockTerm& t : block_terms)
+      if (t.block >= cube) m.block<3, 3>(3 * (t.block - cube), 3 * (t.block - cube)) += t.m;
+    return m;
+  }
+
+  // A tet's block (a, b) of the matrix; block (b, a) is its transpose.
+  static Eigen::Matrix3d tet_block(const TetTerm& t, int a, int b) {
+    Eigen::Matrix3d block = t.vmu * t.rotated.col(b) * t.rotated.col(a).transpose() +
+                            t.vlambda * t.rotated.col(a) * t.rotated.col(b).transpose();
+    block.diagonal().array() += t.vmu * t.rotated.col(a).dot(t.rotated.col(b));
+    if (t.stiffened) block += t.q.col(a) * t.q.col(b).transpose();
+    return block;
+  }
+
+  // The matrix as a sparse matrix (the first factorisation's, which finds the structure, and
+  // the tests' check_products).
   void assemble() {
     double* values = matrix.valuePtr();
     std::fill(values, values + matrix.nonZeros(), 0.0);
-    auto write = [values](int v, double x) { values[v] += x; };
     auto add = [&](int bi, int bj, const Eigen::Matrix3d& m) {
       for (int c = 0; c < 3; ++c) {
         const int column = entry(3 * bi, 3 * bj + c);
-        for (int r = 0; r < 3; ++r) write(column + r, m(r, c));
+        for (int r = 0; r < 3; ++r) values[column + r] += m(r, c);
       }
     };
     for (int n = 0; n < nodes; ++n)
       add(n, n, model.node_mass[std::size_t(n)] * Eigen::Matrix3d::Identity());
     for (std::size_t e = 0; e < tet_terms.size(); ++e) {
-      const TetTerm& t = tet_terms[e];
-      const auto& entries = tet_entries[e];
+      const auto& ids = model.tets[e].nodes;
       for (int a = 0; a < 4; ++a)
         for (int b = a; b < 4; ++b) {
-          // Block (a, b); block (b, a) is its transpose.
-          Eigen::Matrix3d block = t.vmu * t.rotated.col(b) * t.rotated.col(a).transpose() +
-                                  t.vlambda * t.rotated.col(a) * t.rotated.col(b).transpose();
-          block.diagonal().array() += t.vmu * t.rotated.col(a).dot(t.rotated.col(b));
-          if (t.stiffened) block += t.q.col(a) * t.q.col(b).transpose();
-          for (int c = 0; c < 3; ++c) {
-            const int column = entries[std::size_t(12 * a + 3 * b + c)];
-            for (int row = 0; row < 3; ++row) write(column + row, block(row, c));
-          }
-          if (a == b) continue;
-          for (int c = 0; c < 3; ++c) {
-            const int column = entries[std::size_t(12 * b + 3 * a + c)];
-            for (int row = 0; row < 3; ++row) write(column + row, block(c, row));
-          }
+          const Eigen::Matrix3d block = tet_block(tet_terms[e], a, b);
+          add(ids[std::size_t(a)], ids[std::size_t(b)], block);
+          if (a != b) add(ids[std::size_t(b)], ids[std::size_t(a)], block.transpose());
+        }
+    }
+    for (const SpringTerm& t : spring_terms) {
+      const PointJacobian& p = t.p;
+      for (int a = 0; a < p.count; ++a)
+        for (int b = 0; b < p.count; ++b)
+          add(p.block[std::size_t(a)], p.block[std::size_t(b)],
+              p.j[std::size_t(a)].transpose() * t.k * p.j[std::size_t(b)]);
+    }
+    for (const BlockTerm& t : block_terms) add(t.block, t.block, t.m);
+  }
+
+  // The matrix added straight into the factorisation's panel values (the lower triangle after
+  // its ordering; SupernodalLdlt::position), for a factorisation: `values` is the
+  // factorisation's own (cleared), or for the tests a copy.
+  void assemble_panels(double* values) const {
+    auto add = [values](const PanelBlock& p, const Eigen::Matrix3d& m) {
+      double* v = values + p.at;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) v[r + p.stride * c] += p.transposed ? m(c, r) : m(r, c);
+    };
+    auto add_diagonal = [values](const PanelBlock& p, const Eigen::Matrix3d& m) {
+      double* v = values + p.at;
+      for (int c = 0; c < 3; ++c)
+        for (int r = c; r < 3; ++r) v[r + p.stride * c] += m(r, c);
+    };
+    for (int n = 0; n < nodes; ++n) {
+      const PanelBlock& p = diagonal_blocks[std::size_t(n)];
+      for (int c = 0; c < 3; ++c)
+        values[p.at + (p.stride + 1) * c] += model.node_mass[std::size_t(n)];
+    }
+    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+      const TetTerm& t = tet_terms[e];
+      const auto& places = tet_blocks[e];
+      std::size_t k = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a; b < 4; ++b, ++k) {
+          const Eigen::Matrix3d block = tet_block(t, a, b);
+          if (a == b)
+            add_diagonal(places[k], block);
+          else
+            add(places[k], block);
         }
     }
     for (const SpringTerm& t : spring_terms) {
@@ -330,26 +466,22 @@ struct HandSimulator::Impl {
       for (int a = 0; a < p.count; ++a) {
         const Eigen::Matrix3d jk = p.j[std::size_t(a)].transpose() * t.k;
         for (int b = 0; b < p.count; ++b) {
+          const int ba = p.block[std::size_t(a)], bb = p.block[std::size_t(b)];
+          PanelBlock place;
+          if (t.cached)
+            place = t.cached[p.count * a + b];
+          else if (ba == bb || preconditioner.ordered_after(3 * ba, 3 * bb))
+            place = panel_block(ba, bb);
+          if (place.at < 0) continue;  // its mirror (b, a) writes it
           const Eigen::Matrix3d block = jk * p.j[std::size_t(b)];
-          if (!t.cached) {
-            add(p.block[std::size_t(a)], p.block[std::size_t(b)], block);
-            continue;
-          }
-          for (int c = 0; c < 3; ++c) {
-            const int column = t.cached[3 * (p.count * a + b) + c];
-            for (int r = 0; r < 3; ++r) write(column + r, block(r, c));
-          }
+          if (ba == bb)
+            add_diagonal(place, block);
+          else
+            add(place, block);
         }
       }
     }
-    for (const BlockTerm& t : block_terms) add(t.block, t.block, t.m);
-  }
-
-  // The value indices add_spring's `cached` takes for a spring on these blocks.
-  void spring_entries(const std::vector<int>& blocks_of_point, std::vector<int>& out) const {
-    for (int a : blocks_of_point)
-      for (int b : blocks_of_point)
-        for (int c = 0; c < 3; ++c) out.push_back(entry(3 * a, 3 * b + c));
+    for (const BlockTerm& t : block_terms) add_diagonal(diagonal_blocks[std::size_t(t.block)], t.m);
   }
 
   // A constant force -f on a point at `position` (the energy f . position).
@@ -447,15 +579,19 @@ struct HandSimulator::Impl {
       const SimCoupling& c = model.coupling[i];
       const RigidPose& bone = s.bone_pose[std::size_t(c.bone)];
       const Eigen::Vector3d arm = bone.rotation * c.in_bone;
-      PointJacobian p;
       Eigen::Vector3d flesh_point = Eigen::Vector3d::Zero();
-      for (int a = 0; a < 4; ++a) {
-        p.add(c.nodes[std::size_t(a)], c.weights(a) * identity);
+      for (int a = 0; a < 4; ++a)
         flesh_point += c.weights(a) * s.node_position[std::size_t(c.nodes[std::size_t(a)])];
+      if (!with_hessian) {  // the line search: add_spring's energy alone, as it computes it
+        const Eigen::Vector3d d = flesh_point - bone.position - arm;
+        energy += 0.5 * d.dot(scale * (c.stiffness * d));
+        continue;
       }
+      PointJacobian p;
+      for (int a = 0; a < 4; ++a) p.add(c.nodes[std::size_t(a)], c.weights(a) * identity);
       add_body_point(p, bone_block(c.bone), arm, -1.0);
       add_spring(p, c.stiffness * identity, flesh_point - bone.position - arm,
-                 coupling_entries.data() + 108 * i);
+                 coupling_blocks.empty() ? nullptr : coupling_blocks.data() + 36 * i);
     }
     for (std::size_t i = 0; i < model.joints.size(); ++i) {
       const SimJoint& j = model.joints[i];
@@ -467,7 +603,8 @@ struct HandSimulator::Impl {
       add_body_point(p, bone_block(j.parent), arm_p, 1.0);
       add_body_point(p, bone_block(j.child), arm_c, -1.0);
       add_spring(p, par.joint_stiffness * identity,
-                 parent.position + arm_p - child.position - arm_c, joint_entries.data() + 48 * i);
+                 parent.position + arm_p - child.position - arm_c,
+                 joint_blocks.empty() ? nullptr : joint_blocks.data() + 16 * i);
     }
     for (int b = 0; b < bones; ++b) {
       const RigidPose& pose = s.bone_pose[std::size_t(b)];
@@ -775,47 +912,59 @@ struct HandSimulator::Impl {
   }
 
   // h^2 times the backward-Euler energy at `s`, and with `hessian` its gradient and
-  // Gauss-Newton Hessian (without, as the line search needs, the gradient lacks the flesh's
-  // forces and is not to be used), with `turned` the bodies' rotation vectors since the step
-  // began.
-  // `flesh_use`: kKeep keeps the flesh's energy and forces, kKept takes them from the last
-  // kKeep, for the state it was at, its tets' rotations as that evaluation found them (a
-  // step's later passes start where its first did), and its Hessian terms with them.
-  enum class FleshUse { kEvaluate, kKeep, kKept };
+  // Gauss-Newton Hessian (without, as the line search needs, the energy alone), with `turned`
+  // the bodies' rotation vectors since the step began.
+  // `reuse`: kKeep keeps every term but the contacts' (energy, forces and Hessian terms: the
+  // flesh's, the bodies', the kinetic ones); kKept takes them from the last kKeep, for the state
+  // it was at, its tets' rotations as that evaluation found them (a step's later passes start
+  // where its first did, and only their contacts differ).
+  enum class Reuse { kNone, kKeep, kKept };
   double evaluate(HandSimState& s, const std::vector<Eigen::Vector3d>& turned,
-                  const StepFrame& frame, bool hessian, FleshUse flesh_use = FleshUse::kEvaluate) {
-    const HandSimModel& m = model;
-    const HandSimState& start = *frame.start;
-    const double h = m.parameters.time_step;
+                  const StepFrame& frame, bool hessian, Reuse reuse = Reuse::kNone) {
     with_hessian = hessian;
-    energy = 0.0;
-    gradient.setZero(dofs);
-    if (hessian) {
-      spring_terms.clear();
-      block_terms.clear();
-    }
-    // The tets' rotations are found where Newton linearises and held through its line search:
-    // there the flesh energy is the quadratic that the Hessian describes.
-    if (flesh_use == FleshUse::kKept) {
-      gradient = flesh_gradient;
-      energy = flesh_energy;
+    if (reuse == Reuse::kKept) {
+      gradient = kept_gradient;
+      energy = kept_energy;
+      spring_terms.resize(kept_springs);
+      block_terms.resize(kept_blocks);
     } else {
+      energy = 0.0;
+      gradient.setZero(dofs);
+      if (hessian) {
+        spring_terms.clear();
+        block_terms.clear();
+        base_diagonal_known = false;
+      }
+      // The tets' rotations are found where Newton linearises and held through its line
+      // search: there the flesh energy is the quadratic that the Hessian describes.
       flesh(s);
-      if (flesh_use == FleshUse::kKeep) {
-        flesh_gradient = gradient;
-        flesh_energy = energy;
+      bodies(s, *frame.targets);
+      kinetic_energies(s, turned, *frame.start);
+      if (hessian) {
+        kept_springs = spring_terms.size();
+        kept_blocks = block_terms.size();
+      }
+      if (reuse == Reuse::kKeep) {
+        kept_gradient = gradient;
+        kept_energy = energy;
       }
     }
-    bodies(s, *frame.targets);
     contact_energies(s);
-    // Kinetic terms: 1/2 |q - q_pred|^2_M, the rotations' inertia in the world at the start.
+    return energy;
+  }
+
+  // Kinetic terms: 1/2 |q - q_pred|^2_M, the rotations' inertia in the world at the start.
+  void kinetic_energies(const HandSimState& s, const std::vector<Eigen::Vector3d>& turned,
+                        const HandSimState& start) {
+    const HandSimModel& m = model;
+    const double h = m.parameters.time_step;
     for (int n = 0; n < nodes; ++n) {
       const double mass = m.node_mass[std::size_t(n)];
       const Eigen::Vector3d d = s.node_position[std::size_t(n)] -
                                 start.node_position[std::size_t(n)] -
                                 h * start.node_velocity[std::size_t(n)];
       energy += 0.5 * mass * d.squaredNorm();
-      gradient.segment<3>(3 * n) += mass * d;  // its Hessian, the mass, is the model's
+      if (with_hessian) gradient.segment<3>(3 * n) += mass * d;  // its Hessian is the model's
     }
     auto kinetic = [&](int block, const RigidInertia& inertia, const RigidPose& pose,
                        const RigidPose& from, const RigidVelocity& v,
@@ -836,7 +985,6 @@ struct HandSimulator::Impl {
               start.bone_pose[std::size_t(b)], start.bone_velocity[std::size_t(b)],
               turned[std::size_t(b)]);
     kinetic(cube_block(), m.cube, s.cube_pose, start.cube_pose, start.cube_velocity, turned.back());
-    return energy;
   }
 
   // The Newton increment: preconditioned conjugate gradients on the current Hessian with the
@@ -847,20 +995,28 @@ struct HandSimulator::Impl {
   Eigen::VectorXd solve(SimStepReport& report) {
     const Eigen::VectorXd b = -gradient;
     auto refactor = [&] {
-      assemble();
       bool definite;
       if (!analysed) {
         // Eigen's factorisation once, for the ordering and L's structure; panels thereafter.
+        assemble();
         ldlt.factorize(matrix);
         definite = ldlt.info() == Eigen::Success;
-        if (definite) preconditioner.analyze(ldlt, matrix);
+        if (definite) {
+          preconditioner.analyze(ldlt, matrix);
+          find_panel_blocks();
+          cube_trailing = preconditioner.trailing(cube_dofs);
+        }
         analysed = definite;
       } else {
-        definite = preconditioner.factorize(matrix, &lanes);
+        preconditioner.clear_values();
+        assemble_panels(preconditioner.values());
+        definite = preconditioner.factorize_values(&lanes);
       }
       if (!definite)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
       factorised = true;
+      cube_factorised = cube_matrix();
+      cube_applied.setZero(6, 6);
       factorised_at = step_index;
       slow_steps = 0;
       ++report.factorizations;
@@ -872,6 +1028,14 @@ struct HandSimulator::Impl {
       stale = false;
       ++report.linear_iterations;
       return preconditioner.solve(b);
+    }
+    // The cube's own terms (the floor's contacts with its corners come and go, stick and slide)
+    // change the matrix on the cube's unknowns alone; ordered last, they are the factor's last
+    // block, which takes the change exactly for the cost of a 6x6 factorisation.
+    if (cube_trailing) {
+      const Eigen::MatrixXd change = cube_matrix() - cube_factorised;
+      if (change != cube_applied && preconditioner.modify_trailing(cube_dofs, change))
+        cube_applied = change;
     }
     // Converged when what is left of the residual would move no unknown, on its own, by more
     // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
@@ -936,6 +1100,24 @@ struct HandSimulator::Impl {
       throw std::logic_error(
           "HandSimulator: the Newton matrix's product or diagonal differs from "
           "the assembled one by more than rounding");
+    if (!analysed) return;
+    // The assembly into the panels, entry by entry against the sparse matrix (rounding on the
+    // scale of the entry's row and column: |A_rc| <= sqrt(A_rr A_cc), and an entry summed to
+    // nearly zero keeps its terms' rounding).
+    std::vector<double> panels(std::size_t(preconditioner.value_count()), 0.0);
+    assemble_panels(panels.data());
+    const Eigen::VectorXd diag = matrix.diagonal();
+    double panel_error = 0.0;
+    for (int col = 0; col < matrix.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, col); it; ++it) {
+        const double stored = panels[std::size_t(preconditioner.position(int(it.row()), col))];
+        panel_error = std::max(panel_error, std::abs(stored - it.value()) -
+                                                1e-12 * std::sqrt(diag[it.row()] * diag[col]));
+      }
+    if (!(panel_error <= 0))
+      throw std::logic_error(
+          "HandSimulator: the Newton matrix written into the panels differs from the assembled "
+          "one");
   }
 
   // The state moved by `length` times the increment dq.
@@ -1015,10 +1197,9 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
       state = predicted;
       turned = predicted_turned;
     }
-    using FleshUse = Impl::FleshUse;
+    using Reuse = Impl::Reuse;
     const bool kept = pass > 0 && im.options.newton_iterations == 1;
-    double current =
-        im.evaluate(state, turned, frame, true, kept ? FleshUse::kKept : FleshUse::kKeep);
+    double current = im.evaluate(state, turned, frame, true, kept ? Reuse::kKept : Reuse::kKeep);
     if (pass == 0) predicted = state;
     for (int it = 0; it < im.options.newton_iterations; ++it) {
       report.residual = im.gradient.lpNorm<Eigen::Infinity>() / im.scale;

@@ -122,6 +122,7 @@ void SupernodalLdlt::set(const Factor& factor) {
     for (int v = outer[j]; v < outer[j + 1]; ++v) column[panel_row(t, inner[v])] = lx[v];
   }
   inverse_diagonal_ = factor.vectorD().cwiseInverse();
+  trailing_known_ = false;
   p_ = factor.permutationP();
   p_inverse_ = factor.permutationPinv();
 }
@@ -132,6 +133,25 @@ int SupernodalLdlt::panel_row(int t, int row) const {
   const auto begin = rows_.begin() + s.row_begin, end = begin + s.below;
   const auto it = std::lower_bound(begin, end, row);
   return it != end && *it == row ? s.width + int(it - begin) : -1;
+}
+
+int SupernodalLdlt::position(int row, int col) const {
+  int r = permuted(row), c = permuted(col);
+  if (r < c) std::swap(r, c);
+  const int t = column_node_[std::size_t(c)];
+  const Supernode& node = nodes_[std::size_t(t)];
+  const int in_panel = panel_row(t, r);
+  return in_panel < 0 ? -1
+                      : node.value_begin + (c - node.first) * (node.width + node.below) + in_panel;
+}
+
+int SupernodalLdlt::column_stride(int col) const {
+  const Supernode& node = nodes_[std::size_t(column_node_[std::size_t(permuted(col))])];
+  return node.width + node.below;
+}
+
+void SupernodalLdlt::clear_values() {
+  std::fill(values_.begin(), values_.end(), 0.0);
 }
 
 void SupernodalLdlt::analyze(const Factor& factor, const Eigen::SparseMatrix<double>& a) {
@@ -168,11 +188,11 @@ void SupernodalLdlt::analyze(const Factor& factor, const Eigen::SparseMatrix<dou
   // Where each stored entry of the lower triangle (after the ordering) goes.
   const int* outer = a.outerIndexPtr();
   const int* inner = a.innerIndexPtr();
-  const int* permuted = p_.indices().data();
+  const int* order = p_.indices().data();
   scatter_.assign(std::size_t(a.nonZeros()), -1);
   for (int col = 0; col < n; ++col)
     for (int v = outer[col]; v < outer[col + 1]; ++v) {
-      const int pr = permuted[inner[v]], pc = permuted[col];
+      const int pr = order[inner[v]], pc = order[col];
       if (pr < pc) continue;
       const int t = column_node_[std::size_t(pc)];
       const Supernode& node = nodes_[std::size_t(t)];
@@ -244,7 +264,7 @@ void SupernodalLdlt::plan_split() {
 bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, Lanes* lanes) {
   if (int(a.nonZeros()) != matrix_entries_ || !a.isCompressed())
     throw std::invalid_argument("SupernodalLdlt: factorize a matrix of the analysed pattern");
-  std::fill(values_.begin(), values_.end(), 0.0);
+  clear_values();
   const double* av = a.valuePtr();
   for (std::size_t v = 0; v < scatter_.size(); ++v)
     if (scatter_[v] >= 0) values_[std::size_t(scatter_[v])] += av[v];
@@ -278,6 +298,52 @@ bool SupernodalLdlt::factorize_panels(Lanes* lanes) {
   for (int t = first; t < count; ++t)
     if (!factorize_node(std::size_t(t), rank_update_, nullptr)) return false;
   inverse_diagonal_ = diagonal_.cwiseInverse();
+  trailing_known_ = false;
+  return true;
+}
+
+bool SupernodalLdlt::trailing(const std::vector<int>& dofs) const {
+  const int n = int(column_node_.size()), k = int(dofs.size());
+  if (nodes_.empty() || k > nodes_.back().width) return false;
+  std::vector<bool> taken(static_cast<std::size_t>(k), false);
+  for (int dof : dofs) {
+    if (dof < 0 || dof >= n) return false;
+    const int at = permuted(dof) - (n - k);
+    if (at < 0 || taken[std::size_t(at)]) return false;
+    taken[std::size_t(at)] = true;
+  }
+  return true;
+}
+
+bool SupernodalLdlt::modify_trailing(const std::vector<int>& dofs, const Eigen::MatrixXd& delta) {
+  const int n = int(column_node_.size()), k = int(dofs.size());
+  if (!trailing(dofs) || delta.rows() != k || delta.cols() != k)
+    throw std::invalid_argument(
+        "SupernodalLdlt::modify_trailing: the last unknowns of the ordering and a k x k change");
+  const Supernode& last = nodes_.back();
+  std::vector<int> position(static_cast<std::size_t>(k));
+  for (int i = 0; i < k; ++i) position[std::size_t(i)] = permuted(dofs[std::size_t(i)]) - (n - k);
+  Eigen::Map<Eigen::MatrixXd> panel(values_.data() + last.value_begin, last.width, last.width);
+  auto block = panel.bottomRightCorner(k, k);
+  if (!trailing_known_) {
+    // A = L D L' gives the trailing block's Schur complement as L22 D2 L22'.
+    const Eigen::MatrixXd l = block.triangularView<Eigen::UnitLower>();
+    const Eigen::VectorXd d = inverse_diagonal_.tail(k).cwiseInverse();
+    trailing_schur_ = l * d.asDiagonal() * l.transpose();
+    trailing_known_ = true;
+  }
+  Eigen::MatrixXd s = trailing_schur_;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j)
+      s(position[std::size_t(i)], position[std::size_t(j)]) += delta(i, j);
+  const Eigen::LLT<Eigen::MatrixXd> llt(s);
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd l = llt.matrixL();
+  for (int c = 0; c < k; ++c) {
+    const double root = l(c, c);
+    inverse_diagonal_[n - k + c] = 1.0 / (root * root);
+    block.col(c).tail(k - c - 1) = l.col(c).tail(k - c - 1) / root;
+  }
   return true;
 }
 

@@ -3,8 +3,9 @@
 // kernels to panels (a blocked Cholesky of each diagonal block, a triangular solve and a
 // symmetric rank update below it) and read a row index once per panel row rather than once
 // per nonzero. The structure (fill-reducing ordering and L's pattern) is taken from a
-// factorisation by Eigen's SimplicialLDLT on the same pattern; the simulator then factorises
-// its Newton matrix, whose pattern is fixed, into the panels directly.
+// factorisation by Eigen's SimplicialLDLT on the same pattern, ordered by BlockAmdOrdering; the
+// simulator then writes its Newton matrix, whose pattern is fixed, into the panels directly
+// (position, values) and factorises them there.
 #pragma once
 
 #include <vector>
@@ -12,13 +13,15 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 
+#include "core/sim/block_amd_ordering.h"
+
 namespace handlab::sim {
 
 class Lanes;
 
 class SupernodalLdlt {
  public:
-  using Factor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+  using Factor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, BlockAmdOrdering>;
 
   // Takes the factor's values (and its structure, found again only when its pattern changed).
   void set(const Factor& factor);
@@ -30,6 +33,30 @@ class SupernodalLdlt {
   // factorised on lanes 0 and 1 at once, then the supernodes above them; the result depends
   // on whether lanes are given, never on timing.
   bool factorize(const Eigen::SparseMatrix<double>& a, Lanes* lanes = nullptr);
+
+  // Assembling in place, without the sparse matrix: clear_values(), then add each entry of the
+  // matrix's lower triangle after the ordering at position(row, col) of values() (row and col
+  // the matrix's own indices; A(row, col) and A(col, row) share the place), then
+  // factorize_values(). position() is -1 outside L's structure; a 3x3 block of unknowns that
+  // BlockAmdOrdering kept together lies at position(row, col) + r + column_stride(col) c.
+  void clear_values();
+  double* values() { return values_.data(); }
+  int value_count() const { return int(values_.size()); }
+  int position(int row, int col) const;
+  int column_stride(int col) const;
+  bool factorize_values(Lanes* lanes = nullptr) { return factorize_panels(lanes); }
+  // Whether the ordering puts `row` after `col` (A(row, col) is stored as itself, not as its
+  // transpose).
+  bool ordered_after(int row, int col) const { return permuted(row) >= permuted(col); }
+
+  // Makes the factor that of A + E delta E' instead of A (the matrix last factorised), where E
+  // selects the unknowns `dofs`: the ordering must have put them last, in the last supernode,
+  // so that only the trailing block of L and D changes (the Schur complement S of those
+  // columns becomes S + delta). Each call replaces the one before. False, with the factor
+  // unchanged, if S + delta is not positive definite.
+  bool modify_trailing(const std::vector<int>& dofs, const Eigen::MatrixXd& delta);
+  // Whether modify_trailing takes these unknowns (the ordering put them last, in one panel).
+  bool trailing(const std::vector<int>& dofs) const;
 
   // b <- A^-1 b for the factorised A.
   void solve_in_place(Eigen::VectorXd& b) const;
@@ -57,6 +84,7 @@ class SupernodalLdlt {
   // `top` (indexed from that supernode's first value) when given. False if the diagonal block
   // is not positive definite.
   bool factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top);
+  int permuted(int i) const { return p_.size() > 0 ? p_.indices()[i] : i; }
   // Position of (permuted) row `row` in supernode t's panel rows.
   int panel_row(int t, int row) const;
 
@@ -92,6 +120,10 @@ class SupernodalLdlt {
   Eigen::VectorXd top_updates_;
   Eigen::MatrixXd rank_update_second_;
   Eigen::VectorXd diagonal_;  // D, as factorize_node finds it
+  // The trailing columns' Schur complement in the factor as factorised (modify_trailing), and
+  // whether it is known.
+  Eigen::MatrixXd trailing_schur_;
+  bool trailing_known_ = false;
 };
 
 }  // namespace handlab::sim

@@ -61,6 +61,7 @@ void BM_SupernodalFactorize(benchmark::State& state) {
   sim::Lanes lanes(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(panels.factorize(a, &lanes));
   state.counters["supernodes"] = panels.supernodes();
+  state.counters["values"] = panels.value_count();
   state.counters["dofs"] = double(a.cols());
 }
 BENCHMARK(BM_SupernodalFactorize)->Arg(1)->Arg(2)->ArgName("lanes")->Unit(benchmark::kMillisecond);
