@@ -454,11 +454,23 @@ struct HandSimulator::Impl {
       std::size_t k = 0;
       for (int a = 0; a < 4; ++a)
         for (int b = a; b < 4; ++b, ++k) {
-          const Eigen::Matrix3d block = tet_block(t, a, b);
-          if (a == b)
-            add_diagonal(places[k], block);
-          else
-            add(places[k], block);
+          // tet_block(t, i, j) column by column (a panel's column of the block is contiguous),
+          // (i, j) = (a, b) or, where the panels hold the mirror, (b, a).
+          const PanelBlock& place = places[k];
+          const int i = place.transposed ? b : a, j = place.transposed ? a : b;
+          const Eigen::Vector3d ri = t.rotated.col(i), rj = t.rotated.col(j);
+          const double diagonal = t.vmu * ri.dot(rj);
+          double* v = values + place.at;
+          for (int c = 0; c < 3; ++c) {
+            Eigen::Vector3d column = (t.vmu * ri[c]) * rj + (t.vlambda * rj[c]) * ri;
+            if (t.stiffened) column += t.q(c, j) * t.q.col(i);
+            column[c] += diagonal;
+            if (a != b) {
+              Eigen::Map<Eigen::Vector3d>(v + place.stride * c) += column;
+            } else {
+              for (int r = c; r < 3; ++r) v[place.stride * c + r] += column[r];
+            }
+          }
         }
     }
     for (const SpringTerm& t : spring_terms) {
@@ -1048,7 +1060,8 @@ struct HandSimulator::Impl {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r), p = z, ap;
     double rz = r.dot(z);
     int it = 0;
-    for (; it < options.max_linear_iterations && !converged(r); ++it) {
+    bool done = converged(r);
+    while (!done && it < options.max_linear_iterations) {
       multiply(p, ap);
       if (options.check_products) check_product(p, ap);
       const double pap = p.dot(ap);
@@ -1056,6 +1069,10 @@ struct HandSimulator::Impl {
       const double alpha = rz / pap;
       x += alpha * p;
       r -= alpha * ap;
+      ++it;
+      // The next direction only for a next iteration: its solve is an iteration's larger cost.
+      done = converged(r);
+      if (done || it == options.max_linear_iterations) break;
       z = preconditioner.solve(r);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;
@@ -1072,7 +1089,7 @@ struct HandSimulator::Impl {
         slow_steps = 0;
       }
     }
-    if (!converged(r)) {
+    if (!done) {
       // CG did not converge with this preconditioner: factorise the matrix itself. If the
       // preconditioner was the previous step's matrix, the matrix is changing faster than CG
       // follows (tets crossing the stiffening threshold, contacts coming and going): the next
