@@ -133,6 +133,7 @@ struct HandSimulator::Impl {
   // pairs (add_spring's caches: 36 and 16), each block's diagonal block.
   std::vector<std::array<PanelBlock, 10>> tet_blocks;
   std::vector<PanelBlock> coupling_blocks, joint_blocks, diagonal_blocks;
+  int panel_split = 0;  // the first value of lane 1's panels (assemble_panels)
   SupernodalLdlt::Factor ldlt;
   SupernodalLdlt preconditioner;  // the factorisation in panels, for the solves
   bool analysed = false;          // preconditioner has its structure
@@ -238,6 +239,14 @@ struct HandSimulator::Impl {
                     joint_blocks);
     diagonal_blocks.clear();
     for (int b = 0; b < blocks; ++b) diagonal_blocks.push_back(panel_block(b, b));
+    // Two lanes assemble the panels below and from the panel that holds the median of the
+    // tets' blocks (most of the assembly's work).
+    std::vector<int> places;
+    for (const auto& e : tet_blocks)
+      for (const PanelBlock& p : e) places.push_back(p.at);
+    std::nth_element(places.begin(), places.begin() + std::ptrdiff_t(places.size() / 2),
+                     places.end());
+    panel_split = places.empty() ? 0 : preconditioner.panel_start(places[places.size() / 2]);
   }
 
   // Block (bi, bj)'s place; checked to be a 3x3 block of a panel.
@@ -431,8 +440,11 @@ struct HandSimulator::Impl {
 
   // The matrix added straight into the factorisation's panel values (the lower triangle after
   // its ordering; SupernodalLdlt::position), for a factorisation: `values` is the
-  // factorisation's own (cleared), or for the tests a copy.
-  void assemble_panels(double* values) const {
+  // factorisation's own (cleared), or for the tests a copy. With `lane` 0 or 1, only the
+  // blocks below or from panel_split: two lanes write disjoint values, each in the order the
+  // serial assembly adds them, so that the sums are the same bit for bit.
+  void assemble_panels(double* values, int lane = -1) const {
+    auto owns = [&](int at) { return lane < 0 || (at >= panel_split) == (lane == 1); };
     auto add = [values](const PanelBlock& p, const Eigen::Matrix3d& m) {
       double* v = values + p.at;
       for (int c = 0; c < 3; ++c)
@@ -445,6 +457,7 @@ struct HandSimulator::Impl {
     };
     for (int n = 0; n < nodes; ++n) {
       const PanelBlock& p = diagonal_blocks[std::size_t(n)];
+      if (!owns(p.at)) continue;
       for (int c = 0; c < 3; ++c)
         values[p.at + (p.stride + 1) * c] += model.node_mass[std::size_t(n)];
     }
@@ -457,6 +470,7 @@ struct HandSimulator::Impl {
           // tet_block(t, i, j) column by column (a panel's column of the block is contiguous),
           // (i, j) = (a, b) or, where the panels hold the mirror, (b, a).
           const PanelBlock& place = places[k];
+          if (!owns(place.at)) continue;
           const int i = place.transposed ? b : a, j = place.transposed ? a : b;
           const Eigen::Vector3d ri = t.rotated.col(i), rj = t.rotated.col(j);
           const double diagonal = t.vmu * ri.dot(rj);
@@ -484,7 +498,7 @@ struct HandSimulator::Impl {
             place = t.cached[p.count * a + b];
           else if (ba == bb || preconditioner.ordered_after(3 * ba, 3 * bb))
             place = panel_block(ba, bb);
-          if (place.at < 0) continue;  // its mirror (b, a) writes it
+          if (place.at < 0 || !owns(place.at)) continue;  // its mirror (b, a) writes it
           const Eigen::Matrix3d block = jk * p.j[std::size_t(b)];
           if (ba == bb)
             add_diagonal(place, block);
@@ -493,7 +507,9 @@ struct HandSimulator::Impl {
         }
       }
     }
-    for (const BlockTerm& t : block_terms) add_diagonal(diagonal_blocks[std::size_t(t.block)], t.m);
+    for (const BlockTerm& t : block_terms)
+      if (owns(diagonal_blocks[std::size_t(t.block)].at))
+        add_diagonal(diagonal_blocks[std::size_t(t.block)], t.m);
   }
 
   // A constant force -f on a point at `position` (the energy f . position).
@@ -1020,8 +1036,19 @@ struct HandSimulator::Impl {
         }
         analysed = definite;
       } else {
-        preconditioner.clear_values();
-        assemble_panels(preconditioner.values());
+        double* values = preconditioner.values();
+        if (lanes.count() >= 2 && panel_split > 0) {
+          lanes.run([&](int lane) {
+            if (lane > 1) return;
+            const int begin = lane == 0 ? 0 : panel_split;
+            const int end = lane == 0 ? panel_split : preconditioner.value_count();
+            std::fill(values + begin, values + end, 0.0);
+            assemble_panels(values, lane);
+          });
+        } else {
+          preconditioner.clear_values();
+          assemble_panels(values);
+        }
         definite = preconditioner.factorize_values(&lanes);
       }
       if (!definite)
@@ -1131,7 +1158,11 @@ struct HandSimulator::Impl {
         panel_error = std::max(panel_error, std::abs(stored - it.value()) -
                                                 1e-12 * std::sqrt(diag[it.row()] * diag[col]));
       }
-    if (!(panel_error <= 0))
+    // Split between two lanes, the same sums bit for bit.
+    std::vector<double> split(panels.size(), 0.0);
+    assemble_panels(split.data(), 0);
+    assemble_panels(split.data(), 1);
+    if (!(panel_error <= 0) || split != panels)
       throw std::logic_error(
           "HandSimulator: the Newton matrix written into the panels differs from the assembled "
           "one");

@@ -1,6 +1,7 @@
 #include "core/sim/supernodal_ldlt.h"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
@@ -143,6 +144,12 @@ int SupernodalLdlt::position(int row, int col) const {
   const int in_panel = panel_row(t, r);
   return in_panel < 0 ? -1
                       : node.value_begin + (c - node.first) * (node.width + node.below) + in_panel;
+}
+
+int SupernodalLdlt::panel_start(int value) const {
+  const auto after = std::upper_bound(nodes_.begin(), nodes_.end(), value,
+                                      [](int v, const Supernode& s) { return v < s.value_begin; });
+  return after == nodes_.begin() ? 0 : std::prev(after)->value_begin;
 }
 
 int SupernodalLdlt::column_stride(int col) const {

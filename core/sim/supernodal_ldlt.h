@@ -42,6 +42,8 @@ class SupernodalLdlt {
   void clear_values();
   double* values() { return values_.data(); }
   int value_count() const { return int(values_.size()); }
+  // The first value of the panel that holds `value` (panels lie in order in values()).
+  int panel_start(int value) const;
   int position(int row, int col) const;
   int column_stride(int col) const;
   bool factorize_values(Lanes* lanes = nullptr) { return factorize_panels(lanes); }
