@@ -128,15 +128,13 @@ struct HandSimulator::Impl {
   std::vector<TetTerm> tet_terms;
   std::vector<SpringTerm> spring_terms;
   std::vector<BlockTerm> block_terms;
-  Eigen::SparseMatrix<double> matrix;  // assembled from the terms for a factorisation
+  Eigen::SparseMatrix<double> matrix;  // the matrix as a sparse matrix (assemble)
   // Places in the panels: each tet's 10 node pairs (a <= b), each coupling's and joint's block
   // pairs (add_spring's caches: 36 and 16), each block's diagonal block.
   std::vector<std::array<PanelBlock, 10>> tet_blocks;
   std::vector<PanelBlock> coupling_blocks, joint_blocks, diagonal_blocks;
-  int panel_split = 0;  // the first value of lane 1's panels (assemble_panels)
-  SupernodalLdlt::Factor ldlt;
+  int panel_split = 0;            // the first value of lane 1's panels (assemble_panels)
   SupernodalLdlt preconditioner;  // the factorisation in panels, for the solves
-  bool analysed = false;          // preconditioner has its structure
   Eigen::VectorXd gradient;
   // An evaluation's terms but the contacts' (Reuse::kKeep): their gradient and energy, and how
   // many of the spring and block terms are theirs (those come first).
@@ -206,7 +204,20 @@ struct HandSimulator::Impl {
     matrix.resize(dofs, dofs);
     matrix.setFromTriplets(entries.begin(), entries.end());
     matrix.makeCompressed();
-    ldlt.analyzePattern(matrix);
+    // The factorisation's structure (the ordering, L's pattern, the panels and where the
+    // matrix's blocks go in them) from Eigen's factorisation of a matrix of this pattern,
+    // diagonally dominant so that it is positive definite.
+    const int* outer = matrix.outerIndexPtr();
+    const int* inner = matrix.innerIndexPtr();
+    for (int col = 0; col < dofs; ++col)
+      for (int v = outer[col]; v < outer[col + 1]; ++v)
+        matrix.valuePtr()[v] = inner[v] == col ? double(outer[col + 1] - outer[col]) : 1.0;
+    const SupernodalLdlt::Factor structure(matrix);
+    if (structure.info() != Eigen::Success)
+      throw std::logic_error("HandSimulator: no factorisation of the Newton matrix's pattern");
+    preconditioner.analyze(structure, matrix);
+    find_panel_blocks();
+    cube_trailing = preconditioner.trailing(cube_dofs);
   }
 
   // The value index of (row, col); the rows of a 3x3 block follow it.
@@ -257,10 +268,11 @@ struct HandSimulator::Impl {
     const int row = p.transposed ? 3 * bj : 3 * bi, col = p.transposed ? 3 * bi : 3 * bj;
     p.at = f.position(row, col);
     p.stride = f.column_stride(col);
-    for (int c = 0; c < 3; ++c)
-      for (int r = bi == bj ? c : 0; r < 3; ++r)
-        if (p.at < 0 || f.position(row + r, col + c) != p.at + r + p.stride * c)
-          throw std::logic_error("HandSimulator: a 3x3 block split across the panels");
+    // A panel keeps its rows in order: rows row and row + 2 two places apart hold row + 1
+    // between them, and column col + 2 where the stride puts it shares the panel.
+    if (p.at < 0 || f.position(row + 2, col) != p.at + 2 ||
+        f.position(row + 2, col + 2) != p.at + 2 + 2 * p.stride)
+      throw std::logic_error("HandSimulator: a 3x3 block split across the panels");
     return p;
   }
 
@@ -1018,39 +1030,25 @@ struct HandSimulator::Impl {
   // The Newton increment: preconditioned conjugate gradients on the current Hessian with the
   // factorisation of an earlier one (the step's matrix changes slowly: element rotations,
   // contacts that come and go), factorised anew when CG needs more than a few iterations.
-  // Measured on the study hand (docs/performance.md): assembling and factorising cost 4 ms,
-  // a CG iteration (a product term by term and a panel solve) 0.3 ms.
+  // Measured on the study hand (docs/performance.md), one thread: assembling and factorising
+  // cost 2-2.8 ms, a CG iteration (a product term by term and a panel solve) 0.25 ms.
   Eigen::VectorXd solve(SimStepReport& report) {
     const Eigen::VectorXd b = -gradient;
     auto refactor = [&] {
-      bool definite;
-      if (!analysed) {
-        // Eigen's factorisation once, for the ordering and L's structure; panels thereafter.
-        assemble();
-        ldlt.factorize(matrix);
-        definite = ldlt.info() == Eigen::Success;
-        if (definite) {
-          preconditioner.analyze(ldlt, matrix);
-          find_panel_blocks();
-          cube_trailing = preconditioner.trailing(cube_dofs);
-        }
-        analysed = definite;
+      double* values = preconditioner.values();
+      if (lanes.count() >= 2 && panel_split > 0) {
+        lanes.run([&](int lane) {
+          if (lane > 1) return;
+          const int begin = lane == 0 ? 0 : panel_split;
+          const int end = lane == 0 ? panel_split : preconditioner.value_count();
+          std::fill(values + begin, values + end, 0.0);
+          assemble_panels(values, lane);
+        });
       } else {
-        double* values = preconditioner.values();
-        if (lanes.count() >= 2 && panel_split > 0) {
-          lanes.run([&](int lane) {
-            if (lane > 1) return;
-            const int begin = lane == 0 ? 0 : panel_split;
-            const int end = lane == 0 ? panel_split : preconditioner.value_count();
-            std::fill(values + begin, values + end, 0.0);
-            assemble_panels(values, lane);
-          });
-        } else {
-          preconditioner.clear_values();
-          assemble_panels(values);
-        }
-        definite = preconditioner.factorize_values(&lanes);
+        preconditioner.clear_values();
+        assemble_panels(values);
       }
+      const bool definite = preconditioner.factorize_values(&lanes);
       if (!definite)
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
       factorised = true;
@@ -1144,7 +1142,6 @@ struct HandSimulator::Impl {
       throw std::logic_error(
           "HandSimulator: the Newton matrix's product or diagonal differs from "
           "the assembled one by more than rounding");
-    if (!analysed) return;
     // The assembly into the panels, entry by entry against the sparse matrix (rounding on the
     // scale of the entry's row and column: |A_rc| <= sqrt(A_rr A_cc), and an entry summed to
     // nearly zero keeps its terms' rounding).

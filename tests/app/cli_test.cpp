@@ -171,17 +171,17 @@ TEST(CliRetarget, DrawsThePinchPicture) {
 TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string json = test::fresh_path("sim_bench.json");
   const std::string steps = test::fresh_path("sim_steps.csv");
-  const Result r = cli("sim bench --duration 0.4 --threads 1 --direct-steps 2 --json " + json +
-                       " --steps " + steps);
+  const Result r = cli("sim bench --duration 0.4 --threads 1 --direct-steps 2 --runs 2 --json " +
+                       json + " --steps " + steps);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("approach"), std::string::npos) << "the phases: " << r.out;
   const std::string text = test::file_bytes(json);
   for (const char* key :
        {"\"scale\": 1", "\"tets\"", "\"nodes\"", "\"dofs\"", "\"steps\": 48", "\"threads\": 1",
-        "\"direct_steps\": 2", "\"refresh_steps\": 20", "\"step_ms\"", "\"median\"", "\"p95\"",
-        "\"newton_iterations\"", "\"linear_iterations\"", "\"factorizations\"", "\"phases\"",
-        "\"name\": \"shape\"", "\"name\": \"approach\"", "\"median_ms\""})
+        "\"direct_steps\": 2", "\"refresh_steps\": 20", "\"runs\": 2", "\"step_ms\"", "\"median\"",
+        "\"p95\"", "\"newton_iterations\"", "\"linear_iterations\"", "\"factorizations\"",
+        "\"phases\"", "\"name\": \"shape\"", "\"name\": \"approach\"", "\"median_ms\""})
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   const std::string csv = test::file_bytes(steps);
   EXPECT_EQ(csv.rfind("step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,"
@@ -194,6 +194,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(cli("sim bench --max-linear-iterations -1").status, 2);
   EXPECT_EQ(cli("sim bench --direct-steps -1").status, 2);
   EXPECT_EQ(cli("sim bench --refresh-steps -1").status, 2);
+  EXPECT_EQ(cli("sim bench --runs 0").status, 2);
   EXPECT_EQ(cli("sim bench --scale 3").status, 2);
   EXPECT_EQ(cli("sim pinch --cube 2").status, 2);
   EXPECT_EQ(cli("sim wobble").status, 2);
