@@ -1064,7 +1064,7 @@ struct HandSimulator::Impl {
       refactor();
       stale = false;
       ++report.linear_iterations;
-      return preconditioner.solve(b);
+      return preconditioner.solve(b, &lanes);
     }
     // The cube's own terms (the floor's contacts with its corners come and go, stick and slide)
     // change the matrix on the cube's unknowns alone; ordered last, they are the factor's last
@@ -1082,7 +1082,8 @@ struct HandSimulator::Impl {
       return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>() <=
              options.linear_tolerance;
     };
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r), p = z, ap;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r, &lanes),
+                    p = z, ap;
     double rz = r.dot(z);
     int it = 0;
     bool done = converged(r);
@@ -1098,7 +1099,7 @@ struct HandSimulator::Impl {
       // The next direction only for a next iteration: its solve is an iteration's larger cost.
       done = converged(r);
       if (done || it == options.max_linear_iterations) break;
-      z = preconditioner.solve(r);
+      z = preconditioner.solve(r, &lanes);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
@@ -1124,7 +1125,7 @@ struct HandSimulator::Impl {
       refactor();
       stale = false;
       ++report.linear_iterations;
-      return preconditioner.solve(b);
+      return preconditioner.solve(b, &lanes);
     }
     return x;
   }

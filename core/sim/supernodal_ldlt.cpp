@@ -96,6 +96,7 @@ void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
     for (int c = 0; c < nodes_[t].width; ++c)
       column_node_[std::size_t(nodes_[t].first + c)] = int(t);
   gathered_.resize(n);
+  gathered_second_.resize(n);
   // A new structure: factorize() waits for analyze() to map a matrix and plan the split.
   matrix_entries_ = -1;
   top_first_ = int(nodes_.size());
@@ -397,37 +398,75 @@ bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, dou
   return true;
 }
 
-void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b) const {
-  using Panel = Eigen::Map<const Eigen::MatrixXd>;
+void SupernodalLdlt::forward(int t, Eigen::VectorXd& gathered, double* top) const {
+  const Supernode& s = nodes_[std::size_t(t)];
+  const Eigen::Map<const Eigen::MatrixXd> panel(values_.data() + s.value_begin, s.width + s.below,
+                                                s.width);
+  auto x = work_.segment(s.first, s.width);
+  panel.topRows(s.width).triangularView<Eigen::UnitLower>().solveInPlace(x);
+  if (s.below == 0) return;
+  auto update = gathered.head(s.below);
+  update.noalias() = panel.bottomRows(s.below) * x;
+  const int* rows = rows_.data() + s.row_begin;
+  const int top_column = top ? nodes_[std::size_t(top_first_)].first : int(work_.size());
+  for (int i = 0; i < s.below; ++i) {
+    if (rows[i] >= top_column)
+      top[rows[i] - top_column] -= update[i];
+    else
+      work_[rows[i]] -= update[i];
+  }
+}
+
+void SupernodalLdlt::backward(int t, Eigen::VectorXd& gathered) const {
+  const Supernode& s = nodes_[std::size_t(t)];
+  const Eigen::Map<const Eigen::MatrixXd> panel(values_.data() + s.value_begin, s.width + s.below,
+                                                s.width);
+  auto x = work_.segment(s.first, s.width);
+  if (s.below > 0) {
+    auto known = gathered.head(s.below);
+    const int* rows = rows_.data() + s.row_begin;
+    for (int i = 0; i < s.below; ++i) known[i] = work_[rows[i]];
+    x.noalias() -= panel.bottomRows(s.below).transpose() * known;
+  }
+  panel.topRows(s.width).triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
+}
+
+void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, Lanes* lanes) const {
   if (p_.size() > 0)
     work_ = p_ * b;
   else
     work_ = b;
-  // L y = b, panel by panel: the diagonal block's triangle, then its rows below at once.
-  for (const Supernode& s : nodes_) {
-    const Panel panel(values_.data() + s.value_begin, s.width + s.below, s.width);
-    auto x = work_.segment(s.first, s.width);
-    panel.topRows(s.width).triangularView<Eigen::UnitLower>().solveInPlace(x);
-    if (s.below == 0) continue;
-    auto update = gathered_.head(s.below);
-    update.noalias() = panel.bottomRows(s.below) * x;
-    const int* rows = rows_.data() + s.row_begin;
-    for (int i = 0; i < s.below; ++i) work_[rows[i]] -= update[i];
+  const int count = int(nodes_.size());
+  const bool split = lanes && lanes->count() >= 2 && top_first_ < count;
+  // L y = b, panel by panel: the diagonal block's triangle, then its rows below at once. Split,
+  // the two groups of subtrees at once (the second's updates to the top's rows through a copy,
+  // added afterwards), then the top.
+  int first = 0;
+  if (split) {
+    const int top_column = nodes_[std::size_t(top_first_)].first;
+    top_work_.setZero(work_.size() - top_column);
+    lanes->run([&](int lane) {
+      if (lane > 1) return;
+      Eigen::VectorXd& gathered = lane == 0 ? gathered_ : gathered_second_;
+      for (int t = 0; t < top_first_; ++t)
+        if (group_[std::size_t(t)] == lane)
+          forward(t, gathered, lane == 1 ? top_work_.data() : nullptr);
+    });
+    work_.tail(top_work_.size()) += top_work_;
+    first = top_first_;
   }
+  for (int t = first; t < count; ++t) forward(t, gathered_, nullptr);
   work_.array() *= inverse_diagonal_.array();
-  // L' x = y, panels in reverse.
-  for (auto it = nodes_.rbegin(); it != nodes_.rend(); ++it) {
-    const Supernode& s = *it;
-    const Panel panel(values_.data() + s.value_begin, s.width + s.below, s.width);
-    auto x = work_.segment(s.first, s.width);
-    if (s.below > 0) {
-      auto known = gathered_.head(s.below);
-      const int* rows = rows_.data() + s.row_begin;
-      for (int i = 0; i < s.below; ++i) known[i] = work_[rows[i]];
-      x.noalias() -= panel.bottomRows(s.below).transpose() * known;
-    }
-    panel.topRows(s.width).triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
-  }
+  // L' x = y, panels in reverse: the top, then the two groups at once (each reads its own
+  // columns and its ancestors').
+  for (int t = count - 1; t >= (split ? top_first_ : 0); --t) backward(t, gathered_);
+  if (split)
+    lanes->run([&](int lane) {
+      if (lane > 1) return;
+      Eigen::VectorXd& gathered = lane == 0 ? gathered_ : gathered_second_;
+      for (int t = top_first_ - 1; t >= 0; --t)
+        if (group_[std::size_t(t)] == lane) backward(t, gathered);
+    });
   if (p_inverse_.size() > 0)
     b = p_inverse_ * work_;
   else

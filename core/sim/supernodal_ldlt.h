@@ -60,11 +60,13 @@ class SupernodalLdlt {
   // Whether modify_trailing takes these unknowns (the ordering put them last, in one panel).
   bool trailing(const std::vector<int>& dofs) const;
 
-  // b <- A^-1 b for the factorised A.
-  void solve_in_place(Eigen::VectorXd& b) const;
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+  // b <- A^-1 b for the factorised A. With `lanes` of two or more, the groups of subtrees
+  // that factorize() splits are solved at once (the result depends on whether lanes are
+  // given, never on timing).
+  void solve_in_place(Eigen::VectorXd& b, Lanes* lanes = nullptr) const;
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, Lanes* lanes = nullptr) const {
     Eigen::VectorXd x = b;
-    solve_in_place(x);
+    solve_in_place(x, lanes);
     return x;
   }
   int supernodes() const { return int(nodes_.size()); }
@@ -86,6 +88,10 @@ class SupernodalLdlt {
   // `top` (indexed from that supernode's first value) when given. False if the diagonal block
   // is not positive definite.
   bool factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top);
+  // Supernode t's part of the forward and the backward solve on work_ (`gathered` a scratch
+  // of the lane's; updates to rows of the top's columns into `top` when given).
+  void forward(int t, Eigen::VectorXd& gathered, double* top) const;
+  void backward(int t, Eigen::VectorXd& gathered) const;
   int permuted(int i) const { return p_.size() > 0 ? p_.indices()[i] : i; }
   // Position of (permuted) row `row` in supernode t's panel rows.
   int panel_row(int t, int row) const;
@@ -104,7 +110,7 @@ class SupernodalLdlt {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p_, p_inverse_;
   std::vector<int> pattern_outer_;  // the structure the supernodes were found for
   std::vector<int> pattern_inner_;
-  mutable Eigen::VectorXd work_, gathered_;
+  mutable Eigen::VectorXd work_, gathered_, gathered_second_, top_work_;
   // For factorize(): each supernode's updates, the matrix's entries' panel positions (-1 for
   // the upper triangle), the owning supernode of each column.
   std::vector<int> update_begin_;  // updates_[update_begin_[s], update_begin_[s + 1])

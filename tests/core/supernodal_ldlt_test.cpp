@@ -93,7 +93,8 @@ TEST(SupernodalLdlt, FactorisesMatricesOfTheAnalysedPattern) {
 
 // Split over two lanes (the elimination tree's subtrees at once, then the supernodes above
 // them), the factorisation solves as the serial one does, and gives the same factor bit for
-// bit from call to call; an indefinite matrix is refused on either lane.
+// bit from call to call; so does the solve split alike; an indefinite matrix is refused on
+// either lane.
 TEST(SupernodalLdlt, FactorisesOnTwoLanesAsOnOne) {
   const Sparse a = hand_like_matrix(study_flesh(), 16, 11);
   SupernodalLdlt::Factor ldlt(a);
@@ -113,6 +114,11 @@ TEST(SupernodalLdlt, FactorisesOnTwoLanesAsOnOne) {
     ASSERT_TRUE(split.factorize(a, &lanes));
     ASSERT_EQ(split.solve(b), x) << "call " << again;
   }
+  // The solve on two lanes too: the same answer to rounding, the same bits from call to call.
+  const Eigen::VectorXd on_lanes = split.solve(b, &lanes);
+  EXPECT_LT((on_lanes - x).norm(), 1e-12 * x.norm());
+  EXPECT_LT((a * on_lanes - b).norm(), 1e-9 * b.norm());
+  for (int again = 0; again < 3; ++again) ASSERT_EQ(split.solve(b, &lanes), on_lanes) << again;
   const Sparse indefinite = -a;
   EXPECT_FALSE(split.factorize(indefinite, &lanes));
 }
