@@ -1078,9 +1078,11 @@ struct HandSimulator::Impl {
     // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
     // lets a light cube's unknowns go unsolved.
     const Eigen::VectorXd inverse_diagonal = diagonal().cwiseInverse();
+    auto left = [&](const Eigen::VectorXd& residual) {  // the largest move it would make
+      return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>();
+    };
     auto converged = [&](const Eigen::VectorXd& residual) {
-      return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>() <=
-             options.linear_tolerance;
+      return left(residual) <= options.linear_tolerance;
     };
     Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r, &lanes),
                     p = z, ap;
@@ -1099,6 +1101,11 @@ struct HandSimulator::Impl {
       // The next direction only for a next iteration: its solve is an iteration's larger cost.
       done = converged(r);
       if (done || it == options.max_linear_iterations) break;
+      // Halfway and still far (the preconditioner is too far from the matrix): the iterations
+      // left rarely close the gap, and the factorisation will be needed.
+      if (options.halfway_gap > 0 && it == (options.max_linear_iterations + 1) / 2 &&
+          left(r) > options.halfway_gap * options.linear_tolerance)
+        break;
       z = preconditioner.solve(r, &lanes);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;

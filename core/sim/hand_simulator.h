@@ -31,6 +31,10 @@ struct SimOptions {
   // After this many steps in a row whose first solve took two CG iterations or more, the
   // next solve factorises: the preconditioner has drifted (0: never).
   int refresh_steps = 20;
+  // CG gives up halfway through max_linear_iterations, and the matrix is factorised, when what
+  // is left of the residual would still move an unknown by more than this many times
+  // linear_tolerance (0: never).
+  double halfway_gap = 1e3;
   // Tests: compare every matrix-free product of CG with the assembled matrix's (slow; a
   // mismatch throws std::logic_error).
   bool check_products = false;

@@ -177,11 +177,26 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("approach"), std::string::npos) << "the phases: " << r.out;
   const std::string text = test::file_bytes(json);
-  for (const char* key :
-       {"\"scale\": 1", "\"tets\"", "\"nodes\"", "\"dofs\"", "\"steps\": 48", "\"threads\": 1",
-        "\"direct_steps\": 2", "\"refresh_steps\": 20", "\"runs\": 2", "\"step_ms\"", "\"median\"",
-        "\"p95\"", "\"newton_iterations\"", "\"linear_iterations\"", "\"factorizations\"",
-        "\"phases\"", "\"name\": \"shape\"", "\"name\": \"approach\"", "\"median_ms\""})
+  for (const char* key : {"\"scale\": 1",
+                          "\"tets\"",
+                          "\"nodes\"",
+                          "\"dofs\"",
+                          "\"steps\": 48",
+                          "\"threads\": 1",
+                          "\"direct_steps\": 2",
+                          "\"refresh_steps\": 20",
+                          "\"runs\": 2",
+                          "\"halfway_gap\": 1000",
+                          "\"step_ms\"",
+                          "\"median\"",
+                          "\"p95\"",
+                          "\"newton_iterations\"",
+                          "\"linear_iterations\"",
+                          "\"factorizations\"",
+                          "\"phases\"",
+                          "\"name\": \"shape\"",
+                          "\"name\": \"approach\"",
+                          "\"median_ms\""})
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   const std::string csv = test::file_bytes(steps);
   EXPECT_EQ(csv.rfind("step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,"
@@ -195,6 +210,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(cli("sim bench --direct-steps -1").status, 2);
   EXPECT_EQ(cli("sim bench --refresh-steps -1").status, 2);
   EXPECT_EQ(cli("sim bench --runs 0").status, 2);
+  EXPECT_EQ(cli("sim bench --halfway-gap -1").status, 2);
   EXPECT_EQ(cli("sim bench --scale 3").status, 2);
   EXPECT_EQ(cli("sim pinch --cube 2").status, 2);
   EXPECT_EQ(cli("sim wobble").status, 2);

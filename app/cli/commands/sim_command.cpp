@@ -171,6 +171,10 @@ int sim_bench(const std::vector<std::string>& argv) {
       {"refresh-steps", "N",
        "factorise after this many steps in a row needed two CG iterations or more (0: never)",
        "20"},
+      {"halfway-gap", "RATIO",
+       "CG gives up halfway when the residual left would still move an unknown by more than "
+       "this many times the linear tolerance (0: never)",
+       "1000"},
       {"threads", "N", "threads the per-tet work is split over", "2"},
       {"runs", "N",
        "run the script N times and time each step by its fastest run (the machine's other load "
@@ -210,6 +214,8 @@ int sim_bench(const std::vector<std::string>& argv) {
   if (options.direct_steps < 0) throw UsageError("--direct-steps must be >= 0");
   options.refresh_steps = int(args.integer("refresh-steps"));
   if (options.refresh_steps < 0) throw UsageError("--refresh-steps must be >= 0");
+  options.halfway_gap = args.number("halfway-gap");
+  if (!(options.halfway_gap >= 0)) throw UsageError("--halfway-gap must be >= 0");
   options.threads = int(args.integer("threads"));
   if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
   const long runs = args.integer("runs");
@@ -245,7 +251,8 @@ int sim_bench(const std::vector<std::string>& argv) {
       json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
       json.field("duration_s", duration).field("threads", options.threads).field("runs", int(runs));
       json.field("direct_steps", options.direct_steps)
-          .field("refresh_steps", options.refresh_steps);
+          .field("refresh_steps", options.refresh_steps)
+          .field("halfway_gap", options.halfway_gap);
       write_timing(json, setup, report);
       json.end_object();
     });
