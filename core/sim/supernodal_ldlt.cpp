@@ -398,7 +398,7 @@ bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, dou
   return true;
 }
 
-void SupernodalLdlt::forward(int t, Eigen::VectorXd& gathered, double* top) const {
+void SupernodalLdlt::forward(int t, Eigen::VectorXd& gathered, double* top) {
   const Supernode& s = nodes_[std::size_t(t)];
   const Eigen::Map<const Eigen::MatrixXd> panel(values_.data() + s.value_begin, s.width + s.below,
                                                 s.width);
@@ -417,7 +417,7 @@ void SupernodalLdlt::forward(int t, Eigen::VectorXd& gathered, double* top) cons
   }
 }
 
-void SupernodalLdlt::backward(int t, Eigen::VectorXd& gathered) const {
+void SupernodalLdlt::backward(int t, Eigen::VectorXd& gathered) {
   const Supernode& s = nodes_[std::size_t(t)];
   const Eigen::Map<const Eigen::MatrixXd> panel(values_.data() + s.value_begin, s.width + s.below,
                                                 s.width);
@@ -431,7 +431,7 @@ void SupernodalLdlt::backward(int t, Eigen::VectorXd& gathered) const {
   panel.topRows(s.width).triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
 }
 
-void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, Lanes* lanes) const {
+void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, Lanes* lanes) {
   if (p_.size() > 0)
     work_ = p_ * b;
   else

@@ -63,8 +63,9 @@ class SupernodalLdlt {
   // b <- A^-1 b for the factorised A. With `lanes` of two or more, the groups of subtrees
   // that factorize() splits are solved at once (the result depends on whether lanes are
   // given, never on timing).
-  void solve_in_place(Eigen::VectorXd& b, Lanes* lanes = nullptr) const;
-  Eigen::VectorXd solve(const Eigen::VectorXd& b, Lanes* lanes = nullptr) const {
+  // Not const: the solve works in the object's own buffers (one solve at a time).
+  void solve_in_place(Eigen::VectorXd& b, Lanes* lanes = nullptr);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, Lanes* lanes = nullptr) {
     Eigen::VectorXd x = b;
     solve_in_place(x, lanes);
     return x;
@@ -90,8 +91,8 @@ class SupernodalLdlt {
   bool factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top);
   // Supernode t's part of the forward and the backward solve on work_ (`gathered` a scratch
   // of the lane's; updates to rows of the top's columns into `top` when given).
-  void forward(int t, Eigen::VectorXd& gathered, double* top) const;
-  void backward(int t, Eigen::VectorXd& gathered) const;
+  void forward(int t, Eigen::VectorXd& gathered, double* top);
+  void backward(int t, Eigen::VectorXd& gathered);
   int permuted(int i) const { return p_.size() > 0 ? p_.indices()[i] : i; }
   // Position of (permuted) row `row` in supernode t's panel rows.
   int panel_row(int t, int row) const;
@@ -110,7 +111,7 @@ class SupernodalLdlt {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p_, p_inverse_;
   std::vector<int> pattern_outer_;  // the structure the supernodes were found for
   std::vector<int> pattern_inner_;
-  mutable Eigen::VectorXd work_, gathered_, gathered_second_, top_work_;
+  Eigen::VectorXd work_, gathered_, gathered_second_, top_work_;  // the solves' buffers
   // For factorize(): each supernode's updates, the matrix's entries' panel positions (-1 for
   // the upper triangle), the owning supernode of each column.
   std::vector<int> update_begin_;  // updates_[update_begin_[s], update_begin_[s + 1])
