@@ -116,6 +116,7 @@ struct SpringTerm {  // J'KJ
   Eigen::Matrix3d k;
   const PanelBlock* cached;  // its blocks' places (see spring_blocks), or null
 };
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
 struct BlockTerm {  // on one diagonal block
   int block;
   Eigen::Matrix3d m;
@@ -163,7 +164,7 @@ struct HandSimulator::Impl {
   // and the change since that the factor has taken.
   std::vector<int> cube_dofs;
   bool cube_trailing = false;
-  Eigen::MatrixXd cube_factorised, cube_applied;
+  Matrix6d cube_factorised, cube_applied;
 
   int bone_block(int b) const { return nodes + 2 * b; }
   int cube_block() const { return nodes + 2 * bones; }
@@ -386,11 +387,13 @@ struct HandSimulator::Impl {
   }
 
   // The part of the matrix's cube-cube block from terms on the cube alone (its inertia, the
-  // floor's contacts with its corners), term by term.
-  Eigen::MatrixXd cube_matrix() const {
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(6, 6);
+  // floor's contacts with its corners), term by term. Of the springs only the contacts' (those
+  // after kept_springs) can be on the cube alone.
+  Matrix6d cube_matrix() const {
+    Matrix6d m = Matrix6d::Zero();
     const int cube = cube_block();
-    for (const SpringTerm& t : spring_terms) {
+    for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
+      const SpringTerm& t = spring_terms[i];
       bool alone = true;
       for (int a = 0; a < t.p.count; ++a) alone = alone && t.p.block[std::size_t(a)] >= cube;
       if (!alone) continue;
@@ -1053,7 +1056,7 @@ struct HandSimulator::Impl {
         throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
       factorised = true;
       cube_factorised = cube_matrix();
-      cube_applied.setZero(6, 6);
+      cube_applied.setZero();
       factorised_at = step_index;
       slow_steps = 0;
       ++report.factorizations;
@@ -1070,7 +1073,7 @@ struct HandSimulator::Impl {
     // change the matrix on the cube's unknowns alone; ordered last, they are the factor's last
     // block, which takes the change exactly for the cost of a 6x6 factorisation.
     if (cube_trailing) {
-      const Eigen::MatrixXd change = cube_matrix() - cube_factorised;
+      const Matrix6d change = cube_matrix() - cube_factorised;
       if (change != cube_applied && preconditioner.modify_trailing(cube_dofs, change))
         cube_applied = change;
     }

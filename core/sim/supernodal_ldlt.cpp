@@ -276,10 +276,10 @@ bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, Lanes* lane
   const double* av = a.valuePtr();
   for (std::size_t v = 0; v < scatter_.size(); ++v)
     if (scatter_[v] >= 0) values_[std::size_t(scatter_[v])] += av[v];
-  return factorize_panels(lanes);
+  return factorize_values(lanes);
 }
 
-bool SupernodalLdlt::factorize_panels(Lanes* lanes) {
+bool SupernodalLdlt::factorize_values(Lanes* lanes) {
   diagonal_.resize(inverse_diagonal_.size());
   const int count = int(nodes_.size());
   int first = 0;
@@ -323,14 +323,15 @@ bool SupernodalLdlt::trailing(const std::vector<int>& dofs) const {
   return true;
 }
 
-bool SupernodalLdlt::modify_trailing(const std::vector<int>& dofs, const Eigen::MatrixXd& delta) {
+bool SupernodalLdlt::modify_trailing(const std::vector<int>& dofs,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& delta) {
   const int n = int(column_node_.size()), k = int(dofs.size());
   if (!trailing(dofs) || delta.rows() != k || delta.cols() != k)
     throw std::invalid_argument(
         "SupernodalLdlt::modify_trailing: the last unknowns of the ordering and a k x k change");
   const Supernode& last = nodes_.back();
-  std::vector<int> position(static_cast<std::size_t>(k));
-  for (int i = 0; i < k; ++i) position[std::size_t(i)] = permuted(dofs[std::size_t(i)]) - (n - k);
+  std::vector<int> at(static_cast<std::size_t>(k));  // each unknown's place in the block
+  for (int i = 0; i < k; ++i) at[std::size_t(i)] = permuted(dofs[std::size_t(i)]) - (n - k);
   Eigen::Map<Eigen::MatrixXd> panel(values_.data() + last.value_begin, last.width, last.width);
   auto block = panel.bottomRightCorner(k, k);
   if (!trailing_known_) {
@@ -342,8 +343,7 @@ bool SupernodalLdlt::modify_trailing(const std::vector<int>& dofs, const Eigen::
   }
   Eigen::MatrixXd s = trailing_schur_;
   for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j)
-      s(position[std::size_t(i)], position[std::size_t(j)]) += delta(i, j);
+    for (int j = 0; j < k; ++j) s(at[std::size_t(i)], at[std::size_t(j)]) += delta(i, j);
   const Eigen::LLT<Eigen::MatrixXd> llt(s);
   if (llt.info() != Eigen::Success) return false;
   const Eigen::MatrixXd l = llt.matrixL();

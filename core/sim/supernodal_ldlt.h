@@ -46,7 +46,7 @@ class SupernodalLdlt {
   int panel_start(int value) const;
   int position(int row, int col) const;
   int column_stride(int col) const;
-  bool factorize_values(Lanes* lanes = nullptr) { return factorize_panels(lanes); }
+  bool factorize_values(Lanes* lanes = nullptr);
   // Whether the ordering puts `row` after `col` (A(row, col) is stored as itself, not as its
   // transpose).
   bool ordered_after(int row, int col) const { return permuted(row) >= permuted(col); }
@@ -56,7 +56,8 @@ class SupernodalLdlt {
   // so that only the trailing block of L and D changes (the Schur complement S of those
   // columns becomes S + delta). Each call replaces the one before. False, with the factor
   // unchanged, if S + delta is not positive definite.
-  bool modify_trailing(const std::vector<int>& dofs, const Eigen::MatrixXd& delta);
+  bool modify_trailing(const std::vector<int>& dofs,
+                       const Eigen::Ref<const Eigen::MatrixXd>& delta);
   // Whether modify_trailing takes these unknowns (the ordering put them last, in one panel).
   bool trailing(const std::vector<int>& dofs) const;
 
@@ -82,8 +83,6 @@ class SupernodalLdlt {
   };
   void find_structure(const Eigen::SparseMatrix<double>& l);
   void plan_split();  // group_, top_first_ (see below)
-  // The panels hold the ordered matrix's lower triangle.
-  bool factorize_panels(Lanes* lanes);
   // Supernode s: its diagonal block, the rows below, its part of D, and its rank update to
   // later supernodes (through `scratch`); the update of a supernode from top_first_ on goes to
   // `top` (indexed from that supernode's first value) when given. False if the diagonal block

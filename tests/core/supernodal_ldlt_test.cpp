@@ -21,6 +21,15 @@ using Sparse = Eigen::SparseMatrix<double>;
 using test::hand_like_matrix;
 using test::study_flesh;
 
+// Panels analysed on Eigen's factorisation of `a` (the ordering and L's structure).
+SupernodalLdlt analysed(const Sparse& a) {
+  const SupernodalLdlt::Factor ldlt(a);
+  EXPECT_EQ(ldlt.info(), Eigen::Success);
+  SupernodalLdlt panels;
+  panels.analyze(ldlt, a);
+  return panels;
+}
+
 TEST(SupernodalLdlt, SolvesAsTheFactorisationItRearranges) {
   const Sparse a = hand_like_matrix(study_flesh(), 16, 1);
   SupernodalLdlt::Factor ldlt(a);
@@ -97,11 +106,7 @@ TEST(SupernodalLdlt, FactorisesMatricesOfTheAnalysedPattern) {
 // either lane.
 TEST(SupernodalLdlt, FactorisesOnTwoLanesAsOnOne) {
   const Sparse a = hand_like_matrix(study_flesh(), 16, 11);
-  SupernodalLdlt::Factor ldlt(a);
-  ASSERT_EQ(ldlt.info(), Eigen::Success);
-  SupernodalLdlt serial, split;
-  serial.analyze(ldlt, a);
-  split.analyze(ldlt, a);
+  SupernodalLdlt serial = analysed(a), split = analysed(a);
   ASSERT_TRUE(split.splits()) << "the hand's elimination tree has subtrees to deal out";
   Lanes lanes(2);
   ASSERT_TRUE(serial.factorize(a));
@@ -129,11 +134,7 @@ TEST(SupernodalLdlt, FactorisesOnTwoLanesAsOnOne) {
 // one panel, its entry (r, c) at position + r + stride c.
 TEST(SupernodalLdlt, FactorisesWhatIsWrittenIntoItsPanels) {
   const Sparse first = hand_like_matrix(study_flesh(), 16, 5);
-  SupernodalLdlt::Factor ldlt(first);
-  ASSERT_EQ(ldlt.info(), Eigen::Success);
-  SupernodalLdlt from_matrix, in_place;
-  from_matrix.analyze(ldlt, first);
-  in_place.analyze(ldlt, first);
+  SupernodalLdlt from_matrix = analysed(first), in_place = analysed(first);
   Sparse a = first;
   for (int k = 0; k < a.outerSize(); ++k)
     for (Sparse::InnerIterator it(a, k); it; ++it)
