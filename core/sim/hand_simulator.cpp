@@ -165,6 +165,14 @@ struct HandSimulator::Impl {
   std::vector<int> cube_dofs;
   bool cube_trailing = false;
   Matrix6d cube_factorised, cube_applied;
+  // Whether the factor is still the matrix itself, up to the cube's own terms (which
+  // modify_trailing follows): the terms an evaluation keeps have not been found anew since it
+  // was factorised (terms_found counts those evaluations), and the contact terms on other
+  // unknowns than the cube's alone are the same. A step's later passes differ from its first
+  // in their contacts only, mostly the floor's corners: after a factorisation they then solve
+  // directly instead of by CG.
+  long terms_found = 0, factorised_terms = -1;
+  std::vector<SpringTerm> factorised_contacts;
 
   int bone_block(int b) const { return nodes + 2 * b; }
   int cube_block() const { return nodes + 2 * bones; }
@@ -389,14 +397,17 @@ struct HandSimulator::Impl {
   // The part of the matrix's cube-cube block from terms on the cube alone (its inertia, the
   // floor's contacts with its corners), term by term. Of the springs only the contacts' (those
   // after kept_springs) can be on the cube alone.
+  bool cube_alone(const SpringTerm& t) const {
+    for (int a = 0; a < t.p.count; ++a)
+      if (t.p.block[std::size_t(a)] < cube_block()) return false;
+    return true;
+  }
   Matrix6d cube_matrix() const {
     Matrix6d m = Matrix6d::Zero();
     const int cube = cube_block();
     for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
       const SpringTerm& t = spring_terms[i];
-      bool alone = true;
-      for (int a = 0; a < t.p.count; ++a) alone = alone && t.p.block[std::size_t(a)] >= cube;
-      if (!alone) continue;
+      if (!cube_alone(t)) continue;
       for (int a = 0; a < t.p.count; ++a) {
         const int ba = t.p.block[std::size_t(a)] - cube;
         if (ba < 0) continue;
@@ -410,6 +421,29 @@ struct HandSimulator::Impl {
     for (const BlockTerm& t : block_terms)
       if (t.block >= cube) m.block<3, 3>(3 * (t.block - cube), 3 * (t.block - cube)) += t.m;
     return m;
+  }
+
+  // The contact terms that reach other unknowns than the cube's (into `out`), or whether they
+  // equal `known` (bit for bit: the same contacts evaluated at the same state).
+  void other_contacts(std::vector<SpringTerm>& out) const {
+    out.clear();
+    for (std::size_t i = kept_springs; i < spring_terms.size(); ++i)
+      if (!cube_alone(spring_terms[i])) out.push_back(spring_terms[i]);
+  }
+  bool same_other_contacts(const std::vector<SpringTerm>& known) const {
+    std::size_t k = 0;
+    for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
+      const SpringTerm& t = spring_terms[i];
+      if (cube_alone(t)) continue;
+      if (k == known.size()) return false;
+      const SpringTerm& u = known[k++];
+      if (t.p.count != u.p.count || t.k != u.k) return false;
+      for (int a = 0; a < t.p.count; ++a)
+        if (t.p.block[std::size_t(a)] != u.p.block[std::size_t(a)] ||
+            t.p.j[std::size_t(a)] != u.p.j[std::size_t(a)])
+          return false;
+    }
+    return k == known.size();
   }
 
   // A tet's block (a, b) of the matrix; block (b, a) is its transpose.
@@ -977,6 +1011,7 @@ struct HandSimulator::Impl {
         spring_terms.clear();
         block_terms.clear();
         base_diagonal_known = false;
+        ++terms_found;
       }
       // The tets' rotations are found where Newton linearises and held through its line
       // search: there the flesh energy is the quadratic that the Hessian describes.
@@ -1057,6 +1092,8 @@ struct HandSimulator::Impl {
       factorised = true;
       cube_factorised = cube_matrix();
       cube_applied.setZero();
+      factorised_terms = terms_found;
+      other_contacts(factorised_contacts);
       factorised_at = step_index;
       slow_steps = 0;
       ++report.factorizations;
@@ -1067,15 +1104,27 @@ struct HandSimulator::Impl {
       refactor();
       stale = false;
       ++report.linear_iterations;
+      ++report.direct_solves;
       return preconditioner.solve(b, &lanes);
     }
     // The cube's own terms (the floor's contacts with its corners come and go, stick and slide)
     // change the matrix on the cube's unknowns alone; ordered last, they are the factor's last
     // block, which takes the change exactly for the cost of a 6x6 factorisation.
+    bool exact = factorised_terms == terms_found && same_other_contacts(factorised_contacts);
     if (cube_trailing) {
       const Matrix6d change = cube_matrix() - cube_factorised;
       if (change != cube_applied && preconditioner.modify_trailing(cube_dofs, change))
         cube_applied = change;
+      exact = exact && cube_applied == change;
+    } else {
+      exact = exact && cube_matrix() == cube_factorised;
+    }
+    if (exact) {
+      ++report.linear_iterations;
+      ++report.direct_solves;
+      Eigen::VectorXd x = preconditioner.solve(b, &lanes);
+      if (options.check_products) check_direct(x, b);
+      return x;
     }
     // Converged when what is left of the residual would move no unknown, on its own, by more
     // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
@@ -1135,9 +1184,22 @@ struct HandSimulator::Impl {
       refactor();
       stale = false;
       ++report.linear_iterations;
+      ++report.direct_solves;
       return preconditioner.solve(b, &lanes);
     }
     return x;
+  }
+
+  // Tests: a direct solve with a factor taken to be the matrix's leaves no more residual than
+  // CG's tolerance.
+  void check_direct(const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+    Eigen::VectorXd ax;
+    multiply(x, ax);
+    const double left = ((b - ax).cwiseQuotient(diagonal())).lpNorm<Eigen::Infinity>();
+    if (!(left <= options.linear_tolerance))
+      throw std::logic_error(
+          "HandSimulator: a direct solve with the factor taken to be the matrix's leaves a "
+          "residual beyond CG's tolerance");
   }
 
   // Tests: the term-by-term product and diagonal against the assembled matrix's.

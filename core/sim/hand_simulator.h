@@ -47,6 +47,9 @@ struct SimStepReport {
   int newton_iterations = 0;
   int linear_iterations = 0;  // CG iterations (a direct solve counts one)
   int factorizations = 0;     // numeric factorisations of the Newton matrix
+  // Solves by the factorisation alone (after a factorisation, and in a step's later passes
+  // while the factor is the matrix's): each counts one linear iteration, and needs no product.
+  int direct_solves = 0;
   // Step lengths the line search rejected (each halves the next; after 12 the last is taken).
   // With an energy and gradient that agree, rare: a step that runs into a surface or a kink.
   int halvings = 0;

@@ -173,6 +173,7 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
     report.factorizations.push_back(step.factorizations);
     report.contacts.push_back(step.contacts);
     report.halvings.push_back(step.halvings);
+    report.direct_solves.push_back(step.direct_solves);
     if (observer) observer(state);
     if (t < script.lift_end - 1e-9 || t > script.hold_end + 1e-9) continue;
     // The hold: the cube seen from the distal bones, relative to the midpoint of their origins.

@@ -47,7 +47,7 @@ struct PinchReport {
   double max_penetration_mm = 0.0;  // deepest flesh node inside the cube during the hold
   std::vector<double> step_ms;      // wall time of every step
   std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
-  std::vector<int> halvings;                                                        // per step
+  std::vector<int> halvings, direct_solves;                                         // per step
 };
 
 // Runs the script up to `duration` seconds (its end when 0). `observer`, if given, sees the

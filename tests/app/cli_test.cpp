@@ -193,6 +193,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
                           "\"newton_iterations\"",
                           "\"linear_iterations\"",
                           "\"factorizations\"",
+                          "\"direct_solves\"",
                           "\"phases\"",
                           "\"name\": \"shape\"",
                           "\"name\": \"approach\"",
@@ -200,7 +201,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   const std::string csv = test::file_bytes(steps);
   EXPECT_EQ(csv.rfind("step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,"
-                      "contacts,halvings\n",
+                      "contacts,halvings,direct_solves\n",
                       0),
             0u)
       << csv.substr(0, 200);

@@ -122,6 +122,7 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
       .end_object();
   json.field("factorizations",
              std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0));
+  json.field("direct_solves", std::accumulate(r.direct_solves.begin(), r.direct_solves.end(), 0));
   json.key("phases").begin_array();
   for (const Phase& p : phases(setup, r))
     json.begin_object()
@@ -236,13 +237,13 @@ int sim_bench(const std::vector<std::string>& argv) {
   if (args.has("steps")) {
     write_output(args.text("steps"), [&](std::ostream& out) {
       out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
-             "halvings\n";
+             "halvings,direct_solves\n";
       const double h = setup.model.parameters.time_step;
       for (std::size_t i = 0; i < report.step_ms.size(); ++i)
         out << i << ',' << double(i + 1) * h << ',' << report.step_ms[i] << ','
             << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
             << report.factorizations[i] << ',' << report.contacts[i] << ',' << report.halvings[i]
-            << '\n';
+            << ',' << report.direct_solves[i] << '\n';
     });
   }
   if (args.has("json")) {
