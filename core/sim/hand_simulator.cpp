@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -127,6 +128,15 @@ struct HandSimulator::Impl {
   SimOptions options;
   int nodes = 0, bones = 0, blocks = 0, dofs = 0;
   std::vector<TetTerm> tet_terms;
+  // The tets as the per-tet loops read them. A TetElement carries its 12x12 stiffness (1.2 kB)
+  // that these loops never use: read through it, the mesh's tets span 3.5 MB; these 128 bytes
+  // a tet keep them within the L2 cache.
+  struct FleshTet {
+    std::array<int, 4> nodes;
+    double volume;
+    Eigen::Matrix<double, 3, 4> gradients;
+  };
+  std::vector<FleshTet> flesh_tets;
   std::vector<SpringTerm> spring_terms;
   std::vector<BlockTerm> block_terms;
   Eigen::SparseMatrix<double> matrix;  // the matrix as a sparse matrix (assemble)
@@ -172,6 +182,7 @@ struct HandSimulator::Impl {
   // in their contacts only, mostly the floor's corners: after a factorisation they then solve
   // directly instead of by CG.
   long terms_found = 0, factorised_terms = -1;
+  int last_iterations = 0;  // CG's in this step's last solve
   std::vector<SpringTerm> factorised_contacts;
 
   int bone_block(int b) const { return nodes + 2 * b; }
@@ -226,6 +237,7 @@ struct HandSimulator::Impl {
       throw std::logic_error("HandSimulator: no factorisation of the Newton matrix's pattern");
     preconditioner.analyze(structure, matrix);
     find_panel_blocks();
+    for (const TetElement& t : m.tets) flesh_tets.push_back({t.nodes, t.volume, t.gradients});
     cube_trailing = preconditioner.trailing(cube_dofs);
   }
 
@@ -321,7 +333,7 @@ struct HandSimulator::Impl {
   void tet_products(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
     for (std::size_t e = 0; e < tet_terms.size(); ++e) {
       const TetTerm& t = tet_terms[e];
-      const auto& ids = model.tets[e].nodes;
+      const auto& ids = flesh_tets[e].nodes;
       Eigen::Matrix<double, 3, 4> p;
       for (int a = 0; a < 4; ++a) p.col(a) = x.segment<3>(3 * ids[std::size_t(a)]);
       // With D = sum_b p_b r_b', the blocks' sum is vmu (D + D') r_a + vlambda tr(D) r_a.
@@ -381,7 +393,7 @@ struct HandSimulator::Impl {
           Eigen::Vector3d d = (t.vmu + t.vlambda) * r.cwiseAbs2();
           d.array() += t.vmu * r.squaredNorm();
           if (t.stiffened) d += t.q.col(a).cwiseAbs2();
-          diag.segment<3>(3 * model.tets[e].nodes[std::size_t(a)]) += d;
+          diag.segment<3>(3 * flesh_tets[e].nodes[std::size_t(a)]) += d;
         }
       }
       add_springs(diag, 0, kept_springs);
@@ -430,6 +442,67 @@ struct HandSimulator::Impl {
     for (std::size_t i = kept_springs; i < spring_terms.size(); ++i)
       if (!cube_alone(spring_terms[i])) out.push_back(spring_terms[i]);
   }
+  // Whether the contact terms on other unknowns than the cube's alone touch the same blocks as
+  // `known` (their values may differ).
+  bool same_contact_blocks(const std::vector<SpringTerm>& known) const {
+    std::size_t k = 0;
+    for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
+      const SpringTerm& t = spring_terms[i];
+      if (cube_alone(t)) continue;
+      if (k == known.size() || t.p.count != known[k].p.count || t.p.block != known[k++].p.block)
+        return false;
+    }
+    return k == known.size();
+  }
+
+  // Adds sigma J'KJ of a spring term to the factor: K's eigenvectors e with eigenvalue l
+  // make the rank-one changes sigma w w', w = sqrt(l) J'e (on the term's blocks' unknowns).
+  bool factor_spring(const SpringTerm& t, double sigma) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(t.k);
+    const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
+    std::vector<int> dofs;
+    std::vector<double> values;
+    for (int e = 0; e < 3; ++e) {
+      const double l = eigen.eigenvalues()[e];
+      if (!(l > 1e-12 * largest)) continue;
+      const Eigen::Vector3d v = std::sqrt(l) * eigen.eigenvectors().col(e);
+      dofs.clear();
+      values.clear();
+      for (int a = 0; a < t.p.count; ++a) {
+        const Eigen::Vector3d w = t.p.j[std::size_t(a)].transpose() * v;
+        for (int r = 0; r < 3; ++r) {
+          const int dof = 3 * t.p.block[std::size_t(a)] + r;
+          const auto at = std::find(dofs.begin(), dofs.end(), dof);
+          if (at == dofs.end()) {
+            dofs.push_back(dof);
+            values.push_back(w[r]);
+          } else {
+            values[std::size_t(at - dofs.begin())] += w[r];
+          }
+        }
+      }
+      if (!preconditioner.update(dofs, values, sigma)) return false;
+    }
+    return true;
+  }
+
+  // The factor made to hold the current contact terms (on other unknowns than the cube's
+  // alone) instead of those it holds: the new ones added, then the old taken out. False if
+  // that broke it (a downdate that cancelled a pivot).
+  bool follow_contacts() {
+    std::vector<SpringTerm> now;
+    other_contacts(now);
+    for (const SpringTerm& t : now)
+      if (!factor_spring(t, 1.0)) return false;
+    for (const SpringTerm& t : factorised_contacts)
+      if (!factor_spring(t, -1.0)) return false;
+    factorised_contacts = std::move(now);
+    // The trailing block's changes now start from the factor as it is.
+    cube_factorised += cube_applied;
+    cube_applied.setZero();
+    return true;
+  }
+
   bool same_other_contacts(const std::vector<SpringTerm>& known) const {
     std::size_t k = 0;
     for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
@@ -469,7 +542,7 @@ struct HandSimulator::Impl {
     for (int n = 0; n < nodes; ++n)
       add(n, n, model.node_mass[std::size_t(n)] * Eigen::Matrix3d::Identity());
     for (std::size_t e = 0; e < tet_terms.size(); ++e) {
-      const auto& ids = model.tets[e].nodes;
+      const auto& ids = flesh_tets[e].nodes;
       for (int a = 0; a < 4; ++a)
         for (int b = a; b < 4; ++b) {
           const Eigen::Matrix3d block = tet_block(tet_terms[e], a, b);
@@ -590,7 +663,9 @@ struct HandSimulator::Impl {
         lane_forces[std::size_t(lane)].setZero(3 * nodes);
         forces = lane_forces[std::size_t(lane)].data();
       }
-      lane_energy[std::size_t(lane)] = flesh_range(s, std::size_t(begin), std::size_t(end), forces);
+      lane_energy[std::size_t(lane)] =
+          with_hessian ? flesh_range(s, std::size_t(begin), std::size_t(end), forces)
+                       : flesh_energy(s, std::size_t(begin), std::size_t(end));
     });
     for (int lane = 0; lane < lanes.count(); ++lane) {
       energy += lane_energy[std::size_t(lane)];
@@ -598,55 +673,168 @@ struct HandSimulator::Impl {
     }
   }
 
-  // Tets [begin, end): their energy, their forces added to `forces` (node DOFs).
+  // The flesh four tets at a time, one in each lane of Eigen's 4-wide arrays (the vector
+  // unit's), the lanes' energies summed at the end. A batch past the range's end repeats its
+  // last tet with no volume.
+  using Lane4 = Eigen::Array4d;
+  static constexpr int kBatch = 4;
+  struct TetBatch {
+    Lane4 f[9];           // F, row-major
+    Lane4 r[9];           // R, row-major
+    Lane4 gradients[12];  // grad N_a, entry 3a + i
+    Lane4 volume;
+  };
+
+  // F of tets e, ... (sum over a of (x_a - x_0) grad N_a').
+  void gather(const HandSimState& s, std::size_t e, std::size_t end, TetBatch& b,
+              bool with_gradients) const {
+    for (Lane4& v : b.f) v.setZero();
+    for (int l = 0; l < kBatch; ++l) {
+      const std::size_t k = std::min(e + std::size_t(l), end - 1);
+      const FleshTet& t = flesh_tets[k];
+      const Eigen::Vector3d& x0 = s.node_position[std::size_t(t.nodes[0])];
+      for (int a = 1; a < 4; ++a) {
+        const Eigen::Vector3d d = s.node_position[std::size_t(t.nodes[std::size_t(a)])] - x0;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) b.f[3 * i + j][l] += d[i] * t.gradients(j, a);
+      }
+      b.volume[l] = e + std::size_t(l) < end ? t.volume : 0.0;
+      if (with_gradients)
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) b.gradients[3 * a + i][l] = t.gradients(i, a);
+    }
+  }
+
+  // R of tets e, ... from their quaternions.
+  void rotations(const HandSimState& s, std::size_t e, std::size_t end, TetBatch& b) const {
+    Lane4 w, x, y, z;
+    for (int l = 0; l < kBatch; ++l) {
+      const Eigen::Quaterniond& q = s.tet_rotation[std::min(e + std::size_t(l), end - 1)];
+      w[l] = q.w();
+      x[l] = q.x();
+      y[l] = q.y();
+      z[l] = q.z();
+    }
+    rotation_matrices(w, x, y, z, b.r);
+  }
+
+  // The strain sym(R'F) - I (xx, yy, zz, xy, xz, yz).
+  static void strain(const TetBatch& b, Lane4 (&e)[6]) {
+    auto g = [&](int i, int j) {  // (R'F)_ij
+      return b.r[i] * b.f[j] + b.r[3 + i] * b.f[3 + j] + b.r[6 + i] * b.f[6 + j];
+    };
+    e[0] = g(0, 0) - 1;
+    e[1] = g(1, 1) - 1;
+    e[2] = g(2, 2) - 1;
+    e[3] = 0.5 * (g(0, 1) + g(1, 0));
+    e[4] = 0.5 * (g(0, 2) + g(2, 0));
+    e[5] = 0.5 * (g(1, 2) + g(2, 1));
+  }
+  static Lane4 squared_norm(const Lane4 (&e)[6]) {
+    return e[0].square() + e[1].square() + e[2].square() +
+           2 * (e[3].square() + e[4].square() + e[5].square());
+  }
+
+  // The energy of tets [begin, end) alone (the line search's), with their rotations as the
+  // last evaluation with the Hessian found them.
+  double flesh_energy(const HandSimState& s, std::size_t begin, std::size_t end) const {
+    const SimParameters& par = model.parameters;
+    const double mu = par.flesh.mu(), lambda = par.flesh.lambda();
+    const double stiffening = par.stiffening_factor * par.flesh.youngs_modulus;
+    Lane4 sum = Lane4::Zero();
+    TetBatch b;
+    for (std::size_t e = begin; e < end; e += kBatch) {
+      gather(s, e, end, b, false);
+      rotations(s, e, end, b);
+      Lane4 n[6];
+      strain(b, n);
+      const Lane4 trace = n[0] + n[1] + n[2], squared = squared_norm(n);
+      const Lane4 excess = (squared.sqrt() - par.stiffening_strain).max(0.0);
+      sum += b.volume *
+             (mu * squared + 0.5 * lambda * trace.square() + 0.5 * stiffening * excess.square());
+    }
+    return scale * ((sum[0] + sum[1]) + (sum[2] + sum[3]));
+  }
+
+  // Tets [begin, end): their rotations (polar decomposition of F, from the last), their
+  // energy, their forces added to `forces` (node DOFs), their Hessian terms.
   double flesh_range(HandSimState& s, std::size_t begin, std::size_t end, double* forces) {
     const SimParameters& par = model.parameters;
     const double mu = par.flesh.mu(), lambda = par.flesh.lambda();
     const double stiffening = par.stiffening_factor * par.flesh.youngs_modulus;
-    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-    double total = 0.0;
-    for (std::size_t e = begin; e < end; ++e) {
-      const TetElement& t = model.tets[e];
-      const Eigen::Vector3d& x0 = s.node_position[std::size_t(t.nodes[0])];
-      Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
-      for (int a = 1; a < 4; ++a)
-        f += (s.node_position[std::size_t(t.nodes[std::size_t(a)])] - x0) *
-             t.gradients.col(a).transpose();
-      if (with_hessian) extract_rotation(f, s.tet_rotation[e]);
-      const Eigen::Matrix3d r = s.tet_rotation[e].toRotationMatrix();
-      const Eigen::Matrix3d g = r.transpose() * f;
-      const Eigen::Matrix3d strain = 0.5 * (g + g.transpose()) - identity;
-      const double trace = strain.trace();
-      Eigen::Matrix3d stress = 2.0 * mu * strain + lambda * trace * identity;
-      double element_energy = t.volume * (mu * strain.squaredNorm() + 0.5 * lambda * trace * trace);
+    const double threshold = par.stiffening_strain;
+    Lane4 sum = Lane4::Zero();
+    TetBatch b;
+    for (std::size_t e = begin; e < end; e += kBatch) {
+      gather(s, e, end, b, true);
+      const int count = int(std::min<std::size_t>(kBatch, end - e));
+      Eigen::Quaterniond* const q[kBatch] = {
+          &s.tet_rotation[e], &s.tet_rotation[e + std::size_t(std::min(1, count - 1))],
+          &s.tet_rotation[e + std::size_t(std::min(2, count - 1))],
+          &s.tet_rotation[e + std::size_t(std::min(3, count - 1))]};
+      extract_rotations(b.f, q, count);
+      rotations(s, e, end, b);
+      Lane4 n[6];
+      strain(b, n);
+      const Lane4 trace = n[0] + n[1] + n[2], squared = squared_norm(n), norm = squared.sqrt();
       // Stiffening beyond a strain threshold: (k V / 2)(|e| - e0)^2, whose stress is
       // k (|e| - e0) e / |e|; its Hessian k V [(e0/|e|) q q' + (1 - e0/|e|) B'B] (q the
       // gradient direction, B the strain map) is positive semidefinite.
-      const double norm = strain.norm();
-      double extra_mu = 0.0, ratio = 0.0, k = 0.0;
-      if (norm > par.stiffening_strain) {
-        k = stiffening * t.volume;
-        const double excess = norm - par.stiffening_strain;
-        ratio = par.stiffening_strain / norm;
-        element_energy += 0.5 * k * excess * excess;
-        stress += (stiffening * excess / norm) * strain;
-        extra_mu = 0.5 * k * (1.0 - ratio);
-      }
-      total += scale * element_energy;
-      if (!with_hessian) continue;  // the line search needs the energy alone
-      const Eigen::Matrix<double, 3, 4> rotated = r * t.gradients;  // R grad N_a
-      const Eigen::Matrix<double, 3, 4> force = (scale * t.volume) * (r * stress * t.gradients);
+      const auto stiff = norm > threshold;
+      const Lane4 excess = stiff.select(norm - threshold, 0.0);
+      const Lane4 safe_norm = stiff.select(norm, 1.0);
+      const Lane4 ratio = stiff.select(threshold / safe_norm, 1.0);
+      const Lane4 k = stiff.select(stiffening * b.volume, 0.0);
+      sum += b.volume * (mu * squared + 0.5 * lambda * trace.square()) + 0.5 * k * excess.square();
+      // stress = 2 mu e + lambda tr(e) I + (stiffening excess / |e|) e, row-major.
+      const Lane4 shear = 2 * mu + stiffening * excess / safe_norm;
+      const Lane4 stress[9] = {
+          shear * n[0] + lambda * trace, shear * n[3], shear * n[4], shear * n[3],
+          shear * n[1] + lambda * trace, shear * n[5], shear * n[4], shear * n[5],
+          shear * n[2] + lambda * trace};
+      const Lane4 e9[9] = {n[0], n[3], n[4], n[3], n[1], n[5], n[4], n[5], n[2]};
+      // R stress and R e, row-major.
+      Lane4 rs[9], re[9];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          rs[3 * i + j] = b.r[3 * i] * stress[j] + b.r[3 * i + 1] * stress[3 + j] +
+                          b.r[3 * i + 2] * stress[6 + j];
+          re[3 * i + j] =
+              b.r[3 * i] * e9[j] + b.r[3 * i + 1] * e9[3 + j] + b.r[3 * i + 2] * e9[6 + j];
+        }
+      const Lane4 q_scale = stiff.select((scale * k * ratio).sqrt() / safe_norm, 0.0);
+      const Lane4 force_scale = scale * b.volume;
+      const Lane4 vmu = scale * (b.volume * mu + 0.5 * k * (1.0 - ratio));
+      const Lane4 vlambda = scale * b.volume * lambda;
+      // Times grad N_a: the forces, R grad N_a and the stiffening's rank-one part.
+      Lane4 force[12], rotated[12], rank_one[12];
       for (int a = 0; a < 4; ++a)
-        Eigen::Map<Eigen::Vector3d>(forces + 3 * t.nodes[std::size_t(a)]) += force.col(a);
-      TetTerm& term = tet_terms[e];
-      term.rotated = rotated;
-      term.vmu = scale * (t.volume * mu + extra_mu);
-      term.vlambda = scale * t.volume * lambda;
-      term.stiffened = k > 0;
-      if (term.stiffened)
-        term.q = (std::sqrt(scale * k * ratio) / norm) * (r * strain * t.gradients);
+        for (int i = 0; i < 3; ++i) {
+          const Lane4 &g0 = b.gradients[3 * a], &g1 = b.gradients[3 * a + 1],
+                      &g2 = b.gradients[3 * a + 2];
+          force[3 * a + i] =
+              force_scale * (rs[3 * i] * g0 + rs[3 * i + 1] * g1 + rs[3 * i + 2] * g2);
+          rotated[3 * a + i] = b.r[3 * i] * g0 + b.r[3 * i + 1] * g1 + b.r[3 * i + 2] * g2;
+          rank_one[3 * a + i] =
+              q_scale * (re[3 * i] * g0 + re[3 * i + 1] * g1 + re[3 * i + 2] * g2);
+        }
+      for (int l = 0; l < count; ++l) {
+        const FleshTet& t = flesh_tets[e + std::size_t(l)];
+        TetTerm& term = tet_terms[e + std::size_t(l)];
+        for (int a = 0; a < 4; ++a) {
+          double* out = forces + 3 * t.nodes[std::size_t(a)];
+          for (int i = 0; i < 3; ++i) {
+            out[i] += force[3 * a + i][l];
+            term.rotated(i, a) = rotated[3 * a + i][l];
+            term.q(i, a) = rank_one[3 * a + i][l];
+          }
+        }
+        term.vmu = vmu[l];
+        term.vlambda = vlambda[l];
+        term.stiffened = stiff[l];
+      }
     }
-    return total;
+    return scale * ((sum[0] + sum[1]) + (sum[2] + sum[3]));
   }
 
   void bodies(const HandSimState& s, const std::vector<RigidPose>& targets) {
@@ -1016,6 +1204,7 @@ struct HandSimulator::Impl {
       // The tets' rotations are found where Newton linearises and held through its line
       // search: there the flesh energy is the quadratic that the Hessian describes.
       flesh(s);
+      if (options.check_products && hessian) check_flesh_gradient(s);
       bodies(s, *frame.targets);
       kinetic_energies(s, turned, *frame.start);
       if (hessian) {
@@ -1099,7 +1288,12 @@ struct HandSimulator::Impl {
       ++report.factorizations;
     };
     const bool first = solves_this_step++ == 0;
-    if (!factorised || stale || (first && step_index < direct_until)) {
+    // A later pass (another contact state from the same start) whose pass before needed more
+    // than half of CG's iterations factorises at once: the passes after it then solve
+    // directly, where each would take as many iterations again.
+    const bool slow_pass = !first && 2 * last_iterations > options.max_linear_iterations;
+    last_iterations = 0;
+    if (!factorised || stale || slow_pass || (first && step_index < direct_until)) {
       // A direct solve, whose factorisation then preconditions the next steps.
       refactor();
       stale = false;
@@ -1110,7 +1304,18 @@ struct HandSimulator::Impl {
     // The cube's own terms (the floor's contacts with its corners come and go, stick and slide)
     // change the matrix on the cube's unknowns alone; ordered last, they are the factor's last
     // block, which takes the change exactly for the cost of a 6x6 factorisation.
-    bool exact = factorised_terms == terms_found && same_other_contacts(factorised_contacts);
+    // The stiff contact terms follow into the factor where the contacts came or went, and in a
+    // step's later passes after a factorisation (whose solves are then direct).
+    const bool this_step = factorised_terms == terms_found;
+    if (!same_other_contacts(factorised_contacts) &&
+        (this_step || !same_contact_blocks(factorised_contacts)) && !follow_contacts()) {
+      refactor();
+      stale = false;
+      ++report.linear_iterations;
+      ++report.direct_solves;
+      return preconditioner.solve(b, &lanes);
+    }
+    bool exact = this_step && same_other_contacts(factorised_contacts);
     if (cube_trailing) {
       const Matrix6d change = cube_matrix() - cube_factorised;
       if (change != cube_applied && preconditioner.modify_trailing(cube_dofs, change))
@@ -1136,8 +1341,10 @@ struct HandSimulator::Impl {
     auto converged = [&](const Eigen::VectorXd& residual) {
       return left(residual) <= options.linear_tolerance;
     };
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r, &lanes),
-                    p = z, ap;
+    Eigen::VectorXd x, r, ap;
+    x.setZero(dofs);
+    r = b;
+    Eigen::VectorXd z = preconditioner.solve(r, &lanes), p = z;
     double rz = r.dot(z);
     int it = 0;
     bool done = converged(r);
@@ -1165,6 +1372,7 @@ struct HandSimulator::Impl {
     }
     report.linear_iterations += it;
     stale = it > options.refactor_iterations;
+    last_iterations = it;
     if (first) {
       // A preconditioner that has drifted from the matrix, if not enough to fail CG: renewed
       // after refresh_steps steps in a row that needed two iterations or more.
@@ -1183,11 +1391,34 @@ struct HandSimulator::Impl {
         direct_until = step_index + 1 + options.direct_steps;
       refactor();
       stale = false;
+      last_iterations = 0;
       ++report.linear_iterations;
       ++report.direct_solves;
       return preconditioner.solve(b, &lanes);
     }
     return x;
+  }
+
+  // Tests: the flesh's gradient (what flesh() just wrote, the rotations held) against central
+  // differences of the line search's energy along a direction through every node.
+  void check_flesh_gradient(const HandSimState& s) {
+    const int count = int(flesh_tets.size());
+    HandSimState moved = s;
+    Eigen::VectorXd direction(3 * nodes);
+    for (int i = 0; i < 3 * nodes; ++i) direction[i] = std::sin(1.0 + 7.3 * i);
+    const double step = 1e-7;  // m: the energy's rounding against its curvature
+    auto energy_at = [&](double t) {
+      for (int n = 0; n < nodes; ++n)
+        moved.node_position[std::size_t(n)] =
+            s.node_position[std::size_t(n)] + t * direction.segment<3>(3 * n);
+      return flesh_energy(moved, 0, std::size_t(count));
+    };
+    const double slope = (energy_at(step) - energy_at(-step)) / (2 * step);
+    const double expected = gradient.head(3 * nodes).dot(direction);
+    const double size = gradient.head(3 * nodes).cwiseAbs().dot(direction.cwiseAbs());
+    if (!(std::abs(slope - expected) <= 1e-5 * size + 1e-12))
+      throw std::logic_error(
+          "HandSimulator: the flesh's forces differ from its energy's differences");
   }
 
   // Tests: a direct solve with a factor taken to be the matrix's leaves no more residual than

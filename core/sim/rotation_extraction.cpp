@@ -1,5 +1,6 @@
 #include "core/sim/rotation_extraction.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -45,6 +46,86 @@ bool newton_polar(const Eigen::Matrix3d& f, Eigen::Quaterniond& q) {
 }
 
 }  // namespace
+
+void rotation_matrices(const Eigen::Array4d& w, const Eigen::Array4d& x, const Eigen::Array4d& y,
+                       const Eigen::Array4d& z, Eigen::Array4d (&r)[9]) {
+  r[0] = 1 - 2 * (y.square() + z.square());
+  r[1] = 2 * (x * y - z * w);
+  r[2] = 2 * (x * z + y * w);
+  r[3] = 2 * (x * y + z * w);
+  r[4] = 1 - 2 * (x.square() + z.square());
+  r[5] = 2 * (y * z - x * w);
+  r[6] = 2 * (x * z - y * w);
+  r[7] = 2 * (y * z + x * w);
+  r[8] = 1 - 2 * (x.square() + y.square());
+}
+
+int extract_rotations(const Eigen::Array4d (&f)[9], Eigen::Quaterniond* const (&q)[4], int count) {
+  using Lane4 = Eigen::Array4d;
+  Lane4 w, x, y, z, scale = Lane4::Constant(1e-300);
+  for (int l = 0; l < 4; ++l) {
+    const Eigen::Quaterniond& start = *q[std::min(l, count - 1)];
+    w[l] = start.w();
+    x[l] = start.x();
+    y[l] = start.y();
+    z[l] = start.z();
+  }
+  for (const Lane4& v : f) scale = scale.max(v.abs());
+  // newton_polar's iteration in each lane (its series turn only: a larger turn unsettles).
+  Eigen::Array<bool, 4, 1> settled = Eigen::Array<bool, 4, 1>::Constant(true);
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    Lane4 r[9];
+    rotation_matrices(w, x, y, z, r);
+    auto g = [&](int i, int j) {  // (R'F)_ij
+      return Lane4(r[i] * f[j] + r[3 + i] * f[3 + j] + r[6 + i] * f[6 + j]);
+    };
+    const Lane4 g01 = g(0, 1), g10 = g(1, 0), g02 = g(0, 2), g20 = g(2, 0), g12 = g(1, 2),
+                g21 = g(2, 1), g00 = g(0, 0), g11 = g(1, 1), g22 = g(2, 2);
+    const Lane4 skew0 = g21 - g12, skew1 = g02 - g20, skew2 = g10 - g01;
+    // M = tr(S) I - S (S = sym(R'F)), symmetric: its adjugate and determinant.
+    const Lane4 m00 = g11 + g22, m11 = g00 + g22, m22 = g00 + g11;
+    const Lane4 m01 = -0.5 * (g01 + g10), m02 = -0.5 * (g02 + g20), m12 = -0.5 * (g12 + g21);
+    const Lane4 a00 = m11 * m22 - m12 * m12, a01 = m02 * m12 - m01 * m22,
+                a02 = m01 * m12 - m02 * m11, a11 = m00 * m22 - m02 * m02,
+                a12 = m01 * m02 - m00 * m12, a22 = m00 * m11 - m01 * m01;
+    const Lane4 det = m00 * a00 + m01 * a01 + m02 * a02;
+    const auto definite = (m00 > 1e-3 * scale) && (m00 * m11 - m01 * m01 > 1e-6 * scale.square()) &&
+                          (det > 1e-9 * scale.cube());
+    const Lane4 inverse = definite.select(1.0 / det, 0.0);
+    const Lane4 d0 = inverse * (a00 * skew0 + a01 * skew1 + a02 * skew2);
+    const Lane4 d1 = inverse * (a01 * skew0 + a11 * skew1 + a12 * skew2);
+    const Lane4 d2 = inverse * (a02 * skew0 + a12 * skew1 + a22 * skew2);
+    const Lane4 squared = d0.square() + d1.square() + d2.square(), h2 = 0.25 * squared;
+    const Lane4 tw = 1.0 - h2 / 2 + h2.square() / 24;
+    const Lane4 sine = 0.5 * (1.0 - h2 / 6 + h2.square() / 120);
+    const Lane4 tx = sine * d0, ty = sine * d1, tz = sine * d2;
+    // q times the turn, normalised.
+    const Lane4 nw = w * tw - x * tx - y * ty - z * tz;
+    const Lane4 nx = w * tx + x * tw + y * tz - z * ty;
+    const Lane4 ny = w * ty - x * tz + y * tw + z * tx;
+    const Lane4 nz = w * tz + x * ty - y * tx + z * tw;
+    const Lane4 norm = (nw.square() + nx.square() + ny.square() + nz.square()).rsqrt();
+    w = nw * norm;
+    x = nx * norm;
+    y = ny * norm;
+    z = nz * norm;
+    // The series holds below 0.05 rad; the second turn must show convergence (1e-5 rad).
+    const double limit = iteration == 0 ? 0.05 : 1e-5;
+    settled = settled && definite && (squared < limit * limit);
+  }
+  int settled_lanes = 0;
+  for (int l = 0; l < count; ++l) {
+    if (settled[l]) {
+      *q[l] = Eigen::Quaterniond(w[l], x[l], y[l], z[l]);
+      ++settled_lanes;
+      continue;
+    }
+    Eigen::Matrix3d m;
+    for (int i = 0; i < 9; ++i) m(i / 3, i % 3) = f[i][l];
+    extract_rotation(m, *q[l]);
+  }
+  return settled_lanes;
+}
 
 void extract_rotation(const Eigen::Matrix3d& f, Eigen::Quaterniond& q, int max_iterations) {
   if (newton_polar(f, q)) return;

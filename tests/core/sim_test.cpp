@@ -66,6 +66,54 @@ TEST(RotationExtraction, RecoversThePolarRotation) {
   }
 }
 
+// Four at once (the flesh's batches): warm-started near their rotations the lanes settle in
+// their two turns; a lane started far, or an F near inversion, goes to extract_rotation. Every
+// lane ends at the polar rotation, whatever the others do, and lanes past `count` are left.
+TEST(RotationExtraction, FourAtOnceAsOneByOne) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int trial = 0; trial < 40; ++trial) {
+    Eigen::Array4d f[9];
+    std::array<Eigen::Matrix3d, 4> r, a;
+    std::array<Eigen::Quaterniond, 4> q;
+    const int count = trial % 4 + 1;
+    int warm_lanes = 0;  // of the first `count`, started near and not flat
+    for (int l = 0; l < 4; ++l) {
+      r[std::size_t(l)] = random_rotation(rng, 3.0);
+      Eigen::Matrix3d s = Eigen::Matrix3d::Identity();
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j <= i; ++j) s(i, j) = s(j, i) = (i == j ? 1.0 : 0.0) + 0.2 * unit(rng);
+      const bool flat = trial % 5 == 4 && l == 2;
+      if (flat) s.col(0) *= 1e-4;
+      a[std::size_t(l)] = r[std::size_t(l)] * s;
+      for (int i = 0; i < 9; ++i) f[i][l] = a[std::size_t(l)](i / 3, i % 3);
+      // Warm: the rotation turned by up to 0.02 rad (as from one step to the next); or cold.
+      const bool warm = (trial + l) % 3 != 0;
+      warm_lanes += warm && !flat && l < count;
+      q[std::size_t(l)] = warm ? Eigen::Quaterniond(random_rotation(rng, 0.02) * r[std::size_t(l)])
+                               : Eigen::Quaterniond::Identity();
+    }
+    const std::array<Eigen::Quaterniond, 4> before = q;
+    Eigen::Quaterniond* const lanes[4] = {&q[0], &q[1], &q[2], &q[3]};
+    const int settled = extract_rotations(f, lanes, count);
+    EXPECT_GE(settled, warm_lanes) << trial << ": the warm lanes settle in their two turns";
+    EXPECT_LE(settled, count);
+    for (int l = 0; l < 4; ++l) {
+      if (l >= count) {
+        EXPECT_EQ(q[std::size_t(l)].coeffs(), before[std::size_t(l)].coeffs()) << "lane " << l;
+        continue;
+      }
+      Eigen::Quaterniond one = before[std::size_t(l)];
+      extract_rotation(a[std::size_t(l)], one);
+      EXPECT_LT((q[std::size_t(l)].toRotationMatrix() - one.toRotationMatrix()).norm(), 1e-9)
+          << trial << " lane " << l;
+      const Eigen::Matrix3d g =
+          q[std::size_t(l)].toRotationMatrix().transpose() * a[std::size_t(l)];
+      EXPECT_LT((g - g.transpose()).norm(), 1e-9 * g.norm()) << "R'F symmetric: " << trial;
+    }
+  }
+}
+
 // A linear displacement field gives every tet the same strain and no interior node a force.
 TEST(CorotatedFem, PatchTest) {
   const mesh::TetMesh mesh = box_mesh();

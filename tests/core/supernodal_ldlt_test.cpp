@@ -275,5 +275,75 @@ TEST(SupernodalLdlt, ChangesItsTrailingBlockAlone) {
                std::invalid_argument);
 }
 
+// Rank-one updates and downdates (a contact's spring coming and going between a node and the
+// body, a coupling's between a tet and its bone) give the factor of the matrix so changed;
+// the trailing block's next change starts from it; a downdate that would leave the matrix
+// indefinite is refused.
+TEST(SupernodalLdlt, UpdatesAndDowndatesByRankOne) {
+  const Sparse a = with_body(hand_like_matrix(study_flesh(), 16, 13));
+  const int n = int(a.cols()), nodes = int(study_flesh().tets.nodes.size());
+  SupernodalLdlt panels = analysed(a);
+  ASSERT_TRUE(panels.factorize(a));
+  std::mt19937 rng(8);
+  std::normal_distribution<double> normal;
+  // w on a node's unknowns and the body's (the pattern holds their pairs), or on a coupling
+  // point's tet and bone.
+  auto contact = [&](int node) {
+    std::vector<int> dofs = {3 * node, 3 * node + 1, 3 * node + 2};
+    for (int k = 0; k < 6; ++k) dofs.push_back(n - 6 + k);
+    return dofs;
+  };
+  const hand::CouplingPoint& point = study_flesh().coupling[40];
+  std::vector<int> coupling;
+  for (int node : study_flesh().tets.tets[std::size_t(point.tet)])
+    for (int k = 0; k < 3; ++k) coupling.push_back(3 * node + k);
+  for (int k = 0; k < 6; ++k) coupling.push_back(3 * nodes + 6 * (point.bone % 16) + k);
+  auto random_values = [&](std::size_t count, double scale) {
+    std::vector<double> v(count);
+    for (double& x : v) x = scale * normal(rng);
+    return v;
+  };
+  auto dense = [&](const std::vector<int>& dofs, const std::vector<double>& values) {
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+    for (std::size_t k = 0; k < dofs.size(); ++k) w[dofs[k]] = values[k];
+    return w;
+  };
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  const Eigen::VectorXd original = panels.solve(b);
+  Eigen::MatrixXd expected = Eigen::MatrixXd(a);
+  const std::vector<int> first = contact(0), second = contact(300);
+  const std::vector<double> v1 = random_values(first.size(), 30.0),
+                            v2 = random_values(second.size(), 30.0),
+                            v3 = random_values(coupling.size(), 10.0);
+  ASSERT_TRUE(panels.update(first, v1, 1.0));
+  ASSERT_TRUE(panels.update(second, v2, 2.0));
+  ASSERT_TRUE(panels.update(coupling, v3, 1.0));
+  const Eigen::VectorXd w1 = dense(first, v1), w2 = dense(second, v2), w3 = dense(coupling, v3);
+  expected += w1 * w1.transpose() + 2.0 * w2 * w2.transpose() + w3 * w3.transpose();
+  const Eigen::LDLT<Eigen::MatrixXd> reference(expected);
+  Eigen::VectorXd x = panels.solve(b);
+  EXPECT_LT((expected * x - b).norm(), 1e-9 * b.norm());
+  EXPECT_LT((x - reference.solve(b)).norm(), 1e-9 * x.norm());
+  // The trailing block's change is now relative to the updated matrix.
+  std::vector<int> body;
+  for (int k = 0; k < 6; ++k) body.push_back(n - 6 + k);
+  ASSERT_TRUE(panels.trailing(body));
+  const Eigen::MatrixXd delta = 5.0 * Eigen::MatrixXd::Identity(6, 6);
+  ASSERT_TRUE(panels.modify_trailing(body, delta));
+  Eigen::MatrixXd with_delta = expected;
+  with_delta.bottomRightCorner(6, 6) += delta;
+  x = panels.solve(b);
+  EXPECT_LT((with_delta * x - b).norm(), 1e-9 * b.norm());
+  ASSERT_TRUE(panels.modify_trailing(body, Eigen::MatrixXd::Zero(6, 6)));
+  // Downdated again, the factor solves the original matrix.
+  ASSERT_TRUE(panels.update(coupling, v3, -1.0));
+  ASSERT_TRUE(panels.update(second, v2, -2.0));
+  ASSERT_TRUE(panels.update(first, v1, -1.0));
+  EXPECT_LT((panels.solve(b) - original).norm(), 1e-8 * original.norm());
+  // Taking out more than the matrix holds.
+  EXPECT_FALSE(panels.update(first, random_values(first.size(), 1e4), -1.0));
+  EXPECT_THROW(panels.update({n}, {1.0}, 1.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace handlab::sim
