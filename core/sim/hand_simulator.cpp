@@ -98,12 +98,18 @@ struct StepFrame {
 // The Newton matrix as the sum of the terms an evaluation found, kept instead of assembled:
 // conjugate gradients multiply by it term by term (cheaper than assembling it for the few
 // iterations a step takes), and it is assembled only when it is to be factorised.
-struct TetTerm {  // V [mu (g_a . g_b) I + mu g_b g_a' + lambda g_a g_b'] + q_a q_b', per node pair
-  Eigen::Matrix<double, 3, 4> rotated;  // R grad N_a
-  Eigen::Matrix<double, 3, 4> q;        // the stiffening's rank-one part (zero below threshold)
-  double vmu = 0.0, vlambda = 0.0;
-  bool stiffened = false;
+// The tets' terms, per node pair vmu [(r_a . r_b) I + r_b r_a'] + vlambda r_a r_b' + q_a q_b'
+// (r_a = R grad N_a, vmu = V mu, vlambda = V lambda, q the stiffening's rank-one part, zero
+// below its threshold), four tets a batch: tet 4k + l in lane l of batch k, so that the
+// evaluation, the products and the assembly work in the vector unit's lanes. A batch past the
+// last tet repeats it with no terms.
+using Lane4 = Eigen::Array4d;
+struct TetTerms4 {
+  Lane4 rotated[12];  // r_a's entry i at 3a + i
+  Lane4 q[12];
+  Lane4 vmu, vlambda;
 };
+constexpr int kBatch = 4;
 // Where a 3x3 block of the matrix lies among the factorisation's panels (the ordering keeps a
 // block's unknowns together): entry (r, c) of the block at at + r + stride c, or of its
 // transpose when the ordering stores the block as its mirror. at = -1: a block whose mirror
@@ -127,7 +133,7 @@ struct HandSimulator::Impl {
   const HandSimModel& model;
   SimOptions options;
   int nodes = 0, bones = 0, blocks = 0, dofs = 0;
-  std::vector<TetTerm> tet_terms;
+  std::vector<TetTerms4> tet_terms;  // batches of four tets
   // The tets as the per-tet loops read them. A TetElement carries its 12x12 stiffness (1.2 kB)
   // that these loops never use: read through it, the mesh's tets span 3.5 MB; these 128 bytes
   // a tet keep them within the L2 cache.
@@ -331,18 +337,41 @@ struct HandSimulator::Impl {
 
   // y += (the tets' part of A) x.
   void tet_products(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
-      const TetTerm& t = tet_terms[e];
-      const auto& ids = flesh_tets[e].nodes;
-      Eigen::Matrix<double, 3, 4> p;
-      for (int a = 0; a < 4; ++a) p.col(a) = x.segment<3>(3 * ids[std::size_t(a)]);
-      // With D = sum_b p_b r_b', the blocks' sum is vmu (D + D') r_a + vlambda tr(D) r_a.
-      const Eigen::Matrix3d d = p * t.rotated.transpose();
-      Eigen::Matrix3d stress = t.vmu * (d + d.transpose());
-      stress.diagonal().array() += t.vlambda * d.trace();
-      Eigen::Matrix<double, 3, 4> product = stress * t.rotated;
-      if (t.stiffened) product += t.q * (t.q.cwiseProduct(p)).sum();
-      for (int a = 0; a < 4; ++a) y.segment<3>(3 * ids[std::size_t(a)]) += product.col(a);
+    const std::size_t count = flesh_tets.size();
+    for (std::size_t k = 0; k < tet_terms.size(); ++k) {
+      const TetTerms4& t = tet_terms[k];
+      const std::size_t e = kBatch * k;
+      Lane4 p[12];  // x at the tets' nodes
+      for (int l = 0; l < kBatch; ++l) {
+        const auto& ids = flesh_tets[std::min(e + std::size_t(l), count - 1)].nodes;
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) p[3 * a + i][l] = x[3 * ids[std::size_t(a)] + i];
+      }
+      // With D = sum_b p_b r_b', the blocks' sum is vmu (D + D') r_a + vlambda tr(D) r_a,
+      // and the stiffening's q_a (q . p).
+      Lane4 d[9];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          d[3 * i + j] = p[i] * t.rotated[j] + p[3 + i] * t.rotated[3 + j] +
+                         p[6 + i] * t.rotated[6 + j] + p[9 + i] * t.rotated[9 + j];
+      const Lane4 lambda_trace = t.vlambda * (d[0] + d[4] + d[8]);
+      Lane4 stress[9];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) stress[3 * i + j] = t.vmu * (d[3 * i + j] + d[3 * j + i]);
+      for (int i = 0; i < 3; ++i) stress[4 * i] += lambda_trace;
+      Lane4 qp = Lane4::Zero();
+      for (int i = 0; i < 12; ++i) qp += t.q[i] * p[i];
+      Lane4 product[12];
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i)
+          product[3 * a + i] = stress[3 * i] * t.rotated[3 * a] +
+                               stress[3 * i + 1] * t.rotated[3 * a + 1] +
+                               stress[3 * i + 2] * t.rotated[3 * a + 2] + t.q[3 * a + i] * qp;
+      for (int l = 0; l < kBatch && e + std::size_t(l) < count; ++l) {
+        const auto& ids = flesh_tets[e + std::size_t(l)].nodes;
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) y[3 * ids[std::size_t(a)] + i] += product[3 * a + i][l];
+      }
     }
   }
 
@@ -386,16 +415,9 @@ struct HandSimulator::Impl {
       diag.setZero(dofs);
       for (int n = 0; n < nodes; ++n)
         diag.segment<3>(3 * n).setConstant(model.node_mass[std::size_t(n)]);
-      for (std::size_t e = 0; e < tet_terms.size(); ++e) {
-        const TetTerm& t = tet_terms[e];
-        for (int a = 0; a < 4; ++a) {
-          const Eigen::Vector3d r = t.rotated.col(a);
-          Eigen::Vector3d d = (t.vmu + t.vlambda) * r.cwiseAbs2();
-          d.array() += t.vmu * r.squaredNorm();
-          if (t.stiffened) d += t.q.col(a).cwiseAbs2();
-          diag.segment<3>(3 * flesh_tets[e].nodes[std::size_t(a)]) += d;
-        }
-      }
+      for (std::size_t e = 0; e < flesh_tets.size(); ++e)
+        for (int a = 0; a < 4; ++a)
+          diag.segment<3>(3 * flesh_tets[e].nodes[std::size_t(a)]) += tet_block(e, a, a).diagonal();
       add_springs(diag, 0, kept_springs);
       add_blocks(diag, 0, kept_blocks);
       base_diagonal_known = true;
@@ -520,12 +542,19 @@ struct HandSimulator::Impl {
   }
 
   // A tet's block (a, b) of the matrix; block (b, a) is its transpose.
-  static Eigen::Matrix3d tet_block(const TetTerm& t, int a, int b) {
-    Eigen::Matrix3d block = t.vmu * t.rotated.col(b) * t.rotated.col(a).transpose() +
-                            t.vlambda * t.rotated.col(a) * t.rotated.col(b).transpose();
-    block.diagonal().array() += t.vmu * t.rotated.col(a).dot(t.rotated.col(b));
-    if (t.stiffened) block += t.q.col(a) * t.q.col(b).transpose();
-    return block;
+  Eigen::Matrix3d tet_block(std::size_t e, int a, int b) const {
+    const TetTerms4& t = tet_terms[e / kBatch];
+    const int l = int(e % kBatch);
+    Eigen::Vector3d ra, rb, qa, qb;
+    for (int i = 0; i < 3; ++i) {
+      ra[i] = t.rotated[3 * a + i][l];
+      rb[i] = t.rotated[3 * b + i][l];
+      qa[i] = t.q[3 * a + i][l];
+      qb[i] = t.q[3 * b + i][l];
+    }
+    Eigen::Matrix3d block = t.vmu[l] * rb * ra.transpose() + t.vlambda[l] * ra * rb.transpose();
+    block.diagonal().array() += t.vmu[l] * ra.dot(rb);
+    return block + qa * qb.transpose();
   }
 
   // The matrix as a sparse matrix (the first factorisation's, which finds the structure, and
@@ -541,11 +570,11 @@ struct HandSimulator::Impl {
     };
     for (int n = 0; n < nodes; ++n)
       add(n, n, model.node_mass[std::size_t(n)] * Eigen::Matrix3d::Identity());
-    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
+    for (std::size_t e = 0; e < flesh_tets.size(); ++e) {
       const auto& ids = flesh_tets[e].nodes;
       for (int a = 0; a < 4; ++a)
         for (int b = a; b < 4; ++b) {
-          const Eigen::Matrix3d block = tet_block(tet_terms[e], a, b);
+          const Eigen::Matrix3d block = tet_block(e, a, b);
           add(ids[std::size_t(a)], ids[std::size_t(b)], block);
           if (a != b) add(ids[std::size_t(b)], ids[std::size_t(a)], block.transpose());
         }
@@ -583,31 +612,50 @@ struct HandSimulator::Impl {
       for (int c = 0; c < 3; ++c)
         values[p.at + (p.stride + 1) * c] += model.node_mass[std::size_t(n)];
     }
-    for (std::size_t e = 0; e < tet_terms.size(); ++e) {
-      const TetTerm& t = tet_terms[e];
-      const auto& places = tet_blocks[e];
-      std::size_t k = 0;
+    const std::size_t count = flesh_tets.size();
+    for (std::size_t k = 0; k < tet_terms.size(); ++k) {
+      const TetTerms4& t = tet_terms[k];
+      // Block (a, b) of the four tets, entry (r, c) at 9 n + r + 3 c for the n-th pair a <= b
+      // (as tet_block): vmu r_b[r] r_a[c] + vlambda r_a[r] r_b[c] + q_a[r] q_b[c], and
+      // vmu r_a . r_b on its diagonal.
+      Lane4 block[90];
+      int n = 0;
       for (int a = 0; a < 4; ++a)
-        for (int b = a; b < 4; ++b, ++k) {
-          // tet_block(t, i, j) column by column (a panel's column of the block is contiguous),
-          // (i, j) = (a, b) or, where the panels hold the mirror, (b, a).
-          const PanelBlock& place = places[k];
-          if (!owns(place.at)) continue;
-          const int i = place.transposed ? b : a, j = place.transposed ? a : b;
-          const Eigen::Vector3d ri = t.rotated.col(i), rj = t.rotated.col(j);
-          const double diagonal = t.vmu * ri.dot(rj);
-          double* v = values + place.at;
+        for (int b = a; b < 4; ++b, ++n) {
+          const Lane4* ra = t.rotated + 3 * a;
+          const Lane4* rb = t.rotated + 3 * b;
+          const Lane4 diagonal = t.vmu * (ra[0] * rb[0] + ra[1] * rb[1] + ra[2] * rb[2]);
           for (int c = 0; c < 3; ++c) {
-            Eigen::Vector3d column = (t.vmu * ri[c]) * rj + (t.vlambda * rj[c]) * ri;
-            if (t.stiffened) column += t.q(c, j) * t.q.col(i);
-            column[c] += diagonal;
-            if (a != b) {
-              Eigen::Map<Eigen::Vector3d>(v + place.stride * c) += column;
-            } else {
-              for (int r = c; r < 3; ++r) v[place.stride * c + r] += column[r];
-            }
+            const Lane4 mu_c = t.vmu * ra[c], lambda_c = t.vlambda * rb[c];
+            for (int r = 0; r < 3; ++r)
+              block[9 * n + r + 3 * c] = mu_c * rb[r] + lambda_c * ra[r] +
+                                         t.q[3 * a + r] * t.q[3 * b + c] +
+                                         (r == c ? diagonal : Lane4::Zero());
           }
         }
+      // Into each tet's places, as the block or, where the panels hold the mirror, its
+      // transpose (a diagonal block's lower triangle only).
+      for (int l = 0; l < kBatch && kBatch * k + std::size_t(l) < count; ++l) {
+        const auto& places = tet_blocks[kBatch * k + std::size_t(l)];
+        n = 0;
+        for (int a = 0; a < 4; ++a)
+          for (int b = a; b < 4; ++b, ++n) {
+            const PanelBlock& place = places[std::size_t(n)];
+            if (!owns(place.at)) continue;
+            double* v = values + place.at;
+            const Lane4* m = block + 9 * n;
+            if (a == b) {
+              for (int c = 0; c < 3; ++c)
+                for (int r = c; r < 3; ++r) v[place.stride * c + r] += m[r + 3 * c][l];
+            } else if (place.transposed) {
+              for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) v[place.stride * c + r] += m[c + 3 * r][l];
+            } else {
+              for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) v[place.stride * c + r] += m[r + 3 * c][l];
+            }
+          }
+      }
     }
     for (const SpringTerm& t : spring_terms) {
       const PointJacobian& p = t.p;
@@ -655,9 +703,12 @@ struct HandSimulator::Impl {
   // The tets split over the lanes, each lane's forces into its own buffer (lane 0's into the
   // gradient), added in lane order. Without the Hessian (the line search), the energy alone.
   void flesh(HandSimState& s) {
-    if (with_hessian) tet_terms.resize(model.tets.size());
+    const int count = int(flesh_tets.size()), batches = (count + kBatch - 1) / kBatch;
+    if (with_hessian) tet_terms.resize(std::size_t(batches));
     lanes.run([&](int lane) {
-      const auto [begin, end] = lanes.range(lane, int(model.tets.size()));
+      // Whole batches to each lane.
+      const auto [first, last] = lanes.range(lane, batches);
+      const int begin = std::min(kBatch * first, count), end = std::min(kBatch * last, count);
       double* forces = gradient.data();
       if (lane > 0 && with_hessian) {
         lane_forces[std::size_t(lane)].setZero(3 * nodes);
@@ -676,8 +727,6 @@ struct HandSimulator::Impl {
   // The flesh four tets at a time, one in each lane of Eigen's 4-wide arrays (the vector
   // unit's), the lanes' energies summed at the end. A batch past the range's end repeats its
   // last tet with no volume.
-  using Lane4 = Eigen::Array4d;
-  static constexpr int kBatch = 4;
   struct TetBatch {
     Lane4 f[9];           // F, row-major
     Lane4 r[9];           // R, row-major
@@ -804,34 +853,26 @@ struct HandSimulator::Impl {
         }
       const Lane4 q_scale = stiff.select((scale * k * ratio).sqrt() / safe_norm, 0.0);
       const Lane4 force_scale = scale * b.volume;
-      const Lane4 vmu = scale * (b.volume * mu + 0.5 * k * (1.0 - ratio));
-      const Lane4 vlambda = scale * b.volume * lambda;
+      // The terms (a batch past the last tet has no volume: no terms).
+      TetTerms4& term = tet_terms[e / kBatch];
+      term.vmu = scale * (b.volume * mu + 0.5 * k * (1.0 - ratio));
+      term.vlambda = scale * b.volume * lambda;
       // Times grad N_a: the forces, R grad N_a and the stiffening's rank-one part.
-      Lane4 force[12], rotated[12], rank_one[12];
+      Lane4 force[12];
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < 3; ++i) {
           const Lane4 &g0 = b.gradients[3 * a], &g1 = b.gradients[3 * a + 1],
                       &g2 = b.gradients[3 * a + 2];
           force[3 * a + i] =
               force_scale * (rs[3 * i] * g0 + rs[3 * i + 1] * g1 + rs[3 * i + 2] * g2);
-          rotated[3 * a + i] = b.r[3 * i] * g0 + b.r[3 * i + 1] * g1 + b.r[3 * i + 2] * g2;
-          rank_one[3 * a + i] =
-              q_scale * (re[3 * i] * g0 + re[3 * i + 1] * g1 + re[3 * i + 2] * g2);
+          term.rotated[3 * a + i] = b.r[3 * i] * g0 + b.r[3 * i + 1] * g1 + b.r[3 * i + 2] * g2;
+          term.q[3 * a + i] = q_scale * (re[3 * i] * g0 + re[3 * i + 1] * g1 + re[3 * i + 2] * g2);
         }
       for (int l = 0; l < count; ++l) {
         const FleshTet& t = flesh_tets[e + std::size_t(l)];
-        TetTerm& term = tet_terms[e + std::size_t(l)];
-        for (int a = 0; a < 4; ++a) {
-          double* out = forces + 3 * t.nodes[std::size_t(a)];
-          for (int i = 0; i < 3; ++i) {
-            out[i] += force[3 * a + i][l];
-            term.rotated(i, a) = rotated[3 * a + i][l];
-            term.q(i, a) = rank_one[3 * a + i][l];
-          }
-        }
-        term.vmu = vmu[l];
-        term.vlambda = vlambda[l];
-        term.stiffened = stiff[l];
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i)
+            forces[3 * t.nodes[std::size_t(a)] + i] += force[3 * a + i][l];
       }
     }
     return scale * ((sum[0] + sum[1]) + (sum[2] + sum[3]));
