@@ -22,7 +22,7 @@ struct SimOptions {
   // refactor_iterations the next solve factorises first.
   double linear_tolerance = 1e-8;
   int max_linear_iterations = 6;
-  int refactor_iterations = 6;
+  int refactor_iterations = 4;
   // After a step's first solve failed in CG with the previous step's factorisation as its
   // preconditioner (the matrix changes faster than CG follows: tets crossing the stiffening
   // threshold, contacts coming and going), this many steps factorise at their first solve

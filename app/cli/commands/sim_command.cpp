@@ -162,7 +162,7 @@ int sim_bench(const std::vector<std::string>& argv) {
       {"duration", "SECONDS", "how much of the script to run (default: to 0.5 s after the lift)"},
       {"newton-iterations", "N", "Newton iterations a step", "1"},
       {"refactor-iterations", "N",
-       "factorise the matrix anew after a solve that needed more CG iterations than this", "6"},
+       "factorise the matrix anew after a solve that needed more CG iterations than this", "4"},
       {"linear-tolerance", "METRES",
        "CG stops when the residual left would move no unknown by more than this", "1e-8"},
       {"max-linear-iterations", "N",
