@@ -415,9 +415,24 @@ struct HandSimulator::Impl {
       diag.setZero(dofs);
       for (int n = 0; n < nodes; ++n)
         diag.segment<3>(3 * n).setConstant(model.node_mass[std::size_t(n)]);
-      for (std::size_t e = 0; e < flesh_tets.size(); ++e)
-        for (int a = 0; a < 4; ++a)
-          diag.segment<3>(3 * flesh_tets[e].nodes[std::size_t(a)]) += tet_block(e, a, a).diagonal();
+      // A tet's diagonal block (a, a) has vmu (|r_a|^2 + r_a[i]^2) + vlambda r_a[i]^2 + q_a[i]^2
+      // on its diagonal (tet_block).
+      const std::size_t count = flesh_tets.size();
+      for (std::size_t k = 0; k < tet_terms.size(); ++k) {
+        const TetTerms4& t = tet_terms[k];
+        Lane4 d[12];
+        for (int a = 0; a < 4; ++a) {
+          const Lane4* r = t.rotated + 3 * a;
+          const Lane4 length = t.vmu * (r[0].square() + r[1].square() + r[2].square());
+          for (int i = 0; i < 3; ++i)
+            d[3 * a + i] = length + (t.vmu + t.vlambda) * r[i].square() + t.q[3 * a + i].square();
+        }
+        for (int l = 0; l < kBatch && kBatch * k + std::size_t(l) < count; ++l) {
+          const auto& ids = flesh_tets[kBatch * k + std::size_t(l)].nodes;
+          for (int a = 0; a < 4; ++a)
+            for (int i = 0; i < 3; ++i) diag[3 * ids[std::size_t(a)] + i] += d[3 * a + i][l];
+        }
+      }
       add_springs(diag, 0, kept_springs);
       add_blocks(diag, 0, kept_blocks);
       base_diagonal_known = true;
