@@ -1,6 +1,7 @@
 #include "core/sim/supernodal_ldlt.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 
@@ -430,13 +431,22 @@ bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, dou
   const Supernode& node = nodes_[s];
   const int height = node.width + node.below;
   Eigen::Map<Eigen::MatrixXd> panel(values_.data() + node.value_begin, height, node.width);
-  auto block = panel.topRows(node.width);
-  // The diagonal block's Cholesky factor L_d, then the rows below: L_b = A_b L_d^-T.
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);
-  if (llt.info() != Eigen::Success) return false;
+  // The diagonal block's Cholesky factor L_d and the rows below, L_b = A_b L_d^-T, column by
+  // column over the whole panel (left-looking: a column takes the earlier columns' part as
+  // one matrix-vector product, then its pivot's root): for panels a few dozen columns wide
+  // this beats a blocked Cholesky and a triangular solve, which pack their operands.
+  for (int c = 0; c < node.width; ++c) {
+    auto column = panel.col(c).tail(height - c);
+    if (c > 0)
+      column.noalias() -= panel.bottomLeftCorner(height - c, c) * panel.row(c).head(c).transpose();
+    const double pivot = column[0];
+    if (!(pivot > 0.0)) return false;
+    const double root = std::sqrt(pivot);
+    column[0] = root;
+    column.tail(height - c - 1) *= 1.0 / root;
+  }
   if (node.below > 0) {
     auto below = panel.bottomRows(node.below);
-    block.triangularView<Eigen::Lower>().solveInPlace(below.transpose());
     // Its rank update L_b L_b' (lower half) to the later supernodes that own its rows.
     auto update = scratch.topLeftCorner(node.below, node.below);
     update.triangularView<Eigen::Lower>().setZero();
