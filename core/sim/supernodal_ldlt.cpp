@@ -23,6 +23,9 @@ long trapezoid(long width, long below) {
 // explicit zeros is worth its denser kernels: CHOLMOD's relaxed amalgamation rule and
 // defaults (any merge up to 4 columns, up to 80% zeros up to 16 columns, 10% up to 48, 5%
 // beyond).
+// The widest panel factorised column by column (factorize_node).
+constexpr int kColumnByColumn = 48;
+
 bool worth_merging(long width, long zeros, long entries) {
   const double z = double(zeros) / double(entries);
   if (width <= 4) return true;
@@ -431,11 +434,19 @@ bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, dou
   const Supernode& node = nodes_[s];
   const int height = node.width + node.below;
   Eigen::Map<Eigen::MatrixXd> panel(values_.data() + node.value_begin, height, node.width);
-  // The diagonal block's Cholesky factor L_d and the rows below, L_b = A_b L_d^-T, column by
-  // column over the whole panel (left-looking: a column takes the earlier columns' part as
-  // one matrix-vector product, then its pivot's root): for panels a few dozen columns wide
-  // this beats a blocked Cholesky and a triangular solve, which pack their operands.
-  for (int c = 0; c < node.width; ++c) {
+  // The diagonal block's Cholesky factor L_d and the rows below, L_b = A_b L_d^-T. A panel a
+  // few dozen columns wide goes column by column (left-looking: a column takes the earlier
+  // columns' part as one matrix-vector product, then its pivot's root), which beats a blocked
+  // Cholesky and a triangular solve that pack their operands; a wider one, whose columns'
+  // products would stream it from memory again and again, takes those.
+  if (node.width > kColumnByColumn) {
+    auto block = panel.topRows(node.width);
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);
+    if (llt.info() != Eigen::Success) return false;
+    if (node.below > 0)
+      block.triangularView<Eigen::Lower>().solveInPlace(panel.bottomRows(node.below).transpose());
+  }
+  for (int c = 0; c < node.width && node.width <= kColumnByColumn; ++c) {
     auto column = panel.col(c).tail(height - c);
     if (c > 0)
       column.noalias() -= panel.bottomLeftCorner(height - c, c) * panel.row(c).head(c).transpose();
