@@ -5,7 +5,6 @@
 #include <set>
 #include <stdexcept>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -472,74 +471,14 @@ struct HandSimulator::Impl {
     return m;
   }
 
-  // The contact terms that reach other unknowns than the cube's (into `out`), or whether they
-  // equal `known` (bit for bit: the same contacts evaluated at the same state).
+  // The contact terms that reach other unknowns than the cube's (into `out`).
   void other_contacts(std::vector<SpringTerm>& out) const {
     out.clear();
     for (std::size_t i = kept_springs; i < spring_terms.size(); ++i)
       if (!cube_alone(spring_terms[i])) out.push_back(spring_terms[i]);
   }
-  // Whether the contact terms on other unknowns than the cube's alone touch the same blocks as
-  // `known` (their values may differ).
-  bool same_contact_blocks(const std::vector<SpringTerm>& known) const {
-    std::size_t k = 0;
-    for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
-      const SpringTerm& t = spring_terms[i];
-      if (cube_alone(t)) continue;
-      if (k == known.size() || t.p.count != known[k].p.count || t.p.block != known[k++].p.block)
-        return false;
-    }
-    return k == known.size();
-  }
-
-  // Adds sigma J'KJ of a spring term to the factor: K's eigenvectors e with eigenvalue l
-  // make the rank-one changes sigma w w', w = sqrt(l) J'e (on the term's blocks' unknowns).
-  bool factor_spring(const SpringTerm& t, double sigma) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(t.k);
-    const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
-    std::vector<int> dofs;
-    std::vector<double> values;
-    for (int e = 0; e < 3; ++e) {
-      const double l = eigen.eigenvalues()[e];
-      if (!(l > 1e-12 * largest)) continue;
-      const Eigen::Vector3d v = std::sqrt(l) * eigen.eigenvectors().col(e);
-      dofs.clear();
-      values.clear();
-      for (int a = 0; a < t.p.count; ++a) {
-        const Eigen::Vector3d w = t.p.j[std::size_t(a)].transpose() * v;
-        for (int r = 0; r < 3; ++r) {
-          const int dof = 3 * t.p.block[std::size_t(a)] + r;
-          const auto at = std::find(dofs.begin(), dofs.end(), dof);
-          if (at == dofs.end()) {
-            dofs.push_back(dof);
-            values.push_back(w[r]);
-          } else {
-            values[std::size_t(at - dofs.begin())] += w[r];
-          }
-        }
-      }
-      if (!preconditioner.update(dofs, values, sigma)) return false;
-    }
-    return true;
-  }
-
-  // The factor made to hold the current contact terms (on other unknowns than the cube's
-  // alone) instead of those it holds: the new ones added, then the old taken out. False if
-  // that broke it (a downdate that cancelled a pivot).
-  bool follow_contacts() {
-    std::vector<SpringTerm> now;
-    other_contacts(now);
-    for (const SpringTerm& t : now)
-      if (!factor_spring(t, 1.0)) return false;
-    for (const SpringTerm& t : factorised_contacts)
-      if (!factor_spring(t, -1.0)) return false;
-    factorised_contacts = std::move(now);
-    // The trailing block's changes now start from the factor as it is.
-    cube_factorised += cube_applied;
-    cube_applied.setZero();
-    return true;
-  }
-
+  // Whether those terms equal `known`, bit for bit (the same contacts evaluated at the same
+  // state).
   bool same_other_contacts(const std::vector<SpringTerm>& known) const {
     std::size_t k = 0;
     for (std::size_t i = kept_springs; i < spring_terms.size(); ++i) {
@@ -547,11 +486,9 @@ struct HandSimulator::Impl {
       if (cube_alone(t)) continue;
       if (k == known.size()) return false;
       const SpringTerm& u = known[k++];
-      if (t.p.count != u.p.count || t.k != u.k) return false;
+      if (t.p.count != u.p.count || t.p.block != u.p.block || t.k != u.k) return false;
       for (int a = 0; a < t.p.count; ++a)
-        if (t.p.block[std::size_t(a)] != u.p.block[std::size_t(a)] ||
-            t.p.j[std::size_t(a)] != u.p.j[std::size_t(a)])
-          return false;
+        if (t.p.j[std::size_t(a)] != u.p.j[std::size_t(a)]) return false;
     }
     return k == known.size();
   }
@@ -1343,35 +1280,27 @@ struct HandSimulator::Impl {
       slow_steps = 0;
       ++report.factorizations;
     };
+    // A direct solve with the matrix factorised anew, whose factorisation then preconditions
+    // the next solves.
+    auto direct = [&] {
+      refactor();
+      stale = false;
+      last_iterations = 0;
+      ++report.linear_iterations;
+      ++report.direct_solves;
+      return preconditioner.solve(b, &lanes);
+    };
     const bool first = solves_this_step++ == 0;
     // A later pass (another contact state from the same start) whose pass before needed more
     // than half of CG's iterations factorises at once: the passes after it then solve
     // directly, where each would take as many iterations again.
     const bool slow_pass = !first && 2 * last_iterations > options.max_linear_iterations;
     last_iterations = 0;
-    if (!factorised || stale || slow_pass || (first && step_index < direct_until)) {
-      // A direct solve, whose factorisation then preconditions the next steps.
-      refactor();
-      stale = false;
-      ++report.linear_iterations;
-      ++report.direct_solves;
-      return preconditioner.solve(b, &lanes);
-    }
+    if (!factorised || stale || slow_pass || (first && step_index < direct_until)) return direct();
+    bool exact = factorised_terms == terms_found && same_other_contacts(factorised_contacts);
     // The cube's own terms (the floor's contacts with its corners come and go, stick and slide)
     // change the matrix on the cube's unknowns alone; ordered last, they are the factor's last
     // block, which takes the change exactly for the cost of a 6x6 factorisation.
-    // The stiff contact terms follow into the factor where the contacts came or went, and in a
-    // step's later passes after a factorisation (whose solves are then direct).
-    const bool this_step = factorised_terms == terms_found;
-    if (!same_other_contacts(factorised_contacts) &&
-        (this_step || !same_contact_blocks(factorised_contacts)) && !follow_contacts()) {
-      refactor();
-      stale = false;
-      ++report.linear_iterations;
-      ++report.direct_solves;
-      return preconditioner.solve(b, &lanes);
-    }
-    bool exact = this_step && same_other_contacts(factorised_contacts);
     if (cube_trailing) {
       const Matrix6d change = cube_matrix() - cube_factorised;
       if (change != cube_applied && preconditioner.modify_trailing(cube_dofs, change))
@@ -1397,10 +1326,8 @@ struct HandSimulator::Impl {
     auto converged = [&](const Eigen::VectorXd& residual) {
       return left(residual) <= options.linear_tolerance;
     };
-    Eigen::VectorXd x, r, ap;
-    x.setZero(dofs);
-    r = b;
-    Eigen::VectorXd z = preconditioner.solve(r, &lanes), p = z;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(dofs), r = b, z = preconditioner.solve(r, &lanes),
+                    p = z, ap;
     double rz = r.dot(z);
     int it = 0;
     bool done = converged(r);
@@ -1445,12 +1372,7 @@ struct HandSimulator::Impl {
       // steps factorise at once rather than spend CG iterations first.
       if (first && factorised_at == step_index - 1)
         direct_until = step_index + 1 + options.direct_steps;
-      refactor();
-      stale = false;
-      last_iterations = 0;
-      ++report.linear_iterations;
-      ++report.direct_solves;
-      return preconditioner.solve(b, &lanes);
+      return direct();
     }
     return x;
   }

@@ -19,13 +19,14 @@ long trapezoid(long width, long below) {
   return width * (width + 1) / 2 + width * below;
 }
 
+// The largest panel (values) factorised column by column (factorize_node): 64 kB, which
+// stays in the fast caches while each column reads the ones before it.
+constexpr int kColumnByColumn = 8192;
+
 // Whether a supernode of `width` columns whose panel would hold `zeros` of its `entries` as
 // explicit zeros is worth its denser kernels: CHOLMOD's relaxed amalgamation rule and
 // defaults (any merge up to 4 columns, up to 80% zeros up to 16 columns, 10% up to 48, 5%
 // beyond).
-// The widest panel factorised column by column (factorize_node).
-constexpr int kColumnByColumn = 48;
-
 bool worth_merging(long width, long zeros, long entries) {
   const double z = double(zeros) / double(entries);
   if (width <= 4) return true;
@@ -78,7 +79,6 @@ void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
   }
   nodes_.clear();
   rows_.clear();
-  parent_.clear();
   int values = 0;
   for (const Run& r : runs) {
     Supernode s;
@@ -360,93 +360,24 @@ bool SupernodalLdlt::modify_trailing(const std::vector<int>& dofs,
   return true;
 }
 
-bool SupernodalLdlt::update(const std::vector<int>& dofs, const std::vector<double>& values,
-                            double sigma) {
-  const int n = int(column_node_.size()), count = int(nodes_.size());
-  if (dofs.size() != values.size())
-    throw std::invalid_argument("SupernodalLdlt::update: a value for each unknown");
-  if (int(parent_.size()) != count) {
-    parent_.assign(std::size_t(count), -1);
-    for (int t = 0; t < count; ++t) {
-      const Supernode& s = nodes_[std::size_t(t)];
-      if (s.below > 0)
-        parent_[std::size_t(t)] = column_node_[std::size_t(rows_[std::size_t(s.row_begin)])];
-    }
-    on_path_.assign(std::size_t(count), 0);
-    update_w_ = Eigen::VectorXd::Zero(n);
-  }
-  // The supernodes on the paths from w's columns to the root, in order (parents come later).
-  path_.clear();
-  for (std::size_t k = 0; k < dofs.size(); ++k) {
-    if (dofs[k] < 0 || dofs[k] >= n)
-      throw std::invalid_argument("SupernodalLdlt::update: an unknown out of range");
-    const int j = permuted(dofs[k]);
-    update_w_[j] += values[k];
-    for (int t = column_node_[std::size_t(j)]; t >= 0 && !on_path_[std::size_t(t)];
-         t = parent_[std::size_t(t)]) {
-      on_path_[std::size_t(t)] = 1;
-      path_.push_back(t);
-    }
-  }
-  std::sort(path_.begin(), path_.end());
-  trailing_known_ = false;
-  double alpha = sigma;
-  bool definite = true;
-  Eigen::VectorXd& w = gathered_;
-  for (int t : path_) {
-    on_path_[std::size_t(t)] = 0;
-    if (!definite) continue;
-    const Supernode& s = nodes_[std::size_t(t)];
-    const int height = s.width + s.below;
-    Eigen::Map<Eigen::MatrixXd> panel(values_.data() + s.value_begin, height, s.width);
-    // w over the panel's rows: its columns, then the rows below (w's other entries lie in
-    // later supernodes of the path, which take them over from this one's rows below).
-    const int* rows = rows_.data() + s.row_begin;
-    if (w.size() < height) w.resize(height);
-    w.head(s.width) = update_w_.segment(s.first, s.width);
-    for (int i = 0; i < s.below; ++i) w[s.width + i] = update_w_[rows[i]];
-    for (int c = 0; c < s.width; ++c) {
-      const double p = w[c];
-      if (p == 0.0) continue;
-      const int j = s.first + c;
-      const double d = 1.0 / inverse_diagonal_[j], changed = d + alpha * p * p;
-      // A downdate that cancels the pivot to rounding leaves no factor to trust.
-      if (!(changed > 1e-12 * (d + std::abs(alpha) * p * p))) {
-        definite = false;
-        break;
-      }
-      const double beta = alpha * p / changed;
-      alpha *= d / changed;
-      inverse_diagonal_[j] = 1.0 / changed;
-      auto l = panel.col(c).tail(height - c - 1);
-      auto rest = w.segment(c + 1, height - c - 1);
-      rest -= p * l;
-      l += beta * rest;
-    }
-    update_w_.segment(s.first, s.width).setZero();
-    for (int i = 0; i < s.below; ++i) update_w_[rows[i]] = w[s.width + i];
-  }
-  if (!definite) update_w_.setZero();
-  return definite;
-}
-
 bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top) {
   const Supernode& node = nodes_[s];
   const int height = node.width + node.below;
   Eigen::Map<Eigen::MatrixXd> panel(values_.data() + node.value_begin, height, node.width);
-  // The diagonal block's Cholesky factor L_d and the rows below, L_b = A_b L_d^-T. A panel a
-  // few dozen columns wide goes column by column (left-looking: a column takes the earlier
-  // columns' part as one matrix-vector product, then its pivot's root), which beats a blocked
-  // Cholesky and a triangular solve that pack their operands; a wider one, whose columns'
-  // products would stream it from memory again and again, takes those.
-  if (node.width > kColumnByColumn) {
+  // The diagonal block's Cholesky factor L_d and the rows below, L_b = A_b L_d^-T. A small
+  // panel goes column by column (left-looking: a column takes the earlier columns' part as
+  // one matrix-vector product, then its pivot's root), which beats a blocked Cholesky and a
+  // triangular solve that pack their operands; a larger one, whose columns' products would
+  // stream it from memory again and again, takes those.
+  const bool by_column = height * node.width <= kColumnByColumn;
+  if (!by_column) {
     auto block = panel.topRows(node.width);
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(block);
     if (llt.info() != Eigen::Success) return false;
     if (node.below > 0)
       block.triangularView<Eigen::Lower>().solveInPlace(panel.bottomRows(node.below).transpose());
   }
-  for (int c = 0; c < node.width && node.width <= kColumnByColumn; ++c) {
+  for (int c = 0; c < node.width && by_column; ++c) {
     auto column = panel.col(c).tail(height - c);
     if (c > 0)
       column.noalias() -= panel.bottomLeftCorner(height - c, c) * panel.row(c).head(c).transpose();

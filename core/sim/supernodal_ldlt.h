@@ -61,15 +61,6 @@ class SupernodalLdlt {
   // Whether modify_trailing takes these unknowns (the ordering put them last, in one panel).
   bool trailing(const std::vector<int>& dofs) const;
 
-  // Makes the factor that of A + sigma w w' instead of A (its matrix, as factorised and
-  // modified since), w nonzero at the unknowns `dofs` alone (`values`, in their order, a dof
-  // listed once): a rank-one update (sigma > 0) or downdate (sigma < 0) along the elimination
-  // tree's paths from those unknowns' columns to the root (Gill, Golub, Murray and Saunders's
-  // method C1, as CHOLMOD's update), about the cost of a solve restricted to those paths.
-  // The trailing block's next modify_trailing starts from the result. False if a pivot of
-  // the downdate would not stay positive: the factor is then broken, to be factorised anew.
-  bool update(const std::vector<int>& dofs, const std::vector<double>& values, double sigma);
-
   // b <- A^-1 b for the factorised A. With `lanes` of two or more, the groups of subtrees
   // that factorize() splits are solved at once (the result depends on whether lanes are
   // given, never on timing).
@@ -120,11 +111,6 @@ class SupernodalLdlt {
   std::vector<int> pattern_outer_;  // the structure the supernodes were found for
   std::vector<int> pattern_inner_;
   Eigen::VectorXd work_, gathered_, gathered_second_, top_work_;  // the solves' buffers
-  // update()'s: the supernodes' parents (-1 at a root), the path's marks, w in the ordering.
-  std::vector<int> parent_;
-  std::vector<char> on_path_;
-  std::vector<int> path_;
-  Eigen::VectorXd update_w_;
   // For factorize(): each supernode's updates, the matrix's entries' panel positions (-1 for
   // the upper triangle), the owning supernode of each column.
   std::vector<int> update_begin_;  // updates_[update_begin_[s], update_begin_[s + 1])
