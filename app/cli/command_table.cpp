@@ -19,6 +19,9 @@ const std::vector<Command>& all_commands() {
       {"participant", "enrol a participant (their schedule is fixed and stored)", run_participant},
       {"session", "run a participant's session headless (resumes after a crash); redo, skip",
        run_session},
+      {"simulate",
+       "run a whole study with simulated participants on the soft hand (or the grasp proxy)",
+       run_simulate},
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
   };

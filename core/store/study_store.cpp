@@ -110,6 +110,11 @@ ALTER TABLE trial ADD COLUMN frames INTEGER NOT NULL DEFAULT 0 CHECK (frames >= 
 CREATE INDEX event_by_trial ON event(trial_id);
 CREATE INDEX trial_by_planned ON trial(planned_id);
 )sql",
+    // 2 -> 3: participants run by the participant model (handlab-cli simulate) are marked.
+    R"sql(
+ALTER TABLE participant ADD COLUMN simulated INTEGER NOT NULL DEFAULT 0
+  CHECK (simulated IN (0, 1));
+)sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 
@@ -178,7 +183,7 @@ PlannedTrialRow read_planned(const Statement& s) {
 }
 
 constexpr const char* kParticipantColumns =
-    "id, age, sex, handedness, hand_length, vr_experience, notes, enrolment";
+    "id, age, sex, handedness, hand_length, vr_experience, notes, enrolment, simulated";
 
 Participant read_participant(const Statement& s) {
   Participant p;
@@ -190,6 +195,7 @@ Participant read_participant(const Statement& s) {
   p.vr_experience = s.column_text(5);
   p.notes = s.column_text(6);
   p.enrolment = int(s.column_int64(7));
+  p.simulated = s.column_int64(8) != 0;
   return p;
 }
 
@@ -304,7 +310,7 @@ void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRo
   p.enrolment = participant_count();
   db_.prepare(
          "INSERT INTO participant (id, enrolment, age, sex, handedness, hand_length, "
-         "vr_experience, notes, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)")
+         "vr_experience, notes, created_at, simulated) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
       .bind(1, p.id)
       .bind(2, std::int64_t(p.enrolment))
       .bind(3, std::int64_t(p.age))
@@ -314,6 +320,7 @@ void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRo
       .bind(7, p.vr_experience)
       .bind(8, p.notes)
       .bind(9, utc_timestamp())
+      .bind(10, std::int64_t(p.simulated ? 1 : 0))
       .run();
   Statement insert = db_.prepare(
       "INSERT INTO planned_trial (participant_id, position, block, order_in_block, condition_id, "
@@ -533,6 +540,72 @@ void StudyStore::redo_trial(const std::string& participant_id, int position,
   if (db_.changes() != 1)
     throw StoreError(participant_id + "'s trial " + std::to_string(position) +
                      " has no result to redo");
+  t.commit();
+}
+
+void StudyStore::import_sessions(const std::string& path) {
+  // ATTACH is refused inside a transaction: attach, copy in one transaction, detach.
+  db_.prepare("ATTACH DATABASE ? AS other").bind(1, path).run();
+  struct Detach {
+    Database& db;
+    ~Detach() {
+      try {
+        db.exec("DETACH DATABASE other");
+      } catch (...) {
+      }
+    }
+  } detach{db_};
+  if (db_.query_text("SELECT protocol_sha256 FROM other.study") != study().protocol_sha256)
+    throw StoreError(path + " is not a database of the study in " + db_.path());
+  const auto unmatched = db_.query_text(
+      "SELECT count(*) FROM other.planned_trial o LEFT JOIN main.planned_trial m "
+      "ON m.participant_id = o.participant_id AND m.position = o.position "
+      "AND m.condition_id = o.condition_id WHERE m.id IS NULL");
+  if (unmatched != "0")
+    throw StoreError(path + " has trials planned differently (" + unmatched.value_or("?") +
+                     " unmatched); enrol its participants here with the same schedule first");
+  Transaction t(db_);
+  // New ids: the other's plus this store's largest, keeping their order.
+  auto offset = [&](const char* table) {
+    return std::stoll(
+        db_.query_text(std::string("SELECT coalesce(max(id), 0) FROM main.") + table).value());
+  };
+  const std::int64_t session = offset("session"), trial = offset("trial"), event = offset("event"),
+                     frame = offset("frame");
+  db_.prepare(
+         "INSERT INTO main.session (id, participant_id, tracker, started_at, ended_at, status) "
+         "SELECT id + ?, participant_id, tracker, started_at, ended_at, status "
+         "FROM other.session ORDER BY id")
+      .bind(1, session)
+      .run();
+  db_.prepare(
+         "INSERT INTO main.trial (id, planned_id, session_id, attempt, status, started_at, "
+         "ended_at, completion_time_s, grasps, drops, reason, frames) "
+         "SELECT t.id + ?, m.id, t.session_id + ?, t.attempt, t.status, t.started_at, "
+         "t.ended_at, t.completion_time_s, t.grasps, t.drops, t.reason, t.frames "
+         "FROM other.trial t JOIN other.planned_trial o ON o.id = t.planned_id "
+         "JOIN main.planned_trial m ON m.participant_id = o.participant_id "
+         "AND m.position = o.position ORDER BY t.id")
+      .bind(1, trial)
+      .bind(2, session)
+      .run();
+  db_.prepare(
+         "INSERT INTO main.event (id, trial_id, t, kind) "
+         "SELECT id + ?, trial_id + ?, t, kind FROM other.event ORDER BY id")
+      .bind(1, event)
+      .bind(2, trial)
+      .run();
+  db_.prepare(
+         "INSERT INTO main.answer (trial_id, item, value) "
+         "SELECT trial_id + ?, item, value FROM other.answer ORDER BY trial_id, item")
+      .bind(1, trial)
+      .run();
+  db_.prepare(
+         "INSERT INTO main.frame (id, trial_id, seq, t, data) "
+         "SELECT id + ?, trial_id + ?, seq, t, data FROM other.frame ORDER BY id")
+      .bind(1, frame)
+      .bind(2, trial)
+      .run();
   t.commit();
 }
 

@@ -17,7 +17,7 @@
 
 namespace handlab::store {
 
-constexpr int kSchemaVersion = 2;
+constexpr int kSchemaVersion = 3;
 
 struct StudyDefinition {
   std::string name;
@@ -44,7 +44,8 @@ struct Participant {
   double hand_length = 0.0;   // m, wrist crease to middle fingertip
   std::string vr_experience;  // "none", "some", "yes", "expert" ...
   std::string notes;
-  int enrolment = 0;  // 0-based order of enrolment (set by add_participant)
+  int enrolment = 0;       // 0-based order of enrolment (set by add_participant)
+  bool simulated = false;  // run by the participant model (docs/simulated-participants.md)
 };
 
 struct PlannedTrialRow {
@@ -105,6 +106,13 @@ class StudyStore {
   void skip_trial(const std::string& participant_id, int position, std::int64_t session_id,
                   const std::string& reason);
   void redo_trial(const std::string& participant_id, int position, const std::string& reason);
+
+  // Copies every session of another database of the same study (the same protocol hash),
+  // with its trials, events, answers and frames, new ids following this store's. Its
+  // participants must be enrolled here with the same schedule; their trials are matched by
+  // position. (Sessions run elsewhere: a second lab machine, or simulated participants run
+  // side by side, each in a database of its own.)
+  void import_sessions(const std::string& path);
 
   Database& database() { return db_; }
   const std::string& path() const { return db_.path(); }

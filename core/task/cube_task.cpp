@@ -5,6 +5,16 @@
 
 namespace handlab::task {
 
+TaskObservation observe_task(const HandCubeWorld& world, double time) {
+  TaskObservation o;
+  o.time = time;
+  o.cube_position = world.cube().position;
+  o.cube_velocity = world.cube().velocity;
+  o.thumb_contact = world.thumb_contact();
+  o.index_contact = world.index_contact();
+  return o;
+}
+
 const char* phase_name(TaskPhase phase) {
   switch (phase) {
     case TaskPhase::kReady:

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "core/task/hand_cube_world.h"
 #include "core/task/scene_layout.h"
 
 namespace handlab::task {
@@ -32,6 +33,9 @@ struct TaskObservation {
   Eigen::Vector3d cube_velocity = Eigen::Vector3d::Zero();
   bool thumb_contact = false, index_contact = false;
 };
+
+// What a world reports after a step at `time`.
+TaskObservation observe_task(const HandCubeWorld& world, double time);
 
 struct TaskEvent {
   double time;       // s since the trial started

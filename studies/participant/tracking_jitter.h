@@ -9,8 +9,8 @@
 namespace handlab::studies {
 
 struct TrackingJitter {
-  double sd = 0.0;  // m: per axis of a joint position, white noise at the tracker's rate
-  long samples = 0;  // second differences it rests on
+  double sd = 0.0;       // m: per axis of a joint position, white noise at the tracker's rate
+  long samples = 0;      // second differences it rests on
   double rate_hz = 0.0;  // the frames' median rate
 };
 

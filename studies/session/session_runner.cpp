@@ -1,15 +1,32 @@
 #include "studies/session/session_runner.h"
 
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/store/frame_logger.h"
+#include "studies/participant/participant_model.h"
+#include "studies/participant/questionnaire_model.h"
 
 namespace handlab::studies {
 
 QuestionnaireResponder fixed_responder() {
   return [](const Protocol& p, const TrialSetup&, const TrialRun&) {
     return std::vector<int>(p.items.size(), (p.scale_points + 1) / 2);
+  };
+}
+
+QuestionnaireResponder simulated_responder(std::uint64_t seed) {
+  return [seed](const Protocol& p, const TrialSetup& setup, const TrialRun& run) {
+    if (!run.experience) return std::vector<int>(p.items.size(), (p.scale_points + 1) / 2);
+    std::vector<std::string> ids;
+    for (const QuestionnaireItem& item : p.items) ids.push_back(item.id);
+    // The person's stream and the trial's place: nothing of the condition.
+    const std::uint64_t stream =
+        person_seed(seed, setup.participant.id) ^
+        (0x94D049BB133111EBull * std::uint64_t(setup.planned.position + 1));
+    return simulated_answers(ids, p.scale_points, *run.experience,
+                             run.success ? run.completion_time_s : p.timeout_s, stream);
   };
 }
 
@@ -78,7 +95,8 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
   }
   const retarget::Calibration calibration = driver_.calibrate(protocol, *participant);
   const std::int64_t session = store_.begin_session(participant_id, tracker_name);
-  store::FrameLogger logger(store_.path());
+  std::optional<store::FrameLogger> logger;
+  if (log_frames_) logger.emplace(store_.path());
   const int planned = int(store_.plan(participant_id).size());
   for (; next; next = store_.next_trial(participant_id)) {
     TrialSetup setup;
@@ -93,16 +111,17 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
 
     const std::int64_t trial = store_.begin_trial(next->id, session);
     std::int64_t seq = 0;
-    const TrialRun run = driver_.run(
-        setup, [&](const store::FrameRecord& frame) { logger.log(trial, seq++, frame); });
-    logger.flush();  // every frame on disk before the outcome is committed
+    const TrialRun run = driver_.run(setup, [&](const store::FrameRecord& frame) {
+      if (logger) logger->log(trial, seq++, frame);
+    });
+    if (logger) logger->flush();  // every frame on disk before the outcome is committed
 
     store::TrialOutcome outcome;
     outcome.success = run.success;
     outcome.completion_time_s = run.completion_time_s;
     outcome.grasps = run.grasps;
     outcome.drops = run.drops;
-    outcome.frames = int(run.frames);
+    outcome.frames = int(seq);  // the frames stored
     outcome.events = run.events;
     if (next->questionnaire && !protocol.items.empty()) {
       const std::vector<int> values = responder_(protocol, setup, run);

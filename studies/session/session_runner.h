@@ -22,6 +22,11 @@ using QuestionnaireResponder =
 // The scripted participant's answers: the middle of the scale for every item.
 QuestionnaireResponder fixed_responder();
 
+// A simulated participant's answers (studies/participant/questionnaire_model.h): from its
+// account of the trial (TrialRun::experience), with noise from its own stream under `seed`;
+// never from the condition. Without an account, the middle of the scale.
+QuestionnaireResponder simulated_responder(std::uint64_t seed);
+
 struct SessionReport {
   int trials_run = 0, aborted_before = 0;
   bool schedule_complete = false;
@@ -36,7 +41,12 @@ class SessionRunner {
   SessionReport run(const std::string& participant_id, const std::string& tracker_name, bool resume,
                     const std::function<void(const std::string&)>& progress = {});
 
+  // Without frames, the trials' frame records are not stored (a simulated study's choice:
+  // about 160 kB a simulated second); trials then record 0 frames.
+  void log_frames(bool on) { log_frames_ = on; }
+
  private:
+  bool log_frames_ = true;
   store::StudyStore& store_;
   TrialDriver& driver_;
   QuestionnaireResponder responder_;

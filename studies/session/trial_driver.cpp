@@ -12,6 +12,8 @@
 #include "core/tracking/hand_fitting.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/portable_random.h"
+#include "studies/participant/own_hand.h"
+#include "studies/participant/simulated_participant.h"
 #include "studies/session/scripted_tracker.h"
 
 namespace handlab::studies {
@@ -61,7 +63,70 @@ void fill_record(store::FrameRecord& r, double time, const tracking::TrackedFram
   r.index_contact = world.index_contact();
 }
 
+SeenHandGeometry seen_geometry(const hand::Skeleton& simulated) {
+  SeenHandGeometry g;
+  for (const hand::Bone& b : simulated.bones) {
+    g.bone_length.push_back(b.length);
+    g.bone_radius.push_back(b.radius);
+  }
+  g.thumb_distal = simulated.bone_index("thumb3");
+  g.index_distal = simulated.bone_index("index3");
+  return g;
+}
+
 }  // namespace
+
+Observation display_observation(const task::HandCubeWorld& world, const task::SceneLayout& layout,
+                                double time) {
+  Observation o;
+  o.time = time;
+  o.bones = world.bones();
+  o.thumb_touching = world.thumb_contact();
+  o.index_touching = world.index_contact();
+  o.cube_position = world.cube().position;
+  o.cube_orientation = world.cube().orientation;
+  o.cube_size = layout.cube_size;
+  o.zone_a = layout.zone_a;
+  o.zone_b = layout.zone_b;
+  o.zone_size = layout.zone_size;
+  return o;
+}
+
+std::string TrackerKind::name() const {
+  switch (kind_) {
+    case Kind::kScripted:
+      return "scripted";
+    case Kind::kRecording:
+      return path_;
+    case Kind::kSimulated:
+      return "simulated (seed " + std::to_string(seed_) + ")";
+  }
+  return path_;
+}
+
+std::unique_ptr<SimulatedParticipant> participant_for_trial(const TrialSetup& setup,
+                                                            std::uint64_t seed,
+                                                            const OwnHand& own_hand,
+                                                            double rate_hz) {
+  SimulatedPerson person;
+  person.participant = setup.participant;
+  person.motor = draw_motor_parameters(seed, setup.participant.id);
+  person.seed = person_seed(seed, setup.participant.id);
+  TrialContext context;
+  context.position = setup.planned.position;
+  context.rate_hz = rate_hz;
+  // Trials done with the cube it sees: the sizes of the schedule's earlier trials.
+  const std::vector<Condition> conditions = setup.protocol->conditions();
+  const double cube = setup.condition.cube_size;
+  context.repetition = 1;
+  for (const PlannedTrial& t :
+       plan_schedule(*setup.protocol, setup.participant.id, setup.participant.enrolment))
+    if (t.position < setup.planned.position &&
+        conditions[std::size_t(t.condition)].cube_size == cube)
+      ++context.repetition;
+  context.hand = seen_geometry(hand::build_simulated_hand(setup.condition.simulated_hand));
+  return std::make_unique<SimulatedParticipant>(person, own_hand, std::move(context));
+}
 
 struct PipelineTrialDriver::SoftHand {
   hand::HandShape shape;
@@ -73,9 +138,10 @@ struct PipelineTrialDriver::SoftHand {
 
 PipelineTrialDriver::~PipelineTrialDriver() = default;
 
-PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz, WorldKind world)
-    : tracker_(std::move(tracker)), rate_hz_(rate_hz), world_(world) {
-  if (!tracker_.is_scripted()) {
+PipelineTrialDriver::PipelineTrialDriver(TrackerKind tracker, double rate_hz, WorldKind world,
+                                         int sim_threads)
+    : tracker_(std::move(tracker)), rate_hz_(rate_hz), world_(world), sim_threads_(sim_threads) {
+  if (tracker_.is_recording()) {
     recording_ = tracking::read_recording(tracker_.path()).frames;
     const bool any = std::any_of(recording_.begin(), recording_.end(),
                                  [](const auto& f) { return f.hand(Side::kRight) != nullptr; });
@@ -88,7 +154,8 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
   // The first condition's simulated hand (the runner rescales for conditions of other lengths).
   const Condition first = protocol.conditions().front();
   const hand::Skeleton sim = hand::build_simulated_hand(first.simulated_hand);
-  if (tracker_.is_scripted()) {
+  if (!tracker_.is_recording()) {
+    // The scripted and the simulated participant hold their open palm over A for a second.
     ScriptedMotionSettings settings;
     settings.hand_length = participant.hand_length;
     settings.layout = protocol.scene;
@@ -151,7 +218,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   const bool naive = setup.condition.naive_strategy;
   std::optional<tracking::TrackedHandFitter> fitter;
   if (naive) {
-    if (tracker_.is_scripted())
+    if (!tracker_.is_recording())
       fitter.emplace(setup.participant.hand_length, Side::kRight);
     else
       fitter = tracking::TrackedHandFitter::for_recording(recording_, Side::kRight);
@@ -180,8 +247,10 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
       soft_hands_.push_back(std::move(h));
       found = soft_hands_.end() - 1;
     }
-    physics =
-        std::make_unique<task::SoftHandWorld>((*found)->model, (*found)->skeleton, cube_start);
+    sim::SimOptions options;
+    options.threads = sim_threads_;
+    physics = std::make_unique<task::SoftHandWorld>((*found)->model, (*found)->skeleton, cube_start,
+                                                    options);
   } else {
     task::GraspProxySettings world_settings;
     world_settings.cube_size = layout.cube_size;
@@ -195,28 +264,41 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   task::CubeTask task(task_settings);
   task.start(0.0);
 
-  const std::unique_ptr<tracking::FrameSource> tracker = open_tracker(setup, sim);
+  // A simulated participant acts on what the display showed at the last step; the other
+  // trackers send their frames whatever happens.
+  std::unique_ptr<tracking::FrameSource> tracker;
+  std::unique_ptr<SimulatedParticipant> participant;
+  if (tracker_.is_simulated()) {
+    if (!own_hand_ || own_hand_->skeleton().bones.empty() ||
+        own_hand_length_ != setup.participant.hand_length) {
+      own_hand_ = std::make_unique<OwnHand>(setup.participant.hand_length);
+      own_hand_length_ = setup.participant.hand_length;
+    }
+    participant = participant_for_trial(setup, tracker_.seed(), *own_hand_, rate_hz_);
+  } else {
+    tracker = open_tracker(setup, sim);
+  }
   const double dt = 1.0 / rate_hz_;
   store::FrameRecord record;
   TrialRun run;
   bool tracker_ended = false;
   std::optional<hand::HandPose> pose;
+  Observation shown = display_observation(world, layout, 0.0);
   for (long step = 1; !task.finished(); ++step) {
     const double t = double(step) * dt;
     std::optional<tracking::TrackedFrame> frame;
-    if (!tracker_ended && !(frame = tracker->next())) tracker_ended = true;
+    if (participant)
+      frame = participant->act(shown);
+    else if (!tracker_ended && !(frame = tracker->next()))
+      tracker_ended = true;
     const tracking::TrackedHand* hand = frame ? frame->hand(Side::kRight) : nullptr;
     if (hand) pose = retargeter.retarget(*hand).pose;
     world.step(hand ? &*pose : nullptr, dt);
-    task::TaskObservation o;
-    o.time = t;
-    o.cube_position = world.cube().position;
-    o.cube_velocity = world.cube().velocity;
-    o.thumb_contact = world.thumb_contact();
-    o.index_contact = world.index_contact();
+    task::TaskObservation o = task::observe_task(world, t);
     task.update(o);
     fill_record(record, t, frame ? &*frame : nullptr, pose ? &*pose : nullptr, world, task.phase());
     sink(record);
+    if (participant) shown = display_observation(world, layout, t);
     ++run.frames;
     // With the tracker gone and the cube at rest waiting for a grasp, nothing can happen
     // any more: the trial runs out its time without further frames.
@@ -231,6 +313,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   run.grasps = task.grasps();
   run.drops = task.drops();
   for (const task::TaskEvent& e : task.events()) run.events.emplace_back(e.time, e.kind);
+  if (participant) run.experience = participant->experience();
   return run;
 }
 

@@ -5,13 +5,18 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/retarget/retargeter.h"
 #include "core/store/frame_record.h"
 #include "core/store/study_store.h"
+#include "core/task/hand_cube_world.h"
+#include "core/task/scene_layout.h"
 #include "core/tracking/frame_source.h"
+#include "studies/participant/observation.h"
+#include "studies/participant/trial_experience.h"
 #include "studies/protocol/protocol.h"
 
 namespace handlab::studies {
@@ -30,6 +35,8 @@ struct TrialRun {
   int grasps = 0, drops = 0;
   long frames = 0;
   std::vector<std::pair<double, std::string>> events;
+  // A simulated participant's account of the trial (its questionnaire answers come from it).
+  std::optional<TrialExperience> experience;
 };
 
 using FrameSink = std::function<void(const store::FrameRecord&)>;
@@ -44,19 +51,33 @@ class TrialDriver {
   virtual TrialRun run(const TrialSetup& setup, const FrameSink& sink) = 0;
 };
 
-// Where the pipeline's frames come from: the built-in scripted participant, or a recording
-// replayed at the simulation rate for every trial.
+// Where the pipeline's frames come from: the built-in scripted (open-loop) participant, a
+// recording replayed at the simulation rate for every trial, or a simulated participant who
+// sees the display and acts in closed loop (docs/simulated-participants.md), its parameters
+// drawn from the population under `seed` and the participant's id.
 class TrackerKind {
  public:
-  static TrackerKind scripted() { return TrackerKind(""); }
-  static TrackerKind recording(std::string path) { return TrackerKind(std::move(path)); }
-  bool is_scripted() const { return path_.empty(); }
+  static TrackerKind scripted() { return TrackerKind(Kind::kScripted, "", 0); }
+  static TrackerKind recording(std::string path) {
+    return TrackerKind(Kind::kRecording, std::move(path), 0);
+  }
+  static TrackerKind simulated(std::uint64_t seed) {
+    return TrackerKind(Kind::kSimulated, "", seed);
+  }
+  bool is_scripted() const { return kind_ == Kind::kScripted; }
+  bool is_simulated() const { return kind_ == Kind::kSimulated; }
+  bool is_recording() const { return kind_ == Kind::kRecording; }
   const std::string& path() const { return path_; }
-  std::string name() const { return is_scripted() ? "scripted" : path_; }
+  std::uint64_t seed() const { return seed_; }
+  std::string name() const;
 
  private:
-  explicit TrackerKind(std::string path) : path_(std::move(path)) {}
+  enum class Kind { kScripted, kRecording, kSimulated };
+  TrackerKind(Kind kind, std::string path, std::uint64_t seed)
+      : kind_(kind), path_(std::move(path)), seed_(seed) {}
+  Kind kind_;
   std::string path_;
+  std::uint64_t seed_;
 };
 
 // The hand-cube physics a trial runs on: the grasp proxy (the cube attaches to a pinch,
@@ -64,10 +85,28 @@ class TrackerKind {
 // core/task/soft_hand_world.h, docs/simulator.md).
 enum class WorldKind { kGraspProxy, kSoftHand };
 
+class OwnHand;
+class SimulatedParticipant;
+
+// What the display shows after a step at `time`: the simulated hand, the cube, the zones
+// (a simulated participant's only input).
+Observation display_observation(const task::HandCubeWorld& world, const task::SceneLayout& layout,
+                                double time);
+
+// The simulated participant of a trial, built from what a person can know of it: its own
+// parameters (from the tracker's seed and the participant's id), the trial's place, how many
+// trials it has done with the cube it sees, and how the simulated hand looks. Nothing of
+// the condition but its cube size reaches it (SimulatedParticipantBlinding tests this).
+std::unique_ptr<SimulatedParticipant> participant_for_trial(const TrialSetup& setup,
+                                                            std::uint64_t seed,
+                                                            const OwnHand& own_hand,
+                                                            double rate_hz);
+
 class PipelineTrialDriver : public TrialDriver {
  public:
+  // `sim_threads`: the soft-hand simulator's threads (1 when sessions run side by side).
   explicit PipelineTrialDriver(TrackerKind tracker, double rate_hz = 120.0,
-                               WorldKind world = WorldKind::kGraspProxy);
+                               WorldKind world = WorldKind::kGraspProxy, int sim_threads = 2);
   ~PipelineTrialDriver() override;
   retarget::Calibration calibrate(const Protocol& protocol,
                                   const store::Participant& participant) override;
@@ -81,6 +120,9 @@ class PipelineTrialDriver : public TrialDriver {
   TrackerKind tracker_;
   double rate_hz_;
   WorldKind world_;
+  int sim_threads_;
+  std::unique_ptr<OwnHand> own_hand_;  // the simulated participant's, built once per size
+  double own_hand_length_ = 0.0;
   std::vector<tracking::TrackedFrame> recording_;  // loaded once
   struct SoftHand;  // the soft hand's flesh and model for a simulated hand and cube
   std::vector<std::unique_ptr<SoftHand>> soft_hands_;  // built once each, kept

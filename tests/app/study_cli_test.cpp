@@ -116,6 +116,49 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
             "redone:tracking lost,skipped:participant tired");
 }
 
+// A simulated study from the command line (one block, on the grasp proxy: quick): the
+// outcome per condition in JSON, the participants enrolled as simulated, bad options refused.
+TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
+  std::string protocol = handlab::test::file_bytes(kProtocol);
+  protocol.replace(protocol.find("\"blocks\": 5"), 11, "\"blocks\": 1");
+  const std::string one_block = handlab::test::fresh_path("cli_one_block.json");
+  std::ofstream(one_block) << protocol;
+  const std::string db = handlab::test::fresh_path("cli_simulated.db");
+  Result r = cli("simulate --protocol " + one_block + " --participants 2 --seed 3 --db " + db +
+                 " --jobs 2 --world proxy --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = handlab::util::JsonValue::parse(r.out);
+  EXPECT_EQ(doc["participants"].as_number(), 2);
+  EXPECT_EQ(doc["trials"].as_number(), 2 * 8);  // 4 scheduled and 4 practice each
+  ASSERT_EQ(doc["conditions"].as_array().size(), 4u);
+  for (const auto& c : doc["conditions"].as_array()) {
+    EXPECT_EQ(c["trials"].as_number(), 2);
+    EXPECT_EQ(c["completed"].as_number() + c["timeouts"].as_number() + c["skipped"].as_number(), 2);
+    EXPECT_GE(c["success_rate"].as_number(), 0.0);
+    EXPECT_LE(c["success_rate"].as_number(), 1.0);
+  }
+  r = cli("study status --db " + db + " --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("S01"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("S02"), std::string::npos) << r.out;
+
+  auto one_line_error = [](const Result& e, const std::string& what) {
+    EXPECT_NE(e.status, 0) << e.out;
+    EXPECT_EQ(e.out.find('\n'), e.out.size() - 1) << e.out;
+    EXPECT_NE(e.out.find(what), std::string::npos) << e.out;
+  };
+  const std::string before = handlab::test::file_bytes(db);
+  one_line_error(cli("simulate --protocol " + one_block + " --participants 1 --db " + db),
+                 "exists");
+  EXPECT_EQ(handlab::test::file_bytes(db), before);
+  one_line_error(cli("simulate --protocol " + one_block + " --db " +
+                     handlab::test::fresh_path("cli_rigid.db") + " --world rigid"),
+                 "--world must be soft or proxy");
+  one_line_error(cli("simulate --protocol " + one_block + " --participants 0 --db " +
+                     handlab::test::fresh_path("cli_none.db")),
+                 "--participants");
+}
+
 TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   const std::string db = handlab::test::fresh_path("cli_bad.db");
   ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);

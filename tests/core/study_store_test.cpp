@@ -146,11 +146,16 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
     // Back to schema 1 as a file of the first release looked.
     db.database().exec(
         "DROP INDEX event_by_trial; DROP INDEX trial_by_planned; ALTER TABLE trial DROP COLUMN "
-        "frames; PRAGMA user_version = 1");
+        "frames; ALTER TABLE participant DROP COLUMN simulated; PRAGMA user_version = 1");
   }
   StudyStore db(path);
   EXPECT_EQ(db.study().schema_version, kSchemaVersion);
-  EXPECT_TRUE(db.participant("P01"));
+  ASSERT_TRUE(db.participant("P01"));
+  EXPECT_FALSE(db.participant("P01")->simulated);  // a person, as everyone before schema 3
+  Participant model = person("S01");
+  model.simulated = true;
+  db.add_participant(model, {});
+  EXPECT_TRUE(db.participant("S01")->simulated);
   EXPECT_EQ(db.trials("P01").size(), 0u);
   const std::int64_t s = db.begin_session("P01", "x");
   const std::int64_t t = db.begin_trial(db.next_trial("P01")->id, s);

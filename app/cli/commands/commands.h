@@ -16,5 +16,6 @@ int run_study(const std::vector<std::string>& args);
 int run_participant(const std::vector<std::string>& args);
 int run_session(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);
+int run_simulate(const std::vector<std::string>& args);
 
 }  // namespace handlab::cli

@@ -17,10 +17,12 @@ int session_run(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"db", "DB", "the study database"},
       {"participant", "ID", "an enrolled participant"},
-      {"tracker", "scripted|FILE",
-       "scripted: the built-in pick-and-place motion at the participant's hand size; or a "
+      {"tracker", "scripted|simulated|FILE",
+       "scripted: the built-in open-loop pick-and-place motion at the participant's hand size; "
+       "simulated: the closed-loop participant model (docs/simulated-participants.md); or a "
        "recording (.json, .json.lz, .hlrec) replayed for every trial",
        "scripted"},
+      {"seed", "S", "with --tracker simulated: the population seed of the model's parameters", "0"},
       {"resume", "",
        "continue a started schedule (after a crash: the interrupted trial is "
        "kept as aborted and run again)"},
@@ -46,18 +48,24 @@ int session_run(const std::vector<std::string>& argv) {
   const std::string world = args.text("world");
   if (world != "proxy" && world != "soft") throw UsageError("--world must be proxy or soft");
   store::StudyStore store(args.text("db"));
+  const std::uint64_t seed = std::uint64_t(args.integer("seed"));
+  const studies::TrackerKind kind = tracker == "scripted" ? studies::TrackerKind::scripted()
+                                    : tracker == "simulated"
+                                        ? studies::TrackerKind::simulated(seed)
+                                        : studies::TrackerKind::recording(tracker);
   studies::PipelineTrialDriver driver(
-      tracker == "scripted" ? studies::TrackerKind::scripted()
-                            : studies::TrackerKind::recording(tracker),
-      120.0, world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy);
-  studies::SessionRunner runner(store, driver, studies::fixed_responder());
+      kind, 120.0,
+      world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy);
+  studies::SessionRunner runner(
+      store, driver,
+      kind.is_simulated() ? studies::simulated_responder(seed) : studies::fixed_responder());
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   const auto start = std::chrono::steady_clock::now();
-  const studies::SessionReport report =
-      runner.run(args.text("participant"), world == "soft" ? tracker + " (soft hand)" : tracker,
-                 args.flag("resume"), [&](const std::string& line) {
-                   if (!quiet) std::cout << line << std::endl;
-                 });
+  const studies::SessionReport report = runner.run(
+      args.text("participant"), world == "soft" ? kind.name() + " (soft hand)" : kind.name(),
+      args.flag("resume"), [&](const std::string& line) {
+        if (!quiet) std::cout << line << std::endl;
+      });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (args.text("json") != "-") {

@@ -1,0 +1,118 @@
+// handlab-cli simulate: a whole study run by simulated participants, headless.
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <thread>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/util/json_writer.h"
+#include "studies/protocol/protocol.h"
+#include "studies/simulate/simulated_study.h"
+
+namespace handlab::cli {
+
+int run_simulate(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"protocol", "FILE", "the study protocol (JSON, docs/study.md)"},
+      {"participants", "N", "how many simulated participants to enrol", "20"},
+      {"seed", "S", "the population seed: the same seed gives the same database content", "0"},
+      {"db", "OUT", "the study database to create (must not exist)"},
+      {"jobs", "J", "sessions run side by side (threads; default: the machine's cores)", "0"},
+      {"world", "soft|proxy",
+       "the hand-cube physics: the soft-hand simulator (contact and friction) or the grasp "
+       "proxy (the cube attaches to a pinch)",
+       "soft"},
+      {"frames", "", "store every trial's frames (about 160 kB a simulated second)"},
+      {"quiet", "", "no progress line"},
+      {"json", "OUT", "write the outcome per condition as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli simulate --protocol FILE --participants N --seed S --db OUT "
+                 "[--jobs J] [--world soft|proxy]\n\nEnrols N participants drawn from the "
+                 "study population (covariates stored like real ones, marked simulated) and runs "
+                 "every session with the closed-loop participant model "
+                 "(docs/simulated-participants.md): its own tracked hand -> retargeting -> "
+                 "physics -> task, questionnaires answered from what it experienced.\n\n"
+                 "Options:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  args.require({"protocol", "db"});
+  studies::SimulationOptions options;
+  options.participants = int(args.integer("participants"));
+  if (options.participants < 1 || options.participants > 10000)
+    throw UsageError("--participants must be between 1 and 10000");
+  options.seed = std::uint64_t(args.integer("seed"));
+  options.jobs = int(args.integer("jobs"));
+  if (options.jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
+  if (options.jobs == 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string world = args.text("world");
+  if (world != "soft" && world != "proxy") throw UsageError("--world must be soft or proxy");
+  options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
+  options.frames = args.flag("frames");
+  const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
+  const bool quiet = args.flag("quiet") || args.text("json") == "-";
+
+  const studies::SimulationReport report = studies::simulate_study(
+      protocol, args.text("db"), options, [&](const studies::SimulationProgress& p) {
+        if (quiet) return;
+        std::fprintf(stderr, "\rparticipants %d/%d  trials %d/%d  %.0f s ", p.participants_done,
+                     p.participants, p.trials_done, p.trials, p.seconds);
+        std::fflush(stderr);
+      });
+  if (!quiet) std::fprintf(stderr, "\n");
+
+  if (args.text("json") != "-") {
+    std::cout << report.participants << " simulated participants, " << report.trials << " trials ("
+              << report.completed << " completed, " << report.timeouts << " timed out) in "
+              << std::fixed << std::setprecision(1) << report.seconds << " s for "
+              << report.simulated_seconds << " s of trials; " << args.text("db") << "\n\n";
+    std::cout << std::left << std::setw(16) << "condition" << std::right << std::setw(8) << "trials"
+              << std::setw(11) << "completed" << std::setw(9) << "success" << std::setw(9)
+              << "timeout" << std::setw(12) << "mean time" << std::setw(8) << "drops\n";
+    for (const studies::ConditionOutcome& c : report.conditions)
+      std::cout << std::left << std::setw(16) << c.label << std::right << std::setw(8) << c.trials
+                << std::setw(11) << c.completed << std::setw(8) << std::setprecision(1)
+                << (c.trials ? 100.0 * c.completed / c.trials : 0.0) << "%" << std::setw(9)
+                << c.timeouts << std::setw(10) << std::setprecision(2) << c.mean_time_s << " s"
+                << std::setw(7) << c.drops << "\n";
+  }
+  if (args.has("json")) {
+    write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter w(out);
+      w.begin_object()
+          .field("db", args.text("db"))
+          .field("participants", report.participants)
+          .field("seed", static_cast<long long>(options.seed))
+          .field("jobs", options.jobs)
+          .field("world", world)
+          .field("trials", report.trials)
+          .field("completed", report.completed)
+          .field("timeouts", report.timeouts)
+          .field("seconds", report.seconds)
+          .field("simulated_seconds", report.simulated_seconds)
+          .key("conditions")
+          .begin_array();
+      for (const studies::ConditionOutcome& c : report.conditions)
+        w.begin_object()
+            .field("condition", c.label)
+            .field("trials", c.trials)
+            .field("completed", c.completed)
+            .field("timeouts", c.timeouts)
+            .field("skipped", c.skipped)
+            .field("success_rate", c.trials ? double(c.completed) / c.trials : 0.0)
+            .field("mean_time_s", c.mean_time_s)
+            .field("grasps", c.grasps)
+            .field("drops", c.drops)
+            .end_object();
+      w.end_array().end_object();
+      out << "\n";
+    });
+  }
+  return 0;
+}
+
+}  // namespace handlab::cli

@@ -1,0 +1,163 @@
+#include "studies/participant/own_hand.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/hand/tracked_hand.h"
+#include "core/retarget/fingertip_solver.h"
+#include "core/tracking/hand_fitting.h"
+
+namespace handlab::studies {
+namespace {
+
+// The postures' fixed angles (rad), chosen by looking at the own hand and its virtual hand
+// holding each cube (docs/simulated-participants.md), never against a strategy comparison.
+constexpr double kTipRoll = 0.3;           // tip pinch: the palm nearly flat ...
+constexpr double kTipPitch = 0.5;          // ... and the fingers pointing down
+constexpr double kTipTilt = 0.6;           // the distal phalanges from the vertical, in a tip pinch
+constexpr double kOtherFingersCurl = 0.7;  // middle, ring, little: of their flexion range
+
+// Palm down, fingers along the A-B line (+x), rolled 60 degrees towards the thumb so that
+// thumb and index oppose across that line: the posture the simulator's pinch script holds
+// both cubes in (core/sim/pinch_script.cpp).
+Eigen::Matrix3d pinch_rotation(double roll, double pitch) {
+  Eigen::Matrix3d palm_down;
+  palm_down.col(0) = Eigen::Vector3d(0, 0, -1);  // radial
+  palm_down.col(1) = Eigen::Vector3d(1, 0, 0);   // distal
+  palm_down.col(2) = Eigen::Vector3d(0, -1, 0);  // palmar
+  return Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+         Eigen::AngleAxisd(-roll, Eigen::Vector3d::UnitX()).toRotationMatrix() * palm_down;
+}
+
+}  // namespace
+
+OwnHand::OwnHand(double hand_length, double roll)
+    : skeleton_(hand::build_tracked_hand(hand::HandShape::with_length(hand_length))) {
+  pad_ = build(false, pinch_rotation(roll, 0.0));
+  tip_ = build(true, pinch_rotation(kTipRoll, kTipPitch));
+}
+
+OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
+  // Pad pinch: the pads on the palmar surface of the distal bones' middles, and points 12 mm
+  // deeper, aimed along the grasp axis so that the pads face each other. Tip pinch: the
+  // fingertips, and points on the bones' bases, aimed from above so that the distal
+  // phalanges come down on the object at `kTipTilt` from the vertical.
+  hand::Skeleton ik = skeleton_;
+  const int first = int(ik.markers.size());
+  for (const char* name : {"thumb_distal", "index_distal"}) {
+    const int bone = ik.bone_index(name);
+    const hand::Bone& b = ik.bones[std::size_t(bone)];
+    if (tip) {
+      ik.markers.push_back({"tip", bone, Eigen::Vector3d(0, b.length, 0)});
+      ik.markers.push_back({"base", bone, Eigen::Vector3d(0, 0.3 * b.length, 0)});
+    } else {
+      ik.markers.push_back({"pad", bone, Eigen::Vector3d(0, 0.55 * b.length, b.radius)});
+      ik.markers.push_back({"pad_in", bone, Eigen::Vector3d(0, 0.55 * b.length, b.radius - 0.012)});
+    }
+  }
+  const std::vector<retarget::Feature> features = {
+      {first, -1, 1.0}, {first + 2, -1, 1.0}, {first + 1, -1, 0.3}, {first + 3, -1, 0.3}};
+  hand::HandPose pose = hand::HandPose::rest(ik);
+  pose.root_rotation = rotation;
+  for (std::size_t k = 0; k < ik.dofs.size(); ++k) {
+    const hand::Dof& dof = ik.dofs[k];
+    const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
+                       dof.name.rfind("pinky", 0) == 0;
+    if (other && dof.name.find("flexion") != std::string::npos)
+      pose.angles(Eigen::Index(k)) = kOtherFingersCurl * dof.upper;
+  }
+  // The grasp axis: across the A-B line (z), the thumb on its own side.
+  const hand::BoneFrames start = hand::forward_kinematics(ik, pose);
+  const Eigen::Vector3d axis(
+      0, 0,
+      (hand::marker_position(ik, start, first) - hand::marker_position(ik, start, first + 2)).z() >
+              0
+          ? 1.0
+          : -1.0);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  retarget::SolverOptions options;
+  options.root_translation_weight = 1e-3;
+  options.max_iterations = options.cold_start_iterations = 200;
+  options.relative_decrease_tolerance = 0.0;
+  retarget::FingertipSolver solver(ik, features, options);
+  const double thumb_reach = 0.7 * ik.bones[std::size_t(ik.bone_index("thumb_distal"))].length;
+  const double index_reach = 0.7 * ik.bones[std::size_t(ik.bone_index("index_distal"))].length;
+  Table table{rotation, {}};
+  bool cold = true;
+  for (double gap = 0.14; gap > -1e-9; gap -= 0.005) {
+    const hand::BoneFrames frames = hand::forward_kinematics(ik, pose);
+    const Eigen::Vector3d centre = 0.5 * (hand::marker_position(ik, frames, first) +
+                                          hand::marker_position(ik, frames, first + 2));
+    const double half = 0.5 * gap;
+    std::vector<Eigen::Vector3d> goals = {centre + axis * half, centre - axis * half};
+    if (tip) {
+      goals.push_back(goals[0] +
+                      thumb_reach * (std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up));
+      goals.push_back(goals[1] +
+                      index_reach * (-std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up));
+    } else {
+      goals.push_back(centre + axis * (half + 0.012));
+      goals.push_back(centre - axis * (half + 0.012));
+    }
+    const retarget::SolverResult r = solver.solve(pose, goals, cold);
+    cold = false;
+    pose.angles = r.angles;
+    pose.root_position += r.root_shift;
+    const hand::BoneFrames solved = hand::forward_kinematics(ik, pose);
+    const Eigen::Vector3d thumb = hand::marker_position(ik, solved, first);
+    const Eigen::Vector3d index = hand::marker_position(ik, solved, first + 2);
+    table.postures.push_back(
+        {(thumb - index).norm(), pose.angles, 0.5 * (thumb + index) - pose.root_position});
+  }
+  std::sort(table.postures.begin(), table.postures.end(),
+            [](const Posture& a, const Posture& b) { return a.aperture < b.aperture; });
+  // Keep a strictly increasing aperture (an unreachable gap repeats its neighbour's).
+  std::vector<Posture> kept;
+  for (const Posture& p : table.postures)
+    if (kept.empty() || p.aperture > kept.back().aperture + 1e-4) kept.push_back(p);
+  table.postures = std::move(kept);
+  return table;
+}
+
+hand::HandPose OwnHand::pose(Pinch pinch, const Eigen::Vector3d& grip, double aperture) const {
+  const Table& t = pinch == Pinch::kPad ? pad_ : tip_;
+  const std::vector<Posture>& postures = t.postures;
+  aperture = std::clamp(aperture, postures.front().aperture, postures.back().aperture);
+  std::size_t k = 0;
+  while (k + 2 < postures.size() && postures[k + 1].aperture < aperture) ++k;
+  const Posture& a = postures[k];
+  const Posture& b = postures[std::min(k + 1, postures.size() - 1)];
+  const double w =
+      b.aperture > a.aperture ? (aperture - a.aperture) / (b.aperture - a.aperture) : 0;
+  hand::HandPose pose = hand::HandPose::rest(skeleton_);
+  pose.root_rotation = t.rotation;
+  pose.angles = a.angles + w * (b.angles - a.angles);
+  pose.root_position = grip - (a.grip_from_root + w * (b.grip_from_root - a.grip_from_root));
+  return pose;
+}
+
+hand::HandPose OwnHand::open_palm(const Eigen::Vector3d& palm) const {
+  hand::HandPose pose = hand::HandPose::rest(skeleton_);
+  pose.root_rotation.col(0) = -Eigen::Vector3d::UnitX();
+  pose.root_rotation.col(1) = -Eigen::Vector3d::UnitZ();
+  pose.root_rotation.col(2) = -Eigen::Vector3d::UnitY();
+  const hand::LeapJoints j = hand::to_leap_joints(skeleton_, pose);
+  pose.root_position = palm - j.palm_position;
+  return pose;
+}
+
+tracking::TrackedFrame OwnHand::frame(const hand::HandPose& pose, double time, long id,
+                                      const std::vector<Eigen::Vector3d>& jitter) const {
+  hand::LeapJoints joints = hand::to_leap_joints(skeleton_, pose);
+  if (jitter.size() >= 25)
+    for (std::size_t d = 0; d < 5; ++d)
+      for (std::size_t k = 0; k < 5; ++k) joints.joints[d][k] += jitter[d * 5 + k];
+  tracking::TrackedFrame f;
+  f.timestamp = time;
+  f.id = id;
+  f.hands.push_back(tracking::tracked_hand(joints, tracking::Side::kRight));
+  return f;
+}
+
+}  // namespace handlab::studies

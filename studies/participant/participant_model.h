@@ -1,0 +1,56 @@
+// A simulated person: covariates stored like a real participant's, and the motor
+// parameters of the model, drawn once from stated population distributions (every default
+// and its source: docs/simulated-participants.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/store/study_store.h"
+
+namespace handlab::studies {
+
+struct MotorParameters {
+  double reaction_mu = 0.25, reaction_sigma = 0.03, reaction_tau = 0.10;  // s, ex-Gaussian
+  double visual_delay = 0.12;                                             // s
+  double fitts_a = 0.50, fitts_b = 0.40;                                  // s, s/bit
+  double noise_constant = 0.0005;     // m: endpoint SD per axis, constant part
+  double noise_proportional = 0.02;   // endpoint SD per metre moved
+  double aperture_intercept = 0.075;  // m: peak aperture = this + slope * cube size
+  double aperture_slope = 0.14;
+  double peak_aperture_at = 0.65;                 // fraction of the reach
+  double closing_time = 0.50;                     // s
+  double tremor_hz = 10.0, tremor_rms = 0.00005;  // physiological tremor at the hand
+  double tracker_jitter = 0.000063;               // m per axis and joint (measured, data/leap)
+  double practice_exponent = 0.20;                // durations x n^-alpha
+  double confirm_dwell = 0.15;                    // s seeing both pads on the cube before lifting
+  double regrasp_squeeze = 0.003;  // m more closing past the faces after each failed grasp
+};
+
+struct SimulatedPerson {
+  store::Participant participant;  // id, age, sex, handedness, hand length, VR experience
+  MotorParameters motor;
+  std::uint64_t seed = 0;  // the person's own stream (trials draw from it with their place)
+};
+
+// The population the study's participants are drawn from (the ISMAR 2021 sample).
+struct Population {
+  double age_mean = 26.2, age_sd = 4.04, age_min = 18, age_max = 34;
+  double male_fraction = 0.75;
+  double hand_length_mean = 0.188, hand_length_sd = 0.0123;
+  double hand_length_min = 0.159, hand_length_max = 0.205;
+  double vr_experience_fraction = 0.5;
+};
+
+// Person `index` (0-based) of the population under `seed`: covariates and motor parameters.
+// The id is "S01", "S02", ...; the notes mark the participant as simulated.
+SimulatedPerson draw_person(const Population& population, std::uint64_t seed, int index);
+
+// The motor parameters of a participant with a given id (e.g. one enrolled by hand and run
+// with `session run --tracker simulated`): drawn from the population under `seed` and the id.
+MotorParameters draw_motor_parameters(std::uint64_t seed, const std::string& id);
+
+// The seed of a person's own stream from the population seed and the id.
+std::uint64_t person_seed(std::uint64_t seed, const std::string& id);
+
+}  // namespace handlab::studies

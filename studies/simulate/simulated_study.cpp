@@ -1,0 +1,182 @@
+#include "studies/simulate/simulated_study.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "core/store/study_store.h"
+#include "studies/session/session_runner.h"
+
+namespace handlab::studies {
+namespace {
+
+std::string part_path(const std::string& db_path, const std::string& id) {
+  return db_path + ".part-" + id;
+}
+
+void remove_database(const std::string& path) {
+  std::error_code ignored;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+    std::filesystem::remove(path + suffix, ignored);
+}
+
+}  // namespace
+
+SimulationReport simulate_study(const Protocol& protocol, const std::string& db_path,
+                                const SimulationOptions& options,
+                                const std::function<void(const SimulationProgress&)>& progress) {
+  if (options.participants < 1) throw std::invalid_argument("a study needs participants");
+  if (std::filesystem::exists(db_path))
+    throw std::runtime_error(db_path + " exists; a simulated study is written to a new file");
+  const auto start = std::chrono::steady_clock::now();
+  const store::StudyDefinition definition = study_definition(protocol);
+
+  // Enrol everyone first, in order: the schedules' counterbalancing follows enrolment.
+  store::StudyStore::create(db_path, definition);
+  store::StudyStore study(db_path);
+  std::vector<store::Participant> people;
+  std::vector<std::vector<store::PlannedTrialRow>> plans;
+  int planned_total = 0;
+  for (int i = 0; i < options.participants; ++i) {
+    const SimulatedPerson person = draw_person(options.population, options.seed, i);
+    plans.push_back(planned_rows(protocol, person.participant.id, i));
+    study.add_participant(person.participant, plans.back());
+    people.push_back(person.participant);
+    planned_total += int(plans.back().size());
+  }
+
+  // Sessions side by side, each in a copy of the enrolled study; imported in enrolment order.
+  for (const store::Participant& p : people) {
+    const std::string path = part_path(db_path, p.id);
+    remove_database(path);
+    study.database().prepare("VACUUM INTO ?").bind(1, path).run();
+  }
+  const int n = options.participants;
+  const TrackerKind tracker = TrackerKind::simulated(options.seed);
+  const std::string tracker_name =
+      options.world == WorldKind::kSoftHand ? tracker.name() + " (soft hand)" : tracker.name();
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<int> state(std::size_t(n), 0);  // 0 waiting, 1 running, 2 done
+  std::atomic<int> next{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr failure;
+  int trials_done = 0;
+
+  auto work = [&] {
+    for (int i = next++; i < n && !stop; i = next++) {
+      const std::string path = part_path(db_path, people[std::size_t(i)].id);
+      try {
+        store::StudyStore part(path);
+        PipelineTrialDriver driver(tracker, 120.0, options.world, 1);
+        SessionRunner runner(part, driver, simulated_responder(options.seed));
+        runner.log_frames(options.frames);
+        runner.run(people[std::size_t(i)].id, tracker_name, false, [&](const std::string&) {
+          const std::lock_guard lock(mutex);
+          ++trials_done;
+          changed.notify_all();
+        });
+      } catch (...) {
+        const std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        stop = true;
+      }
+      const std::lock_guard lock(mutex);
+      state[std::size_t(i)] = 2;
+      changed.notify_all();
+    }
+  };
+  const int jobs = std::clamp(options.jobs, 1, n);
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(work);
+
+  SimulationProgress shown{0, n, 0, planned_total, 0.0};
+  int imported = 0;
+  std::exception_ptr import_failure;
+  {
+    std::unique_lock lock(mutex);
+    while (imported < n && !failure) {
+      changed.wait_for(lock, std::chrono::milliseconds(500));
+      shown.trials_done = trials_done;
+      while (imported < n && state[std::size_t(imported)] == 2 && !failure) {
+        const std::string path = part_path(db_path, people[std::size_t(imported)].id);
+        lock.unlock();
+        try {
+          study.import_sessions(path);
+          remove_database(path);
+        } catch (...) {
+          import_failure = std::current_exception();
+        }
+        lock.lock();
+        if (import_failure) {
+          failure = import_failure;
+          stop = true;
+          break;
+        }
+        ++imported;
+      }
+      shown.participants_done = imported;
+      shown.seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (progress) {
+        lock.unlock();
+        progress(shown);
+        lock.lock();
+      }
+    }
+  }
+  for (std::thread& t : threads) t.join();
+  if (failure) {
+    for (const store::Participant& p : people) remove_database(part_path(db_path, p.id));
+    std::rethrow_exception(failure);
+  }
+
+  SimulationReport report;
+  report.participants = n;
+  const std::vector<Condition> conditions = protocol.conditions();
+  for (const Condition& c : conditions) report.conditions.push_back({c.label});
+  for (const store::Participant& p : people) {
+    const std::vector<store::PlannedTrialRow> plan = study.plan(p.id);
+    std::vector<const store::TrialRow*> last(plan.size(), nullptr);
+    const std::vector<store::TrialRow> trials = study.trials(p.id);
+    for (const store::TrialRow& t : trials) {
+      ++report.trials;
+      if (t.status == store::TrialStatus::kCompleted) ++report.completed;
+      if (t.status == store::TrialStatus::kTimeout) ++report.timeouts;
+      if (t.status == store::TrialStatus::kCompleted)
+        report.simulated_seconds += t.completion_time_s;
+      if (t.status == store::TrialStatus::kTimeout) report.simulated_seconds += protocol.timeout_s;
+      if (std::size_t(t.position) < last.size()) last[std::size_t(t.position)] = &t;
+    }
+    for (std::size_t k = 0; k < plan.size(); ++k) {
+      if (plan[k].practice || !last[k]) continue;
+      ConditionOutcome& o = report.conditions.at(std::size_t(plan[k].condition));
+      const store::TrialRow& t = *last[k];
+      ++o.trials;
+      o.grasps += t.grasps;
+      o.drops += t.drops;
+      if (t.status == store::TrialStatus::kCompleted) {
+        ++o.completed;
+        o.mean_time_s += t.completion_time_s;
+      } else if (t.status == store::TrialStatus::kTimeout) {
+        ++o.timeouts;
+      } else if (t.status == store::TrialStatus::kSkipped) {
+        ++o.skipped;
+      }
+    }
+  }
+  for (ConditionOutcome& o : report.conditions)
+    if (o.completed) o.mean_time_s /= o.completed;
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace handlab::studies

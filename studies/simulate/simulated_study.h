@@ -1,0 +1,56 @@
+// A whole simulated study: enrol N participants drawn from a population (their covariates
+// stored like real ones, marked simulated) and run every session with the closed-loop
+// participant model through the same session runner as a person's. Sessions run side by side,
+// each in a database of its own, and are imported into the study's in enrolment order, so
+// that the study's content depends on the seed alone (not on the threads or their timing).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "studies/participant/participant_model.h"
+#include "studies/protocol/protocol.h"
+#include "studies/session/trial_driver.h"
+
+namespace handlab::studies {
+
+struct SimulationOptions {
+  int participants = 20;
+  std::uint64_t seed = 0;  // the population's draws and every person's own stream
+  int jobs = 1;            // sessions run at once (threads)
+  WorldKind world = WorldKind::kSoftHand;
+  bool frames = false;  // store every trial's frames (about 160 kB a simulated second)
+  Population population;
+};
+
+// The final attempts of the scheduled (not practice) trials of one condition.
+struct ConditionOutcome {
+  std::string label;
+  int trials = 0, completed = 0, timeouts = 0, skipped = 0;
+  double mean_time_s = 0.0;  // of the completed
+  int grasps = 0, drops = 0;
+};
+
+struct SimulationReport {
+  int participants = 0;
+  int trials = 0, completed = 0, timeouts = 0;  // every trial run, practice included
+  std::vector<ConditionOutcome> conditions;     // in the protocol's order
+  double seconds = 0.0;                         // wall-clock
+  double simulated_seconds = 0.0;               // trial time simulated
+};
+
+struct SimulationProgress {
+  int participants_done = 0, participants = 0;
+  int trials_done = 0, trials = 0;
+  double seconds = 0.0;
+};
+
+// Creates the study database `db_path` (which must not exist) from `protocol`, enrols
+// and runs. `progress` is called from the calling thread after every trial of any session.
+SimulationReport simulate_study(
+    const Protocol& protocol, const std::string& db_path, const SimulationOptions& options,
+    const std::function<void(const SimulationProgress&)>& progress = {});
+
+}  // namespace handlab::studies

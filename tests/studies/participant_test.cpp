@@ -1,0 +1,238 @@
+// The simulated participant: its motor primitives, its population, the tracker jitter it adds
+// (measured from the Leap recordings), its blindness to the condition, and its questionnaire.
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "core/hand/simulated_hand.h"
+#include "core/retarget/retargeter.h"
+#include "core/task/cube_task.h"
+#include "core/task/grasp_proxy.h"
+#include "core/tracking/recording_io.h"
+#include "studies/participant/motor_primitives.h"
+#include "studies/participant/own_hand.h"
+#include "studies/participant/participant_model.h"
+#include "studies/participant/questionnaire_model.h"
+#include "studies/participant/simulated_participant.h"
+#include "studies/participant/tracking_jitter.h"
+#include "studies/session/trial_driver.h"
+
+namespace handlab::studies {
+namespace {
+
+const std::string kSource = HANDLAB_SOURCE_DIR;
+
+TEST(MotorPrimitives, MinimumJerkAndFitts) {
+  EXPECT_EQ(minimum_jerk(0.0), 0.0);
+  EXPECT_EQ(minimum_jerk(1.0), 1.0);
+  EXPECT_NEAR(minimum_jerk(0.5), 0.5, 1e-15);
+  for (double u : {0.1, 0.3, 0.45}) EXPECT_NEAR(minimum_jerk(u) + minimum_jerk(1 - u), 1.0, 1e-12);
+  // Zero velocity at both ends: the profile is flat there.
+  EXPECT_LT(minimum_jerk(1e-3), 1e-7);
+  EXPECT_EQ(minimum_jerk(-1.0), 0.0);
+  EXPECT_EQ(minimum_jerk(2.0), 1.0);
+  // a + b log2(2D/W); an index of difficulty under one bit counts one.
+  EXPECT_NEAR(fitts_time(0.5, 0.4, 0.2, 0.01), 0.5 + 0.4 * std::log2(40.0), 1e-12);
+  EXPECT_NEAR(fitts_time(0.5, 0.4, 0.001, 0.06), 0.9, 1e-12);
+  MinimumJerkMove move{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0, 0), 1.0, 0.5};
+  EXPECT_EQ(move.at(0.5), Eigen::Vector3d::Zero());
+  EXPECT_NEAR(move.at(1.25).x(), 0.05, 1e-15);
+  EXPECT_EQ(move.at(2.0), Eigen::Vector3d(0.1, 0, 0));
+  EXPECT_FALSE(move.done(1.4));
+  EXPECT_TRUE(move.done(1.5));
+}
+
+// The ex-Gaussian's mean is mu + tau and its variance sigma^2 + tau^2; the sample moments of
+// 40,000 draws are within 5 standard errors.
+TEST(MotorPrimitives, ExGaussianMoments) {
+  MotorRandom random(7);
+  const double mu = 0.25, sigma = 0.03, tau = 0.10;
+  const int n = 40000;
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double x = random.ex_gaussian(mu, sigma, tau);
+    sum += x;
+    sum2 += x * x;
+  }
+  const double mean = sum / n, variance = sum2 / n - mean * mean;
+  const double sd = std::sqrt(sigma * sigma + tau * tau);
+  EXPECT_NEAR(mean, mu + tau, 5 * sd / std::sqrt(n));
+  // The variance's SE: sqrt((m4 - s^4) / n); for the exponential part m4 = 9 tau^4.
+  EXPECT_NEAR(variance, sd * sd,
+              5 * std::sqrt((9 * std::pow(tau, 4) + 3 * std::pow(sigma, 4)) / n));
+  double lowest = 1.0;
+  MotorRandom again(7);
+  for (int i = 0; i < 1000; ++i) lowest = std::min(lowest, again.truncated_normal(0, 1, -0.5, 0.5));
+  EXPECT_GE(lowest, -0.5);
+}
+
+// The default tracking jitter is the one measured on the recording of a hand held still
+// (confidence2), and the still pinch recordings jitter less (the default is an upper bound).
+TEST(TrackingJitter, DefaultIsMeasuredFromTheLeapRecordings) {
+  const MotorParameters defaults;
+  const TrackingJitter still = measure_tracking_jitter(
+      tracking::read_recording(kSource + "/data/leap/confidence2.json.lz").frames);
+  EXPECT_GT(still.samples, 1000);
+  EXPECT_NEAR(still.sd, defaults.tracker_jitter, 0.0000015);
+  for (const char* name : {"pinch.json.lz", "pinch-57fps.json.lz", "grab.json.lz"}) {
+    const TrackingJitter j =
+        measure_tracking_jitter(tracking::read_recording(kSource + "/data/leap/" + name).frames);
+    EXPECT_GT(j.samples, 100) << name;
+    EXPECT_GT(j.sd, 0.0) << name;
+    EXPECT_LE(j.sd, defaults.tracker_jitter) << name;
+  }
+}
+
+TEST(Population, DrawsTheStudySampleDeterministically) {
+  const Population population;
+  std::set<std::string> ids;
+  double male = 0, length_sum = 0;
+  const int n = 400;
+  for (int i = 0; i < n; ++i) {
+    const SimulatedPerson p = draw_person(population, 11, i);
+    ids.insert(p.participant.id);
+    EXPECT_TRUE(p.participant.simulated);
+    EXPECT_GE(p.participant.age, 18);
+    EXPECT_LE(p.participant.age, 34);
+    EXPECT_GE(p.participant.hand_length, 0.159);
+    EXPECT_LE(p.participant.hand_length, 0.205);
+    male += p.participant.sex == "M";
+    length_sum += p.participant.hand_length;
+    const SimulatedPerson again = draw_person(population, 11, i);
+    EXPECT_EQ(again.participant.hand_length, p.participant.hand_length);
+    EXPECT_EQ(again.motor.fitts_b, p.motor.fitts_b);
+    EXPECT_EQ(again.seed, p.seed);
+  }
+  EXPECT_EQ(int(ids.size()), n);
+  EXPECT_NEAR(male / n, population.male_fraction, 5 * std::sqrt(0.75 * 0.25 / n));
+  EXPECT_NEAR(length_sum / n, population.hand_length_mean, 0.003);
+  EXPECT_NE(draw_person(population, 12, 0).participant.hand_length,
+            draw_person(population, 11, 0).participant.hand_length);
+}
+
+// Its questionnaire answers follow what it experienced, never the condition (the function
+// has no condition to read): a clean trial rates higher than a trial of repeated failures.
+TEST(QuestionnaireModel, AnswersFollowTheExperience) {
+  const std::vector<std::string> ids = {"precision", "ease", "naturalness"};
+  TrialExperience clean{1, 0, 0, 6.0};
+  TrialExperience troubled{4, 5, 2, 6.0};
+  double clean_sum = 0, troubled_sum = 0;
+  for (std::uint64_t s = 0; s < 200; ++s) {
+    for (int v : simulated_answers(ids, 5, clean, 6.0, s)) {
+      EXPECT_GE(v, 1);
+      EXPECT_LE(v, 5);
+      clean_sum += v;
+    }
+    for (int v : simulated_answers(ids, 5, troubled, 24.0, s)) troubled_sum += v;
+  }
+  EXPECT_GT(clean_sum / 600, troubled_sum / 600 + 1.0);
+  EXPECT_EQ(simulated_answers(ids, 5, clean, 6.0, 3), simulated_answers(ids, 5, clean, 6.0, 3));
+}
+
+// One trial in closed loop on the grasp proxy: what the display showed after every step and
+// what the participant sent.
+struct ClosedLoop {
+  std::vector<Observation> shown;
+  std::vector<tracking::TrackedFrame> sent;
+  bool success = false;
+};
+
+ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& setup) {
+  const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
+  task::SceneLayout layout = setup.protocol->scene;
+  layout.cube_size = setup.condition.cube_size;
+  task::GraspProxySettings settings;
+  settings.cube_size = layout.cube_size;
+  task::GraspProxyWorld world(sim, settings, task::cube_start_pose(layout).translation());
+  retarget::Retargeter retargeter(retarget::Strategy::kOurs, sim, setup.calibration);
+  task::TaskSettings task_settings;
+  task_settings.layout = layout;
+  task_settings.timeout = setup.protocol->timeout_s;
+  task::CubeTask task(task_settings);
+  task.start(0.0);
+  ClosedLoop loop;
+  loop.shown.push_back(display_observation(world, layout, 0.0));
+  for (long step = 1; !task.finished(); ++step) {
+    const double t = double(step) / 120.0;
+    loop.sent.push_back(participant.act(loop.shown.back()));
+    const hand::HandPose pose = retargeter.retarget(loop.sent.back().hands.at(0)).pose;
+    world.step(&pose, 1.0 / 120.0);
+    task.update(task::observe_task(world, t));
+    loop.shown.push_back(display_observation(world, layout, t));
+  }
+  loop.success = task.phase() == task::TaskPhase::kDone;
+  return loop;
+}
+
+// The blinding test: participants built for the same person and trial place in conditions
+// that differ only in the strategy (its label and its flag), fed the same observations, send
+// the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
+// the participant but the cube it sees (participant_for_trial's inputs and TrialContext).
+TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy) {
+  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
+  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  const SimulatedPerson person = draw_person(Population{}, 5, 3);
+  const OwnHand own(person.participant.hand_length);
+  const retarget::Calibration calibration = driver.calibrate(protocol, person.participant);
+  for (double cube : {0.06, 0.01}) {
+    std::vector<TrialSetup> setups;
+    for (const Condition& c : protocol.conditions())
+      if (c.cube_size == cube) {
+        TrialSetup s;
+        s.protocol = &protocol;
+        s.condition = c;
+        s.participant = person.participant;
+        s.planned.position = 7;
+        s.calibration = calibration;
+        setups.push_back(s);
+      }
+    ASSERT_EQ(setups.size(), 2u);
+    ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
+    ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
+    auto first = participant_for_trial(setups[0], 5, own, 120.0);
+    const ClosedLoop loop = run_closed_loop(*first, setups[0]);
+    EXPECT_TRUE(loop.success) << cube;
+    EXPECT_GT(first->experience().grasp_attempts, 0);
+    auto second = participant_for_trial(setups[1], 5, own, 120.0);
+    ASSERT_GT(loop.sent.size(), 120u);
+    for (std::size_t k = 0; k < loop.sent.size(); ++k) {
+      const tracking::TrackedFrame f = second->act(loop.shown[k]);
+      const auto& a = loop.sent[k].hands.at(0).joints;
+      const auto& b = f.hands.at(0).joints;
+      for (int d = 0; d < 5; ++d)
+        for (int j = 0; j < 5; ++j)
+          ASSERT_EQ(a[std::size_t(d)][std::size_t(j)], b[std::size_t(d)][std::size_t(j)])
+              << "cube " << cube << " frame " << k;
+    }
+    EXPECT_EQ(second->experience().grasp_attempts, first->experience().grasp_attempts);
+    EXPECT_EQ(second->experience().corrections, first->experience().corrections);
+    // And the observations matter: a cube seen elsewhere changes what it sends.
+    auto third = participant_for_trial(setups[1], 5, own, 120.0);
+    bool differs = false;
+    for (std::size_t k = 0; k < loop.sent.size() && !differs; ++k) {
+      Observation o = loop.shown[k];
+      o.cube_position.z() += 0.02;
+      differs = third->act(o).hands.at(0).joints != loop.sent[k].hands.at(0).joints;
+    }
+    EXPECT_TRUE(differs);
+  }
+}
+
+// Its own hand: the tracked skeleton at its size, the pads the asked aperture apart.
+TEST(OwnHand, PinchPosturesSpanTheApertures) {
+  const OwnHand own(0.188);
+  for (Pinch pinch : {Pinch::kPad, Pinch::kTip}) {
+    EXPECT_LT(own.min_aperture(pinch), 0.01);
+    EXPECT_GT(own.max_aperture(pinch), 0.09);
+    const Eigen::Vector3d grip(0.1, 0.05, 0.0);
+    const hand::HandPose a = own.pose(pinch, grip, 0.02), b = own.pose(pinch, grip, 0.06);
+    const tracking::TrackedFrame fa = own.frame(a, 0.0, 1, {}), fb = own.frame(b, 0.0, 2, {});
+    const auto& ja = fa.hands.at(0).joints;
+    const auto& jb = fb.hands.at(0).joints;
+    EXPECT_LT((ja[0][4] - ja[1][4]).norm(), (jb[0][4] - jb[1][4]).norm());
+  }
+}
+
+}  // namespace
+}  // namespace handlab::studies

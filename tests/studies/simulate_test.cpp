@@ -1,0 +1,119 @@
+// A whole simulated study on the grasp proxy (fast): everyone enrolled and marked simulated,
+// every planned trial run, and the database's content set by the seed alone, whatever the
+// number of threads that ran the sessions.
+#include <filesystem>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/store/study_store.h"
+#include "studies/simulate/simulated_study.h"
+#include "tests/support/test_files.h"
+
+namespace handlab::studies {
+namespace {
+
+const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+
+// Every row of every table but the wall-clock columns (*_at), in id order.
+std::string content(const std::string& path) {
+  store::Database db(path, store::Database::Mode::kReadOnly);
+  std::ostringstream out;
+  const std::pair<const char*, int> queries[] = {
+      {"SELECT name, protocol_sha256, seed, factors FROM study", 4},
+      {"SELECT id, label, levels FROM condition ORDER BY id", 3},
+      {"SELECT id, enrolment, age, sex, handedness, hand_length, vr_experience, notes, simulated "
+       "FROM participant ORDER BY enrolment",
+       9},
+      {"SELECT id, participant_id, position, block, order_in_block, condition_id, repetition, "
+       "practice, questionnaire FROM planned_trial ORDER BY id",
+       9},
+      {"SELECT id, participant_id, tracker, status FROM session ORDER BY id", 4},
+      {"SELECT id, planned_id, session_id, attempt, status, completion_time_s, grasps, drops, "
+       "reason, frames FROM trial ORDER BY id",
+       10},
+      {"SELECT id, trial_id, t, kind FROM event ORDER BY id", 4},
+      {"SELECT trial_id, item, value FROM answer ORDER BY trial_id, item", 3},
+      {"SELECT count(*) FROM frame", 1},
+  };
+  for (const auto& [query, columns] : queries) {
+    store::Statement s = db.prepare(query);
+    out << query << "\n";
+    while (s.step()) {
+      for (int c = 0; c < columns; ++c)
+        out << (s.is_null(c) ? std::string("NULL") : s.column_text(c)) << "|";
+      out << "\n";
+    }
+  }
+  return out.str();
+}
+
+TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {
+  // The study's protocol with two blocks (the questionnaire in the last, as in the study).
+  std::string text = read_protocol(kStudy).text;
+  const std::string five = "\"blocks\": 5";
+  ASSERT_NE(text.find(five), std::string::npos);
+  text.replace(text.find(five), five.size(), "\"blocks\": 2");
+  const Protocol protocol = parse_protocol(text, "two blocks");
+  SimulationOptions options;
+  options.participants = 3;
+  options.seed = 4;
+  options.world = WorldKind::kGraspProxy;
+  options.jobs = 2;
+  const std::string a = test::fresh_path("simulated_a.db");
+  int calls = 0, last_done = -1;
+  const SimulationReport report =
+      simulate_study(protocol, a, options, [&](const SimulationProgress& p) {
+        ++calls;
+        EXPECT_GE(p.participants_done, last_done);
+        last_done = p.participants_done;
+        EXPECT_EQ(p.participants, 3);
+      });
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(last_done, 3);
+  EXPECT_EQ(report.participants, 3);
+  EXPECT_EQ(report.trials, 3 * 12);  // 8 scheduled and 4 practice each
+  ASSERT_EQ(report.conditions.size(), 4u);
+  int scheduled = 0;
+  for (const ConditionOutcome& c : report.conditions) {
+    EXPECT_EQ(c.trials, 6) << c.label;
+    scheduled += c.trials;
+    EXPECT_GE(c.completed, 5) << c.label;  // the grasp proxy is forgiving
+    EXPECT_EQ(c.completed + c.timeouts, c.trials) << c.label;
+  }
+  EXPECT_EQ(scheduled, 24);
+  {
+    store::StudyStore study(a);
+    const std::vector<store::Participant> people = study.participants();
+    ASSERT_EQ(people.size(), 3u);
+    // The questionnaire after each trial of the last block: 4 trials, 3 items, 3 people.
+    EXPECT_EQ(study.database().query_text("SELECT count(*) FROM answer"), "36");
+    for (const store::Participant& p : people) {
+      EXPECT_TRUE(p.simulated);
+      EXPECT_FALSE(study.next_trial(p.id)) << p.id << " has trials left";
+      EXPECT_NE(p.notes.find("simulated participant"), std::string::npos);
+    }
+  }
+  // No sessions' databases left behind.
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(a).parent_path()))
+    EXPECT_EQ(entry.path().string().find("simulated_a.db.part"), std::string::npos);
+
+  options.jobs = 3;
+  const std::string b = test::fresh_path("simulated_b.db");
+  simulate_study(protocol, b, options);
+  EXPECT_EQ(content(a), content(b));
+
+  options.jobs = 1;
+  options.seed = 5;
+  const std::string c = test::fresh_path("simulated_c.db");
+  simulate_study(protocol, c, options);
+  EXPECT_NE(content(a), content(c));
+
+  // An existing file is refused, untouched.
+  EXPECT_THROW(simulate_study(protocol, a, options), std::runtime_error);
+  EXPECT_EQ(content(a), content(b));
+}
+
+}  // namespace
+}  // namespace handlab::studies
