@@ -455,6 +455,18 @@ int StudyStore::abort_interrupted(const std::string& participant_id) {
   return aborted;
 }
 
+void StudyStore::abort_trial(std::int64_t trial_id, const std::string& reason) {
+  db_.prepare(
+         "UPDATE trial SET status = 'aborted', ended_at = ?, reason = ? WHERE id = ? AND status "
+         "= 'running'")
+      .bind(1, utc_timestamp())
+      .bind(2, reason)
+      .bind(3, trial_id)
+      .run();
+  if (db_.changes() != 1)
+    throw StoreError("trial " + std::to_string(trial_id) + " is not running: cannot abort it");
+}
+
 std::int64_t StudyStore::begin_trial(std::int64_t planned_id, std::int64_t session_id) {
   Transaction t(db_);
   Statement attempt =

@@ -101,6 +101,8 @@ class StudyStore {
 
   std::int64_t begin_trial(std::int64_t planned_id, std::int64_t session_id);
   void finish_trial(std::int64_t trial_id, const TrialOutcome& outcome);
+  // A running trial stopped before its end: kept as aborted with the reason (it runs again).
+  void abort_trial(std::int64_t trial_id, const std::string& reason);
   // The experimenter's decisions, with the reason kept: skip a planned trial (it counts as
   // done), or redo one that has a result (the result stays, marked redone; it runs again).
   void skip_trial(const std::string& participant_id, int position, std::int64_t session_id,

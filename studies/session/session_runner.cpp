@@ -93,12 +93,29 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
     report.schedule_complete = true;
     return report;
   }
-  const retarget::Calibration calibration = driver_.calibrate(protocol, *participant);
+  driver_.attach(control_);
+  retarget::Calibration calibration;
+  try {
+    calibration = driver_.calibrate(protocol, *participant);
+  } catch (const SessionStopped&) {
+    report.stopped = true;
+    return report;
+  }
   const std::int64_t session = store_.begin_session(participant_id, tracker_name);
   std::optional<store::FrameLogger> logger;
   if (log_frames_) logger.emplace(store_.path());
   const int planned = int(store_.plan(participant_id).size());
-  for (; next; next = store_.next_trial(participant_id)) {
+  while (true) {
+    if (control_) {
+      apply_decisions(participant_id, session);
+      if (!control_->hold_while_paused()) {
+        report.stopped = true;
+        break;
+      }
+      apply_decisions(participant_id, session);  // those made while paused
+    }
+    next = store_.next_trial(participant_id);
+    if (!next) break;
     TrialSetup setup;
     setup.protocol = &protocol;
     setup.condition = conditions.at(std::size_t(next->condition));
@@ -110,11 +127,18 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
         setup.condition.simulated_hand_length / conditions.front().simulated_hand_length;
 
     const std::int64_t trial = store_.begin_trial(next->id, session);
+    if (control_ && control_->trial_started) control_->trial_started(setup, planned);
     std::int64_t seq = 0;
     const TrialRun run = driver_.run(setup, [&](const store::FrameRecord& frame) {
       if (logger) logger->log(trial, seq++, frame);
     });
     if (logger) logger->flush();  // every frame on disk before the outcome is committed
+    if (run.aborted) {
+      store_.abort_trial(trial, "stopped by the experimenter");
+      if (control_ && control_->trial_ended) control_->trial_ended(setup, run);
+      report.stopped = true;
+      break;
+    }
 
     store::TrialOutcome outcome;
     outcome.success = run.success;
@@ -135,6 +159,7 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
     }
     store_.finish_trial(trial, outcome);
     ++report.trials_run;
+    if (control_ && control_->trial_ended) control_->trial_ended(setup, run);
     if (progress) {
       std::ostringstream line;
       line << participant_id << " trial " << next->position + 1 << "/" << planned << " "
@@ -145,9 +170,24 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
       progress(line.str());
     }
   }
-  store_.end_session(session, "finished");
-  report.schedule_complete = true;
+  report.schedule_complete = !store_.next_trial(participant_id).has_value();
+  store_.end_session(session, report.schedule_complete ? "finished" : "stopped");
   return report;
+}
+
+void SessionRunner::apply_decisions(const std::string& participant_id, std::int64_t session) {
+  for (const TrialDecision& d : control_->take_decisions()) {
+    std::string error;
+    try {
+      if (d.kind == TrialDecision::Kind::kRedo)
+        store_.redo_trial(participant_id, d.position, d.reason);
+      else
+        store_.skip_trial(participant_id, d.position, session, d.reason);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    if (control_->decided) control_->decided(d, error);
+  }
 }
 
 }  // namespace handlab::studies

@@ -11,6 +11,7 @@
 
 #include "core/store/study_store.h"
 #include "studies/protocol/protocol.h"
+#include "studies/session/session_control.h"
 #include "studies/session/trial_driver.h"
 
 namespace handlab::studies {
@@ -30,6 +31,7 @@ QuestionnaireResponder simulated_responder(std::uint64_t seed);
 struct SessionReport {
   int trials_run = 0, aborted_before = 0;
   bool schedule_complete = false;
+  bool stopped = false;  // by a stop request (SessionControl)
 };
 
 class SessionRunner {
@@ -44,9 +46,14 @@ class SessionRunner {
   // Without frames, the trials' frame records are not stored (a simulated study's choice:
   // about 160 kB a simulated second); trials then record 0 frames.
   void log_frames(bool on) { log_frames_ = on; }
+  // A front end's requests and observers (session_control.h); null: none.
+  void attach(SessionControl* control) { control_ = control; }
 
  private:
+  void apply_decisions(const std::string& participant_id, std::int64_t session);
+
   bool log_frames_ = true;
+  SessionControl* control_ = nullptr;
   store::StudyStore& store_;
   TrialDriver& driver_;
   QuestionnaireResponder responder_;

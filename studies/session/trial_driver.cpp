@@ -1,7 +1,9 @@
 #include "studies/session/trial_driver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
@@ -15,6 +17,7 @@
 #include "studies/participant/own_hand.h"
 #include "studies/participant/simulated_participant.h"
 #include "studies/session/scripted_tracker.h"
+#include "studies/session/session_control.h"
 
 namespace handlab::studies {
 namespace {
@@ -100,6 +103,8 @@ std::string TrackerKind::name() const {
       return path_;
     case Kind::kSimulated:
       return "simulated (seed " + std::to_string(seed_) + ")";
+    case Kind::kLive:
+      return path_;
   }
   return path_;
 }
@@ -154,15 +159,43 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
   // The first condition's simulated hand (the runner rescales for conditions of other lengths).
   const Condition first = protocol.conditions().front();
   const hand::Skeleton sim = hand::build_simulated_hand(first.simulated_hand);
+  // What a front end shows: the outcome, and the frame it came from.
+  auto report_done = [&](const retarget::Calibration& c, tracking::TrackedFrame frame) {
+    if (!control_ || !control_->calibration) return;
+    CalibrationStatus status;
+    status.state = CalibrationStatus::State::kDone;
+    status.result = c;
+    status.frame = std::move(frame);
+    control_->calibration(status);
+  };
+  if (tracker_.is_live()) {
+    // A person: the open palm held still, frame by frame, as long as it takes.
+    OpenPalmCalibration step(protocol.scene, sim, participant.hand_length);
+    const std::unique_ptr<tracking::FrameSource> source = tracker_.open_live();
+    const auto period = std::chrono::duration<double>(1.0 / rate_hz_);
+    auto next_poll = std::chrono::steady_clock::now();
+    while (!step.done()) {
+      if (control_ && control_->stop_requested()) throw SessionStopped();
+      next_poll += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
+      std::this_thread::sleep_until(next_poll);
+      if (const auto frame = source->next()) {
+        step.feed(*frame);
+        if (control_ && control_->calibration) control_->calibration(step.status());
+      }
+    }
+    return *step.status().result;
+  }
   if (!tracker_.is_recording()) {
     // The scripted and the simulated participant hold their open palm over A for a second.
     ScriptedMotionSettings settings;
     settings.hand_length = participant.hand_length;
     settings.layout = protocol.scene;
+    const std::vector<tracking::TrackedFrame> open = scripted_open_palm(settings);
     const auto calibration = retarget::calibrate_open_palm(
-        scripted_open_palm(settings), Side::kRight, sim,
+        open, Side::kRight, sim,
         tracking::TrackedHandFitter(participant.hand_length, Side::kRight));
     if (!calibration) throw std::runtime_error("the scripted open palm did not calibrate");
+    report_done(*calibration, open.back());
     return *calibration;
   }
   // A recording: its own open-palm frames (or the length ratio without any), and the
@@ -185,11 +218,13 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
   }
   c.tracker_to_scene =
       Eigen::Translation3d(protocol.scene.zone_a + Eigen::Vector3d(0, 0.12, 0) - median);
+  report_done(c, recording_.front());
   return c;
 }
 
 std::unique_ptr<tracking::FrameSource> PipelineTrialDriver::open_tracker(
     const TrialSetup& setup, const hand::Skeleton& simulated) const {
+  if (tracker_.is_live()) return tracker_.open_live();
   if (tracker_.is_scripted()) {
     ScriptedMotionSettings settings;
     settings.hand_length = setup.participant.hand_length;
@@ -284,13 +319,28 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   bool tracker_ended = false;
   std::optional<hand::HandPose> pose;
   Observation shown = display_observation(world, layout, 0.0);
+  const bool real_time = real_time_ || tracker_.is_live();
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<tracking::TrackedFrame> held;  // a live tracker's newest frame
   for (long step = 1; !task.finished(); ++step) {
     const double t = double(step) * dt;
+    if (control_ && control_->stop_requested()) {
+      run.aborted = true;
+      break;
+    }
+    if (real_time)
+      std::this_thread::sleep_until(start +
+                                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>(t)));
     std::optional<tracking::TrackedFrame> frame;
-    if (participant)
+    if (participant) {
       frame = participant->act(shown);
-    else if (!tracker_ended && !(frame = tracker->next()))
+    } else if (tracker_.is_live()) {
+      if (auto fresh = tracker->next()) held = std::move(fresh);
+      frame = held;
+    } else if (!tracker_ended && !(frame = tracker->next())) {
       tracker_ended = true;
+    }
     const tracking::TrackedHand* hand = frame ? frame->hand(Side::kRight) : nullptr;
     if (hand) pose = retargeter.retarget(*hand).pose;
     world.step(hand ? &*pose : nullptr, dt);
@@ -298,6 +348,8 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
     task.update(o);
     fill_record(record, t, frame ? &*frame : nullptr, pose ? &*pose : nullptr, world, task.phase());
     sink(record);
+    if (control_ && control_->stepped)
+      control_->stepped({t, task.phase(), task.grasps(), task.drops(), &record});
     if (participant) shown = display_observation(world, layout, t);
     ++run.frames;
     // With the tracker gone and the cube at rest waiting for a grasp, nothing can happen

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@
 #include "studies/protocol/protocol.h"
 
 namespace handlab::studies {
+
+class SessionControl;
 
 struct TrialSetup {
   const Protocol* protocol = nullptr;
@@ -37,6 +40,13 @@ struct TrialRun {
   std::vector<std::pair<double, std::string>> events;
   // A simulated participant's account of the trial (its questionnaire answers come from it).
   std::optional<TrialExperience> experience;
+  // Stopped by the experimenter before its end (SessionControl::request_stop): no result.
+  bool aborted = false;
+};
+
+// Thrown by a calibration that a stop request ended.
+struct SessionStopped : std::runtime_error {
+  SessionStopped() : std::runtime_error("the session was stopped") {}
 };
 
 using FrameSink = std::function<void(const store::FrameRecord&)>;
@@ -49,14 +59,30 @@ class TrialDriver {
   virtual retarget::Calibration calibrate(const Protocol& protocol,
                                           const store::Participant& participant) = 0;
   virtual TrialRun run(const TrialSetup& setup, const FrameSink& sink) = 0;
+  // A front end's requests and observers (session_control.h); null: none.
+  void attach(SessionControl* control) { control_ = control; }
+
+ protected:
+  SessionControl* control_ = nullptr;
 };
 
 // Where the pipeline's frames come from: the built-in scripted (open-loop) participant, a
-// recording replayed at the simulation rate for every trial, or a simulated participant who
+// recording replayed at the simulation rate for every trial, a simulated participant who
 // sees the display and acts in closed loop (docs/simulated-participants.md), its parameters
-// drawn from the population under `seed` and the participant's id.
+// drawn from the population under `seed` and the participant's id, or a live tracker.
 class TrackerKind {
  public:
+  // A live tracker (app/live: the Leap over its WebSocket): `open` gives a source whose
+  // next() never blocks and returns the newest frame since the last call, nullopt when none
+  // came. The session runs in real time; the participant calibrates with an open palm.
+  using LiveOpener = std::function<std::unique_ptr<tracking::FrameSource>()>;
+  static TrackerKind live(std::string name, LiveOpener open) {
+    TrackerKind k(Kind::kLive, std::move(name), 0);
+    k.open_live_ = std::move(open);
+    return k;
+  }
+  bool is_live() const { return kind_ == Kind::kLive; }
+  std::unique_ptr<tracking::FrameSource> open_live() const { return open_live_(); }
   static TrackerKind scripted() { return TrackerKind(Kind::kScripted, "", 0); }
   static TrackerKind recording(std::string path) {
     return TrackerKind(Kind::kRecording, std::move(path), 0);
@@ -72,12 +98,13 @@ class TrackerKind {
   std::string name() const;
 
  private:
-  enum class Kind { kScripted, kRecording, kSimulated };
+  enum class Kind { kScripted, kRecording, kSimulated, kLive };
   TrackerKind(Kind kind, std::string path, std::uint64_t seed)
       : kind_(kind), path_(std::move(path)), seed_(seed) {}
   Kind kind_;
   std::string path_;
   std::uint64_t seed_;
+  LiveOpener open_live_;
 };
 
 // The hand-cube physics a trial runs on: the grasp proxy (the cube attaches to a pinch,
@@ -108,6 +135,9 @@ class PipelineTrialDriver : public TrialDriver {
   explicit PipelineTrialDriver(TrackerKind tracker, double rate_hz = 120.0,
                                WorldKind world = WorldKind::kGraspProxy, int sim_threads = 2);
   ~PipelineTrialDriver() override;
+  // Steps at the rate in wall-clock time (the app; always with a live tracker) instead of as
+  // fast as the pipeline goes (the CLI and simulated studies).
+  void set_real_time(bool on) { real_time_ = on; }
   retarget::Calibration calibrate(const Protocol& protocol,
                                   const store::Participant& participant) override;
   TrialRun run(const TrialSetup& setup, const FrameSink& sink) override;
@@ -121,6 +151,7 @@ class PipelineTrialDriver : public TrialDriver {
   double rate_hz_;
   WorldKind world_;
   int sim_threads_;
+  bool real_time_ = false;
   std::unique_ptr<OwnHand> own_hand_;  // the simulated participant's, built once per size
   double own_hand_length_ = 0.0;
   std::vector<tracking::TrackedFrame> recording_;  // loaded once

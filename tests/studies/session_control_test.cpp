@@ -1,0 +1,273 @@
+// A front end steering the session runner (studies/session/session_control.h): pausing
+// before the next trial, stopping a trial under way (kept as aborted, run again on resume),
+// the experimenter's redo and skip applied between trials, the observers; and the open-palm
+// calibration step on real Leap frames.
+#include <atomic>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "core/hand/simulated_hand.h"
+#include "core/store/study_store.h"
+#include "core/tracking/recording_io.h"
+#include "studies/session/open_palm_calibration.h"
+#include "studies/session/session_control.h"
+#include "studies/session/session_runner.h"
+#include "studies/session/trial_driver.h"
+#include "tests/support/test_files.h"
+
+namespace handlab::studies {
+namespace {
+
+const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+
+store::Participant person(const std::string& id) {
+  store::Participant p;
+  p.id = id;
+  p.age = 31;
+  p.sex = "F";
+  p.handedness = "right";
+  p.hand_length = 0.18;
+  p.vr_experience = "some";
+  return p;
+}
+
+std::string enrolled_study(const std::string& name, const Protocol& protocol) {
+  const std::string path = test::fresh_path(name);
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore db(path);
+  db.add_participant(person("P01"), planned_rows(protocol, "P01", 0));
+  return path;
+}
+
+// Stop during the third trial, then resume: the stopped attempt is kept as aborted with its
+// reason, the session is recorded as stopped, and the resumed session runs that trial again.
+TEST(SessionControl, StopAbortsTheRunningTrialWhichRunsAgainOnResume) {
+  const Protocol protocol = read_protocol(kStudy);
+  const std::string path = enrolled_study("control_stop.db", protocol);
+  store::StudyStore db(path);
+  PipelineTrialDriver driver(TrackerKind::scripted());
+  SessionRunner runner(db, driver, fixed_responder());
+  SessionControl control;
+  int started = 0, ended = 0;
+  long steps = 0;
+  control.trial_started = [&](const TrialSetup&, int planned) {
+    EXPECT_EQ(planned, 24);
+    ++started;
+  };
+  control.trial_ended = [&](const TrialSetup&, const TrialRun&) { ++ended; };
+  control.stepped = [&](const TrialStep& step) {
+    ASSERT_NE(step.frame, nullptr);
+    EXPECT_DOUBLE_EQ(step.frame->time, step.time);
+    if (started == 3 && step.time > 1.0) control.request_stop();
+    ++steps;
+  };
+  bool calibrated = false;
+  control.calibration = [&](const CalibrationStatus& s) {
+    calibrated = s.state == CalibrationStatus::State::kDone && s.result && s.result->scale > 1;
+  };
+  runner.attach(&control);
+  const SessionReport report = runner.run("P01", "scripted", false);
+  EXPECT_TRUE(calibrated);
+  EXPECT_TRUE(report.stopped);
+  EXPECT_FALSE(report.schedule_complete);
+  EXPECT_EQ(report.trials_run, 2);
+  EXPECT_EQ(started, 3);
+  EXPECT_EQ(ended, 3);
+  EXPECT_GT(steps, 120);
+  auto trials = db.trials("P01");
+  ASSERT_EQ(trials.size(), 3u);
+  EXPECT_EQ(trials[2].status, store::TrialStatus::kAborted);
+  EXPECT_EQ(trials[2].reason, "stopped by the experimenter");
+  EXPECT_EQ(db.next_trial("P01")->position, 2);
+  {
+    store::Statement s = db.database().prepare("SELECT status FROM session");
+    ASSERT_TRUE(s.step());
+    EXPECT_EQ(s.column_text(0), "stopped");
+  }
+
+  // A fresh control (the stop is spent), resumed: trial 3 runs again, attempt 2.
+  SessionControl again;
+  again.stepped = [&](const TrialStep& step) {
+    if (step.time > 0.5) again.request_stop();
+  };
+  runner.attach(&again);
+  EXPECT_TRUE(runner.run("P01", "scripted", true).stopped);
+  trials = db.trials("P01");
+  ASSERT_EQ(trials.size(), 4u);
+  EXPECT_EQ(trials[3].position, 2);
+  EXPECT_EQ(trials[3].attempt, 2);
+  EXPECT_EQ(trials[3].status, store::TrialStatus::kAborted);
+}
+
+// Paused before a trial, the experimenter redoes the last trial and skips the one after it;
+// both are applied by the session thread with their reasons, and a refused decision comes
+// back with the store's message.
+TEST(SessionControl, PauseHoldsAndDecisionsApplyBetweenTrials) {
+  const Protocol protocol = read_protocol(kStudy);
+  const std::string path = enrolled_study("control_pause.db", protocol);
+  store::StudyStore db(path);
+  PipelineTrialDriver driver(TrackerKind::scripted());
+  SessionRunner runner(db, driver, fixed_responder());
+  SessionControl control;
+  std::atomic<int> ended{0};
+  std::atomic<bool> held{false};
+  std::vector<std::string> errors;
+  control.trial_ended = [&](const TrialSetup& setup, const TrialRun&) {
+    if (++ended == 2) control.set_paused(true);
+    if (setup.planned.position == 3) control.request_stop();
+  };
+  control.holding = [&] { held = true; };
+  control.decided = [&](const TrialDecision&, const std::string& error) {
+    errors.push_back(error);
+  };
+  runner.attach(&control);
+  std::thread experimenter([&] {
+    while (!held) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    control.decide({TrialDecision::Kind::kRedo, 1, "tracking lost"});
+    control.decide({TrialDecision::Kind::kSkip, 2, "participant asked for a break"});
+    control.decide({TrialDecision::Kind::kRedo, 9, "not run yet"});  // refused
+    control.set_paused(false);
+  });
+  const SessionReport report = runner.run("P01", "scripted", false);
+  experimenter.join();
+  EXPECT_TRUE(report.stopped);
+  ASSERT_EQ(errors.size(), 3u);
+  EXPECT_EQ(errors[0], "");
+  EXPECT_EQ(errors[1], "");
+  EXPECT_NE(errors[2], "");
+  const auto trials = db.trials("P01");
+  // 0, 1 (redone), 2 skipped, 1 again, 3.
+  ASSERT_EQ(trials.size(), 5u);
+  EXPECT_EQ(trials[1].status, store::TrialStatus::kRedone);
+  EXPECT_EQ(trials[1].reason, "tracking lost");
+  EXPECT_EQ(trials[2].position, 2);
+  EXPECT_EQ(trials[2].status, store::TrialStatus::kSkipped);
+  EXPECT_EQ(trials[2].reason, "participant asked for a break");
+  EXPECT_EQ(trials[3].position, 1);
+  EXPECT_EQ(trials[3].attempt, 2);
+  EXPECT_EQ(trials[4].position, 3);
+  EXPECT_EQ(trials[4].status, store::TrialStatus::kCompleted);
+}
+
+// A live tracker: frames pulled without blocking, the hand held, the session paced in real
+// time, the open palm calibrated step by step from what arrives.
+TEST(SessionControl, LiveTrackerCalibratesFromTheHeldPalmAndRunsInRealTime) {
+  // A recording whose hand is held open and still for two seconds.
+  const auto recording =
+      tracking::read_recording(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch-57fps.json.lz");
+  // A live source that hands out the recording's frames at their own pace.
+  struct Live : tracking::FrameSource {
+    const std::vector<tracking::TrackedFrame>* frames;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    std::size_t next_index = 0;
+    std::optional<tracking::TrackedFrame> next() override {
+      const double now =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::optional<tracking::TrackedFrame> newest;
+      while (next_index < frames->size() &&
+             (*frames)[next_index].timestamp - frames->front().timestamp <= now)
+        newest = (*frames)[next_index++];
+      return newest;
+    }
+  };
+  const Protocol protocol = read_protocol(kStudy);
+  PipelineTrialDriver driver(TrackerKind::live("live (test)", [&] {
+    auto live = std::make_unique<Live>();
+    live->frames = &recording.frames;
+    return live;
+  }));
+  SessionControl control;
+  std::vector<CalibrationStatus::State> states;
+  control.calibration = [&](const CalibrationStatus& s) {
+    if (states.empty() || states.back() != s.state) states.push_back(s.state);
+  };
+  driver.attach(&control);
+  std::thread watchdog([&] {  // a calibration that never finishes fails instead of hanging
+    for (int k = 0; k < 1000 && !control.stop_requested(); ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    control.request_stop();
+  });
+  retarget::Calibration c;
+  try {
+    c = driver.calibrate(protocol, person("P01"));
+  } catch (const SessionStopped&) {
+    ADD_FAILURE() << "no calibration in 10 s";
+  }
+  control.request_stop();
+  watchdog.join();
+  SessionControl trial_control;
+  driver.attach(&trial_control);
+  ASSERT_FALSE(states.empty());
+  EXPECT_EQ(states.back(), CalibrationStatus::State::kDone);
+  EXPECT_GT(c.scale, 1.0);
+  EXPECT_LT(c.scale, 1.6);
+
+  TrialSetup setup;
+  setup.protocol = &protocol;
+  setup.condition = protocol.conditions().front();
+  setup.participant = person("P01");
+  setup.calibration = c;
+  int steps = 0;
+  trial_control.stepped = [&](const TrialStep&) {
+    if (++steps == 60) trial_control.request_stop();
+  };
+  const auto start = std::chrono::steady_clock::now();
+  const TrialRun run = driver.run(setup, [](const store::FrameRecord&) {});
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(run.aborted);
+  EXPECT_EQ(run.frames, 60);
+  EXPECT_GE(wall, 59.0 / 120.0) << "paced at 120 Hz of wall-clock time";
+}
+
+// The open-palm step on frames: a refusal for two hands, for none and for a moving hand,
+// each restarting the countdown; done after the hold with the palm placed above zone A.
+TEST(OpenPalmCalibration, RefusesWithAReasonAndCountsDownWhileHeldStill) {
+  const Protocol protocol = read_protocol(kStudy);
+  const hand::Skeleton sim =
+      hand::build_simulated_hand(protocol.conditions().front().simulated_hand);
+  OpenPalmCalibration step(protocol.scene, sim, 0.18);
+  tracking::TrackedHand hand;
+  hand.side = tracking::Side::kRight;
+  const auto recording =
+      tracking::read_recording(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/confidence2.json.lz");
+  for (const auto& f : recording.frames)
+    if (const auto* h = f.hand(tracking::Side::kRight)) hand = *h;
+  hand.grab_strength = 0.0;
+  auto frame_at = [&](double t, Eigen::Vector3d offset, int hands = 1) {
+    tracking::TrackedFrame f;
+    f.timestamp = t;
+    for (int k = 0; k < hands; ++k) {
+      tracking::TrackedHand h = hand;
+      h.palm_position += offset;
+      for (auto& digit : h.joints)
+        for (auto& joint : digit) joint += offset;
+      if (k == 1) h.side = tracking::Side::kLeft;
+      f.hands.push_back(h);
+    }
+    return f;
+  };
+  using State = CalibrationStatus::State;
+  EXPECT_EQ(step.feed(frame_at(0.0, {0, 0, 0}, 0)).state, State::kNoHand);
+  EXPECT_EQ(step.feed(frame_at(0.01, {0, 0, 0}, 2)).state, State::kTwoHands);
+  EXPECT_EQ(step.feed(frame_at(0.02, {0, 0, 0})).state, State::kHolding);
+  EXPECT_NEAR(step.feed(frame_at(1.02, {0, 0, 0})).remaining_s, 1.0, 1e-9);
+  EXPECT_EQ(step.feed(frame_at(1.03, {0.01, 0, 0})).state, State::kMoving);  // 1 m/s
+  tracking::TrackedFrame closed = frame_at(1.04, {0.01, 0, 0});
+  closed.hands[0].grab_strength = 0.9;
+  EXPECT_EQ(step.feed(closed).state, State::kClosed);
+  EXPECT_EQ(step.status().message(), "The hand is closed: open it, fingers spread and flat.");
+  double t = 1.05;
+  for (; !step.done() && t < 5.0; t += 0.01) step.feed(frame_at(t, {0.01, 0, 0}));
+  ASSERT_TRUE(step.done());
+  EXPECT_NEAR(t, 1.05 + 2.0, 0.02) << "two seconds held, counted again from the refusal";
+  const retarget::Calibration c = *step.status().result;
+  const Eigen::Vector3d placed =
+      c.tracker_to_scene * (hand.palm_position + Eigen::Vector3d(0.01, 0, 0));
+  EXPECT_TRUE(placed.isApprox(protocol.scene.zone_a + Eigen::Vector3d(0, 0.12, 0), 1e-9));
+  EXPECT_NE(step.status().message().find("Calibrated: scale"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace handlab::studies
