@@ -3,16 +3,67 @@
 #include <QCommandLineParser>
 #include <QMessageBox>
 #include <QSurfaceFormat>
+#include <QTabWidget>
 #include <QTimer>
 
 #include <cstdio>
+#include <string>
 
+#include "app/gui/analysis_page.h"
 #include "app/gui/main_window.h"
+#include "app/gui/participants_page.h"
 #include "app/gui/pinch_simulation.h"
 #include "app/gui/scene_view.h"
+#include "app/gui/session_page.h"
+#include "app/gui/study_home.h"
 #include "handlab/version.h"
 
+namespace {
+
+struct Options {
+  QCommandLineOption study{"study", "Open a study database.", "DB"};
+  QCommandLineOption screenshot{"screenshot", "Save the window as PNG once shown, then quit.",
+                                "PNG"};
+  QCommandLineOption tab{"tab", "Show this screen first: study, participants, session, analysis.",
+                         "SCREEN"};
+  QCommandLineOption pinch{
+      "pinch", "Simulate the scripted pinch-and-lift of a cube of this side (m) in the view.",
+      "METRES"};
+  QCommandLineOption pinch_until{
+      "pinch-until", "Stop the simulated pinch at this time (s); with --screenshot, save then.",
+      "SECONDS"};
+  QCommandLineOption contacts{"contacts", "Show the simulation's contact points."};
+
+  void add_to(QCommandLineParser& parser) {
+    parser.setApplicationDescription(
+        "Runs and analyses studies of fine virtual manipulation: create a study from a "
+        "protocol, enrol participants, run their sessions with a live Leap Motion, a "
+        "recording or a simulated participant on the soft hand, and analyse the results.");
+    parser.addHelpOption();
+    parser.addVersionOption();
+    for (const auto* o : {&study, &screenshot, &tab, &pinch, &pinch_until, &contacts})
+      parser.addOption(*o);
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // --help and --version answer without a display: no GUI application is made for them.
+  for (int k = 1; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (arg == "-h" || arg == "--help" || arg == "--help-all" || arg == "-v" ||
+        arg == "--version") {
+      QCoreApplication core(argc, argv);
+      QCoreApplication::setApplicationName("handlab");
+      QCoreApplication::setApplicationVersion(HANDLAB_VERSION);
+      QCommandLineParser parser;
+      Options options;
+      options.add_to(parser);
+      parser.process(core);  // prints and exits
+      return 0;
+    }
+  }
   // The renderer speaks OpenGL 3.3 core; the format must be set before the application.
   QSurfaceFormat format;
   format.setVersion(3, 3);
@@ -23,33 +74,33 @@ int main(int argc, char** argv) {
 
   QApplication app(argc, argv);
   QApplication::setApplicationName("handlab");
+  QApplication::setOrganizationName("handlab");
   QApplication::setApplicationVersion(HANDLAB_VERSION);
   QCommandLineParser parser;
-  parser.setApplicationDescription("Runs and analyses studies of fine virtual manipulation.");
-  parser.addHelpOption();
-  parser.addVersionOption();
-  const QCommandLineOption study("study", "Open a study database's progress panel.", "DB");
-  const QCommandLineOption screenshot("screenshot", "Save the window as PNG once shown, then quit.",
-                                      "PNG");
-  const QCommandLineOption pinch(
-      "pinch", "Simulate the scripted pinch-and-lift of a cube of this side (m) in the view.",
-      "METRES");
-  const QCommandLineOption pinch_until(
-      "pinch-until", "Stop the simulated pinch at this time (s); with --screenshot, save then.",
-      "SECONDS");
-  const QCommandLineOption contacts("contacts", "Show the simulation's contact points.");
-  parser.addOption(study);
-  parser.addOption(screenshot);
-  parser.addOption(pinch);
-  parser.addOption(pinch_until);
-  parser.addOption(contacts);
+  Options options;
+  options.add_to(parser);
   parser.process(app);
+  const auto& study = options.study;
+  const auto& screenshot = options.screenshot;
+  const auto& pinch = options.pinch;
+  const auto& pinch_until = options.pinch_until;
+  const auto& contacts = options.contacts;
 
   handlab::gui::MainWindow window;
   window.show();
   if (parser.isSet(study)) {
     const QString error = window.show_study(parser.value(study));
     if (!error.isEmpty()) QMessageBox::warning(&window, "handlab", error);
+  }
+  if (parser.isSet(options.tab)) {
+    const QString name = parser.value(options.tab);
+    QWidget* pages[] = {window.home(), window.participants(), window.session(), window.analysis()};
+    const QStringList names = {"study", "participants", "session", "analysis"};
+    if (!names.contains(name)) {
+      std::fprintf(stderr, "handlab: --tab is study, participants, session or analysis\n");
+      return 2;
+    }
+    window.tabs()->setCurrentWidget(pages[names.indexOf(name)]);
   }
   handlab::gui::PinchSimulation* simulation = nullptr;
   if (parser.isSet(pinch)) {

@@ -1,57 +1,165 @@
 #include "app/gui/main_window.h"
 
+#include <fstream>
+
 #include <QActionGroup>
 #include <QApplication>
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
+#include <QFileInfo>
+#include <QGuiApplication>
 #include <QHeaderView>
+#include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QPushButton>
+#include <QScreen>
+#include <QSettings>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QTableWidget>
-#include <QTextStream>
+#include <QVBoxLayout>
 
+#include "app/gui/analysis_page.h"
+#include "app/gui/participant_window.h"
+#include "app/gui/participants_page.h"
 #include "app/gui/pinch_simulation.h"
 #include "app/gui/scene_view.h"
-#include "app/gui/study_panel.h"
+#include "app/gui/session_page.h"
+#include "app/gui/session_worker.h"
+#include "app/gui/study_home.h"
+#include "core/store/study_store.h"
+#include "core/util/csv.h"
 #include "handlab/version.h"
+#include "studies/export/study_export.h"
+#include "studies/session/enrolment.h"
+#include "studies/session/session_runner.h"
 
 namespace handlab::gui {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
-  setWindowTitle(tr("handlab"));
-  view_ = new SceneView(this);
-  setCentralWidget(view_);
+  tabs_ = new QTabWidget;
+  home_ = new StudyHome;
+  participants_ = new ParticipantsPage;
+  session_ = new SessionPage;
+  analysis_ = new AnalysisPage;
+  tabs_->addTab(home_, tr("&Study"));
+  tabs_->addTab(participants_, tr("&Participants"));
+  tabs_->addTab(session_, tr("S&ession"));
+  tabs_->addTab(analysis_, tr("&Analysis"));
+  setCentralWidget(tabs_);
+
+  connect(home_, &StudyHome::new_study_requested, this, &MainWindow::new_study_dialog);
+  connect(home_, &StudyHome::open_study_requested, this, &MainWindow::open_study_dialog);
+  connect(home_, &StudyHome::open_recent_requested, this, [this](const QString& path) {
+    const QString error = open_study(path);
+    if (!error.isEmpty()) show_error(tr("Open Study"), error);
+  });
+  connect(home_, &StudyHome::resume_requested, this, [this](const QString& id) {
+    session_->set_participants({}, id);
+    participants_->refresh();
+    session_->set_participants(
+        [this] {
+          QStringList ids;
+          for (int r = 0; r < participants_->table()->rowCount(); ++r)
+            ids << participants_->table()->item(r, 0)->text();
+          return ids;
+        }(),
+        id);
+    tabs_->setCurrentWidget(session_);
+  });
+  connect(participants_, &ParticipantsPage::participants_changed, this,
+          [this](const QStringList& ids, const QString& selected) {
+            session_->set_participants(ids, selected);
+          });
+  connect(session_, &SessionPage::study_changed, this, &MainWindow::refresh_study);
+  connect(session_, &SessionPage::session_started, this,
+          [this] { participants_->set_in_session(session_->participant_box()->currentText()); });
+  connect(session_, &SessionPage::session_ended, this, [this](const QString& summary) {
+    participants_->set_in_session({});
+    refresh_study();
+    statusBar()->showMessage(summary, 10000);
+  });
+
   build_menus();
-  statusBar()->showMessage(tr("Drag to orbit, scroll to zoom"));
-  resize(1100, 750);
+  setWindowTitle(tr("handlab"));
+  QSettings settings;
+  home_->set_recent(settings.value("recent").toStringList());
+  statusBar()->showMessage(tr("Create or open a study to begin"));
+  resize(1280, 820);
+}
+
+MainWindow::~MainWindow() {
+  stop_pinch();
 }
 
 void MainWindow::build_menus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(tr("&New Study…"), QKeySequence::New, this, &MainWindow::new_study_dialog);
+  file->addAction(tr("&Open Study…"), QKeySequence::Open, this, &MainWindow::open_study_dialog);
+  recent_menu_ = file->addMenu(tr("Open &Recent"));
+  connect(recent_menu_, &QMenu::aboutToShow, this, [this] {
+    recent_menu_->clear();
+    for (const QString& path : QSettings().value("recent").toStringList())
+      recent_menu_->addAction(path, this, [this, path] {
+        const QString error = open_study(path);
+        if (!error.isEmpty()) show_error(tr("Open Study"), error);
+      });
+  });
+  file->addSeparator();
+  file->addAction(tr("Export &Trials (trials.csv)…"), this, [this] { export_dialog(false); });
+  file->addAction(tr("Export &Questionnaire (questionnaire.csv)…"), this,
+                  [this] { export_dialog(true); });
+  file->addAction(tr("Open &Data Table (CSV)…"), this, &MainWindow::open_data_table_dialog);
   file->addAction(tr("Save View as &Image…"), this, &MainWindow::save_view_image);
   file->addSeparator();
   QAction* quit = file->addAction(tr("&Quit"), qApp, &QApplication::closeAllWindows);
   quit->setShortcut(QKeySequence::Quit);
 
-  QMenu* study = menuBar()->addMenu(tr("&Study"));
-  study->addAction(tr("&Open Study Database…"), this, &MainWindow::open_study);
-  study->addSeparator();
+  QMenu* session = menuBar()->addMenu(tr("S&ession"));
+  session->addAction(tr("&Start or Resume"), QKeySequence(Qt::Key_F5), this, [this] {
+    tabs_->setCurrentWidget(session_);
+    const QString error = session_->start_session();
+    if (!error.isEmpty()) statusBar()->showMessage(error, 8000);
+  });
+  session->addAction(tr("&Pause After This Trial"), QKeySequence(Qt::Key_F6), session_,
+                     &SessionPage::toggle_pause);
+  session->addAction(tr("S&top"), QKeySequence(Qt::Key_F8), session_, &SessionPage::stop_session);
+  session->addSeparator();
+  session->addAction(tr("&Add Participant…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_A), this,
+                     [this] {
+                       tabs_->setCurrentWidget(participants_);
+                       participants_->add_participant();
+                     });
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  QMenu* screens = view->addMenu(tr("&Participant Window"));
+  connect(screens, &QMenu::aboutToShow, this, [this, screens] {
+    screens->clear();
+    screens->addAction(tr("In a Window"), QKeySequence(Qt::CTRL | Qt::Key_P), this,
+                       [this] { show_participant_window(-1); });
+    const auto list = QGuiApplication::screens();
+    for (int k = 0; k < list.size(); ++k)
+      screens->addAction(tr("Full Screen on %1").arg(list[k]->name()), this,
+                         [this, k] { show_participant_window(k); });
+  });
+  QAction* hands = view->addAction(tr("Show &Hands in the Idle Scene"));
+  hands->setCheckable(true);
+  hands->setChecked(scene_view()->show_hands());
+  connect(hands, &QAction::toggled, scene_view(), &SceneView::set_show_hands);
   auto* cubes = new QActionGroup(this);
   for (const auto& [label, size] : {std::pair{tr("&Gross Manipulation (6 cm cube)"), 0.06},
                                     std::pair{tr("&Fine Manipulation (1 cm cube)"), 0.01}}) {
-    QAction* action = study->addAction(label, this, [this, size = size] { set_cube_size(size); });
+    QAction* action = view->addAction(label, this, [this, size = size] { set_cube_size(size); });
     action->setCheckable(true);
-    action->setChecked(size == view_->layout().cube_size);
+    action->setChecked(size == scene_view()->layout().cube_size);
     cubes->addAction(action);
   }
-
-  study->addSeparator();
-  QAction* hands = study->addAction(tr("Show &Hands (simulated and tracked)"));
-  hands->setCheckable(true);
-  hands->setChecked(view_->show_hands());
-  connect(hands, &QAction::toggled, view_, &SceneView::set_show_hands);
 
   QMenu* simulation = menuBar()->addMenu(tr("S&imulation"));
   simulation->addAction(tr("Run Scripted &Pinch-and-Lift"), this, [this] { start_pinch(); });
@@ -62,16 +170,230 @@ void MainWindow::build_menus() {
   connect(contacts, &QAction::toggled, this, &MainWindow::set_show_contacts);
 
   QMenu* analysis = menuBar()->addMenu(tr("&Analysis"));
-  analysis->addAction(tr("Open Data &Table (CSV)…"), this, &MainWindow::open_csv_table);
+  analysis->addAction(tr("&Run Analysis"), this, [this] {
+    tabs_->setCurrentWidget(analysis_);
+    analysis_->run();
+  });
+  analysis->addAction(tr("Open Data &Table (CSV)…"), this, &MainWindow::open_data_table_dialog);
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About handlab"), this, &MainWindow::show_about);
   help->addAction(tr("About &Qt"), qApp, &QApplication::aboutQt);
 }
 
+void MainWindow::show_error(const QString& title, const QString& error) {
+  QMessageBox::warning(this, title, error);
+}
+
+QString MainWindow::open_study(const QString& path) {
+  if (session_->session_running())
+    return tr("Stop the running session before opening another study.");
+  try {
+    {
+      store::StudyStore check(path.toStdString());
+      check.study();
+    }
+    study_ = QFileInfo(path).absoluteFilePath();
+    home_->set_study(study_);
+    participants_->set_study(study_);
+    session_->set_study(study_);
+    analysis_->set_study(study_);
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  remember_recent(study_);
+  setWindowTitle(tr("%1 — handlab").arg(QFileInfo(study_).fileName()));
+  setWindowFilePath(study_);
+  statusBar()->showMessage(tr("Opened %1").arg(study_), 5000);
+  return {};
+}
+
+QString MainWindow::create_study(const QString& protocol, const QString& database) {
+  try {
+    const studies::Protocol p = studies::read_protocol(protocol.toStdString());
+    store::StudyStore::create(database.toStdString(), studies::study_definition(p));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  return open_study(database);
+}
+
+QString MainWindow::show_study(const QString& path) {
+  const QString error = open_study(path);
+  if (error.isEmpty()) tabs_->setCurrentWidget(participants_);
+  return error;
+}
+
+void MainWindow::refresh_study() {
+  if (study_.isEmpty()) return;
+  const QString own =
+      session_->session_running() ? session_->participant_box()->currentText() : QString();
+  home_->set_study(study_, own);
+  participants_->refresh();
+}
+
+void MainWindow::remember_recent(const QString& path) {
+  QSettings settings;
+  QStringList recent = settings.value("recent").toStringList();
+  recent.removeAll(path);
+  recent.prepend(path);
+  while (recent.size() > 8) recent.removeLast();
+  settings.setValue("recent", recent);
+  home_->set_recent(recent);
+}
+
+void MainWindow::new_study_dialog() {
+  const QString protocol = QFileDialog::getOpenFileName(this, tr("New Study: choose the protocol"),
+                                                        QString(), tr("Study protocols (*.json)"));
+  if (protocol.isEmpty()) return;
+  studies::Protocol p;
+  try {
+    p = studies::read_protocol(protocol.toStdString());
+  } catch (const std::exception& e) {
+    show_error(tr("New Study"), QString::fromStdString(e.what()));
+    return;
+  }
+  // The protocol in a few lines, checked before anything is created.
+  QDialog summary(this);
+  summary.setWindowTitle(tr("New Study from %1").arg(QFileInfo(protocol).fileName()));
+  auto* layout = new QVBoxLayout(&summary);
+  auto* table = new QTableWidget(0, 2);
+  table->setObjectName("protocol_summary");
+  table->horizontalHeader()->hide();
+  table->verticalHeader()->hide();
+  table->horizontalHeader()->setStretchLastSection(true);
+  for (const auto& [label, value] : studies::protocol_summary(p)) {
+    const int row = table->rowCount();
+    table->insertRow(row);
+    table->setItem(row, 0, new QTableWidgetItem(QString::fromStdString(label)));
+    table->setItem(row, 1, new QTableWidgetItem(QString::fromStdString(value)));
+  }
+  table->resizeColumnToContents(0);
+  layout->addWidget(table);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+  buttons->button(QDialogButtonBox::Ok)->setText(tr("Create Study File…"));
+  connect(buttons, &QDialogButtonBox::accepted, &summary, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, &summary, &QDialog::reject);
+  layout->addWidget(buttons);
+  summary.resize(760, 560);
+  if (summary.exec() != QDialog::Accepted) return;
+  const QString database = QFileDialog::getSaveFileName(this, tr("New Study: the study file"),
+                                                        QString::fromStdString(p.name) + ".db",
+                                                        tr("Study databases (*.db)"));
+  if (database.isEmpty()) return;
+  const QString error = create_study(protocol, database);
+  if (!error.isEmpty()) show_error(tr("New Study"), error);
+}
+
+void MainWindow::open_study_dialog() {
+  const QString path = QFileDialog::getOpenFileName(
+      this, tr("Open Study"), QString(), tr("Study databases (*.db *.sqlite);;All files (*)"));
+  if (path.isEmpty()) return;
+  const QString error = open_study(path);
+  if (!error.isEmpty()) show_error(tr("Open Study"), error);
+}
+
+QString MainWindow::export_table(const QString& path, bool questionnaire) {
+  if (study_.isEmpty()) return tr("No study is open.");
+  try {
+    store::StudyStore store(study_.toStdString());
+    std::ofstream out(path.toStdString(), std::ios::binary);
+    if (!out) return tr("Cannot write %1.").arg(path);
+    if (questionnaire)
+      studies::write_questionnaire_csv(store, out);
+    else
+      studies::write_trials_csv(store, out);
+    if (!out) return tr("Cannot write %1.").arg(path);
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  statusBar()->showMessage(tr("Wrote %1").arg(path), 5000);
+  return {};
+}
+
+void MainWindow::export_dialog(bool questionnaire) {
+  const QString path = QFileDialog::getSaveFileName(
+      this, questionnaire ? tr("Export Questionnaire") : tr("Export Trials"),
+      questionnaire ? "questionnaire.csv" : "trials.csv", tr("CSV files (*.csv)"));
+  if (path.isEmpty()) return;
+  const QString error = export_table(path, questionnaire);
+  if (!error.isEmpty()) show_error(tr("Export"), error);
+}
+
+QString MainWindow::open_data_table(const QString& path) {
+  QFile file(path);
+  if (!file.open(QIODevice::ReadOnly)) return tr("Could not read %1.").arg(path);
+  const QByteArray bytes = file.readAll();
+  std::vector<std::vector<std::string>> rows;
+  try {
+    rows = util::parse_csv(std::string_view(bytes.constData(), std::size_t(bytes.size())));
+  } catch (const std::exception& e) {
+    return tr("%1: %2").arg(path, QString::fromStdString(e.what()));
+  }
+  auto* table = new QTableWidget;
+  table->setObjectName("data_table");
+  if (!rows.empty()) {
+    table->setColumnCount(int(rows.front().size()));
+    QStringList header;
+    for (const auto& h : rows.front()) header << QString::fromStdString(h);
+    table->setHorizontalHeaderLabels(header);
+    table->setRowCount(int(rows.size()) - 1);
+    for (std::size_t r = 1; r < rows.size(); ++r)
+      for (std::size_t c = 0; c < rows[r].size() && int(c) < table->columnCount(); ++c)
+        table->setItem(int(r - 1), int(c),
+                       new QTableWidgetItem(QString::fromStdString(rows[r][c])));
+  }
+  table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  auto* dock = new QDockWidget(QFileInfo(path).fileName(), this);
+  dock->setObjectName("data_table_dock");
+  dock->setWidget(table);
+  dock->setAttribute(Qt::WA_DeleteOnClose);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  statusBar()->showMessage(
+      tr("%1: %2 rows").arg(QFileInfo(path).fileName()).arg(rows.empty() ? 0 : rows.size() - 1),
+      5000);
+  return {};
+}
+
+void MainWindow::open_data_table_dialog() {
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Data Table"), QString(),
+                                                    tr("CSV files (*.csv);;All files (*)"));
+  if (path.isEmpty()) return;
+  const QString error = open_data_table(path);
+  if (!error.isEmpty()) show_error(tr("Open Data Table"), error);
+}
+
+ParticipantWindow* MainWindow::show_participant_window(int screen) {
+  if (!participant_window_) {
+    participant_window_ = new ParticipantWindow(this);
+    session_->set_participant_window(participant_window_);
+  }
+  participant_window_->show_on_screen(screen);
+  return participant_window_;
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (session_->session_running()) {
+    const auto answer = QMessageBox::question(
+        this, tr("Quit handlab"),
+        tr("A session is running. Quit anyway? The trial under way is kept as aborted and runs "
+           "again when the session resumes; every finished trial is stored."));
+    if (answer != QMessageBox::Yes) {
+      event->ignore();
+      return;
+    }
+  }
+  if (participant_window_) participant_window_->close();
+  event->accept();
+}
+
+SceneView* MainWindow::scene_view() const {
+  return session_->view();
+}
+
 PinchSimulation* MainWindow::start_pinch(double until) {
   stop_pinch();
-  pinch_ = new PinchSimulation(view_->layout().cube_size, until, this);
+  pinch_ = new PinchSimulation(scene_view()->layout().cube_size, until, this);
   connect(pinch_, &PinchSimulation::advanced, this, &MainWindow::show_pinch_state);
   connect(pinch_, &PinchSimulation::done, this, [this, sim = pinch_] {
     if (sim != pinch_) return;
@@ -90,8 +412,7 @@ void MainWindow::stop_pinch() {
   if (!pinch_) return;
   delete pinch_;  // stops and joins its worker
   pinch_ = nullptr;
-  view_->set_frame(nullptr);
-  statusBar()->showMessage(tr("Drag to orbit, scroll to zoom"));
+  scene_view()->set_frame(nullptr);
 }
 
 void MainWindow::set_show_contacts(bool show) {
@@ -101,8 +422,8 @@ void MainWindow::set_show_contacts(bool show) {
 
 void MainWindow::show_pinch_state() {
   if (!pinch_ || !pinch_->has_state()) return;
-  view_->set_frame(
-      std::make_shared<const render::DrawList>(pinch_->draw(view_->layout(), show_contacts_)));
+  scene_view()->set_frame(std::make_shared<const render::DrawList>(
+      pinch_->draw(scene_view()->layout(), show_contacts_)));
   if (pinch_->finished()) return;
   const PinchSimulation::Progress p = pinch_->progress();
   statusBar()->showMessage(tr("Simulated pinch-and-lift: t = %1 s, last step %2 ms, %3 contact "
@@ -116,71 +437,14 @@ void MainWindow::save_view_image() {
   const QString path =
       QFileDialog::getSaveFileName(this, tr("Save View"), "view.png", tr("PNG images (*.png)"));
   if (path.isEmpty()) return;
-  if (!view_->grab_picture().save(path))
+  if (!scene_view()->grab_picture().save(path))
     QMessageBox::warning(this, tr("Save View"), tr("Could not write %1.").arg(path));
 }
 
 void MainWindow::set_cube_size(double metres) {
-  task::SceneLayout layout = view_->layout();
+  task::SceneLayout layout = scene_view()->layout();
   layout.cube_size = metres;
-  view_->set_layout(layout);
-}
-
-void MainWindow::open_csv_table() {
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open Data Table"), QString(),
-                                                    tr("CSV files (*.csv);;All files (*)"));
-  if (path.isEmpty()) return;
-  QFile file(path);
-  if (!file.open(QIODevice::ReadOnly | QIODevice::Text)) {
-    QMessageBox::warning(this, tr("Open Data Table"), tr("Could not read %1.").arg(path));
-    return;
-  }
-  QTextStream in(&file);
-  auto* table = new QTableWidget;
-  int row = -1;
-  while (!in.atEnd()) {
-    const QStringList cells = in.readLine().split(',');
-    if (row < 0) {
-      table->setColumnCount(int(cells.size()));
-      table->setHorizontalHeaderLabels(cells);
-    } else {
-      table->insertRow(row);
-      for (int c = 0; c < cells.size() && c < table->columnCount(); ++c)
-        table->setItem(row, c, new QTableWidgetItem(cells[c]));
-    }
-    ++row;
-  }
-  table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  auto* dock = new QDockWidget(QFileInfo(path).fileName(), this);
-  dock->setWidget(table);
-  dock->setAttribute(Qt::WA_DeleteOnClose);
-  addDockWidget(Qt::RightDockWidgetArea, dock);
-  statusBar()->showMessage(tr("%1: %2 rows").arg(QFileInfo(path).fileName()).arg(row), 5000);
-}
-
-void MainWindow::open_study() {
-  const QString path =
-      QFileDialog::getOpenFileName(this, tr("Open Study Database"), QString(),
-                                   tr("Study databases (*.db *.sqlite);;All files (*)"));
-  if (path.isEmpty()) return;
-  const QString error = show_study(path);
-  if (!error.isEmpty()) QMessageBox::warning(this, tr("Open Study Database"), error);
-}
-
-QString MainWindow::show_study(const QString& path) {
-  auto* panel = new StudyPanel;
-  const QString error = panel->open_database(path);
-  if (!error.isEmpty()) {
-    delete panel;
-    return error;
-  }
-  auto* dock = new QDockWidget(tr("Study: %1").arg(QFileInfo(path).fileName()), this);
-  dock->setObjectName("study");
-  dock->setWidget(panel);
-  dock->setAttribute(Qt::WA_DeleteOnClose);
-  addDockWidget(Qt::RightDockWidgetArea, dock);
-  statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
-  return {};
+  scene_view()->set_layout(layout);
 }
 
 void MainWindow::show_about() {

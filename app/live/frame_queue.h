@@ -17,14 +17,36 @@ class FrameQueue : public tracking::FrameSource {
                       std::size_t capacity = 1024)
       : wait_(wait), capacity_(capacity) {}
 
+  using Clock = std::chrono::steady_clock;
+
   void push(tracking::TrackedFrame frame) {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      if (frames_.size() == capacity_)
+      if (frames_.size() == capacity_) {
         frames_.pop_front();  // a stalled consumer sees the newest frames
+        arrivals_.pop_front();
+      }
       frames_.push_back(std::move(frame));
+      arrivals_.push_back(Clock::now());
     }
     ready_.notify_one();
+  }
+  // Without waiting: the newest frame and when it arrived, the older ones discarded (their
+  // count added to `superseded`); nullopt when none came since the last call.
+  std::optional<tracking::TrackedFrame> take_newest(Clock::time_point* arrival, long* superseded) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (frames_.empty()) return std::nullopt;
+    if (superseded) *superseded += long(frames_.size()) - 1;
+    if (arrival) *arrival = arrivals_.back();
+    tracking::TrackedFrame frame = std::move(frames_.back());
+    frames_.clear();
+    arrivals_.clear();
+    return frame;
+  }
+  void clear() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    frames_.clear();
+    arrivals_.clear();
   }
   void close() {
     {
@@ -40,6 +62,7 @@ class FrameQueue : public tracking::FrameSource {
     if (frames_.empty()) return std::nullopt;
     tracking::TrackedFrame frame = std::move(frames_.front());
     frames_.pop_front();
+    arrivals_.pop_front();
     return frame;
   }
 
@@ -49,6 +72,7 @@ class FrameQueue : public tracking::FrameSource {
   std::mutex mutex_;
   std::condition_variable ready_;
   std::deque<tracking::TrackedFrame> frames_;
+  std::deque<Clock::time_point> arrivals_;
   bool closed_ = false;
 };
 

@@ -44,4 +44,44 @@ void draw_skeleton(DrawList& list, const hand::Skeleton& skeleton, const hand::H
   }
 }
 
+void draw_bone_frames(DrawList& list, const hand::Skeleton& skeleton,
+                      const std::vector<Eigen::Isometry3d>& frames, const Eigen::Vector4f& color) {
+  for (std::size_t b = 0; b < skeleton.bones.size() && b < frames.size(); ++b) {
+    const hand::Bone& bone = skeleton.bones[b];
+    if (bone.length <= 0) continue;
+    DrawItem item;
+    item.mesh = std::make_shared<const RenderMesh>(
+        make_capsule_mesh(float(bone.radius), float(bone.length)));
+    item.model = frames[b].matrix().cast<float>();
+    item.color = color;
+    list.items.push_back(item);
+  }
+}
+
+void draw_tracked_hand(DrawList& list, const tracking::TrackedHand& hand,
+                       const Eigen::Isometry3d& placement, const Eigen::Vector4f& color) {
+  constexpr float kRadius = 0.0045f;
+  auto segment = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const Eigen::Vector3d pa = placement * a, pb = placement * b;
+    const double length = (pb - pa).norm();
+    if (length < 1e-6) return;
+    // The capsule mesh runs along its frame's +y (make_capsule_mesh).
+    const Eigen::Quaterniond turn =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), (pb - pa) / length);
+    Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+    frame.linear() = turn.toRotationMatrix();
+    frame.translation() = pa;
+    DrawItem item;
+    item.mesh = std::make_shared<const RenderMesh>(make_capsule_mesh(kRadius, float(length), 10));
+    item.model = frame.matrix().cast<float>();
+    item.color = color;
+    list.items.push_back(item);
+  };
+  for (const auto& digit : hand.joints)
+    for (int k = 0; k < 4; ++k) segment(digit[std::size_t(k)], digit[std::size_t(k + 1)]);
+  for (int d = 0; d < 4; ++d)
+    segment(hand.joints[std::size_t(d)][1], hand.joints[std::size_t(d + 1)][1]);
+  segment(hand.wrist, hand.joints[4][0]);
+}
+
 }  // namespace handlab::render

@@ -5,6 +5,7 @@
 
 #include "core/hand/skeleton.h"
 #include "core/render/draw_list.h"
+#include "core/tracking/tracked_frame.h"
 
 namespace handlab::render {
 
@@ -16,5 +17,14 @@ void draw_skin(DrawList& list, const std::vector<Eigen::Vector3d>& vertices,
 void draw_skeleton(DrawList& list, const hand::Skeleton& skeleton, const hand::HandPose& pose,
                    const Eigen::Isometry3d& placement, const Eigen::Vector4f& bone_color,
                    const Eigen::Vector4f& joint_color, double radius_scale = 1.0);
+
+// A hand whose bones are placed by world frames (a simulation's state, a stored frame):
+// each bone as a capsule from its frame's origin along its length.
+void draw_bone_frames(DrawList& list, const hand::Skeleton& skeleton,
+                      const std::vector<Eigen::Isometry3d>& frames, const Eigen::Vector4f& color);
+// A tracked (Leap) hand as it arrives: a capsule between consecutive joints of every digit
+// and across the knuckles, moved into the scene by `placement`.
+void draw_tracked_hand(DrawList& list, const tracking::TrackedHand& hand,
+                       const Eigen::Isometry3d& placement, const Eigen::Vector4f& color);
 
 }  // namespace handlab::render

@@ -10,7 +10,7 @@
 #include "app/cli/commands/commands.h"
 #include "app/cli/output_file.h"
 #include "core/store/study_store.h"
-#include "studies/export/study_export.h"
+#include "studies/analysis/study_database_analysis.h"
 
 namespace handlab::cli {
 namespace {
@@ -29,55 +29,11 @@ std::vector<std::string> split_list(const std::string& text) {
 // questionnaire items across the conditions. Skipped trials are left out; participants
 // without every cell are dropped and named.
 int analyze_database(const std::string& path, const std::string& json_out) {
-  store::StudyStore store(path);
-  const store::StudyInfo info = store.study();
-  std::ostringstream trials, answers;
-  studies::write_trials_csv(store, trials, false);  // skipped trials have no time
-  studies::write_questionnaire_csv(store, answers);
-  const analysis::LongTable trial_table =
-      analysis::LongTable::parse_csv(trials.str(), path + " (trials)");
-  if (trial_table.rows() == 0)
-    throw std::runtime_error(path + " has no trial results to analyse yet");
-
-  analysis::AnalysisRequest times;
-  times.design.subject = "participant";
-  times.design.dv = "completion_time_s";
-  times.design.within = info.factors;
-  times.design.within.push_back("repetition");
-  const analysis::AnalysisReport time_report = analysis::run_analysis(trial_table, times);
-
-  std::optional<analysis::AnalysisReport> item_report;
-  const analysis::LongTable items =
-      analysis::LongTable::parse_csv(answers.str(), path + " (questionnaire)");
-  if (items.rows() > 0) {
-    analysis::AnalysisRequest request;
-    request.design.subject = "participant";
-    request.design.within = info.factors;
-    const std::vector<std::string>& columns = items.columns();
-    const auto first_item = std::find(columns.begin(), columns.end(), "repetition") + 1;
-    request.nonparametric_items.assign(first_item, columns.end());
-    item_report = analysis::run_analysis(items, request);
-  }
-  if (json_out != "-") {
-    std::cout << "Study " << info.name << " (" << path << "): completion time\n\n";
-    analysis::write_text(time_report, std::cout);
-    if (item_report) {
-      std::cout << "\nQuestionnaire\n\n";
-      analysis::write_text(*item_report, std::cout);
-    }
-  }
-  if (!json_out.empty()) {
-    write_output(json_out, [&](std::ostream& out) {
-      out << "{\"completion_time\": ";
-      analysis::write_json(time_report, out);
-      out << ", \"questionnaire\": ";
-      if (item_report)
-        analysis::write_json(*item_report, out);
-      else
-        out << "null";
-      out << "}\n";
-    });
-  }
+  const studies::StudyDatabaseAnalysis analysis = studies::analyze_study_database(path);
+  if (json_out != "-") studies::write_study_analysis_text(analysis, path, std::cout);
+  if (!json_out.empty())
+    write_output(json_out,
+                 [&](std::ostream& out) { studies::write_study_analysis_json(analysis, out); });
   return 0;
 }
 

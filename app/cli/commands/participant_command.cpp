@@ -4,7 +4,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
-#include "studies/session/session_runner.h"
+#include "studies/session/enrolment.h"
 
 namespace handlab::cli {
 namespace {
@@ -49,11 +49,9 @@ int participant_add(const std::vector<std::string>& argv) {
   store::StudyStore store(args.text("db"));
   if (store.participant(p.id))
     throw std::runtime_error("participant " + p.id + " already exists in " + args.text("db"));
-  const studies::Protocol protocol = studies::stored_protocol(store);
   const int enrolment = store.participant_count();
-  const auto plan = studies::planned_rows(protocol, p.id, enrolment);
-  store.add_participant(p, plan);
-  std::cout << "enrolled " << p.id << " (participant " << enrolment + 1 << "): " << plan.size()
+  const int planned = studies::enrol_participant(store, p);
+  std::cout << "enrolled " << p.id << " (participant " << enrolment + 1 << "): " << planned
             << " trials planned\n";
   return 0;
 }

@@ -1,0 +1,519 @@
+#include "app/gui/session_page.h"
+
+#include <algorithm>
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QInputDialog>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QTime>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include "app/gui/participant_window.h"
+#include "app/gui/questionnaire_dialog.h"
+#include "app/gui/scene_view.h"
+#include "app/gui/session_worker.h"
+#include "app/live/leap_websocket_client.h"
+#include "app/live/live_frames.h"
+#include "core/hand/simulated_hand.h"
+#include "core/render/frame_drawing.h"
+#include "core/render/hand_drawing.h"
+#include "core/render/scene_drawing.h"
+#include "core/store/study_store.h"
+#include "core/task/cube_task.h"
+#include "studies/session/session_runner.h"
+
+namespace handlab::gui {
+namespace {
+
+enum TrackerChoice { kLiveLeap, kRecording, kSimulated, kScripted };
+
+// What the participant reads: what to do now, never the condition.
+QString instruction(task::TaskPhase phase) {
+  switch (phase) {
+    case task::TaskPhase::kReady:
+    case task::TaskPhase::kStarted:
+      return QObject::tr("Pick up the cube with thumb and index finger.");
+    case task::TaskPhase::kGrasped:
+      return QObject::tr("Carry the cube to the blue square and put it down.");
+    case task::TaskPhase::kReleased:
+      return QObject::tr("Let the cube rest in the blue square.");
+    case task::TaskPhase::kDone:
+      return QObject::tr("Done. Take your hand back.");
+    case task::TaskPhase::kFailed:
+      return QObject::tr("Time is up. Take your hand back.");
+  }
+  return {};
+}
+
+QString phase_text(task::TaskPhase phase) {
+  switch (phase) {
+    case task::TaskPhase::kReady:
+    case task::TaskPhase::kStarted:
+      return QObject::tr("waiting for the grasp over A");
+    case task::TaskPhase::kGrasped:
+      return QObject::tr("grasped");
+    case task::TaskPhase::kReleased:
+      return QObject::tr("released");
+    case task::TaskPhase::kDone:
+      return QObject::tr("done");
+    case task::TaskPhase::kFailed:
+      return QObject::tr("timed out");
+  }
+  return {};
+}
+
+}  // namespace
+
+SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
+  auto* layout = new QHBoxLayout(this);
+  view_ = new SceneView;
+  layout->addWidget(view_, 3);
+
+  auto* side = new QVBoxLayout;
+  layout->addLayout(side, 1);
+
+  auto* setup = new QGroupBox(tr("Set-up"));
+  auto* form = new QFormLayout(setup);
+  participant_ = new QComboBox;
+  participant_->setObjectName("participant");
+  form->addRow(tr("Participant"), participant_);
+  tracker_ = new QComboBox;
+  tracker_->setObjectName("tracker");
+  tracker_->addItem(tr("Live Leap Motion"), kLiveLeap);
+  tracker_->addItem(tr("Recording file"), kRecording);
+  tracker_->addItem(tr("Simulated participant"), kSimulated);
+  tracker_->addItem(tr("Scripted participant"), kScripted);
+  form->addRow(tr("Tracker"), tracker_);
+  address_ = new QLineEdit("ws://127.0.0.1:6437");
+  address_->setObjectName("leap_address");
+  form->addRow(tr("Leap address"), address_);
+  leap_state_ = new QLabel(tr("not connected"));
+  leap_state_->setObjectName("leap_state");
+  form->addRow(tr("Leap"), leap_state_);
+  auto* file_row = new QHBoxLayout;
+  recording_ = new QLineEdit;
+  recording_->setObjectName("recording");
+  recording_->setPlaceholderText(tr("a .json, .json.lz or .hlrec recording"));
+  auto* browse = new QPushButton(tr("…"));
+  connect(browse, &QPushButton::clicked, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Recording"), QString(),
+                                                      tr("Recordings (*.json *.lz *.hlrec)"));
+    if (!path.isEmpty()) recording_->setText(path);
+  });
+  file_row->addWidget(recording_);
+  file_row->addWidget(browse);
+  form->addRow(tr("Recording"), file_row);
+  seed_ = new QSpinBox;
+  seed_->setObjectName("seed");
+  seed_->setRange(0, 1 << 30);
+  form->addRow(tr("Population seed"), seed_);
+  world_ = new QComboBox;
+  world_->setObjectName("world");
+  world_->addItem(tr("Soft hand (simulator)"), int(studies::WorldKind::kSoftHand));
+  world_->addItem(tr("Grasp proxy"), int(studies::WorldKind::kGraspProxy));
+  form->addRow(tr("World"), world_);
+  real_time_ = new QCheckBox(tr("Real time"));
+  real_time_->setObjectName("real_time");
+  real_time_->setChecked(true);
+  form->addRow(QString(), real_time_);
+  side->addWidget(setup);
+  connect(tracker_, &QComboBox::currentIndexChanged, this, &SessionPage::update_tracker_fields);
+
+  auto* calibration = new QGroupBox(tr("Calibration"));
+  auto* cal_layout = new QVBoxLayout(calibration);
+  calibration_ =
+      new QLabel(tr("When the session starts, the participant holds the right hand "
+                    "open, fingers spread, still over the table for two seconds."));
+  calibration_->setObjectName("calibration_state");
+  calibration_->setWordWrap(true);
+  cal_layout->addWidget(calibration_);
+  side->addWidget(calibration);
+
+  auto* panel = new QGroupBox(tr("Trial"));
+  auto* panel_form = new QFormLayout(panel);
+  trial_ = new QLabel("–");
+  trial_->setObjectName("trial");
+  state_ = new QLabel("–");
+  state_->setObjectName("trial_state");
+  clock_ = new QLabel("–");
+  counts_ = new QLabel("–");
+  panel_form->addRow(tr("Trial"), trial_);
+  panel_form->addRow(tr("State"), state_);
+  panel_form->addRow(tr("Clock"), clock_);
+  panel_form->addRow(tr("Grasps, drops"), counts_);
+  side->addWidget(panel);
+
+  auto* buttons = new QGridLayout;
+  start_ = new QPushButton(tr("Start (F5)"));
+  start_->setShortcut(Qt::Key_F5);
+  pause_ = new QPushButton(tr("Pause (F6)"));
+  pause_->setShortcut(Qt::Key_F6);
+  pause_->setCheckable(true);
+  stop_ = new QPushButton(tr("Stop (F8)"));
+  stop_->setShortcut(Qt::Key_F8);
+  redo_ = new QPushButton(tr("Redo… (Ctrl+R)"));
+  redo_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_R));
+  skip_ = new QPushButton(tr("Skip… (Ctrl+K)"));
+  skip_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_K));
+  buttons->addWidget(start_, 0, 0);
+  buttons->addWidget(pause_, 0, 1);
+  buttons->addWidget(stop_, 0, 2);
+  buttons->addWidget(redo_, 1, 0);
+  buttons->addWidget(skip_, 1, 1);
+  side->addLayout(buttons);
+  connect(start_, &QPushButton::clicked, this, [this] {
+    const QString error = start_session();
+    if (!error.isEmpty()) append_log(tr("Not started: %1").arg(error));
+  });
+  connect(pause_, &QPushButton::clicked, this, &SessionPage::toggle_pause);
+  connect(stop_, &QPushButton::clicked, this, &SessionPage::stop_session);
+  auto ask = [this](bool redo) {
+    bool ok = false;
+    const int trial =
+        QInputDialog::getInt(this, redo ? tr("Redo a Trial") : tr("Skip a Trial"),
+                             tr("Trial number (as the schedule shows it):"), 1, 1, 10000, 1, &ok);
+    if (!ok) return;
+    const QString reason = QInputDialog::getText(
+        this, redo ? tr("Redo a Trial") : tr("Skip a Trial"), tr("Reason (kept in the record):"),
+        QLineEdit::Normal, QString(), &ok);
+    if (!ok) return;
+    const QString error = redo ? redo_trial(trial - 1, reason) : skip_trial(trial - 1, reason);
+    if (!error.isEmpty()) append_log(error);
+  };
+  connect(redo_, &QPushButton::clicked, this, [ask] { ask(true); });
+  connect(skip_, &QPushButton::clicked, this, [ask] { ask(false); });
+
+  log_ = new QListWidget;
+  log_->setObjectName("session_log");
+  side->addWidget(log_, 1);
+
+  display_timer_ = new QTimer(this);
+  display_timer_->setInterval(4);  // polls the newest step; the view draws at the display's rate
+  display_timer_->setTimerType(Qt::PreciseTimer);
+  connect(display_timer_, &QTimer::timeout, this, &SessionPage::refresh_picture);
+  update_tracker_fields();
+  set_running(false);
+}
+
+SessionPage::~SessionPage() = default;
+
+void SessionPage::set_study(const QString& database) {
+  worker_.reset();
+  database_ = database;
+  protocol_.reset();
+  if (!database.isEmpty()) {
+    store::StudyStore store(database.toStdString());
+    protocol_ = studies::stored_protocol(store);
+    view_->set_layout(protocol_->scene);
+  }
+  set_running(false);
+}
+
+void SessionPage::set_participants(const QStringList& ids, const QString& selected) {
+  const QString keep = selected.isEmpty() ? participant_->currentText() : selected;
+  participant_->clear();
+  participant_->addItems(ids);
+  if (ids.contains(keep)) participant_->setCurrentText(keep);
+}
+
+bool SessionPage::session_running() const {
+  return worker_ && worker_->running();
+}
+
+void SessionPage::update_tracker_fields() {
+  const int choice = tracker_->currentData().toInt();
+  address_->setEnabled(choice == kLiveLeap);
+  recording_->setEnabled(choice == kRecording);
+  seed_->setEnabled(choice == kSimulated);
+  if (choice == kLiveLeap) ensure_leap_client();
+}
+
+void SessionPage::ensure_leap_client() {
+  live::LeapClientOptions options;
+  options.server = QUrl(address_->text());
+  if (leap_ && leap_->property("address").toString() == address_->text()) return;
+  leap_ = std::make_unique<live::LeapWebSocketClient>(options);
+  leap_->setProperty("address", address_->text());
+  auto show = [this] {
+    if (!leap_) return;
+    leap_state_->setText(!leap_->connected()          ? tr("not connected (retrying)")
+                         : !leap_->device_streaming() ? tr("connected, no device streaming")
+                         : leap_->hand_visible()      ? tr("device streaming, hand seen")
+                                                      : tr("device streaming, no hand"));
+  };
+  connect(leap_.get(), &live::LeapWebSocketClient::connection_changed, this, show);
+  connect(leap_.get(), &live::LeapWebSocketClient::device_changed, this, show);
+  connect(leap_.get(), &live::LeapWebSocketClient::hand_visibility_changed, this, show);
+  leap_->start();
+  show();
+}
+
+QString SessionPage::start_session() {
+  if (database_.isEmpty()) return tr("no study is open");
+  if (session_running()) return tr("a session is running");
+  if (participant_->currentText().isEmpty()) return tr("choose a participant");
+  SessionOptions options;
+  options.database = database_;
+  options.participant = participant_->currentText().toStdString();
+  options.world = studies::WorldKind(world_->currentData().toInt());
+  options.real_time = real_time_->isChecked();
+  const int choice = tracker_->currentData().toInt();
+  live_stats_.reset();
+  if (choice == kLiveLeap) {
+    ensure_leap_client();
+    live_stats_ = std::make_shared<live::LiveFrameStats>();
+    live::FrameQueue* queue = &leap_->queue();
+    auto stats = live_stats_;
+    options.tracker = studies::TrackerKind::live(
+        "leap " + address_->text().toStdString(),
+        [queue, stats] { return std::make_unique<live::LiveFrames>(*queue, stats); });
+    options.frame_arrival = [stats] { return stats->last_arrival_ns.load(); };
+  } else if (choice == kRecording) {
+    if (recording_->text().isEmpty()) return tr("choose a recording file");
+    options.tracker = studies::TrackerKind::recording(recording_->text().toStdString());
+  } else if (choice == kSimulated) {
+    options.tracker = studies::TrackerKind::simulated(std::uint64_t(seed_->value()));
+    options.simulated_answers = true;
+  } else {
+    options.tracker = studies::TrackerKind::scripted();
+  }
+  {
+    store::StudyStore store(database_.toStdString());
+    options.resume = store.has_running_session(options.participant) ||
+                     !store.trials(options.participant).empty();
+    if (!store.next_trial(options.participant) && !store.has_running_session(options.participant))
+      return tr("%1 has done every planned trial").arg(participant_->currentText());
+  }
+  try {
+    worker_ = std::make_unique<SessionWorker>(std::move(options));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  SessionWorker* w = worker_.get();
+  connect(w, &SessionWorker::calibration_changed, this, [this] {
+    if (!worker_) return;
+    const auto snap = worker_->snapshot();
+    if (!snap.calibration) return;
+    calibration_->setText(QString::fromStdString(snap.calibration->message()));
+    if (participant_window_)
+      participant_window_->set_instruction(QString::fromStdString(snap.calibration->message()));
+  });
+  connect(w, &SessionWorker::trial_started, this, [this](int position) {
+    const auto snap = worker_->snapshot();
+    trial_->setText(tr("%1 of %2, %3, %4")
+                        .arg(position + 1)
+                        .arg(snap.planned)
+                        .arg(snap.practice ? tr("practice") : tr("block %1").arg(snap.block))
+                        .arg(QString::fromStdString(snap.condition)));
+    append_log(
+        tr("%1 trial %2 started").arg(QTime::currentTime().toString("HH:mm:ss")).arg(position + 1));
+  });
+  connect(w, &SessionWorker::trial_ended, this,
+          [this](int position, bool success, double seconds, bool aborted) {
+            append_log(
+                aborted ? tr("trial %1 stopped (kept as aborted; it runs again)").arg(position + 1)
+                : success ? tr("trial %1 done in %2 s").arg(position + 1).arg(seconds, 0, 'f', 2)
+                          : tr("trial %1 timed out").arg(position + 1));
+            emit study_changed();
+          });
+  connect(w, &SessionWorker::questionnaire_requested, this, &SessionPage::show_questionnaire);
+  connect(w, &SessionWorker::decided, this, [this](const QString& message) {
+    append_log(message);
+    emit study_changed();
+  });
+  connect(w, &SessionWorker::holding, this,
+          [this] { append_log(tr("paused before the next trial")); });
+  connect(w, &SessionWorker::finished, this, [this](bool complete, bool stopped, int run) {
+    const QString summary = complete ? tr("Session finished: every trial done (%1 run).").arg(run)
+                            : stopped
+                                ? tr("Session stopped after %1 trial(s); resume to go on.").arg(run)
+                                : tr("Session ended after %1 trial(s).").arg(run);
+    append_log(summary);
+    set_running(false);
+    emit study_changed();
+    emit session_ended(summary);
+  });
+  connect(w, &SessionWorker::failed, this, [this](const QString& error) {
+    append_log(tr("Session failed: %1").arg(error));
+    set_running(false);
+    emit study_changed();
+    emit session_ended(tr("Session failed: %1").arg(error));
+  });
+  calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
+  stats_ = {};
+  stats_start_ = std::chrono::steady_clock::now();
+  last_drawn_step_ = -1;
+  w->start();
+  set_running(true);
+  append_log(
+      tr("Session of %1 started (%2)").arg(participant_->currentText(), tracker_->currentText()));
+  emit session_started();
+  return {};
+}
+
+void SessionPage::toggle_pause() {
+  if (!session_running()) {
+    pause_->setChecked(false);
+    return;
+  }
+  const bool paused = !worker_->control().paused();
+  worker_->control().set_paused(paused);
+  pause_->setChecked(paused);
+  append_log(paused ? tr("pause requested: the session holds after this trial") : tr("resumed"));
+}
+
+void SessionPage::stop_session() {
+  if (!session_running()) return;
+  worker_->control().request_stop();
+  append_log(tr("stop requested"));
+}
+
+QString SessionPage::redo_trial(int position, const QString& reason) {
+  if (reason.trimmed().isEmpty()) return tr("A redo needs a reason.");
+  if (session_running()) {
+    worker_->control().decide(
+        {studies::TrialDecision::Kind::kRedo, position, reason.toStdString()});
+    append_log(tr("redo of trial %1 requested (applied after this trial)").arg(position + 1));
+    return {};
+  }
+  try {
+    store::StudyStore store(database_.toStdString());
+    store.redo_trial(participant_->currentText().toStdString(), position, reason.toStdString());
+  } catch (const std::exception& e) {
+    return tr("Redo refused: %1").arg(QString::fromStdString(e.what()));
+  }
+  append_log(tr("trial %1 will run again: %2").arg(position + 1).arg(reason));
+  emit study_changed();
+  return {};
+}
+
+QString SessionPage::skip_trial(int position, const QString& reason) {
+  if (reason.trimmed().isEmpty()) return tr("A skip needs a reason.");
+  if (session_running()) {
+    worker_->control().decide(
+        {studies::TrialDecision::Kind::kSkip, position, reason.toStdString()});
+    append_log(tr("skip of trial %1 requested (applied after this trial)").arg(position + 1));
+    return {};
+  }
+  try {
+    store::StudyStore store(database_.toStdString());
+    const std::string id = participant_->currentText().toStdString();
+    const std::int64_t session = store.begin_session(id, "experimenter");
+    try {
+      store.skip_trial(id, position, session, reason.toStdString());
+    } catch (...) {
+      store.end_session(session, "stopped");
+      throw;
+    }
+    store.end_session(session, "stopped");
+  } catch (const std::exception& e) {
+    return tr("Skip refused: %1").arg(QString::fromStdString(e.what()));
+  }
+  append_log(tr("trial %1 skipped: %2").arg(position + 1).arg(reason));
+  emit study_changed();
+  return {};
+}
+
+void SessionPage::set_running(bool running) {
+  start_->setEnabled(!running && !database_.isEmpty());
+  pause_->setEnabled(running);
+  stop_->setEnabled(running);
+  redo_->setEnabled(!database_.isEmpty());
+  skip_->setEnabled(!database_.isEmpty());
+  participant_->setEnabled(!running);
+  tracker_->setEnabled(!running);
+  world_->setEnabled(!running);
+  real_time_->setEnabled(!running);
+  if (running) {
+    display_timer_->start();
+  } else {
+    display_timer_->stop();
+    pause_->setChecked(false);
+  }
+}
+
+void SessionPage::append_log(const QString& line) {
+  log_->addItem(line);
+  log_->scrollToBottom();
+}
+
+void SessionPage::show_questionnaire(int position, const QString&) {
+  if (!worker_ || !protocol_) return;
+  auto* dialog = new QuestionnaireDialog(*protocol_, position + 1, this);
+  questionnaire_ = dialog;
+  connect(dialog, &QDialog::accepted, this, [this, dialog] {
+    if (worker_) worker_->answer(dialog->answers());
+    questionnaire_ = nullptr;
+    dialog->deleteLater();
+  });
+  if (participant_window_) participant_window_->set_instruction(tr("Please answer the questions."));
+  dialog->open();
+  emit questionnaire_opened(dialog);
+}
+
+void SessionPage::refresh_picture() {
+  if (!worker_ || !protocol_) return;
+  const SessionSnapshot snap = worker_->snapshot();
+  if (snap.calibration) {
+    // The tracked hand as it arrives, its palm placed where the calibration puts it.
+    task::SceneLayout layout = protocol_->scene;
+    render::DrawList list = render::draw_task_scene(layout, task::cube_start_pose(layout));
+    if (const auto* hand = snap.calibration->frame.hand(tracking::Side::kRight)) {
+      const Eigen::Isometry3d place(
+          Eigen::Translation3d(layout.zone_a + Eigen::Vector3d(0, 0.12, 0) - hand->palm_position));
+      render::draw_tracked_hand(list, *hand, place, Eigen::Vector4f(0.35f, 0.75f, 0.95f, 1.0f));
+    }
+    auto shared = std::make_shared<const render::DrawList>(std::move(list));
+    view_->set_frame(shared);
+    if (participant_window_) participant_window_->set_frame(layout, shared);
+    return;
+  }
+  if (snap.steps == last_drawn_step_ || snap.frame.bone_positions.empty()) return;
+  last_drawn_step_ = snap.steps;
+  if (skeleton_.bones.empty() || skeleton_shape_.length != snap.simulated_hand.length ||
+      skeleton_shape_.hand_breadth() != snap.simulated_hand.hand_breadth()) {
+    skeleton_ = hand::build_simulated_hand(snap.simulated_hand);
+    skeleton_shape_ = snap.simulated_hand;
+  }
+  task::SceneLayout layout = protocol_->scene;
+  layout.cube_size = snap.cube_size;
+  auto list = std::make_shared<const render::DrawList>(
+      render::draw_stored_frame(layout, skeleton_, snap.frame));
+  view_->set_layout(layout);
+  view_->set_frame(list);
+  if (participant_window_) {
+    participant_window_->set_frame(layout, list);
+    participant_window_->set_instruction(instruction(snap.step.phase));
+  }
+  state_->setText(phase_text(snap.step.phase));
+  clock_->setText(tr("%1 s").arg(snap.step.time, 0, 'f', 1));
+  counts_->setText(tr("%1, %2").arg(snap.step.grasps).arg(snap.step.drops));
+
+  const auto now = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point origin = snap.stepped_at;
+  if (live_stats_) {
+    origin = std::chrono::steady_clock::time_point(
+        std::chrono::steady_clock::duration(snap.frame_arrival_ns));
+    stats_.frames_used = live_stats_->used;
+    stats_.frames_superseded = live_stats_->superseded;
+  }
+  stats_.latency_ms.push_back(std::chrono::duration<double, std::milli>(now - origin).count());
+  ++stats_.pictures;
+  stats_.seconds = std::chrono::duration<double>(now - stats_start_).count();
+}
+
+SessionPage::DisplayStats SessionPage::display_stats() const {
+  return stats_;
+}
+
+}  // namespace handlab::gui

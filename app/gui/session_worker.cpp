@@ -1,0 +1,137 @@
+#include "app/gui/session_worker.h"
+
+#include "core/store/study_store.h"
+#include "studies/session/session_runner.h"
+
+namespace handlab::gui {
+
+SessionWorker::SessionWorker(SessionOptions options, QObject* parent)
+    : QObject(parent), options_(std::move(options)) {
+  store::StudyStore store(options_.database.toStdString());
+  protocol_ = studies::stored_protocol(store);
+}
+
+SessionWorker::~SessionWorker() {
+  closing_ = true;
+  control_.request_stop();
+  control_.set_paused(false);
+  {
+    const std::lock_guard<std::mutex> lock(answer_mutex_);
+    if (pending_answer_) {  // the window closes during a questionnaire: no answers
+      pending_answer_->set_exception(
+          std::make_exception_ptr(std::runtime_error("the questionnaire was not answered")));
+      pending_answer_.reset();
+    }
+  }
+  if (thread_.joinable()) thread_.join();
+}
+
+void SessionWorker::start() {
+  thread_ = std::thread([this] { run(); });
+}
+
+SessionSnapshot SessionWorker::snapshot() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return snapshot_;
+}
+
+void SessionWorker::answer(std::vector<int> values) {
+  const std::lock_guard<std::mutex> lock(answer_mutex_);
+  if (!pending_answer_) return;
+  pending_answer_->set_value(std::move(values));
+  pending_answer_.reset();
+}
+
+void SessionWorker::run() {
+  // Signals from this thread reach the window queued (the worker lives on the window's).
+  control_.calibration = [this](const studies::CalibrationStatus& status) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      snapshot_.calibration = status;
+    }
+    emit calibration_changed();
+  };
+  control_.trial_started = [this](const studies::TrialSetup& setup, int planned) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      snapshot_.in_trial = true;
+      snapshot_.calibration.reset();
+      snapshot_.position = setup.planned.position;
+      snapshot_.planned = planned;
+      snapshot_.block = setup.planned.block;
+      snapshot_.practice = setup.planned.practice;
+      snapshot_.condition = setup.condition.label;
+      snapshot_.cube_size = setup.condition.cube_size;
+      snapshot_.simulated_hand = setup.condition.simulated_hand;
+      snapshot_.step = {};
+      snapshot_.frame = {};
+    }
+    emit trial_started(setup.planned.position);
+  };
+  control_.stepped = [this](const studies::TrialStep& step) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    snapshot_.step = step;
+    snapshot_.step.frame = nullptr;
+    snapshot_.frame = *step.frame;
+    ++snapshot_.steps;
+    snapshot_.stepped_at = std::chrono::steady_clock::now();
+    if (options_.frame_arrival) snapshot_.frame_arrival_ns = options_.frame_arrival();
+  };
+  control_.trial_ended = [this](const studies::TrialSetup& setup, const studies::TrialRun& run) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      snapshot_.in_trial = false;
+    }
+    emit trial_ended(setup.planned.position, run.success, run.completion_time_s, run.aborted);
+  };
+  control_.decided = [this](const studies::TrialDecision& d, const std::string& error) {
+    const QString what = d.kind == studies::TrialDecision::Kind::kRedo ? tr("Redo") : tr("Skip");
+    emit decided(error.empty() ? tr("%1 of trial %2 recorded: %3")
+                                     .arg(what)
+                                     .arg(d.position + 1)
+                                     .arg(QString::fromStdString(d.reason))
+                               : tr("%1 of trial %2 refused: %3")
+                                     .arg(what)
+                                     .arg(d.position + 1)
+                                     .arg(QString::fromStdString(error)));
+  };
+  control_.holding = [this] { emit holding(); };
+
+  try {
+    store::StudyStore store(options_.database.toStdString());
+    studies::PipelineTrialDriver driver(options_.tracker, 120.0, options_.world, 2);
+    driver.set_real_time(options_.real_time);
+    studies::QuestionnaireResponder responder;
+    if (options_.simulated_answers) {
+      responder = studies::simulated_responder(options_.tracker.seed());
+    } else {
+      responder = [this](const studies::Protocol&, const studies::TrialSetup& setup,
+                         const studies::TrialRun&) {
+        std::future<std::vector<int>> answers;
+        {
+          const std::lock_guard<std::mutex> lock(answer_mutex_);
+          if (closing_) throw std::runtime_error("the session was closed");
+          pending_answer_.emplace();
+          answers = pending_answer_->get_future();
+        }
+        emit questionnaire_requested(setup.planned.position,
+                                     QString::fromStdString(setup.condition.label));
+        return answers.get();
+      };
+    }
+    studies::SessionRunner runner(store, driver, responder);
+    runner.attach(&control_);
+    const std::string tracker = options_.world == studies::WorldKind::kSoftHand
+                                    ? options_.tracker.name() + " (soft hand)"
+                                    : options_.tracker.name();
+    const studies::SessionReport report =
+        runner.run(options_.participant, tracker, options_.resume);
+    finished_ = true;
+    emit finished(report.schedule_complete, report.stopped, report.trials_run);
+  } catch (const std::exception& e) {
+    finished_ = true;
+    emit failed(QString::fromStdString(e.what()));
+  }
+}
+
+}  // namespace handlab::gui

@@ -1,0 +1,95 @@
+// A participant's session run from the app: the same SessionRunner and PipelineTrialDriver
+// as `handlab-cli session run`, on a thread of their own with their own database
+// connection, paced in real time. The window steers it through its SessionControl and
+// reads the newest step from a snapshot at the display's rate; the questionnaire is asked
+// on the window's thread while the session thread waits for the answers.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include <QObject>
+#include <QString>
+
+#include "core/store/frame_record.h"
+#include "studies/protocol/protocol.h"
+#include "studies/session/session_control.h"
+#include "studies/session/trial_driver.h"
+
+namespace handlab::gui {
+
+struct SessionOptions {
+  QString database;
+  std::string participant;
+  studies::TrackerKind tracker = studies::TrackerKind::scripted();
+  studies::WorldKind world = studies::WorldKind::kSoftHand;
+  bool resume = false;
+  bool real_time = true;
+  // With a simulated participant, its answers; otherwise the questionnaire dialog's.
+  bool simulated_answers = false;
+  // With a live tracker: when the frame a step used arrived (steady clock, ns), read on the
+  // session thread right after the step, for the display's latency.
+  std::function<long long()> frame_arrival;
+};
+
+// What the view and the trial panel show of the session at one moment.
+struct SessionSnapshot {
+  bool in_trial = false;
+  int position = 0, planned = 0, block = 0;
+  bool practice = false;
+  std::string condition;
+  double cube_size = 0.06;
+  hand::HandShape simulated_hand;
+  studies::TrialStep step;   // step.frame is null here; the record is `frame`
+  store::FrameRecord frame;  // the newest step's
+  long steps = 0;            // counted over the session
+  std::chrono::steady_clock::time_point stepped_at;
+  long long frame_arrival_ns = 0;  // with a live tracker
+  // While calibrating.
+  std::optional<studies::CalibrationStatus> calibration;
+};
+
+class SessionWorker : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit SessionWorker(SessionOptions options, QObject* parent = nullptr);
+  ~SessionWorker() override;  // stops the session and waits for its thread
+
+  void start();
+  bool running() const { return thread_.joinable() && !finished_; }
+  studies::SessionControl& control() { return control_; }
+  SessionSnapshot snapshot() const;
+  const studies::Protocol& protocol() const { return protocol_; }
+  // The questionnaire's answers for the trial that asked (one per item, 1..scale).
+  void answer(std::vector<int> values);
+
+ signals:
+  void calibration_changed();
+  void trial_started(int position);
+  void trial_ended(int position, bool success, double seconds, bool aborted);
+  void questionnaire_requested(int position, QString condition);
+  void decided(QString message);
+  void holding();
+  void finished(bool complete, bool stopped, int trials_run);
+  void failed(QString error);
+
+ private:
+  void run();
+
+  SessionOptions options_;
+  studies::Protocol protocol_;
+  studies::SessionControl control_;
+  mutable std::mutex mutex_;
+  SessionSnapshot snapshot_;
+  std::mutex answer_mutex_;
+  std::optional<std::promise<std::vector<int>>> pending_answer_;
+  std::atomic<bool> finished_{false}, closing_{false};
+  std::thread thread_;
+};
+
+}  // namespace handlab::gui

@@ -1,0 +1,43 @@
+// A live tracker as the session's frame source (studies::TrackerKind::live): next() never
+// blocks and gives the newest frame that arrived since the last call. It keeps when that
+// frame arrived, for the app's latency figures, and counts the frames the session never
+// used (superseded by a newer one before a step took them).
+#pragma once
+
+#include <atomic>
+#include <memory>
+
+#include "app/live/frame_queue.h"
+
+namespace handlab::live {
+
+struct LiveFrameStats {
+  std::atomic<long> used{0}, superseded{0};
+  // The arrival of the frame last handed to the session (steady clock, ns since epoch).
+  std::atomic<long long> last_arrival_ns{0};
+};
+
+class LiveFrames : public tracking::FrameSource {
+ public:
+  LiveFrames(FrameQueue& queue, std::shared_ptr<LiveFrameStats> stats)
+      : queue_(queue), stats_(std::move(stats)) {
+    queue_.clear();  // frames from before this trial are not this trial's
+  }
+  std::optional<tracking::TrackedFrame> next() override {
+    FrameQueue::Clock::time_point arrival;
+    long superseded = 0;
+    auto frame = queue_.take_newest(&arrival, &superseded);
+    if (frame) {
+      stats_->used += 1;
+      stats_->superseded += superseded;
+      stats_->last_arrival_ns = arrival.time_since_epoch().count();
+    }
+    return frame;
+  }
+
+ private:
+  FrameQueue& queue_;
+  std::shared_ptr<LiveFrameStats> stats_;
+};
+
+}  // namespace handlab::live

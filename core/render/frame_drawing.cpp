@@ -1,0 +1,25 @@
+#include "core/render/frame_drawing.h"
+
+#include "core/render/hand_drawing.h"
+#include "core/render/scene_drawing.h"
+#include "core/render/sim_drawing.h"
+
+namespace handlab::render {
+
+DrawList draw_stored_frame(const task::SceneLayout& layout, const hand::Skeleton& skeleton,
+                           const store::FrameRecord& frame) {
+  Eigen::Isometry3d cube = Eigen::Isometry3d::Identity();
+  cube.linear() = frame.cube_rotation.cast<double>().toRotationMatrix();
+  cube.translation() = frame.cube_position.cast<double>();
+  DrawList list = draw_task_scene(layout, cube);
+  std::vector<Eigen::Isometry3d> bones(frame.bone_positions.size());
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    bones[b] = Eigen::Isometry3d::Identity();
+    bones[b].linear() = frame.bone_rotations[b].cast<double>().toRotationMatrix();
+    bones[b].translation() = frame.bone_positions[b].cast<double>();
+  }
+  draw_bone_frames(list, skeleton, bones, SimDrawStyle{}.skin);
+  return list;
+}
+
+}  // namespace handlab::render

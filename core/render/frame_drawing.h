@@ -1,0 +1,17 @@
+// What a trial looks like at one step, from the record the frame log keeps of it: the task
+// scene with the cube where it was and the simulated hand's bones where they were. The
+// app's live view, its participant window and replays of stored trials draw this.
+#pragma once
+
+#include "core/hand/skeleton.h"
+#include "core/render/draw_list.h"
+#include "core/store/frame_record.h"
+#include "core/task/scene_layout.h"
+
+namespace handlab::render {
+
+// `layout` places the zones and sizes the cube; `skeleton` is the condition's simulated hand.
+DrawList draw_stored_frame(const task::SceneLayout& layout, const hand::Skeleton& skeleton,
+                           const store::FrameRecord& frame);
+
+}  // namespace handlab::render
