@@ -134,7 +134,8 @@ AnalysisPage::AnalysisPage(QWidget* parent) : QWidget(parent) {
   split->addWidget(scroll);
   split->setStretchFactor(0, 3);
   split->setStretchFactor(1, 2);
-  layout->addWidget(split);
+  split->setSizes({700, 560});
+  layout->addWidget(split, 1);
   connect(this, &AnalysisPage::ready, this, &AnalysisPage::show_result);
   connect(this, &AnalysisPage::failed, this, [this](const QString& error) {
     if (worker_.joinable()) worker_.join();
@@ -157,6 +158,11 @@ void AnalysisPage::set_study(const QString& database) {
                                       : tr("<p>Run the analysis to see the tables.</p>"));
   run_->setEnabled(!database.isEmpty());
   status_->clear();
+}
+
+void AnalysisPage::showEvent(QShowEvent* event) {
+  QWidget::showEvent(event);
+  if (!result_ && !busy() && !database_.isEmpty()) run();
 }
 
 void AnalysisPage::run() {

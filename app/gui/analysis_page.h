@@ -36,6 +36,9 @@ class AnalysisPage : public QWidget {
   void ready();
   void failed(QString error);
 
+ protected:
+  void showEvent(QShowEvent* event) override;  // runs the analysis when first shown
+
  private:
   void show_result();
 

@@ -1,7 +1,10 @@
 // handlab: the desktop application.
 #include <QApplication>
+#include <QComboBox>
 #include <QCommandLineParser>
+#include <QLineEdit>
 #include <QMessageBox>
+#include <QRegularExpression>
 #include <QSurfaceFormat>
 #include <QTabWidget>
 #include <QTimer>
@@ -11,6 +14,7 @@
 
 #include "app/gui/analysis_page.h"
 #include "app/gui/main_window.h"
+#include "app/gui/participant_window.h"
 #include "app/gui/participants_page.h"
 #include "app/gui/pinch_simulation.h"
 #include "app/gui/scene_view.h"
@@ -33,6 +37,16 @@ struct Options {
       "pinch-until", "Stop the simulated pinch at this time (s); with --screenshot, save then.",
       "SECONDS"};
   QCommandLineOption contacts{"contacts", "Show the simulation's contact points."};
+  QCommandLineOption participant{"participant", "With --start: the participant whose session runs.",
+                                 "ID"};
+  QCommandLineOption tracker{"tracker",
+                             "With --start: leap, scripted, simulated or a recording file.",
+                             "TRACKER", "scripted"};
+  QCommandLineOption world{"world", "With --start: soft (the soft hand) or proxy.", "WORLD",
+                           "soft"};
+  QCommandLineOption start{"start", "Start (or resume) the participant's session once shown."};
+  QCommandLineOption participant_window{"participant-window",
+                                        "Show the participant's window (in a window)."};
 
   void add_to(QCommandLineParser& parser) {
     parser.setApplicationDescription(
@@ -41,7 +55,8 @@ struct Options {
         "recording or a simulated participant on the soft hand, and analyse the results.");
     parser.addHelpOption();
     parser.addVersionOption();
-    for (const auto* o : {&study, &screenshot, &tab, &pinch, &pinch_until, &contacts})
+    for (const auto* o : {&study, &screenshot, &tab, &pinch, &pinch_until, &contacts, &participant,
+                          &tracker, &world, &start, &participant_window})
       parser.addOption(*o);
   }
 };
@@ -102,6 +117,25 @@ int main(int argc, char** argv) {
     }
     window.tabs()->setCurrentWidget(pages[names.indexOf(name)]);
   }
+  if (parser.isSet(options.participant_window)) window.show_participant_window(-1);
+  if (parser.isSet(options.start)) {
+    handlab::gui::SessionPage* page = window.session();
+    page->participant_box()->setCurrentText(parser.value(options.participant));
+    const QString tracker = parser.value(options.tracker);
+    const int choice = tracker == "leap"        ? 0
+                       : tracker == "simulated" ? 2
+                       : tracker == "scripted"  ? 3
+                                                : 1;
+    page->tracker_box()->setCurrentIndex(choice);
+    if (choice == 1) page->recording_edit()->setText(tracker);
+    page->world_box()->setCurrentIndex(parser.value(options.world) == "proxy" ? 1 : 0);
+    window.tabs()->setCurrentWidget(page);
+    const QString error = page->start_session();
+    if (!error.isEmpty()) {
+      std::fprintf(stderr, "handlab: %s\n", qPrintable(error));
+      return 1;
+    }
+  }
   handlab::gui::PinchSimulation* simulation = nullptr;
   if (parser.isSet(pinch)) {
     bool ok = false, until_ok = true;
@@ -122,7 +156,12 @@ int main(int argc, char** argv) {
   }
   if (parser.isSet(screenshot)) {
     auto save = [&] {
-      const bool saved = window.grab().save(parser.value(screenshot));
+      bool saved = window.grab().save(parser.value(screenshot));
+      if (window.participant_window()) {  // beside it: NAME-participant.png
+        QString path = parser.value(screenshot);
+        path.replace(QRegularExpression("\\.png$"), "");
+        saved = saved && window.participant_window()->grab().save(path + "-participant.png");
+      }
       if (!saved)
         std::fprintf(stderr, "handlab: cannot write %s\n", qPrintable(parser.value(screenshot)));
       app.exit(saved ? 0 : 1);
@@ -131,7 +170,7 @@ int main(int argc, char** argv) {
       QObject::connect(simulation, &handlab::gui::PinchSimulation::done, &window,
                        [&] { QTimer::singleShot(500, &window, save); });
     else
-      QTimer::singleShot(1500, &window, save);
+      QTimer::singleShot(parser.isSet(options.start) ? 6000 : 1500, &window, save);
   }
   return app.exec();
 }

@@ -61,7 +61,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     if (!error.isEmpty()) show_error(tr("Open Study"), error);
   });
   connect(home_, &StudyHome::resume_requested, this, [this](const QString& id) {
-    session_->set_participants({}, id);
     participants_->refresh();
     session_->set_participants(
         [this] {

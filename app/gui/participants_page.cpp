@@ -146,7 +146,10 @@ void ParticipantsPage::refresh() {
     }
   }
   table_->resizeColumnsToContents();
-  if (!keep.isEmpty()) select(keep);
+  if (!keep.isEmpty())
+    select(keep);
+  else if (table_->rowCount() > 0)
+    table_->selectRow(0);
   show_schedule();
   emit participants_changed(ids, selected());
 }

@@ -220,7 +220,9 @@ void SessionPage::set_study(const QString& database) {
 }
 
 void SessionPage::set_participants(const QStringList& ids, const QString& selected) {
-  const QString keep = selected.isEmpty() ? participant_->currentText() : selected;
+  // A running session's participant stays chosen.
+  const QString keep =
+      selected.isEmpty() || session_running() ? participant_->currentText() : selected;
   participant_->clear();
   participant_->addItems(ids);
   if (ids.contains(keep)) participant_->setCurrentText(keep);
@@ -300,13 +302,9 @@ QString SessionPage::start_session() {
     return QString::fromStdString(e.what());
   }
   SessionWorker* w = worker_.get();
-  connect(w, &SessionWorker::calibration_changed, this, [this] {
-    if (!worker_) return;
-    const auto snap = worker_->snapshot();
-    if (!snap.calibration) return;
-    calibration_->setText(QString::fromStdString(snap.calibration->message()));
-    if (participant_window_)
-      participant_window_->set_instruction(QString::fromStdString(snap.calibration->message()));
+  connect(w, &SessionWorker::calibration_changed, this, [this](const QString& message, bool) {
+    calibration_->setText(message);
+    if (participant_window_) participant_window_->set_instruction(message);
   });
   connect(w, &SessionWorker::trial_started, this, [this](int position) {
     const auto snap = worker_->snapshot();

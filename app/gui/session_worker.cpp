@@ -49,7 +49,8 @@ void SessionWorker::run() {
       const std::lock_guard<std::mutex> lock(mutex_);
       snapshot_.calibration = status;
     }
-    emit calibration_changed();
+    emit calibration_changed(QString::fromStdString(status.message()),
+                             status.state == studies::CalibrationStatus::State::kDone);
   };
   control_.trial_started = [this](const studies::TrialSetup& setup, int planned) {
     {

@@ -69,7 +69,7 @@ class SessionWorker : public QObject {
   void answer(std::vector<int> values);
 
  signals:
-  void calibration_changed();
+  void calibration_changed(QString message, bool done);
   void trial_started(int position);
   void trial_ended(int position, bool success, double seconds, bool aborted);
   void questionnaire_requested(int position, QString condition);
