@@ -60,8 +60,9 @@ namespace {
 QString num(double x, int decimals = 2) {
   return std::isfinite(x) ? QString::number(x, 'f', decimals) : QString("–");
 }
+// Escaped: "p < .001" is not a tag.
 QString p_text(double p) {
-  return QString::fromStdString(analysis::apa_p(p));
+  return QString::fromStdString(analysis::apa_p(p)).toHtmlEscaped();
 }
 
 QString anova_table(const analysis::AnalysisReport& r) {

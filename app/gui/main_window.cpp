@@ -61,15 +61,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     if (!error.isEmpty()) show_error(tr("Open Study"), error);
   });
   connect(home_, &StudyHome::resume_requested, this, [this](const QString& id) {
-    participants_->refresh();
-    session_->set_participants(
-        [this] {
-          QStringList ids;
-          for (int r = 0; r < participants_->table()->rowCount(); ++r)
-            ids << participants_->table()->item(r, 0)->text();
-          return ids;
-        }(),
-        id);
+    participants_->refresh(id);  // the session page follows the selection
     tabs_->setCurrentWidget(session_);
   });
   connect(participants_, &ParticipantsPage::participants_changed, this,

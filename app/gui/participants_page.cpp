@@ -109,10 +109,16 @@ void ParticipantsPage::select(const QString& id) {
     if (table_->item(r, 0)->text() == id) table_->selectRow(r);
 }
 
-void ParticipantsPage::refresh() {
-  const QString keep = selected();
-  table_->setRowCount(0);
+QStringList ParticipantsPage::ids() const {
   QStringList ids;
+  for (int r = 0; r < table_->rowCount(); ++r) ids << table_->item(r, 0)->text();
+  return ids;
+}
+
+void ParticipantsPage::refresh(const QString& select_id) {
+  const QString keep = select_id.isEmpty() ? selected() : select_id;
+  table_->setRowCount(0);
+  QStringList enrolled;
   if (!database_.isEmpty()) {
     store::StudyStore store(database_.toStdString());
     std::map<std::string, studies::ParticipantStatus> status;
@@ -123,7 +129,7 @@ void ParticipantsPage::refresh() {
       const studies::ParticipantStatus& s = status[p.id];
       const int done = s.trials_completed + s.trials_skipped;
       const QString id = QString::fromStdString(p.id);
-      ids << id;
+      enrolled << id;
       const QString state =
           id == in_session_ ? tr("in session")
           : store.has_running_session(p.id)
@@ -132,9 +138,8 @@ void ParticipantsPage::refresh() {
           : done < s.trials_planned
               ? tr("in progress (next: trial %1)").arg(s.next ? s.next->position + 1 : 0)
               : tr("complete");
-      table_->setItem(row, 0, cell(id + (p.simulated ? tr(" (simulated)") : QString())));
-      table_->item(row, 0)->setText(id);
-      table_->item(row, 0)->setToolTip(p.simulated ? tr("simulated participant") : QString());
+      table_->setItem(row, 0, cell(id));
+      if (p.simulated) table_->item(row, 0)->setToolTip(tr("simulated participant"));
       table_->setItem(row, 1, cell(QString::number(p.age)));
       table_->setItem(row, 2, cell(QString::fromStdString(p.sex)));
       table_->setItem(row, 3, cell(QString::fromStdString(p.handedness)));
@@ -151,7 +156,7 @@ void ParticipantsPage::refresh() {
   else if (table_->rowCount() > 0)
     table_->selectRow(0);
   show_schedule();
-  emit participants_changed(ids, selected());
+  emit participants_changed(enrolled, selected());
 }
 
 void ParticipantsPage::show_schedule() {
@@ -215,15 +220,7 @@ QString ParticipantsPage::add_participant() {
     return {};
   }
   const QString id = QString::fromStdString(p.id);
-  refresh();
-  select(id);
-  emit participants_changed(
-      [this] {
-        QStringList ids;
-        for (int r = 0; r < table_->rowCount(); ++r) ids << table_->item(r, 0)->text();
-        return ids;
-      }(),
-      id);
+  refresh(id);
   return id;
 }
 

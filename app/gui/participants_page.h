@@ -18,7 +18,9 @@ class ParticipantsPage : public QWidget {
  public:
   explicit ParticipantsPage(QWidget* parent = nullptr);
   void set_study(const QString& database);  // empty: none
-  void refresh();
+  // Reads the database again; selects `select_id` (default: the selected participant).
+  void refresh(const QString& select_id = {});
+  QStringList ids() const;  // the enrolled, in the table's order
   // Opens the form; returns the id enrolled or changed (empty: cancelled or refused).
   QString add_participant();
   QString edit_participant();

@@ -128,6 +128,7 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   form->addRow(QString(), real_time_);
   side->addWidget(setup);
   connect(tracker_, &QComboBox::currentIndexChanged, this, &SessionPage::update_tracker_fields);
+  connect(address_, &QLineEdit::editingFinished, this, &SessionPage::update_tracker_fields);
 
   auto* calibration = new QGroupBox(tr("Calibration"));
   auto* cal_layout = new QVBoxLayout(calibration);
@@ -478,16 +479,16 @@ void SessionPage::refresh_picture() {
   }
   if (snap.steps == last_drawn_step_ || snap.frame.bone_positions.empty()) return;
   last_drawn_step_ = snap.steps;
-  if (skeleton_.bones.empty() || skeleton_shape_.length != snap.simulated_hand.length ||
-      skeleton_shape_.hand_breadth() != snap.simulated_hand.hand_breadth()) {
-    skeleton_ = hand::build_simulated_hand(snap.simulated_hand);
-    skeleton_shape_ = snap.simulated_hand;
+  if (hand_meshes_.capsules.empty() || hand_shape_.length != snap.simulated_hand.length ||
+      hand_shape_.hand_breadth() != snap.simulated_hand.hand_breadth()) {
+    hand_meshes_ = render::make_bone_meshes(hand::build_simulated_hand(snap.simulated_hand));
+    hand_shape_ = snap.simulated_hand;
   }
   task::SceneLayout layout = protocol_->scene;
   layout.cube_size = snap.cube_size;
   auto list = std::make_shared<const render::DrawList>(
-      render::draw_stored_frame(layout, skeleton_, snap.frame));
-  view_->set_layout(layout);
+      render::draw_stored_frame(layout, hand_meshes_, snap.frame));
+  if (view_->layout().cube_size != layout.cube_size) view_->set_layout(layout);
   view_->set_frame(list);
   if (participant_window_) {
     participant_window_->set_frame(layout, list);

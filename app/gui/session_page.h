@@ -11,7 +11,8 @@
 
 #include <QWidget>
 
-#include "core/hand/skeleton.h"
+#include "core/hand/hand_shape.h"
+#include "core/render/hand_drawing.h"
 #include "studies/protocol/protocol.h"
 
 class QCheckBox;
@@ -121,8 +122,8 @@ class SessionPage : public QWidget {
   ParticipantWindow* participant_window_ = nullptr;
   QuestionnaireDialog* questionnaire_ = nullptr;
   // The condition's hand, rebuilt when a trial of another hand starts.
-  hand::Skeleton skeleton_;
-  hand::HandShape skeleton_shape_;
+  render::BoneMeshes hand_meshes_;
+  hand::HandShape hand_shape_;
   long last_drawn_step_ = -1;
   DisplayStats stats_;
   std::chrono::steady_clock::time_point stats_start_;

@@ -1,12 +1,11 @@
 #include "core/render/frame_drawing.h"
 
-#include "core/render/hand_drawing.h"
 #include "core/render/scene_drawing.h"
 #include "core/render/sim_drawing.h"
 
 namespace handlab::render {
 
-DrawList draw_stored_frame(const task::SceneLayout& layout, const hand::Skeleton& skeleton,
+DrawList draw_stored_frame(const task::SceneLayout& layout, const BoneMeshes& hand,
                            const store::FrameRecord& frame) {
   Eigen::Isometry3d cube = Eigen::Isometry3d::Identity();
   cube.linear() = frame.cube_rotation.cast<double>().toRotationMatrix();
@@ -18,7 +17,7 @@ DrawList draw_stored_frame(const task::SceneLayout& layout, const hand::Skeleton
     bones[b].linear() = frame.bone_rotations[b].cast<double>().toRotationMatrix();
     bones[b].translation() = frame.bone_positions[b].cast<double>();
   }
-  draw_bone_frames(list, skeleton, bones, SimDrawStyle{}.skin);
+  draw_bone_frames(list, hand, bones, SimDrawStyle{}.skin);
   return list;
 }
 

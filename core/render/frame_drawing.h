@@ -3,15 +3,16 @@
 // app's live view, its participant window and replays of stored trials draw this.
 #pragma once
 
-#include "core/hand/skeleton.h"
 #include "core/render/draw_list.h"
+#include "core/render/hand_drawing.h"
 #include "core/store/frame_record.h"
 #include "core/task/scene_layout.h"
 
 namespace handlab::render {
 
-// `layout` places the zones and sizes the cube; `skeleton` is the condition's simulated hand.
-DrawList draw_stored_frame(const task::SceneLayout& layout, const hand::Skeleton& skeleton,
+// `layout` places the zones and sizes the cube; `hand` holds the condition's simulated hand's
+// bone meshes (make_bone_meshes).
+DrawList draw_stored_frame(const task::SceneLayout& layout, const BoneMeshes& hand,
                            const store::FrameRecord& frame);
 
 }  // namespace handlab::render

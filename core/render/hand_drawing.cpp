@@ -44,14 +44,22 @@ void draw_skeleton(DrawList& list, const hand::Skeleton& skeleton, const hand::H
   }
 }
 
-void draw_bone_frames(DrawList& list, const hand::Skeleton& skeleton,
+BoneMeshes make_bone_meshes(const hand::Skeleton& skeleton) {
+  BoneMeshes meshes;
+  for (const hand::Bone& bone : skeleton.bones)
+    meshes.capsules.push_back(bone.length > 0
+                                  ? std::make_shared<const RenderMesh>(
+                                        make_capsule_mesh(float(bone.radius), float(bone.length)))
+                                  : nullptr);
+  return meshes;
+}
+
+void draw_bone_frames(DrawList& list, const BoneMeshes& meshes,
                       const std::vector<Eigen::Isometry3d>& frames, const Eigen::Vector4f& color) {
-  for (std::size_t b = 0; b < skeleton.bones.size() && b < frames.size(); ++b) {
-    const hand::Bone& bone = skeleton.bones[b];
-    if (bone.length <= 0) continue;
+  for (std::size_t b = 0; b < meshes.capsules.size() && b < frames.size(); ++b) {
+    if (!meshes.capsules[b]) continue;
     DrawItem item;
-    item.mesh = std::make_shared<const RenderMesh>(
-        make_capsule_mesh(float(bone.radius), float(bone.length)));
+    item.mesh = meshes.capsules[b];
     item.model = frames[b].matrix().cast<float>();
     item.color = color;
     list.items.push_back(item);
