@@ -1,6 +1,7 @@
 // The experimenter's app end to end, through its real widgets: a study created from the
 // shipped protocol, a participant added through the form (and a duplicate id refused), the
-// session set up, calibrated and run with the scripted participant through the trial panel,
+// session set up, calibrated and run on the soft hand with the scripted participant through
+// the trial panel,
 // every questionnaire answered in its dialog with the keys, one trial redone with a reason;
 // then the study file read back and checked against what was done.
 #include <QApplication>
@@ -88,11 +89,12 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   window.participants()->select("P01");
   EXPECT_EQ(window.participants()->schedule()->rowCount(), 24);
 
-  // Set up: the scripted participant on the grasp proxy, as fast as it goes.
+  // Set up: the scripted participant on the soft hand, as fast as it goes.
   SessionPage* page = window.session();
   page->participant_box()->setCurrentText("P01");
-  page->tracker_box()->setCurrentIndex(3);                             // scripted
-  page->world_box()->setCurrentIndex(page->world_box()->findData(1));  // grasp proxy
+  page->tracker_box()->setCurrentIndex(3);  // scripted
+  page->world_box()->setCurrentIndex(
+      page->world_box()->findData(int(studies::WorldKind::kSoftHand)));
   page->real_time_box()->setChecked(false);
   std::vector<std::vector<int>> answered;
   int questionnaires = 0;
@@ -113,7 +115,8 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   QSignalSpy ended(page, &SessionPage::session_ended);
   QTest::mouseClick(page->start_button(), Qt::LeftButton);
   ASSERT_TRUE(page->session_running()) << page->log()->count();
-  QObject::connect(page->worker(), &SessionWorker::trial_ended,
+  // With `page` as the context the slot runs on the window's thread, as a click would.
+  QObject::connect(page->worker(), &SessionWorker::trial_ended, page,
                    [&](int position, bool, double, bool) {
                      if (position == 2 && !redo_asked) {
                        redo_asked = true;
@@ -134,6 +137,11 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   EXPECT_EQ(p->age, 27);
   EXPECT_DOUBLE_EQ(p->hand_length, 0.184);
   EXPECT_EQ(p->notes, "wears glasses, \"tired\"");
+  {
+    store::Statement s = store.database().prepare("SELECT tracker FROM session");
+    ASSERT_TRUE(s.step());
+    EXPECT_EQ(s.column_text(0), "scripted (soft hand)");
+  }
   const auto trials = store.trials("P01");
   ASSERT_EQ(trials.size(), 25u);
   int redone = 0;
