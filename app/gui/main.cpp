@@ -1,9 +1,11 @@
 // handlab: the desktop application.
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QCommandLineParser>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QPainter>
 #include <QRegularExpression>
 #include <QSurfaceFormat>
 #include <QTabWidget>
@@ -13,13 +15,17 @@
 #include <string>
 
 #include "app/gui/analysis_page.h"
+#include "app/gui/live_measurement.h"
 #include "app/gui/main_window.h"
 #include "app/gui/participant_window.h"
 #include "app/gui/participants_page.h"
 #include "app/gui/pinch_simulation.h"
+#include "app/gui/questionnaire_dialog.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/session_page.h"
 #include "app/gui/study_home.h"
+#include "app/live/leap_replay_server.h"
+#include "core/tracking/recording_io.h"
 #include "handlab/version.h"
 
 namespace {
@@ -37,8 +43,8 @@ struct Options {
       "pinch-until", "Stop the simulated pinch at this time (s); with --screenshot, save then.",
       "SECONDS"};
   QCommandLineOption contacts{"contacts", "Show the simulation's contact points."};
-  QCommandLineOption participant{"participant", "With --start: the participant whose session runs.",
-                                 "ID"};
+  QCommandLineOption participant{
+      "participant", "The participant selected (with --start: whose session runs).", "ID"};
   QCommandLineOption tracker{"tracker",
                              "With --start: leap, scripted, simulated or a recording file.",
                              "TRACKER", "scripted"};
@@ -47,6 +53,31 @@ struct Options {
   QCommandLineOption start{"start", "Start (or resume) the participant's session once shown."};
   QCommandLineOption participant_window{"participant-window",
                                         "Show the participant's window (in a window)."};
+  QCommandLineOption leap_address{"leap-address",
+                                  "With --tracker leap: the Leap service's WebSocket address.",
+                                  "URL", "ws://127.0.0.1:6437"};
+  QCommandLineOption measure_latency{
+      "measure-latency",
+      "With --start: after the first trial's 3 s warm-up, measure the display's latency, "
+      "dropped frames and rate for this long, stop the session, write --latency-json, quit.",
+      "SECONDS"};
+  QCommandLineOption latency_json{"latency-json", "Where --measure-latency writes its figures.",
+                                  "OUT"};
+  QCommandLineOption serve_recording{
+      "serve-recording",
+      "No window: serve this recording as the Leap service would (WebSocket JSON v6 on "
+      "loopback, --port), at its own frame rate, looped, until interrupted.",
+      "FILE"};
+  QCommandLineOption port{"port", "With --serve-recording: the port.", "PORT", "6437"};
+  QCommandLineOption screenshot_at{
+      "screenshot-at",
+      "With --screenshot: when to save, in seconds after the window shows (default 1.5; "
+      "6 with --start), or 'questionnaire' (when the first questionnaire opens; the dialog "
+      "is drawn over the window where it stands).",
+      "WHEN"};
+  QCommandLineOption no_real_time{"no-real-time",
+                                  "With --start and a scripted or simulated participant or a "
+                                  "recording: run as fast as the pipeline goes."};
 
   void add_to(QCommandLineParser& parser) {
     parser.setApplicationDescription(
@@ -55,11 +86,54 @@ struct Options {
         "recording or a simulated participant on the soft hand, and analyse the results.");
     parser.addHelpOption();
     parser.addVersionOption();
-    for (const auto* o : {&study, &screenshot, &tab, &pinch, &pinch_until, &contacts, &participant,
-                          &tracker, &world, &start, &participant_window})
+    for (const auto* o :
+         {&study, &screenshot, &tab, &pinch, &pinch_until, &contacts, &participant, &tracker,
+          &world, &start, &participant_window, &leap_address, &measure_latency, &latency_json,
+          &serve_recording, &port, &screenshot_at, &no_real_time})
       parser.addOption(*o);
   }
 };
+
+// The command line read by an application made without a display.
+void process_without_display(QCoreApplication& core, QCommandLineParser& parser, Options& options) {
+  QCoreApplication::setApplicationName("handlab");
+  QCoreApplication::setApplicationVersion(HANDLAB_VERSION);
+  options.add_to(parser);
+  parser.process(core);
+}
+
+// A recording served over the Leap protocol, with no window (and no display needed).
+int serve_recording(int argc, char** argv) {
+  QCoreApplication core(argc, argv);
+  QCommandLineParser parser;
+  Options options;
+  process_without_display(core, parser, options);
+  bool ok = false;
+  const int port = parser.value(options.port).toInt(&ok);
+  if (!ok || port < 0 || port > 65535) {
+    std::fprintf(stderr, "handlab: --port takes 0 to 65535\n");
+    return 2;
+  }
+  try {
+    handlab::tracking::Recording recording =
+        handlab::tracking::read_recording(parser.value(options.serve_recording).toStdString());
+    handlab::live::LeapReplayServer server(std::move(recording.frames),
+                                           {quint16(port), /*loop=*/true});
+    QString error;
+    if (!server.start(&error)) {
+      std::fprintf(stderr, "handlab: cannot listen on port %d: %s\n", port, qPrintable(error));
+      return 1;
+    }
+    std::printf("serving %s at %.1f frames/s on ws://127.0.0.1:%d/v6.json\n",
+                qPrintable(parser.value(options.serve_recording)), server.frame_rate_hz(),
+                int(server.port()));
+    std::fflush(stdout);
+    return core.exec();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "handlab: %s\n", e.what());
+    return 1;
+  }
+}
 
 }  // namespace
 
@@ -70,21 +144,19 @@ int main(int argc, char** argv) {
     if (arg == "-h" || arg == "--help" || arg == "--help-all" || arg == "-v" ||
         arg == "--version") {
       QCoreApplication core(argc, argv);
-      QCoreApplication::setApplicationName("handlab");
-      QCoreApplication::setApplicationVersion(HANDLAB_VERSION);
       QCommandLineParser parser;
       Options options;
-      options.add_to(parser);
-      parser.process(core);  // prints and exits
+      process_without_display(core, parser, options);  // prints and exits
       return 0;
     }
   }
+  for (int k = 1; k < argc; ++k)
+    if (std::string(argv[k]).rfind("--serve-recording", 0) == 0) return serve_recording(argc, argv);
   // The renderer speaks OpenGL 3.3 core; the format must be set before the application.
   QSurfaceFormat format;
   format.setVersion(3, 3);
   format.setProfile(QSurfaceFormat::CoreProfile);
   format.setDepthBufferSize(24);
-  format.setSamples(4);
   QSurfaceFormat::setDefaultFormat(format);
 
   QApplication app(argc, argv);
@@ -117,6 +189,8 @@ int main(int argc, char** argv) {
     }
     window.tabs()->setCurrentWidget(pages[names.indexOf(name)]);
   }
+  if (parser.isSet(options.participant) && !parser.isSet(options.start))
+    window.participants()->select(parser.value(options.participant));
   if (parser.isSet(options.participant_window)) window.show_participant_window(-1);
   if (parser.isSet(options.start)) {
     handlab::gui::SessionPage* page = window.session();
@@ -129,6 +203,26 @@ int main(int argc, char** argv) {
     page->tracker_box()->setCurrentIndex(choice);
     if (choice == 1) page->recording_edit()->setText(tracker);
     page->world_box()->setCurrentIndex(parser.value(options.world) == "proxy" ? 1 : 0);
+    page->address_edit()->setText(parser.value(options.leap_address));
+    page->real_time_box()->setChecked(!parser.isSet(options.no_real_time));
+    if (choice == 0) {  // the client connects before the session asks for its frames
+      page->tracker_box()->setCurrentIndex(1);
+      page->tracker_box()->setCurrentIndex(0);
+    }
+    if (parser.isSet(options.measure_latency)) {
+      bool ok = false;
+      const double seconds = parser.value(options.measure_latency).toDouble(&ok);
+      if (!ok || !(seconds > 0) || !parser.isSet(options.latency_json)) {
+        std::fprintf(stderr, "handlab: --measure-latency takes seconds and --latency-json\n");
+        return 2;
+      }
+      auto* measurement = new handlab::gui::LiveMeasurement(
+          page, seconds, parser.value(options.latency_json), &window);
+      QObject::connect(measurement, &handlab::gui::LiveMeasurement::done, &app, [&](bool ok) {
+        if (!ok) std::fprintf(stderr, "handlab: the latency was not measured\n");
+        app.exit(ok ? 0 : 1);
+      });
+    }
     window.tabs()->setCurrentWidget(page);
     const QString error = page->start_session();
     if (!error.isEmpty()) {
@@ -156,7 +250,13 @@ int main(int argc, char** argv) {
   }
   if (parser.isSet(screenshot)) {
     auto save = [&] {
-      bool saved = window.grab().save(parser.value(screenshot));
+      QImage picture = window.grab().toImage();
+      if (auto* dialog = window.session()->questionnaire()) {  // as it stands over the window
+        QPainter painter(&picture);
+        painter.drawPixmap(dialog->frameGeometry().topLeft() - window.frameGeometry().topLeft(),
+                           dialog->grab());
+      }
+      bool saved = picture.save(parser.value(screenshot));
       if (window.participant_window()) {  // beside it: NAME-participant.png
         QString path = parser.value(screenshot);
         path.replace(QRegularExpression("\\.png$"), "");
@@ -166,11 +266,22 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "handlab: cannot write %s\n", qPrintable(parser.value(screenshot)));
       app.exit(saved ? 0 : 1);
     };
-    if (simulation)  // once the simulation has reached its end and the view shows it
+    const QString when = parser.value(options.screenshot_at);
+    bool seconds_ok = true;
+    const double seconds =
+        when.isEmpty() ? (parser.isSet(options.start) ? 6.0 : 1.5) : when.toDouble(&seconds_ok);
+    if (simulation) {  // once the simulation has reached its end and the view shows it
       QObject::connect(simulation, &handlab::gui::PinchSimulation::done, &window,
                        [&] { QTimer::singleShot(500, &window, save); });
-    else
-      QTimer::singleShot(parser.isSet(options.start) ? 6000 : 1500, &window, save);
+    } else if (when == "questionnaire") {
+      QObject::connect(window.session(), &handlab::gui::SessionPage::questionnaire_opened, &window,
+                       [&] { QTimer::singleShot(500, &window, save); });
+    } else if (seconds_ok && seconds >= 0) {
+      QTimer::singleShot(int(seconds * 1000), &window, save);
+    } else {
+      std::fprintf(stderr, "handlab: --screenshot-at takes seconds or 'questionnaire'\n");
+      return 2;
+    }
   }
   return app.exec();
 }

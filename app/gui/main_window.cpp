@@ -219,8 +219,16 @@ void MainWindow::refresh_study() {
   if (study_.isEmpty()) return;
   const QString own =
       session_->session_running() ? session_->participant_box()->currentText() : QString();
-  home_->set_study(study_, own);
-  participants_->refresh();
+  // A view that cannot be read now says so; the session stores its trials on its own
+  // connection whatever happens here.
+  try {
+    home_->set_study(study_, own);
+    participants_->refresh();
+  } catch (const std::exception& e) {
+    statusBar()->showMessage(
+        tr("The study's views could not be refreshed: %1").arg(QString::fromStdString(e.what())),
+        15000);
+  }
 }
 
 void MainWindow::remember_recent(const QString& path) {

@@ -190,11 +190,13 @@ void ParticipantsPage::show_schedule() {
       status = status_name(t.status);
       if (t.attempt > 1) status += tr(" (attempt %1)").arg(t.attempt);
       if (t.status == store::TrialStatus::kCompleted || t.status == store::TrialStatus::kTimeout)
-        result = tr("%1 s, %2 grasps, %3 drops")
+        result = tr("%1 s, %2 %3, %4 %5")
                      .arg(QString::fromStdString(
                          util::format_number(std::round(t.completion_time_s * 1000.0) / 1000.0)))
                      .arg(t.grasps)
-                     .arg(t.drops);
+                     .arg(t.grasps == 1 ? tr("grasp") : tr("grasps"))
+                     .arg(t.drops)
+                     .arg(t.drops == 1 ? tr("drop") : tr("drops"));
       else if (!t.reason.empty())
         result = QString::fromStdString(t.reason);
     }

@@ -47,6 +47,7 @@ QuestionnaireDialog::QuestionnaireDialog(const studies::Protocol& protocol, int 
       if (int(i) == current_) current_ = std::min(int(groups_.size()) - 1, current_ + 1);
       update_state();
     });
+    for (int column = 0; column < scale_; ++column) grid->setColumnStretch(column, 1);
     groups_.push_back(group);
     layout->addLayout(grid);
   }
@@ -56,7 +57,10 @@ QuestionnaireDialog::QuestionnaireDialog(const studies::Protocol& protocol, int 
     if (complete()) accept();
   });
   layout->addWidget(buttons_);
-  resize(620, sizeHint().height());
+  // Tall enough for the anchors as they wrap at this width ("Neither easy nor difficult").
+  constexpr int kWidth = 640;
+  resize(kWidth,
+         layout->hasHeightForWidth() ? layout->totalHeightForWidth(kWidth) : sizeHint().height());
   update_state();
 }
 

@@ -3,7 +3,9 @@
 #include <memory>
 
 #include <QMouseEvent>
+#include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QOpenGLFunctions>
 #include <QOpenGLWidget>
 #include <QPainter>
 #include <QVBoxLayout>
@@ -110,13 +112,40 @@ class SceneCanvas : public QOpenGLWidget {
   QString error_;
 };
 
-bool opengl_available() {
-  static const bool available = [] {
-    QOpenGLContext probe;
-    probe.setFormat(QSurfaceFormat::defaultFormat());
-    return probe.create() && probe.format().version() >= qMakePair(3, 3);
+namespace {
+
+struct OpenGlProbe {
+  bool available = false;
+  bool software = false;  // llvmpipe, softpipe or swrast: every pixel costs CPU time
+};
+
+const OpenGlProbe& opengl_probe() {
+  static const OpenGlProbe probe = [] {
+    OpenGlProbe result;
+    QOpenGLContext context;
+    context.setFormat(QSurfaceFormat::defaultFormat());
+    if (!context.create() || context.format().version() < qMakePair(3, 3)) return result;
+    result.available = true;
+    QOffscreenSurface surface;
+    surface.setFormat(context.format());
+    surface.create();
+    if (context.makeCurrent(&surface)) {
+      const auto* name =
+          reinterpret_cast<const char*>(context.functions()->glGetString(GL_RENDERER));
+      const QString renderer = name ? QString::fromLatin1(name) : QString();
+      result.software = renderer.contains("llvmpipe") || renderer.contains("softpipe") ||
+                        renderer.contains("swrast");
+      context.doneCurrent();
+    }
+    return result;
   }();
-  return available;
+  return probe;
+}
+
+}  // namespace
+
+bool opengl_available() {
+  return opengl_probe().available;
 }
 
 SceneView::SceneView(QWidget* parent) : QWidget(parent) {
@@ -124,6 +153,12 @@ SceneView::SceneView(QWidget* parent) : QWidget(parent) {
   setFocusPolicy(Qt::StrongFocus);
   if (opengl_available()) {
     canvas_ = new SceneCanvas(this);
+    // The view multisamples in its own framebuffer, not the window's, and not at all on a
+    // software renderer, where every sample costs CPU time the display's latency needs.
+    QSurfaceFormat format = canvas_->format();
+    format.setSamples(opengl_probe().software ? 0 : 4);
+    canvas_->setFormat(format);
+    connect(canvas_, &QOpenGLWidget::frameSwapped, this, &SceneView::picture_shown);
     auto* box = new QVBoxLayout(this);
     box->setContentsMargins(0, 0, 0, 0);
     box->addWidget(canvas_);

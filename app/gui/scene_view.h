@@ -43,6 +43,8 @@ class SceneView : public QWidget {
 
  signals:
   void camera_changed();
+  // A picture is on screen: the window's composition and buffer swap returned.
+  void picture_shown();
 
  protected:
   void paintEvent(QPaintEvent* event) override;

@@ -14,8 +14,8 @@
 #include <QListWidget>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QThread>
 #include <QTime>
-#include <QTimer>
 #include <QVBoxLayout>
 
 #include "app/gui/participant_window.h"
@@ -132,11 +132,18 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
 
   auto* calibration = new QGroupBox(tr("Calibration"));
   auto* cal_layout = new QVBoxLayout(calibration);
-  calibration_ =
-      new QLabel(tr("When the session starts, the participant holds the right hand "
-                    "open, fingers spread, still over the table for two seconds."));
+  auto* how =
+      new QLabel(tr("The participant holds the right hand open, fingers spread, "
+                    "palm down and still over the table for two seconds; the "
+                    "countdown starts again if the hand moves or closes."));
+  how->setWordWrap(true);
+  cal_layout->addWidget(how);
+  calibration_ = new QLabel(tr("Not calibrated: it is the session's first step."));
   calibration_->setObjectName("calibration_state");
   calibration_->setWordWrap(true);
+  QFont bold = calibration_->font();
+  bold.setBold(true);
+  calibration_->setFont(bold);
   cal_layout->addWidget(calibration_);
   side->addWidget(calibration);
 
@@ -198,15 +205,19 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   log_->setObjectName("session_log");
   side->addWidget(log_, 1);
 
-  display_timer_ = new QTimer(this);
-  display_timer_->setInterval(4);  // polls the newest step; the view draws at the display's rate
-  display_timer_->setTimerType(Qt::PreciseTimer);
-  connect(display_timer_, &QTimer::timeout, this, &SessionPage::refresh_picture);
+  connect(view_, &SceneView::picture_shown, this, &SessionPage::picture_shown);
   update_tracker_fields();
   set_running(false);
 }
 
-SessionPage::~SessionPage() = default;
+SessionPage::~SessionPage() {
+  worker_.reset();  // the session stops before the client whose frames it reads goes
+  drop_leap_client();
+  if (leap_thread_) {
+    leap_thread_->quit();
+    leap_thread_->wait();
+  }
+}
 
 void SessionPage::set_study(const QString& database) {
   worker_.reset();
@@ -242,23 +253,54 @@ void SessionPage::update_tracker_fields() {
 }
 
 void SessionPage::ensure_leap_client() {
+  if (leap_ && leap_address_ == address_->text()) return;
+  if (session_running()) return;  // the running session reads this client's frames
+  drop_leap_client();
   live::LeapClientOptions options;
   options.server = QUrl(address_->text());
-  if (leap_ && leap_->property("address").toString() == address_->text()) return;
-  leap_ = std::make_unique<live::LeapWebSocketClient>(options);
-  leap_->setProperty("address", address_->text());
+  leap_address_ = address_->text();
+  // The client lives on a thread of its own: frames arrive (and their arrival is timed)
+  // while the window draws.
+  if (!leap_thread_) {
+    leap_thread_ = new QThread(this);
+    leap_thread_->setObjectName("leap");
+    leap_thread_->start();
+  }
+  leap_ = new live::LeapWebSocketClient(options);
+  leap_->moveToThread(leap_thread_);
+  leap_connected_ = leap_streaming_ = leap_hand_ = false;
   auto show = [this] {
-    if (!leap_) return;
-    leap_state_->setText(!leap_->connected()          ? tr("not connected (retrying)")
-                         : !leap_->device_streaming() ? tr("connected, no device streaming")
-                         : leap_->hand_visible()      ? tr("device streaming, hand seen")
-                                                      : tr("device streaming, no hand"));
+    leap_state_->setText(!leap_connected_   ? tr("not connected (retrying)")
+                         : !leap_streaming_ ? tr("connected, no device streaming")
+                         : leap_hand_       ? tr("device streaming, hand seen")
+                                            : tr("device streaming, no hand"));
   };
-  connect(leap_.get(), &live::LeapWebSocketClient::connection_changed, this, show);
-  connect(leap_.get(), &live::LeapWebSocketClient::device_changed, this, show);
-  connect(leap_.get(), &live::LeapWebSocketClient::hand_visibility_changed, this, show);
-  leap_->start();
+  connect(leap_, &live::LeapWebSocketClient::connection_changed, this, [this, show](bool on) {
+    leap_connected_ = on;
+    if (!on) leap_hand_ = false;
+    show();
+  });
+  connect(leap_, &live::LeapWebSocketClient::device_changed, this,
+          [this, show](bool, bool streaming) {
+            leap_streaming_ = streaming;
+            show();
+          });
+  connect(leap_, &live::LeapWebSocketClient::hand_visibility_changed, this, [this, show](bool on) {
+    leap_hand_ = on;
+    leap_streaming_ = leap_streaming_ || on;
+    show();
+  });
+  QMetaObject::invokeMethod(leap_, &live::LeapWebSocketClient::start, Qt::QueuedConnection);
   show();
+}
+
+void SessionPage::drop_leap_client() {
+  if (!leap_) return;
+  live::LeapWebSocketClient* client = leap_;
+  leap_ = nullptr;
+  // Deleted on its own thread, where its socket lives.
+  QMetaObject::invokeMethod(
+      client, [client] { delete client; }, Qt::BlockingQueuedConnection);
 }
 
 QString SessionPage::start_session() {
@@ -275,6 +317,7 @@ QString SessionPage::start_session() {
   if (choice == kLiveLeap) {
     ensure_leap_client();
     live_stats_ = std::make_shared<live::LiveFrameStats>();
+    if (!leap_) return tr("the Leap client cannot change while a session runs");
     live::FrameQueue* queue = &leap_->queue();
     auto stats = live_stats_;
     options.tracker = studies::TrackerKind::live(
@@ -303,6 +346,7 @@ QString SessionPage::start_session() {
     return QString::fromStdString(e.what());
   }
   SessionWorker* w = worker_.get();
+  connect(w, &SessionWorker::step_ready, this, &SessionPage::refresh_picture);
   connect(w, &SessionWorker::calibration_changed, this, [this](const QString& message, bool) {
     calibration_->setText(message);
     if (participant_window_) participant_window_->set_instruction(message);
@@ -349,8 +393,10 @@ QString SessionPage::start_session() {
     emit session_ended(tr("Session failed: %1").arg(error));
   });
   calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
-  stats_ = {};
-  stats_start_ = std::chrono::steady_clock::now();
+  reset_display_stats();
+  pending_origin_.reset();
+  picture_waiting_ = false;
+  pending_arrival_ns_ = shown_arrival_ns_ = 0;
   last_drawn_step_ = -1;
   w->start();
   set_running(true);
@@ -431,14 +477,10 @@ void SessionPage::set_running(bool running) {
   skip_->setEnabled(!database_.isEmpty());
   participant_->setEnabled(!running);
   tracker_->setEnabled(!running);
+  address_->setEnabled(!running && tracker_->currentData().toInt() == kLiveLeap);
   world_->setEnabled(!running);
   real_time_->setEnabled(!running);
-  if (running) {
-    display_timer_->start();
-  } else {
-    display_timer_->stop();
-    pause_->setChecked(false);
-  }
+  if (!running) pause_->setChecked(false);
 }
 
 void SessionPage::append_log(const QString& line) {
@@ -498,21 +540,49 @@ void SessionPage::refresh_picture() {
   clock_->setText(tr("%1 s").arg(snap.step.time, 0, 'f', 1));
   counts_->setText(tr("%1, %2").arg(snap.step.grasps).arg(snap.step.drops));
 
-  const auto now = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point origin = snap.stepped_at;
+  picture_waiting_ = true;
+  // A live frame's latency counts once, with the first picture of a state simulated from it.
   if (live_stats_) {
-    origin = std::chrono::steady_clock::time_point(
-        std::chrono::steady_clock::duration(snap.frame_arrival_ns));
-    stats_.frames_used = live_stats_->used;
-    stats_.frames_superseded = live_stats_->superseded;
+    stats_.frames_used = live_stats_->used - used_before_;
+    stats_.frames_superseded = live_stats_->superseded - superseded_before_;
+    if (snap.frame_arrival_ns == 0 || snap.frame_arrival_ns == shown_arrival_ns_) return;
   }
-  stats_.latency_ms.push_back(std::chrono::duration<double, std::milli>(now - origin).count());
+  pending_origin_ = live_stats_ ? std::chrono::steady_clock::time_point(
+                                      std::chrono::steady_clock::duration(snap.frame_arrival_ns))
+                                : snap.stepped_at;
+  pending_arrival_ns_ = snap.frame_arrival_ns;
+  pending_stepped_ = snap.stepped_at;
+}
+
+void SessionPage::picture_shown() {
+  if (!picture_waiting_) return;
+  picture_waiting_ = false;
+  const auto now = std::chrono::steady_clock::now();
+  if (pending_origin_) {
+    auto ms = [](auto duration) {
+      return std::chrono::duration<double, std::milli>(duration).count();
+    };
+    stats_.latency_ms.push_back(ms(now - *pending_origin_));
+    stats_.pipeline_ms.push_back(ms(pending_stepped_ - *pending_origin_));
+    pending_origin_.reset();
+    shown_arrival_ns_ = pending_arrival_ns_;
+  }
   ++stats_.pictures;
-  stats_.seconds = std::chrono::duration<double>(now - stats_start_).count();
+  // The display rate counts the time between pictures, not the pauses between trials.
+  if (last_shown_ && now - *last_shown_ < std::chrono::milliseconds(250))
+    stats_.seconds += std::chrono::duration<double>(now - *last_shown_).count();
+  last_shown_ = now;
 }
 
 SessionPage::DisplayStats SessionPage::display_stats() const {
   return stats_;
+}
+
+void SessionPage::reset_display_stats() {
+  stats_ = {};
+  last_shown_.reset();
+  used_before_ = live_stats_ ? live_stats_->used.load() : 0;
+  superseded_before_ = live_stats_ ? live_stats_->superseded.load() : 0;
 }
 
 }  // namespace handlab::gui

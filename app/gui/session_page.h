@@ -22,8 +22,8 @@ class QLineEdit;
 class QListWidget;
 class QPushButton;
 class QSpinBox;
+class QThread;
 class QStackedWidget;
-class QTimer;
 
 namespace handlab::live {
 class LeapWebSocketClient;
@@ -79,15 +79,21 @@ class SessionPage : public QWidget {
   QListWidget* log() const { return log_; }
   QuestionnaireDialog* questionnaire() const { return questionnaire_; }
 
-  // The display's figures, for docs/performance.md: per drawn step, the time from the live
-  // frame's arrival (or the step, with other trackers) to the picture being drawn (ms).
+  // The display's figures, for docs/performance.md. Latency: per live frame, from its
+  // arrival to the swap of the first picture of a state simulated from it (other trackers:
+  // from the step; a frame whose state a newer one replaced before the display took it is
+  // not counted); pictures and seconds count the pictures of new steps and the time
+  // between them (not the pauses between trials).
   struct DisplayStats {
     std::vector<double> latency_ms;
-    long pictures = 0;                            // new steps drawn
-    double seconds = 0;                           // over which they were drawn
-    long frames_used = 0, frames_superseded = 0;  // live frames
+    std::vector<double> pipeline_ms;  // of which until the simulated state was there
+    long pictures = 0;
+    double seconds = 0;
+    long frames_used = 0, frames_superseded = 0;  // live frames a step took, or never took
   };
   DisplayStats display_stats() const;
+  // Starts the figures afresh (a measurement leaves out the session's start).
+  void reset_display_stats();
 
  signals:
   void session_started();
@@ -98,10 +104,12 @@ class SessionPage : public QWidget {
  private:
   void update_tracker_fields();
   void refresh_picture();
+  void picture_shown();
   void show_questionnaire(int position, const QString& condition);
   void set_running(bool running);
   void append_log(const QString& line);
   void ensure_leap_client();
+  void drop_leap_client();
 
   QString database_;
   std::optional<studies::Protocol> protocol_;
@@ -115,9 +123,12 @@ class SessionPage : public QWidget {
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *redo_ = nullptr,
               *skip_ = nullptr;
   QListWidget* log_ = nullptr;
-  QTimer* display_timer_ = nullptr;
   std::unique_ptr<SessionWorker> worker_;
-  std::unique_ptr<live::LeapWebSocketClient> leap_;
+  // The Leap client on its thread (made when the live tracker is chosen) and what it said.
+  QThread* leap_thread_ = nullptr;
+  live::LeapWebSocketClient* leap_ = nullptr;
+  QString leap_address_;
+  bool leap_connected_ = false, leap_streaming_ = false, leap_hand_ = false;
   std::shared_ptr<live::LiveFrameStats> live_stats_;
   ParticipantWindow* participant_window_ = nullptr;
   QuestionnaireDialog* questionnaire_ = nullptr;
@@ -126,7 +137,14 @@ class SessionPage : public QWidget {
   hand::HandShape hand_shape_;
   long last_drawn_step_ = -1;
   DisplayStats stats_;
-  std::chrono::steady_clock::time_point stats_start_;
+  long used_before_ = 0, superseded_before_ = 0;  // live counts at the last reset
+  // A new step's picture waits for its swap; when its frame arrived (or its step ran), if
+  // that frame was not shown before.
+  bool picture_waiting_ = false;
+  std::optional<std::chrono::steady_clock::time_point> pending_origin_;
+  long long pending_arrival_ns_ = 0, shown_arrival_ns_ = 0;
+  std::chrono::steady_clock::time_point pending_stepped_;
+  std::optional<std::chrono::steady_clock::time_point> last_shown_;
 };
 
 }  // namespace handlab::gui

@@ -1,5 +1,7 @@
 #include "app/gui/session_worker.h"
 
+#include <algorithm>
+
 #include "core/store/study_store.h"
 #include "studies/session/session_runner.h"
 
@@ -31,6 +33,7 @@ void SessionWorker::start() {
 }
 
 SessionSnapshot SessionWorker::snapshot() const {
+  step_waiting_ = false;
   const std::lock_guard<std::mutex> lock(mutex_);
   return snapshot_;
 }
@@ -49,6 +52,7 @@ void SessionWorker::run() {
       const std::lock_guard<std::mutex> lock(mutex_);
       snapshot_.calibration = status;
     }
+    if (!step_waiting_.exchange(true)) emit step_ready();
     emit calibration_changed(QString::fromStdString(status.message()),
                              status.state == studies::CalibrationStatus::State::kDone);
   };
@@ -70,13 +74,16 @@ void SessionWorker::run() {
     emit trial_started(setup.planned.position);
   };
   control_.stepped = [this](const studies::TrialStep& step) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    snapshot_.step = step;
-    snapshot_.step.frame = nullptr;
-    snapshot_.frame = *step.frame;
-    ++snapshot_.steps;
-    snapshot_.stepped_at = std::chrono::steady_clock::now();
-    if (options_.frame_arrival) snapshot_.frame_arrival_ns = options_.frame_arrival();
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      snapshot_.step = step;
+      snapshot_.step.frame = nullptr;
+      snapshot_.frame = *step.frame;
+      ++snapshot_.steps;
+      snapshot_.stepped_at = std::chrono::steady_clock::now();
+      if (options_.frame_arrival) snapshot_.frame_arrival_ns = options_.frame_arrival();
+    }
+    if (!step_waiting_.exchange(true)) emit step_ready();
   };
   control_.trial_ended = [this](const studies::TrialSetup& setup, const studies::TrialRun& run) {
     {
@@ -100,7 +107,9 @@ void SessionWorker::run() {
 
   try {
     store::StudyStore store(options_.database.toStdString());
-    studies::PipelineTrialDriver driver(options_.tracker, 120.0, options_.world, 2);
+    // The display keeps a core of its own (on two cores the simulator gets one).
+    const int threads = std::clamp(int(std::thread::hardware_concurrency()) - 1, 1, 2);
+    studies::PipelineTrialDriver driver(options_.tracker, 120.0, options_.world, threads);
     driver.set_real_time(options_.real_time);
     studies::QuestionnaireResponder responder;
     if (options_.simulated_answers) {

@@ -1,7 +1,8 @@
 // A participant's session run from the app: the same SessionRunner and PipelineTrialDriver
 // as `handlab-cli session run`, on a thread of their own with their own database
 // connection, paced in real time. The window steers it through its SessionControl and
-// reads the newest step from a snapshot at the display's rate; the questionnaire is asked
+// reads the newest step from a snapshot when told one is there (step_ready, at most one
+// waiting, so a slow display skips steps rather than falling behind); the questionnaire is asked
 // on the window's thread while the session thread waits for the answers.
 #pragma once
 
@@ -63,12 +64,14 @@ class SessionWorker : public QObject {
   void start();
   bool running() const { return thread_.joinable() && !finished_; }
   studies::SessionControl& control() { return control_; }
+  // The newest step; the next one after this call emits step_ready again.
   SessionSnapshot snapshot() const;
   const studies::Protocol& protocol() const { return protocol_; }
   // The questionnaire's answers for the trial that asked (one per item, 1..scale).
   void answer(std::vector<int> values);
 
  signals:
+  void step_ready();  // a step or a calibration frame to show
   void calibration_changed(QString message, bool done);
   void trial_started(int position);
   void trial_ended(int position, bool success, double seconds, bool aborted);
@@ -89,6 +92,7 @@ class SessionWorker : public QObject {
   std::mutex answer_mutex_;
   std::optional<std::promise<std::vector<int>>> pending_answer_;
   std::atomic<bool> finished_{false}, closing_{false};
+  mutable std::atomic<bool> step_waiting_{false};
   std::thread thread_;
 };
 

@@ -43,6 +43,12 @@ class FrameQueue : public tracking::FrameSource {
     arrivals_.clear();
     return frame;
   }
+  // Returns once a frame is queued (true), or at `deadline` or when closed (false).
+  bool wait_for_frame(Clock::time_point deadline) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return ready_.wait_until(lock, deadline, [&] { return !frames_.empty() || closed_; }) &&
+           !frames_.empty();
+  }
   void clear() {
     const std::lock_guard<std::mutex> lock(mutex_);
     frames_.clear();

@@ -10,6 +10,8 @@ namespace handlab::live {
 LeapWebSocketClient::LeapWebSocketClient(LeapClientOptions options, QObject* parent)
     : QObject(parent),
       options_(std::move(options)),
+      socket_(QString(), QWebSocketProtocol::VersionLatest, this),
+      reconnect_timer_(this),
       version_(options_.protocol_version),
       backoff_ms_(options_.first_backoff_ms) {
   reconnect_timer_.setSingleShot(true);

@@ -2,7 +2,9 @@
 // Ultraleap devices by Ultraleap's WebSocket bridge). Connects to ws://HOST:6437/v6.json,
 // reads the {"version", "serviceVersion"} greeting, sends the "background" and "focused"
 // options, steps down a protocol version when the server closes with 1001, reconnects with
-// exponential backoff, and reports device and hand-lost state.
+// exponential backoff, and reports device and hand-lost state. Its socket and timer are its
+// children, so it can live on a thread of its own (moveToThread), where a busy window does
+// not delay the frames.
 #pragma once
 
 #include <QObject>
@@ -59,8 +61,8 @@ class LeapWebSocketClient : public QObject {
   void schedule_reconnect();
 
   LeapClientOptions options_;
-  QWebSocket socket_;
-  QTimer reconnect_timer_;
+  QWebSocket socket_;       // a child: it moves with the client
+  QTimer reconnect_timer_;  // a child
   FrameQueue queue_;
   int version_;
   int backoff_ms_;

@@ -1,5 +1,4 @@
-// A live tracker as the session's frame source (studies::TrackerKind::live): next() never
-// blocks and gives the newest frame that arrived since the last call. It keeps when that
+// A live tracker as the session's frame source (studies::TrackerKind::live). It keeps when that
 // frame arrived, for the app's latency figures, and counts the frames the session never
 // used (superseded by a newer one before a step took them).
 #pragma once
@@ -17,7 +16,7 @@ struct LiveFrameStats {
   std::atomic<long long> last_arrival_ns{0};
 };
 
-class LiveFrames : public tracking::FrameSource {
+class LiveFrames : public tracking::LiveFrameSource {
  public:
   LiveFrames(FrameQueue& queue, std::shared_ptr<LiveFrameStats> stats)
       : queue_(queue), stats_(std::move(stats)) {
@@ -33,6 +32,9 @@ class LiveFrames : public tracking::FrameSource {
       stats_->last_arrival_ns = arrival.time_since_epoch().count();
     }
     return frame;
+  }
+  bool wait_for_frame(std::chrono::steady_clock::time_point deadline) override {
+    return queue_.wait_for_frame(deadline);
   }
 
  private:

@@ -91,7 +91,7 @@ std::vector<std::uint8_t> Statement::column_blob(int column) const {
 
 Database::Database(const std::string& path, Mode mode) : path_(path) {
   int flags = SQLITE_OPEN_READONLY;
-  if (mode == Mode::kReadWrite) flags = SQLITE_OPEN_READWRITE;
+  if (mode == Mode::kReadWrite || mode == Mode::kInspect) flags = SQLITE_OPEN_READWRITE;
   if (mode == Mode::kReadWriteCreate) flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
@@ -102,7 +102,7 @@ Database::Database(const std::string& path, Mode mode) : path_(path) {
   sqlite3_busy_timeout(db_, 2000);
   try {
     exec("PRAGMA foreign_keys = ON");
-    if (mode != Mode::kReadOnly) {
+    if (mode == Mode::kReadWrite || mode == Mode::kReadWriteCreate) {
       const auto journal = query_text("PRAGMA journal_mode = WAL");
       if (!journal || *journal != "wal") throw StoreError("cannot switch " + path + " to WAL mode");
       exec("PRAGMA synchronous = NORMAL");
@@ -111,6 +111,10 @@ Database::Database(const std::string& path, Mode mode) : path_(path) {
     sqlite3_close(db_);
     throw;
   }
+}
+
+int Database::last_error_code() const {
+  return sqlite3_errcode(db_);
 }
 
 Database::~Database() {

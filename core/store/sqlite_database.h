@@ -54,10 +54,15 @@ class Statement {
 
 class Database {
  public:
-  enum class Mode { kReadWriteCreate, kReadWrite, kReadOnly };
+  // kInspect: read-write but nothing set (the journal mode left as the file has it), to look
+  // at a file before claiming it. SQLite's read-only connections to a WAL database that
+  // other processes are writing can fail with I/O errors; a read-write one reads safely.
+  enum class Mode { kReadWriteCreate, kReadWrite, kReadOnly, kInspect };
 
-  // Opens with foreign keys on and, for writable files, write-ahead logging.
+  // Opens with foreign keys on and, for kReadWrite(Create), write-ahead logging.
   explicit Database(const std::string& path, Mode mode = Mode::kReadWriteCreate);
+  // The primary result code of the last call that failed (SQLITE_NOTADB, ...).
+  int last_error_code() const;
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <sqlite3.h>
+
 #include "core/util/json_value.h"
 #include "core/util/json_writer.h"
 #include "core/util/sha256.h"
@@ -130,18 +132,19 @@ std::string checked_study_file(const std::string& path) {
     throw StoreError("no study database at " + path +
                      " (create one with: handlab-cli study create --protocol FILE --db " + path +
                      ")");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  char magic[16] = {};
-  const std::size_t got = f ? std::fread(magic, 1, 16, f) : 0;
-  if (f) std::fclose(f);
-  if (got < 16 || std::string(magic, 15) != "SQLite format 3")
+  // SQLite reads the header, never fopen: closing any descriptor of a file drops every POSIX
+  // lock this process holds on it, and with them its open connections' guard against another
+  // process checkpointing the log under a running session (SQLite's "How To Corrupt", 2.2).
+  if (std::filesystem::file_size(path, ec) < 100 || ec)  // SQLite's header is 100 bytes
     throw StoreError(path + " is not a study database (not an SQLite file)");
-  Database probe(path, Database::Mode::kReadOnly);
+  Database probe(path, Database::Mode::kInspect);
   std::int64_t application = 0, version = 0;
   try {
     application = pragma_int(probe, "application_id");
     version = pragma_int(probe, "user_version");
   } catch (const StoreError& e) {
+    if (probe.last_error_code() == SQLITE_NOTADB)
+      throw StoreError(path + " is not a study database (not an SQLite file)");
     throw StoreError(path + " cannot be read: " + e.what());
   }
   if (application != kApplicationId)

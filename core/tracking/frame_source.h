@@ -2,6 +2,7 @@
 // possible, in real time, or resampled to a fixed rate) or, in app/, the live Leap stream.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -15,6 +16,15 @@ class FrameSource {
   virtual ~FrameSource() = default;
   // The next frame; nullopt once the source has ended. Live sources may block.
   virtual std::optional<TrackedFrame> next() = 0;
+};
+
+// A live tracker's frames as a session reads them (the Leap over its WebSocket, in app/):
+// next() never blocks and gives the newest frame that arrived since the last call, nullopt
+// when none came; wait_for_frame() lets a step follow a frame as soon as it arrives.
+class LiveFrameSource : public FrameSource {
+ public:
+  // Returns once a frame not yet taken by next() is there (true) or at `deadline` (false).
+  virtual bool wait_for_frame(std::chrono::steady_clock::time_point deadline) = 0;
 };
 
 enum class ReplayPace { kAsFastAsPossible, kRealTime, kResampled };

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace handlab::tracking {
 namespace {
@@ -196,7 +198,108 @@ std::string number_text(double x) {
   return std::string(buffer, r.ptr);
 }
 
+void append_number(std::string& out, double x) {
+  out += number_text(x);
+}
+
+void append_vec3(std::string& out, const char* key, const Eigen::Vector3d& v, double scale) {
+  out += '"';
+  out += key;
+  out += "\":[";
+  for (int k = 0; k < 3; ++k) {
+    if (k) out += ',';
+    append_number(out, scale * v[k]);
+  }
+  out += ']';
+}
+
 }  // namespace
+
+std::string leap_message(const TrackedFrame& frame, double frame_rate_hz) {
+  constexpr double kToMm = 1000.0;
+  std::string out = "{\"id\":";
+  append_number(out, double(frame.id));
+  out += ",\"timestamp\":";
+  append_number(out, std::round(frame.timestamp * 1e6));
+  out += ",\"currentFrameRate\":";
+  append_number(out, frame_rate_hz);
+  out += ",\"hands\":[";
+  for (std::size_t i = 0; i < frame.hands.size(); ++i) {
+    const TrackedHand& h = frame.hands[i];
+    if (i) out += ',';
+    out += "{\"id\":";
+    append_number(out, h.id);
+    out += h.side == Side::kLeft ? ",\"type\":\"left\"," : ",\"type\":\"right\",";
+    append_vec3(out, "palmPosition", h.palm_position, kToMm);
+    out += ',';
+    append_vec3(out, "palmNormal", h.palm_normal, 1.0);
+    out += ',';
+    append_vec3(out, "direction", h.direction, 1.0);
+    if (!(h.derived & kDerivedWrist)) {
+      out += ',';
+      append_vec3(out, "wrist", h.wrist, kToMm);
+    }
+    out += ",\"confidence\":";
+    append_number(out, h.confidence);
+    out += ",\"pinchStrength\":";
+    append_number(out, h.pinch_strength);
+    out += ",\"grabStrength\":";
+    append_number(out, h.grab_strength);
+    out += '}';
+  }
+  out += "],\"pointables\":[";
+  bool first = true;
+  for (const TrackedHand& h : frame.hands) {
+    for (int d = 0; d < 5; ++d) {
+      const auto& j = h.joints[std::size_t(d)];
+      if (!first) out += ',';
+      first = false;
+      out += "{\"id\":";
+      append_number(out, 10.0 * h.id + d);
+      out += ",\"handId\":";
+      append_number(out, h.id);
+      out += ",\"type\":";
+      append_number(out, d);
+      out += ",\"tool\":false,";
+      if (!(h.derived & kDerivedCarp)) {
+        append_vec3(out, "carpPosition", j[0], kToMm);
+        out += ',';
+      }
+      constexpr std::pair<const char*, std::size_t> kJoints[] = {{"mcpPosition", 1},
+                                                                 {"pipPosition", 2},
+                                                                 {"dipPosition", 3},
+                                                                 {"btipPosition", 4},
+                                                                 {"tipPosition", 4}};
+      for (const auto& [key, k] : kJoints) {
+        append_vec3(out, key, j[k], kToMm);
+        out += ',';
+      }
+      append_vec3(out, "direction", (j[4] - j[3]).normalized(), 1.0);
+      if (h.bone_bases) {
+        out += ",\"bases\":[";
+        for (int bone = 0; bone < 4; ++bone) {
+          if (bone) out += ',';
+          out += '[';
+          for (int axis = 0; axis < 3; ++axis) {
+            if (axis) out += ',';
+            const Eigen::Vector3d c = (*h.bone_bases)[std::size_t(d)][std::size_t(bone)].col(axis);
+            out += '[';
+            for (int k = 0; k < 3; ++k) {
+              if (k) out += ',';
+              append_number(out, c[k]);
+            }
+            out += ']';
+          }
+          out += ']';
+        }
+        out += ']';
+      }
+      out += '}';
+    }
+  }
+  out += "]}";
+  return out;
+}
 
 std::optional<TrackedFrame> parse_leap_frame(const JsonValue& frame, std::string* error) {
   try {

@@ -32,6 +32,11 @@ struct Recording {
 std::optional<TrackedFrame> parse_leap_frame(const util::JsonValue& frame, std::string* error);
 std::optional<TrackedFrame> parse_leap_message(std::string_view json, std::string* error);
 
+// The frame as the Leap service would send it over its WebSocket (protocol v6, millimetres):
+// what parse_leap_message reads back to the same frame, up to the rounding of the unit
+// change. Fields the frame marks as derived are left out, as the source had them.
+std::string leap_message(const TrackedFrame& frame, double frame_rate_hz);
+
 // Parses a LeapJS Playback document (decompressed). Frames that fail their checks, and frames
 // whose timestamps repeat or go backwards, are listed in `rejected`, the rest kept. Throws
 // std::runtime_error when the document itself is unusable (not JSON, no frames array).

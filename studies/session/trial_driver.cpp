@@ -171,13 +171,11 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
   if (tracker_.is_live()) {
     // A person: the open palm held still, frame by frame, as long as it takes.
     OpenPalmCalibration step(protocol.scene, sim, participant.hand_length);
-    const std::unique_ptr<tracking::FrameSource> source = tracker_.open_live();
-    const auto period = std::chrono::duration<double>(1.0 / rate_hz_);
-    auto next_poll = std::chrono::steady_clock::now();
+    const std::unique_ptr<tracking::LiveFrameSource> source = tracker_.open_live();
     while (!step.done()) {
       if (control_ && control_->stop_requested()) throw SessionStopped();
-      next_poll += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
-      std::this_thread::sleep_until(next_poll);
+      // Each frame as it comes; a stop is seen within a tenth of a second without frames.
+      source->wait_for_frame(std::chrono::steady_clock::now() + std::chrono::milliseconds(100));
       if (const auto frame = source->next()) {
         step.feed(*frame);
         if (control_ && control_->calibration) control_->calibration(step.status());
@@ -224,7 +222,6 @@ retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,
 
 std::unique_ptr<tracking::FrameSource> PipelineTrialDriver::open_tracker(
     const TrialSetup& setup, const hand::Skeleton& simulated) const {
-  if (tracker_.is_live()) return tracker_.open_live();
   if (tracker_.is_scripted()) {
     ScriptedMotionSettings settings;
     settings.hand_length = setup.participant.hand_length;
@@ -302,6 +299,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   // A simulated participant acts on what the display showed at the last step; the other
   // trackers send their frames whatever happens.
   std::unique_ptr<tracking::FrameSource> tracker;
+  tracking::LiveFrameSource* live = nullptr;  // the tracker, when live
   std::unique_ptr<SimulatedParticipant> participant;
   if (tracker_.is_simulated()) {
     if (!own_hand_ || own_hand_->skeleton().bones.empty() ||
@@ -310,6 +308,10 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
       own_hand_length_ = setup.participant.hand_length;
     }
     participant = participant_for_trial(setup, tracker_.seed(), *own_hand_, rate_hz_);
+  } else if (tracker_.is_live()) {
+    auto source = tracker_.open_live();
+    live = source.get();
+    tracker = std::move(source);
   } else {
     tracker = open_tracker(setup, sim);
   }
@@ -321,6 +323,8 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   Observation shown = display_observation(world, layout, 0.0);
   const bool real_time = real_time_ || tracker_.is_live();
   const auto start = std::chrono::steady_clock::now();
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(dt));
   std::optional<tracking::TrackedFrame> held;  // a live tracker's newest frame
   for (long step = 1; !task.finished(); ++step) {
     const double t = double(step) * dt;
@@ -328,15 +332,24 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
       run.aborted = true;
       break;
     }
-    if (real_time)
-      std::this_thread::sleep_until(start +
-                                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                        std::chrono::duration<double>(t)));
+    if (real_time) {
+      const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(t));
+      if (live) {
+        // A frame is used as soon as it arrives, the step taken up to one step early rather
+        // than the frame left waiting for its tick: the simulation keeps within a step of
+        // the clock, and a frame's latency is the step's, not the step's plus the tick's.
+        std::this_thread::sleep_until(due - period);
+        live->wait_for_frame(due);
+      } else {
+        std::this_thread::sleep_until(due);
+      }
+    }
     std::optional<tracking::TrackedFrame> frame;
     if (participant) {
       frame = participant->act(shown);
-    } else if (tracker_.is_live()) {
-      if (auto fresh = tracker->next()) held = std::move(fresh);
+    } else if (live) {
+      if (auto fresh = live->next()) held = std::move(fresh);
       frame = held;
     } else if (!tracker_ended && !(frame = tracker->next())) {
       tracker_ended = true;

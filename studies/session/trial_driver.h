@@ -72,17 +72,17 @@ class TrialDriver {
 // drawn from the population under `seed` and the participant's id, or a live tracker.
 class TrackerKind {
  public:
-  // A live tracker (app/live: the Leap over its WebSocket): `open` gives a source whose
-  // next() never blocks and returns the newest frame since the last call, nullopt when none
-  // came. The session runs in real time; the participant calibrates with an open palm.
-  using LiveOpener = std::function<std::unique_ptr<tracking::FrameSource>()>;
+  // A live tracker (app/live: the Leap over its WebSocket): `open` gives its source. The
+  // session runs in real time, each step taken as soon as a frame arrives (at most one step
+  // ahead of the clock); the participant calibrates with an open palm.
+  using LiveOpener = std::function<std::unique_ptr<tracking::LiveFrameSource>()>;
   static TrackerKind live(std::string name, LiveOpener open) {
     TrackerKind k(Kind::kLive, std::move(name), 0);
     k.open_live_ = std::move(open);
     return k;
   }
   bool is_live() const { return kind_ == Kind::kLive; }
-  std::unique_ptr<tracking::FrameSource> open_live() const { return open_live_(); }
+  std::unique_ptr<tracking::LiveFrameSource> open_live() const { return open_live_(); }
   static TrackerKind scripted() { return TrackerKind(Kind::kScripted, "", 0); }
   static TrackerKind recording(std::string path) {
     return TrackerKind(Kind::kRecording, std::move(path), 0);

@@ -3,7 +3,8 @@
 // session set up, calibrated and run on the soft hand with the scripted participant through
 // the trial panel,
 // every questionnaire answered in its dialog with the keys, one trial redone with a reason;
-// then the study file read back and checked against what was done.
+// then the study file read back and checked against what was done. And the app process
+// killed during a trial, the study reopened in a new window and the session resumed there.
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
@@ -12,10 +13,13 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
+#include <QProcess>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSpinBox>
+#include <QTabWidget>
 #include <QTableWidget>
+#include <QTemporaryDir>
 #include <QTest>
 #include <QTimer>
 
@@ -23,6 +27,7 @@
 
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include "app/gui/main_window.h"
 #include "app/gui/participant_form.h"
@@ -33,6 +38,9 @@
 #include "app/gui/study_home.h"
 #include "core/store/study_store.h"
 #include "core/util/csv.h"
+#include "studies/protocol/protocol.h"
+#include "studies/session/enrolment.h"
+#include "studies/session/session_runner.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::gui {
@@ -172,6 +180,133 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   auto* table = window.findChild<QTableWidget*>("data_table");
   ASSERT_NE(table, nullptr);
   EXPECT_EQ(table->rowCount(), 20);
+}
+
+// The trials of a participant, read while another process may be writing (a busy database
+// is read again).
+std::vector<store::TrialRow> trials_of(const QString& db, const std::string& id) {
+  for (int attempt = 0;; ++attempt) {
+    try {
+      store::StudyStore store(db.toStdString());
+      return store.trials(id);
+    } catch (const std::exception&) {
+      if (attempt == 50) throw;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+}
+
+int count(const std::vector<store::TrialRow>& trials, store::TrialStatus status) {
+  return int(std::count_if(trials.begin(), trials.end(),
+                           [&](const store::TrialRow& t) { return t.status == status; }));
+}
+
+// The app's process killed (SIGKILL) while a trial runs on the soft hand; the study opened
+// again in a new window says which session was interrupted and where it resumes; Resume
+// takes the experimenter to the session, which goes on at the interrupted trial, and every
+// trial finished before the kill is still there.
+TEST(AppSession, ResumesInTheAppAfterTheAppWasKilledDuringATrial) {
+  const QString db = QString::fromStdString(test::fresh_path("app_killed.db"));
+  const studies::Protocol protocol = studies::read_protocol(kProtocol.toStdString());
+  store::StudyStore::create(db.toStdString(), studies::study_definition(protocol));
+  {
+    store::StudyStore store(db.toStdString());
+    store::Participant p;
+    p.id = "P01";
+    p.age = 35;
+    p.sex = "M";
+    p.handedness = "right";
+    p.hand_length = 0.19;
+    p.vr_experience = "none";
+    studies::enrol_participant(store, p);
+  }
+
+  // The app runs the session in real time from the command line, as an experimenter would
+  // start it, and is killed once two trials are done and the third has run a while.
+  QTemporaryDir home;
+  QProcess app;
+  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+  env.insert("HOME", home.path());
+  app.setProcessEnvironment(env);
+  app.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+  app.start(HANDLAB_APP, {"--study", db, "--participant", "P01", "--tracker", "scripted", "--world",
+                          "soft", "--start"});
+  ASSERT_TRUE(app.waitForStarted(10000));
+  std::vector<store::TrialRow> trials;
+  const bool third_running = QTest::qWaitFor(
+      [&] {
+        trials = trials_of(db, "P01");
+        return trials.size() == 3 && trials[2].status == store::TrialStatus::kRunning;
+      },
+      180000);
+  ASSERT_TRUE(third_running) << trials.size() << " trials";
+  QTest::qWait(1500);  // into the trial, its frames being stored
+  ASSERT_EQ(app.state(), QProcess::Running);
+  app.kill();  // SIGKILL: no handler, no cleanup
+  ASSERT_TRUE(app.waitForFinished(10000));
+  EXPECT_EQ(app.exitStatus(), QProcess::CrashExit);
+  trials = trials_of(db, "P01");
+  ASSERT_EQ(trials.size(), 3u);
+  EXPECT_EQ(
+      count(trials, store::TrialStatus::kCompleted) + count(trials, store::TrialStatus::kTimeout),
+      2);
+  EXPECT_EQ(trials[2].status, store::TrialStatus::kRunning) << "as the kill left it";
+  const int killed_position = trials[2].position;
+
+  // A new window opens the study: the interrupted session is named, with its trial.
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  ASSERT_EQ(window.show_study(db), QString());
+  window.tabs()->setCurrentWidget(window.home());
+  ASSERT_EQ(window.home()->interrupted(), QStringList{"P01"});
+  EXPECT_FALSE(window.home()->interrupted_label()->isHidden());
+  EXPECT_TRUE(window.home()->interrupted_label()->text().contains(
+      QString("resumes at trial %1").arg(killed_position + 1)))
+      << window.home()->interrupted_label()->text().toStdString();
+  QTest::mouseClick(window.home()->resume_button(), Qt::LeftButton);
+  SessionPage* page = window.session();
+  ASSERT_EQ(window.tabs()->currentWidget(), page);
+  EXPECT_EQ(page->participant_box()->currentText(), "P01");
+
+  // Resumed with the scripted participant on the soft hand, as fast as it goes, until the
+  // interrupted trial has run again; then stopped.
+  page->tracker_box()->setCurrentIndex(page->tracker_box()->findData(3));
+  page->world_box()->setCurrentIndex(
+      page->world_box()->findData(int(studies::WorldKind::kSoftHand)));
+  page->real_time_box()->setChecked(false);
+  QSignalSpy ended(page, &SessionPage::session_ended);
+  QTest::mouseClick(page->start_button(), Qt::LeftButton);
+  ASSERT_TRUE(page->session_running());
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        trials = trials_of(db, "P01");
+        return trials.size() >= 5;  // the killed trial again, then the next one started
+      },
+      120000));
+  page->stop_session();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !ended.isEmpty(); }, 60000));
+  EXPECT_TRUE(window.home()->interrupted_label()->isHidden()) << "nothing interrupted now";
+
+  // The record: two trials done before the kill, untouched; the killed one aborted as
+  // interrupted; the same position run again in the new session; sessions interrupted, then
+  // stopped by the experimenter.
+  store::StudyStore store(db.toStdString());
+  trials = store.trials("P01");
+  ASSERT_GE(trials.size(), 5u);
+  EXPECT_EQ(trials[2].position, killed_position);
+  EXPECT_EQ(trials[2].status, store::TrialStatus::kAborted);
+  EXPECT_EQ(trials[2].reason, "interrupted: the session ended while the trial ran");
+  EXPECT_EQ(trials[3].position, killed_position);
+  EXPECT_EQ(trials[3].attempt, 2);
+  EXPECT_NE(trials[3].session_id, trials[2].session_id);
+  EXPECT_TRUE(trials[3].status == store::TrialStatus::kCompleted ||
+              trials[3].status == store::TrialStatus::kTimeout);
+  EXPECT_EQ(count(trials, store::TrialStatus::kRunning), 0);
+  std::vector<std::string> sessions;
+  store::Statement s = store.database().prepare("SELECT status FROM session ORDER BY id");
+  while (s.step()) sessions.push_back(s.column_text(0));
+  EXPECT_EQ(sessions, (std::vector<std::string>{"interrupted", "stopped"}));
 }
 
 }  // namespace

@@ -202,6 +202,42 @@ TEST(LeapMessage, V6FrameAndBadMessages) {
   EXPECT_NE(error.find("hands"), std::string::npos);
 }
 
+// What a replayed recording sends: every frame of the two recording formats written as the
+// service's message and read back to the same frame (to the rounding of mm and µs), with
+// the derived fields still marked derived and the bases kept.
+TEST(LeapMessage, RecordingsRoundTripThroughTheServiceMessage) {
+  for (const char* name : {"leap/pinch.json.lz", "leap/pinch-57fps.json.lz"}) {
+    const Recording recording = read_recording(data(name));
+    for (const TrackedFrame& f : recording.frames) {
+      std::string error;
+      const auto back = parse_leap_message(leap_message(f, 110.0), &error);
+      ASSERT_TRUE(back) << name << " frame " << f.id << ": " << error;
+      EXPECT_EQ(back->id, f.id);
+      EXPECT_NEAR(back->timestamp, f.timestamp, 1e-6);
+      ASSERT_EQ(back->hands.size(), f.hands.size());
+      for (std::size_t i = 0; i < f.hands.size(); ++i) {
+        const TrackedHand &a = f.hands[i], &b = back->hands[i];
+        EXPECT_EQ(b.id, a.id);
+        EXPECT_EQ(b.side, a.side);
+        EXPECT_EQ(b.derived, a.derived);
+        EXPECT_DOUBLE_EQ(b.pinch_strength, a.pinch_strength);
+        EXPECT_LT((b.palm_position - a.palm_position).norm(), 1e-12);
+        EXPECT_LT((b.palm_normal - a.palm_normal).norm(), 1e-12);
+        EXPECT_LT((b.wrist - a.wrist).norm(), 1e-12);
+        for (int d = 0; d < 5; ++d)
+          for (int k = 0; k < 5; ++k)
+            EXPECT_LT((b.joints[d][k] - a.joints[d][k]).norm(), 1e-12) << d << " " << k;
+        ASSERT_EQ(b.bone_bases.has_value(), a.bone_bases.has_value());
+        if (a.bone_bases) {
+          for (int d = 0; d < 5; ++d)
+            for (int bone = 0; bone < 4; ++bone)
+              EXPECT_TRUE((*b.bone_bases)[d][bone].isApprox((*a.bone_bases)[d][bone], 1e-12));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace handlab::tracking
 
