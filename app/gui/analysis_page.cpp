@@ -60,32 +60,40 @@ namespace {
 QString num(double x, int decimals = 2) {
   return std::isfinite(x) ? QString::number(x, 'f', decimals) : QString("–");
 }
-// Escaped: "p < .001" is not a tag.
 QString p_text(double p) {
-  return QString::fromStdString(analysis::apa_p(p)).toHtmlEscaped();
+  return QString::fromStdString(analysis::apa_p(p));
+}
+QString text(const std::string& s) {
+  return QString::fromStdString(s);
+}
+
+// An HTML table: the header's markup kept (<sub>), every cell escaped ("p < .001", a level
+// name with "<" in it).
+QString html_table(const QStringList& header, const std::vector<QStringList>& rows) {
+  QString html = "<table border=1 cellspacing=0 cellpadding=3><tr>";
+  for (const QString& h : header) html += "<th>" + h + "</th>";
+  html += "</tr>";
+  for (const QStringList& row : rows) {
+    html += "<tr>";
+    for (const QString& cell : row) html += "<td>" + cell.toHtmlEscaped() + "</td>";
+    html += "</tr>";
+  }
+  return html + "</table>";
 }
 
 QString anova_table(const analysis::AnalysisReport& r) {
-  QString html =
-      "<table border=1 cellspacing=0 cellpadding=3><tr><th>Effect</th><th>df</th>"
-      "<th>F</th><th>p</th><th>η²<sub>G</sub></th><th>Mauchly W (p)</th>"
-      "<th>ε<sub>GG</sub></th><th>p<sub>GG</sub></th></tr>";
+  std::vector<QStringList> rows;
   for (const auto& e : r.anova.effects) {
     const bool tested = std::isfinite(e.mauchly_p);
-    html += QString(
-                "<tr><td>%1</td><td>%2, %3</td><td>%4</td><td>%5</td><td>%6</td><td>%7</td>"
-                "<td>%8</td><td>%9</td></tr>")
-                .arg(QString::fromStdString(e.effect))
-                .arg(QString::fromStdString(analysis::apa_df(e.df_num)))
-                .arg(QString::fromStdString(analysis::apa_df(e.df_den)))
-                .arg(num(e.f))
-                .arg(p_text(e.p))
-                .arg(num(e.ges, 3))
-                .arg(tested ? num(e.mauchly_w, 3) + " (" + p_text(e.mauchly_p) + ")" : "–")
-                .arg(tested ? num(e.eps_gg, 3) : "–")
-                .arg(tested ? p_text(e.p_gg) : "–");
+    rows.push_back({text(e.effect),
+                    text(analysis::apa_df(e.df_num)) + ", " + text(analysis::apa_df(e.df_den)),
+                    num(e.f), p_text(e.p), num(e.ges, 3),
+                    tested ? num(e.mauchly_w, 3) + " (" + p_text(e.mauchly_p) + ")" : "–",
+                    tested ? num(e.eps_gg, 3) : "–", tested ? p_text(e.p_gg) : "–"});
   }
-  return html + "</table>";
+  return html_table({"Effect", "df", "F", "p", "η²<sub>G</sub>", "Mauchly W (p)", "ε<sub>GG</sub>",
+                     "p<sub>GG</sub>"},
+                    rows);
 }
 
 QString posthoc_table(const analysis::AnalysisReport& r) {
@@ -93,20 +101,15 @@ QString posthoc_table(const analysis::AnalysisReport& r) {
   for (const auto& ph : r.posthoc) {
     if (ph.contrasts.empty()) continue;
     html += QString("<p><b>%1</b> (Tukey-adjusted)</p>")
-                .arg(QString::fromStdString(ph.contrasts.front().effect));
-    html +=
-        "<table border=1 cellspacing=0 cellpadding=3><tr><th>Contrast</th><th>Estimate</th>"
-        "<th>SE</th><th>t(df)</th><th>p<sub>Tukey</sub></th></tr>";
+                .arg(text(ph.contrasts.front().effect).toHtmlEscaped());
+    std::vector<QStringList> rows;
     for (const auto& c : ph.contrasts) {
       QString by;
-      for (const auto& [f, l] : c.by)
-        by += QString(" | %1 = %2").arg(QString::fromStdString(f), QString::fromStdString(l));
-      html += QString("<tr><td>%1%2</td><td>%3</td><td>%4</td><td>%5(%6)</td><td>%7</td></tr>")
-                  .arg(QString::fromStdString(c.contrast), by, num(c.estimate), num(c.se), num(c.t))
-                  .arg(QString::fromStdString(analysis::apa_df(c.df)))
-                  .arg(p_text(c.p_tukey));
+      for (const auto& [f, l] : c.by) by += QString(" | %1 = %2").arg(text(f), text(l));
+      rows.push_back({text(c.contrast) + by, num(c.estimate), num(c.se),
+                      num(c.t) + "(" + text(analysis::apa_df(c.df)) + ")", p_text(c.p_tukey)});
     }
-    html += "</table>";
+    html += html_table({"Contrast", "Estimate", "SE", "t(df)", "p<sub>Tukey</sub>"}, rows);
   }
   return html;
 }
@@ -199,44 +202,37 @@ void AnalysisPage::show_result() {
     store::StudyStore store(database_.toStdString());
     scale = studies::stored_protocol(store).scale_points;
   }
-  status_->setText(tr("%1 participants analysed").arg(a.completion_time.n_subjects));
-  QString html = QString("<h2>%1</h2>").arg(QString::fromStdString(a.study.name));
+  QStringList left_out;
+  for (const std::string& id : a.completion_time.dropped_subjects) left_out << text(id);
+  status_->setText(left_out.isEmpty()
+                       ? tr("%1 participants analysed").arg(a.completion_time.n_subjects)
+                       : tr("%1 participants analysed; left out, lacking a result in some cell: %2")
+                             .arg(a.completion_time.n_subjects)
+                             .arg(left_out.join(", ")));
+  QString html = QString("<h2>%1</h2>").arg(text(a.study.name).toHtmlEscaped());
   html += tr("<h3>Completion time per condition</h3>");
-  html +=
-      "<table border=1 cellspacing=0 cellpadding=3><tr><th>Condition</th><th>n</th>"
-      "<th>Mean (s)</th><th>SE</th></tr>";
+  std::vector<QStringList> conditions;
   for (const auto& c : a.time_by_condition) {
     QStringList levels;
-    for (const auto& l : c.levels) levels << QString::fromStdString(l);
-    html += QString("<tr><td>%1</td><td>%2</td><td>%3</td><td>%4</td></tr>")
-                .arg(levels.join(" "))
-                .arg(c.n)
-                .arg(num(c.mean))
-                .arg(num(c.se));
+    for (const auto& l : c.levels) levels << text(l);
+    conditions.push_back({levels.join(" "), QString::number(c.n), num(c.mean), num(c.se)});
   }
-  html += "</table>";
+  html += html_table({"Condition", "n", "Mean (s)", "SE"}, conditions);
   html += tr("<h3>Repeated-measures ANOVA</h3>") + anova_table(a.completion_time);
   html += tr("<h3>Post hoc comparisons</h3>") + posthoc_table(a.completion_time);
   if (a.questionnaire) {
-    html += tr("<h3>Questionnaire: Friedman tests</h3>");
-    html +=
-        "<table border=1 cellspacing=0 cellpadding=3><tr><th>Item</th><th>χ²(df)</th>"
-        "<th>p</th><th>Kendall W</th><th>n</th></tr>";
+    std::vector<QStringList> friedman, wilcoxon;
     for (const auto& f : a.questionnaire->friedman)
-      html += QString("<tr><td>%1</td><td>%2(%3)</td><td>%4</td><td>%5</td><td>%6</td></tr>")
-                  .arg(QString::fromStdString(f.dv), num(f.result.chisq), num(f.result.df, 0),
-                       p_text(f.result.p), num(f.result.kendall_w, 3))
-                  .arg(f.result.n);
-    html += "</table>";
-    html += tr("<h3>Questionnaire: Wilcoxon signed-rank tests (Bonferroni)</h3>");
-    html +=
-        "<table border=1 cellspacing=0 cellpadding=3><tr><th>Item</th><th>Contrast</th>"
-        "<th>V</th><th>p</th><th>p<sub>Bonferroni</sub></th></tr>";
+      friedman.push_back({text(f.dv), num(f.result.chisq) + "(" + num(f.result.df, 0) + ")",
+                          p_text(f.result.p), num(f.result.kendall_w, 3),
+                          QString::number(f.result.n)});
     for (const auto& w : a.questionnaire->wilcoxon)
-      html += QString("<tr><td>%1</td><td>%2</td><td>%3</td><td>%4</td><td>%5</td></tr>")
-                  .arg(QString::fromStdString(w.dv), QString::fromStdString(w.contrast),
-                       num(w.result.v, 1), p_text(w.result.p), p_text(w.p_bonferroni));
-    html += "</table>";
+      wilcoxon.push_back({text(w.dv), text(w.contrast), num(w.result.v, 1), p_text(w.result.p),
+                          p_text(w.p_bonferroni)});
+    html += tr("<h3>Questionnaire: Friedman tests</h3>") +
+            html_table({"Item", "χ²(df)", "p", "Kendall W", "n"}, friedman);
+    html += tr("<h3>Questionnaire: Wilcoxon signed-rank tests (Bonferroni)</h3>") +
+            html_table({"Item", "Contrast", "V", "p", "p<sub>Bonferroni</sub>"}, wilcoxon);
   }
   if (!a.completion_time.warnings.empty()) {
     html += tr("<h3>Warnings</h3><ul>");

@@ -203,12 +203,8 @@ int main(int argc, char** argv) {
     page->tracker_box()->setCurrentIndex(choice);
     if (choice == 1) page->recording_edit()->setText(tracker);
     page->world_box()->setCurrentIndex(parser.value(options.world) == "proxy" ? 1 : 0);
-    page->address_edit()->setText(parser.value(options.leap_address));
+    page->set_leap_address(parser.value(options.leap_address));
     page->real_time_box()->setChecked(!parser.isSet(options.no_real_time));
-    if (choice == 0) {  // the client connects before the session asks for its frames
-      page->tracker_box()->setCurrentIndex(1);
-      page->tracker_box()->setCurrentIndex(0);
-    }
     if (parser.isSet(options.measure_latency)) {
       bool ok = false;
       const double seconds = parser.value(options.measure_latency).toDouble(&ok);

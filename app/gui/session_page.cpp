@@ -303,6 +303,11 @@ void SessionPage::drop_leap_client() {
       client, [client] { delete client; }, Qt::BlockingQueuedConnection);
 }
 
+void SessionPage::set_leap_address(const QString& address) {
+  address_->setText(address);
+  update_tracker_fields();
+}
+
 QString SessionPage::start_session() {
   if (database_.isEmpty()) return tr("no study is open");
   if (session_running()) return tr("a session is running");
@@ -452,15 +457,8 @@ QString SessionPage::skip_trial(int position, const QString& reason) {
   }
   try {
     store::StudyStore store(database_.toStdString());
-    const std::string id = participant_->currentText().toStdString();
-    const std::int64_t session = store.begin_session(id, "experimenter");
-    try {
-      store.skip_trial(id, position, session, reason.toStdString());
-    } catch (...) {
-      store.end_session(session, "stopped");
-      throw;
-    }
-    store.end_session(session, "stopped");
+    studies::skip_trial_between_sessions(store, participant_->currentText().toStdString(), position,
+                                         reason.toStdString());
   } catch (const std::exception& e) {
     return tr("Skip refused: %1").arg(QString::fromStdString(e.what()));
   }

@@ -55,6 +55,8 @@ class SessionPage : public QWidget {
   // The actions behind the buttons (the shortcuts and the tests use them). Each returns the
   // reason when it cannot act (empty: done or requested).
   QString start_session();
+  // As if typed into the address field: the live client reconnects there.
+  void set_leap_address(const QString& address);
   void toggle_pause();
   void stop_session();
   QString redo_trial(int position, const QString& reason);

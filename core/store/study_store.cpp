@@ -439,6 +439,21 @@ bool StudyStore::has_running_session(const std::string& participant_id) {
   return s.column_int64(0) > 0;
 }
 
+void StudyStore::update_participant(const Participant& p) {
+  db_.prepare(
+         "UPDATE participant SET age = ?, sex = ?, handedness = ?, hand_length = ?, "
+         "vr_experience = ?, notes = ? WHERE id = ?")
+      .bind(1, std::int64_t(p.age))
+      .bind(2, p.sex)
+      .bind(3, p.handedness)
+      .bind(4, p.hand_length)
+      .bind(5, p.vr_experience)
+      .bind(6, p.notes)
+      .bind(7, p.id)
+      .run();
+  if (db_.changes() != 1) throw StoreError("no participant " + p.id + " in " + db_.path());
+}
+
 int StudyStore::abort_interrupted(const std::string& participant_id) {
   Transaction t(db_);
   const std::string now = utc_timestamp();

@@ -84,6 +84,9 @@ class StudyStore {
   // Enrols a participant with the planned schedule, in one transaction. Throws StoreError
   // on a duplicate id or a value the schema's constraints reject.
   void add_participant(Participant participant, const std::vector<PlannedTrialRow>& plan);
+  // What may change after enrolment (age, sex, handedness, hand length, VR experience, notes);
+  // the id, the enrolment order and the schedule stay.
+  void update_participant(const Participant& participant);
   int participant_count();
   std::optional<Participant> participant(const std::string& id);
   std::vector<Participant> participants();

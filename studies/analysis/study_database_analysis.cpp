@@ -13,10 +13,12 @@
 namespace handlab::studies {
 namespace {
 
-// Per cell of `factors`: each participant's mean of `dv`, then their mean and SE (or, with
-// `answers`, the median and range of the values themselves).
+// Per cell of `factors`: each participant's mean of `dv`, then their mean and SE, and the
+// median and range of the values themselves; over the participants the test analysed (those
+// it `left_out`, lacking a cell, are left out here too, so a figure's n is the table's).
 std::vector<CellSummary> summarise(const analysis::LongTable& table, const std::string& dv,
-                                   const std::vector<std::string>& factors) {
+                                   const std::vector<std::string>& factors,
+                                   const std::vector<std::string>& left_out) {
   const std::size_t subject = table.column("participant");
   const std::vector<double> values = table.numbers(dv);
   std::vector<analysis::LongTable::Codes> codes;
@@ -24,6 +26,8 @@ std::vector<CellSummary> summarise(const analysis::LongTable& table, const std::
   // cell -> participant -> values
   std::map<std::vector<int>, std::map<std::string, std::vector<double>>> cells;
   for (std::size_t r = 0; r < table.rows(); ++r) {
+    if (std::find(left_out.begin(), left_out.end(), table.cell(r, subject)) != left_out.end())
+      continue;
     std::vector<int> key;
     for (const auto& c : codes) key.push_back(c.codes[r]);
     cells[key][table.cell(r, subject)].push_back(values[r]);
@@ -74,14 +78,19 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
   times.design.within = info.factors;
   times.design.within.push_back("repetition");
   result.completion_time = analysis::run_analysis(trial_table, times);
-  result.time_by_condition = summarise(trial_table, "completion_time_s", info.factors);
+  const std::vector<std::string>& left_out = result.completion_time.dropped_subjects;
+  result.time_by_condition = summarise(trial_table, "completion_time_s", info.factors, left_out);
   for (const std::string& f : info.factors)
     result.time_by_repetition.emplace_back(
-        f, summarise(trial_table, "completion_time_s", {f, "repetition"}));
+        f, summarise(trial_table, "completion_time_s", {f, "repetition"}, left_out));
 
-  const analysis::LongTable items =
-      analysis::LongTable::parse_csv(answers.str(), path + " (questionnaire)");
-  if (items.rows() > 0) {
+  // Before anyone has reached the questionnaire its export is the header alone: the times
+  // are analysed all the same.
+  const std::string answer_text = answers.str();
+  const std::size_t header_end = answer_text.find('\n');
+  if (header_end != std::string::npos && header_end + 1 < answer_text.size()) {
+    const analysis::LongTable items =
+        analysis::LongTable::parse_csv(answer_text, path + " (questionnaire)");
     analysis::AnalysisRequest request;
     request.design.subject = "participant";
     request.design.within = info.factors;
@@ -89,8 +98,13 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
     const auto first_item = std::find(columns.begin(), columns.end(), "repetition") + 1;
     request.nonparametric_items.assign(first_item, columns.end());
     result.questionnaire = analysis::run_analysis(items, request);
-    for (const std::string& item : request.nonparametric_items)
-      result.items_by_condition.emplace_back(item, summarise(items, item, info.factors));
+    for (const std::string& item : request.nonparametric_items) {
+      std::vector<std::string> item_left_out;
+      for (const auto& f : result.questionnaire->friedman)
+        if (f.dv == item) item_left_out = f.dropped_subjects;
+      result.items_by_condition.emplace_back(item,
+                                             summarise(items, item, info.factors, item_left_out));
+    }
   }
   return result;
 }

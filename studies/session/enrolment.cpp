@@ -45,20 +45,9 @@ void update_participant(store::StudyStore& store, const store::Participant& p) {
   std::erase_if(others, [&](const store::Participant& o) { return o.id == p.id; });
   const auto problems = participant_problems(p, others);
   if (!problems.empty()) throw std::invalid_argument(problems.front().message);
-  store.database()
-      .prepare(
-          "UPDATE participant SET age = ?, sex = ?, handedness = ?, hand_length = ?, "
-          "vr_experience = ?, notes = ? WHERE id = ?")
-      .bind(1, std::int64_t(p.age))
-      .bind(2, p.sex)
-      .bind(3, p.handedness)
-      .bind(4, p.hand_length)
-      .bind(5, p.vr_experience)
-      .bind(6, p.notes)
-      .bind(7, p.id)
-      .run();
-  if (store.database().changes() != 1)
+  if (!store.participant(p.id))
     throw std::invalid_argument("no participant " + p.id + " to update");
+  store.update_participant(p);
 }
 
 std::vector<std::pair<std::string, std::string>> protocol_summary(const Protocol& protocol) {

@@ -50,6 +50,18 @@ store::StudyDefinition study_definition(const Protocol& protocol) {
   return d;
 }
 
+void skip_trial_between_sessions(store::StudyStore& store, const std::string& participant_id,
+                                 int position, const std::string& reason) {
+  const std::int64_t session = store.begin_session(participant_id, "experimenter");
+  try {
+    store.skip_trial(participant_id, position, session, reason);
+  } catch (...) {
+    store.end_session(session, "stopped");  // no session left open by a refused skip
+    throw;
+  }
+  store.end_session(session, "stopped");
+}
+
 std::vector<store::PlannedTrialRow> planned_rows(const Protocol& protocol,
                                                  const std::string& participant, int enrolment) {
   std::vector<store::PlannedTrialRow> rows;

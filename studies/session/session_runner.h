@@ -59,6 +59,11 @@ class SessionRunner {
   QuestionnaireResponder responder_;
 };
 
+// The experimenter's skip between sessions: recorded in a session of its own
+// ("experimenter", ended "stopped"), as a skip during a session is recorded in that one.
+void skip_trial_between_sessions(store::StudyStore& store, const std::string& participant_id,
+                                 int position, const std::string& reason);
+
 // The protocol a study database was created with, parsed from its stored text.
 Protocol stored_protocol(store::StudyStore& store);
 

@@ -4,14 +4,17 @@
 #include <QWebSocket>
 #include <QWebSocketServer>
 
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
+#include "app/live/leap_replay_server.h"
 #include "app/live/leap_websocket_client.h"
 #include "core/tracking/lz_string.h"
+#include "core/tracking/recording_io.h"
 #include "core/util/json_value.h"
 
 namespace handlab::live {
@@ -154,6 +157,58 @@ TEST(LeapWebSocketClient, BadMessagesAreCountedNotFatal) {
   client.start();
   ASSERT_TRUE(QTest::qWaitFor([&] { return client.frames_received() == 1; }, 10000));
   EXPECT_EQ(client.messages_rejected(), 2);
+  client.stop();
+}
+
+// The replay server a lab uses without a device (and scripts/live-latency.sh): the client
+// greets it, sees the device stream, and receives the recording frame for frame, then its
+// second loop with ids and timestamps that keep increasing by the loop's length.
+TEST(LeapReplayServer, ServesARecordingFrameForFrameAndLoopsWithIncreasingIds) {
+  const auto recording =
+      tracking::read_recording(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz");
+  const std::size_t n = recording.frames.size();
+  LeapReplayServer server(recording.frames, {/*port=*/0, /*loop=*/true});
+  QString error;
+  ASSERT_TRUE(server.start(&error)) << error.toStdString();
+  EXPECT_NEAR(server.frame_rate_hz(),
+              double(n - 1) / (recording.frames.back().timestamp - recording.frames[0].timestamp),
+              1e-9);
+
+  LeapClientOptions options;
+  options.server = QUrl(QString("ws://127.0.0.1:%1").arg(server.port()));
+  LeapWebSocketClient client(options);
+  std::vector<tracking::TrackedFrame> got;
+  QObject::connect(&client, &LeapWebSocketClient::frame_received,
+                   [&](const tracking::TrackedFrame& f) { got.push_back(f); });
+  client.start();
+  // Frames sent before the client connected are not its; wait for a loop and a half.
+  ASSERT_TRUE(QTest::qWaitFor([&] { return got.size() >= n + n / 2; }, 20000)) << got.size();
+  EXPECT_EQ(client.service_version(), "handlab replay");
+  EXPECT_TRUE(client.device_streaming());
+  EXPECT_EQ(client.messages_rejected(), 0);
+  for (std::size_t k = 1; k < got.size(); ++k) {
+    ASSERT_GT(got[k].id, got[k - 1].id) << k;
+    ASSERT_GT(got[k].timestamp, got[k - 1].timestamp) << k;
+  }
+  // Each received frame is the recording's frame at its place in the loop, its joints as
+  // recorded; the loop adds whole loop lengths to ids and timestamps.
+  const double length = recording.frames.back().timestamp - recording.frames[0].timestamp;
+  const double period = length + length / double(n - 1);
+  const std::int64_t id_step = recording.frames.back().id - recording.frames[0].id + 1;
+  int looped = 0;
+  for (const auto& f : got) {
+    const std::int64_t offset = (f.id - recording.frames[0].id) / id_step;
+    looped = std::max(looped, int(offset));
+    const auto same = std::find_if(recording.frames.begin(), recording.frames.end(),
+                                   [&](const auto& r) { return r.id == f.id - offset * id_step; });
+    ASSERT_NE(same, recording.frames.end()) << f.id;
+    EXPECT_NEAR(f.timestamp, same->timestamp + double(offset) * period, 2e-6);
+    ASSERT_EQ(f.hands.size(), same->hands.size());
+    if (!f.hands.empty()) {
+      EXPECT_LT((f.hands[0].joints[1][4] - same->hands[0].joints[1][4]).norm(), 1e-9);
+    }
+  }
+  EXPECT_GE(looped, 1) << "the second loop was served";
   client.stop();
 }
 

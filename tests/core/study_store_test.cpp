@@ -71,6 +71,36 @@ TEST(StudyStore, CreatesOpensAndKeepsTheProtocolWithItsHash) {
   EXPECT_EQ(db.database().query_text("PRAGMA foreign_keys"), "1");
 }
 
+// The edit form's change: the values that may change do, the enrolment and the schedule
+// stay, and an unknown id is refused without touching anything.
+TEST(StudyStore, UpdatesAParticipantKeepingTheSchedule) {
+  const std::string path = test::fresh_path("store_update.db");
+  StudyStore::create(path, definition());
+  StudyStore db(path);
+  db.add_participant(person("P01"), two_trials());
+  Participant changed = person("P01");
+  changed.age = 40;
+  changed.sex = "X";
+  changed.handedness = "left";
+  changed.hand_length = 0.171;
+  changed.vr_experience = "none";
+  changed.notes = "age corrected, \"was 26\"";
+  db.update_participant(changed);
+  const auto back = db.participant("P01");
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->age, 40);
+  EXPECT_EQ(back->sex, "X");
+  EXPECT_EQ(back->handedness, "left");
+  EXPECT_DOUBLE_EQ(back->hand_length, 0.171);
+  EXPECT_EQ(back->vr_experience, "none");
+  EXPECT_EQ(back->notes, "age corrected, \"was 26\"");
+  EXPECT_EQ(back->enrolment, 0);
+  EXPECT_EQ(db.plan("P01").size(), 2u);
+  EXPECT_NE(error_of([&] { db.update_participant(person("P02")); }).find("no participant P02"),
+            std::string::npos);
+  EXPECT_EQ(db.participant_count(), 1);
+}
+
 TEST(StudyStore, ParticipantsTrialsAndConstraints) {
   const std::string path = test::fresh_path("store_trials.db");
   StudyStore::create(path, definition());

@@ -42,6 +42,25 @@ std::string enrolled_study(const std::string& name, const Protocol& protocol) {
   return path;
 }
 
+// A skip between sessions is recorded in a session of its own; a refused one (a trial that
+// does not exist) leaves no session open that would look interrupted.
+TEST(SessionControl, SkipBetweenSessionsKeepsItsOwnSessionAndNoneOpenWhenRefused) {
+  const Protocol protocol = read_protocol(kStudy);
+  store::StudyStore db(enrolled_study("control_skip.db", protocol));
+  skip_trial_between_sessions(db, "P01", 5, "participant tired");
+  EXPECT_THROW(skip_trial_between_sessions(db, "P01", 99, "no such trial"), std::exception);
+  EXPECT_FALSE(db.has_running_session("P01"));
+  const auto trials = db.trials("P01");
+  ASSERT_EQ(trials.size(), 1u);
+  EXPECT_EQ(trials[0].position, 5);
+  EXPECT_EQ(trials[0].status, store::TrialStatus::kSkipped);
+  EXPECT_EQ(trials[0].reason, "participant tired");
+  std::vector<std::string> sessions;
+  store::Statement s = db.database().prepare("SELECT tracker, status FROM session ORDER BY id");
+  while (s.step()) sessions.push_back(s.column_text(0) + " " + s.column_text(1));
+  EXPECT_EQ(sessions, (std::vector<std::string>{"experimenter stopped", "experimenter stopped"}));
+}
+
 // Stop during the third trial, then resume: the stopped attempt is kept as aborted with its
 // reason, the session is recorded as stopped, and the resumed session runs that trial again.
 TEST(SessionControl, StopAbortsTheRunningTrialWhichRunsAgainOnResume) {

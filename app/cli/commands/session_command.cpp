@@ -118,9 +118,7 @@ int session_decision(const std::vector<std::string>& argv, bool redo) {
     store.redo_trial(id, position, args.text("reason"));
     std::cout << id << " trial " << position + 1 << " will run again\n";
   } else {
-    const std::int64_t session = store.begin_session(id, "experimenter");
-    store.skip_trial(id, position, session, args.text("reason"));
-    store.end_session(session, "stopped");
+    studies::skip_trial_between_sessions(store, id, position, args.text("reason"));
     std::cout << id << " trial " << position + 1 << " skipped\n";
   }
   return 0;
