@@ -6,8 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config clang-format
-  # Qt 6: widgets, OpenGL widgets, charts, SVG, WebSockets (+ test module in qt6-base-dev)
-  qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-charts-dev qt6-svg-dev qt6-websockets-dev
+  # Qt 6: widgets, OpenGL widgets, SVG, WebSockets (+ test module in qt6-base-dev)
+  qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-svg-dev qt6-websockets-dev
   qt6-qpa-plugins libgl-dev
   # offscreen OpenGL rendering
   libosmesa6-dev zlib1g-dev

@@ -112,6 +112,27 @@ LongTable::Codes LongTable::factor_codes(const std::string& name) const {
   return {column.values, column.ids};
 }
 
+LongTable LongTable::without(const std::string& name,
+                             const std::vector<std::string>& values) const {
+  const std::size_t dropped = column(name);
+  LongTable out;
+  out.source_ = source_;
+  out.columns_ = columns_;
+  out.columns_data_.resize(columns_.size());
+  std::vector<std::unordered_map<int, int>> kept(columns_.size());
+  for (std::size_t r = 0; r < rows(); ++r) {
+    if (std::find(values.begin(), values.end(), cell(r, dropped)) != values.end()) continue;
+    for (std::size_t k = 0; k < columns_.size(); ++k) {
+      const int id = columns_data_[k].ids[r];
+      const auto [at, fresh] = kept[k].emplace(id, int(out.columns_data_[k].values.size()));
+      if (fresh) out.columns_data_[k].values.push_back(columns_data_[k].values[std::size_t(id)]);
+      out.columns_data_[k].ids.push_back(at->second);
+    }
+    out.lines_.push_back(lines_[r]);
+  }
+  return out;
+}
+
 std::vector<double> LongTable::numbers(const std::string& name) const {
   const Column& column = columns_data_[this->column(name)];
   std::vector<double> parsed(column.values.size());

@@ -40,6 +40,9 @@ class LongTable {
   };
   Codes factor_codes(const std::string& name) const;
   const std::string& source() const { return source_; }
+  // The table without the rows whose cell in `column` is one of `values` (levels that no
+  // row keeps are gone from its factors).
+  LongTable without(const std::string& column, const std::vector<std::string>& values) const;
 
  private:
   // Each column's distinct values in order of first appearance and each row's index into

@@ -88,13 +88,17 @@ void run_nonparametric(const LongTable& table, const AnalysisRequest& request,
     }
     return index;
   };
-  auto condition_label = [&](int index) {
+  auto condition_levels = [&](int index) {
     std::vector<std::string> parts(factors.size());
     for (std::size_t k = factors.size(); k-- > 0;) {
       const int n = int(factors[k].levels.size());
       parts[k] = factors[k].levels[std::size_t(index % n)];
       index /= n;
     }
+    return parts;
+  };
+  auto condition_label = [&](int index) {
+    const std::vector<std::string> parts = condition_levels(index);
     std::string label;
     for (const auto& p : parts) label += (label.empty() ? "" : " ") + p;
     return label;
@@ -152,8 +156,13 @@ void run_nonparametric(const LongTable& table, const AnalysisRequest& request,
             x.push_back(m(i, a));
             y.push_back(m(i, b));
           }
-        WilcoxonPair w{item, condition_label(a) + " - " + condition_label(b),
-                       stats::wilcoxon_signed_rank(x, y), 0, 0};
+        WilcoxonPair w{item,
+                       condition_label(a) + " - " + condition_label(b),
+                       condition_levels(a),
+                       condition_levels(b),
+                       stats::wilcoxon_signed_rank(x, y),
+                       0,
+                       0};
         p.push_back(w.result.p);
         pairs.push_back(w);
       }
@@ -191,8 +200,11 @@ AnalysisReport run_analysis(const LongTable& table, const AnalysisRequest& reque
     for (const auto& e : stats::within_effects(int(data.within.size())))
       if (!e.empty()) effects.push_back(data.effect_label(e));
   }
-  for (const auto& e : effects)
-    report.posthoc.push_back(stats::pairwise_comparisons(data, stats::PosthocSpec::parse(e, data)));
+  for (const auto& e : effects) {
+    stats::PosthocSpec spec = stats::PosthocSpec::parse(e, data);
+    spec.r_level_names = request.r_level_names;
+    report.posthoc.push_back(stats::pairwise_comparisons(data, spec));
+  }
   report.descriptives = cell_descriptives(table, request.design, data);
   return report;
 }

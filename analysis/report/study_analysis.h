@@ -18,6 +18,7 @@ struct AnalysisRequest {
   stats::RmDesignSpec design;        // subject, dv, within, between, covariates, observed
   std::vector<std::string> posthoc;  // effects ("a:b", "a|b"); empty: every within effect
   std::vector<std::string> nonparametric_items;  // non-empty: the nonparametric path
+  bool r_level_names = true;  // post hoc labels as emmeans shows levels ("X1"), or as given
 };
 
 struct CellDescriptives {
@@ -33,6 +34,7 @@ struct FriedmanItem {
 
 struct WilcoxonPair {
   std::string dv, contrast;
+  std::vector<std::string> first, second;  // the conditions' levels, one per factor
   stats::WilcoxonResult result;
   double p_bonferroni, p_holm;
 };

@@ -106,10 +106,11 @@ PosthocResult pairwise_comparisons(const RmData& data, const PosthocSpec& spec) 
   };
   auto label = [&](int combo, const std::vector<int>& factors) {
     std::string text;
-    for (std::size_t i = 0; i < factors.size(); ++i)
-      text += (i ? " " : "") +
-              emmeans_level_label(data.within[std::size_t(factors[i])]
-                                      .levels[std::size_t(level_of(combo, factors, i))]);
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      const std::string& level =
+          data.within[std::size_t(factors[i])].levels[std::size_t(level_of(combo, factors, i))];
+      text += (i ? " " : "") + (spec.r_level_names ? emmeans_level_label(level) : level);
+    }
     return text;
   };
   auto at = [&](int combo, const std::vector<int>& factors) {
@@ -158,6 +159,8 @@ PosthocResult pairwise_comparisons(const RmData& data, const PosthocSpec& spec) 
         c.effect = spec.effect();
         c.contrast = label(a, spec_f) + " - " + label(b, spec_f);
         c.by = at(g, by_f);
+        c.first = at(a, spec_f);
+        c.second = at(b, spec_f);
         test(marginal.col(a + spec_cells * g) - marginal.col(b + spec_cells * g), &c.estimate,
              &c.se);
         c.df = df;

@@ -15,6 +15,9 @@ namespace handlab::stats {
 struct PosthocSpec {
   std::vector<std::string> factors;  // compared cells: combinations of these within factors
   std::vector<std::string> by;       // simple effects: compare within each level of these
+  // Contrast labels with levels as emmeans shows them ("X1" for level "1"), to compare with
+  // R; false: as the data names them.
+  bool r_level_names = true;
   // "manipulation:strategy" or "strategy|repetition" (simple effects of strategy at each
   // repetition); throws DataError for names that are not within factors.
   static PosthocSpec parse(const std::string& text, const RmData& data);
@@ -30,6 +33,7 @@ struct PairwiseContrast {
   std::string effect;
   std::string contrast;  // emmeans's label, e.g. "Gross Naive - Fine Naive"
   std::vector<std::pair<std::string, std::string>> by;  // the by-group, for simple effects
+  std::vector<std::pair<std::string, std::string>> first, second;  // the cells compared
   double estimate, se, df, t;
   double p_none, p_tukey, p_bonferroni, p_holm;  // adjusted within the by-group (emmeans)
   double p_bonferroni_all, p_holm_all;           // adjusted over every contrast of the spec

@@ -24,6 +24,10 @@ const std::vector<Command>& all_commands() {
        run_simulate},
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
+#ifdef HANDLAB_WITH_REPORT
+      {"report", "write a study's results section with tables and figures as HTML and PDF",
+       run_report},
+#endif
   };
   return commands;
 }

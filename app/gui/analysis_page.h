@@ -1,6 +1,6 @@
 // The Analysis view: the study's analysis (studies/analysis, the code of `analyze --db`) run
-// off the window's thread, its tables (descriptives, RM-ANOVA with sphericity, post hoc,
-// Friedman, Wilcoxon) and figures.
+// off the window's thread, shown as the study report shows it (studies/report: the same
+// text and tables; app/report: the same figures).
 #pragma once
 
 #include <memory>
@@ -10,6 +10,7 @@
 #include <QWidget>
 
 #include "studies/analysis/study_database_analysis.h"
+#include "studies/report/report_document.h"
 
 class QLabel;
 class QPushButton;
@@ -48,6 +49,7 @@ class AnalysisPage : public QWidget {
   QTextBrowser* tables_ = nullptr;
   FigurePanel* figures_ = nullptr;
   std::optional<studies::StudyDatabaseAnalysis> result_;
+  std::optional<studies::ReportDocument> document_;  // what the tables and figures show
   std::thread worker_;
 };
 

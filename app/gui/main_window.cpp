@@ -1,5 +1,7 @@
 #include "app/gui/main_window.h"
 
+#include "app/report/report_files.h"
+
 #include <fstream>
 
 #include <QActionGroup>
@@ -33,6 +35,7 @@
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
 #include "app/gui/study_home.h"
+#include "app/report/report_files.h"
 #include "core/store/study_store.h"
 #include "core/util/csv.h"
 #include "handlab/version.h"
@@ -106,6 +109,7 @@ void MainWindow::build_menus() {
   file->addAction(tr("Export &Trials (trials.csv)…"), this, [this] { export_dialog(false); });
   file->addAction(tr("Export &Questionnaire (questionnaire.csv)…"), this,
                   [this] { export_dialog(true); });
+  file->addAction(tr("Export &Report (HTML and PDF)…"), this, &MainWindow::export_report_dialog);
   file->addAction(tr("Open &Data Table (CSV)…"), this, &MainWindow::open_data_table_dialog);
   file->addAction(tr("Save View as &Image…"), this, &MainWindow::save_view_image);
   file->addSeparator();
@@ -317,6 +321,40 @@ void MainWindow::export_dialog(bool questionnaire) {
   if (path.isEmpty()) return;
   const QString error = export_table(path, questionnaire);
   if (!error.isEmpty()) show_error(tr("Export"), error);
+}
+
+QString MainWindow::export_report(const QString& folder) {
+  if (study_.isEmpty()) return tr("No study is open.");
+  QApplication::setOverrideCursor(Qt::WaitCursor);
+  statusBar()->showMessage(tr("Writing the report…"));
+  report::ReportFiles files;
+  QString error;
+  try {
+    report::ReportRequest request;
+    request.database = study_.toStdString();
+    request.folder = folder.toStdString();
+    files = report::write_report(request);
+  } catch (const std::exception& e) {
+    error = QString::fromStdString(e.what());
+  }
+  QApplication::restoreOverrideCursor();
+  if (!error.isEmpty()) {
+    statusBar()->clearMessage();
+    return error;
+  }
+  statusBar()->showMessage(tr("Wrote %1 and %2 (%3 pages)")
+                               .arg(QString::fromStdString(files.html))
+                               .arg(QString::fromStdString(files.pdf))
+                               .arg(files.pdf_pages),
+                           8000);
+  return {};
+}
+
+void MainWindow::export_report_dialog() {
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Export Report into Folder"));
+  if (folder.isEmpty()) return;
+  const QString error = export_report(folder);
+  if (!error.isEmpty()) show_error(tr("Export Report"), error);
 }
 
 QString MainWindow::open_data_table(const QString& path) {

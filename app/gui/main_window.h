@@ -36,6 +36,9 @@ class MainWindow : public QMainWindow {
 
   // Writes trials.csv / questionnaire.csv of the open study; returns the error text.
   QString export_table(const QString& path, bool questionnaire);
+  // report.html and report.pdf of the open study into `folder` (as `handlab-cli report`);
+  // returns an error message, empty on success.
+  QString export_report(const QString& folder);
   // Reads a CSV file (RFC 4180) into a table dock; returns the error text.
   QString open_data_table(const QString& path);
 
@@ -64,6 +67,7 @@ class MainWindow : public QMainWindow {
   void new_study_dialog();
   void open_study_dialog();
   void export_dialog(bool questionnaire);
+  void export_report_dialog();
   void open_data_table_dialog();
   void save_view_image();
   void set_cube_size(double metres);

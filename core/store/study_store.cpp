@@ -347,6 +347,12 @@ int StudyStore::participant_count() {
   return int(s.column_int64(0));
 }
 
+std::int64_t StudyStore::frame_count() {
+  Statement s = db_.prepare("SELECT count(*) FROM frame");
+  s.step();
+  return s.column_int64(0);
+}
+
 std::vector<Participant> StudyStore::participants() {
   std::vector<Participant> out;
   Statement s = db_.prepare(std::string("SELECT ") + kParticipantColumns +

@@ -88,6 +88,7 @@ class StudyStore {
   // the id, the enrolment order and the schedule stay.
   void update_participant(const Participant& participant);
   int participant_count();
+  std::int64_t frame_count();  // frames stored, over every trial
   std::optional<Participant> participant(const std::string& id);
   std::vector<Participant> participants();
   std::vector<PlannedTrialRow> plan(const std::string& participant_id);

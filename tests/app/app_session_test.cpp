@@ -21,6 +21,7 @@
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QTextBrowser>
 #include <QTimer>
 
 #include <gtest/gtest.h>
@@ -29,6 +30,7 @@
 #include <map>
 #include <thread>
 
+#include "app/gui/analysis_page.h"
 #include "app/gui/main_window.h"
 #include "app/gui/participant_form.h"
 #include "app/gui/participants_page.h"
@@ -180,6 +182,22 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   auto* table = window.findChild<QTableWidget*>("data_table");
   ASSERT_NE(table, nullptr);
   EXPECT_EQ(table->rowCount(), 20);
+
+  // File > Export Report... writes what `handlab-cli report` writes; the Analysis view shows
+  // the same text and tables (one participant: the ANOVA says why it was not computed).
+  const QString folder = QString::fromStdString(test::fresh_path("app_report"));
+  ASSERT_EQ(window.export_report(folder), QString());
+  const std::string html = test::file_bytes(folder.toStdString() + "/report.html");
+  EXPECT_NE(html.find("data-src=\"/data_quality/planned\">20<"), std::string::npos);
+  EXPECT_EQ(test::file_bytes(folder.toStdString() + "/report.pdf").rfind("%PDF", 0), 0u);
+  auto* analysis = window.findChild<AnalysisPage*>();
+  ASSERT_NE(analysis, nullptr);
+  QSignalSpy analysed(analysis, &AnalysisPage::ready);
+  analysis->run();
+  ASSERT_TRUE(analysed.wait(20000));
+  const QString shown = analysis->tables()->toPlainText();
+  EXPECT_TRUE(shown.contains("Data quality")) << shown.toStdString();
+  EXPECT_TRUE(shown.contains("fewer than two participants")) << shown.toStdString();
 }
 
 // The trials of a participant, read while another process may be writing (a busy database

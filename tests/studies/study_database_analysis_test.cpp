@@ -56,8 +56,8 @@ TEST(StudyDatabaseAnalysis, SummariesLeaveOutWhomTheAnovaLeftOut) {
   const StudyDatabaseAnalysis a = analyze_study_database(path);
   EXPECT_FALSE(a.questionnaire);
   EXPECT_TRUE(a.items_by_condition.empty());
-  EXPECT_EQ(a.completion_time.n_subjects, 3);
-  EXPECT_EQ(a.completion_time.dropped_subjects, std::vector<std::string>{"P04"});
+  EXPECT_EQ(a.completion_time->n_subjects, 3);
+  EXPECT_EQ(a.completion_time->dropped_subjects, std::vector<std::string>{"P04"});
   const std::vector<Condition> conditions = protocol.conditions();
   ASSERT_EQ(a.time_by_condition.size(), conditions.size());
   for (const CellSummary& cell : a.time_by_condition) {

@@ -17,5 +17,6 @@ int run_participant(const std::vector<std::string>& args);
 int run_session(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);
 int run_simulate(const std::vector<std::string>& args);
+int run_report(const std::vector<std::string>& args);
 
 }  // namespace handlab::cli
