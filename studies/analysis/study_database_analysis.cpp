@@ -92,24 +92,24 @@ std::vector<CellSummary> summarise(const analysis::LongTable& table, const std::
   return out;
 }
 
+// Where a level comes in the protocol's order of its factor's levels; a factor the protocol
+// does not list (the repetition) by the level's number.
+double level_rank(const Protocol& protocol, const std::string& factor, const std::string& level) {
+  const int index = protocol.factor_index(factor);
+  if (index < 0) return std::atof(level.c_str());
+  const auto& levels = protocol.factors[std::size_t(index)].levels;
+  return double(
+      std::find_if(levels.begin(), levels.end(), [&](const Level& l) { return l.name == level; }) -
+      levels.begin());
+}
+
 // Cells in the protocol's order of levels (repetitions by number), not the data's.
 void protocol_order(std::vector<CellSummary>& cells, const Protocol& protocol,
                     const std::vector<std::string>& factors) {
   auto rank = [&](const CellSummary& c) {
     std::vector<double> key;
-    for (std::size_t f = 0; f < factors.size() && f < c.levels.size(); ++f) {
-      const int index = protocol.factor_index(factors[f]);
-      double r = 0;
-      if (index >= 0) {
-        const auto& levels = protocol.factors[std::size_t(index)].levels;
-        r = double(std::find_if(levels.begin(), levels.end(),
-                                [&](const Level& l) { return l.name == c.levels[f]; }) -
-                   levels.begin());
-      } else {
-        r = std::atof(c.levels[f].c_str());
-      }
-      key.push_back(r);
-    }
+    for (std::size_t f = 0; f < factors.size() && f < c.levels.size(); ++f)
+      key.push_back(level_rank(protocol, factors[f], c.levels[f]));
     return key;
   };
   std::stable_sort(cells.begin(), cells.end(),
@@ -364,18 +364,10 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
       protocol_order(result.time_by_repetition.back().second, result.protocol, {f, "repetition"});
       result.time_by_hand_length.emplace_back(f, by_hand_length(trial_table, f, left_out));
       // Levels in the protocol's order, as the other figures have them.
-      const int index = result.protocol.factor_index(f);
-      if (index >= 0) {
-        const auto& levels = result.protocol.factors[std::size_t(index)].levels;
-        auto rank = [&](const HandLengthPoint& q) {
-          return std::find_if(levels.begin(), levels.end(),
-                              [&](const Level& l) { return l.name == q.level; }) -
-                 levels.begin();
-        };
-        auto& points = result.time_by_hand_length.back().second;
-        std::stable_sort(points.begin(), points.end(),
-                         [&](const auto& a, const auto& b) { return rank(a) < rank(b); });
-      }
+      auto& points = result.time_by_hand_length.back().second;
+      std::stable_sort(points.begin(), points.end(), [&](const auto& a, const auto& b) {
+        return level_rank(result.protocol, f, a.level) < level_rank(result.protocol, f, b.level);
+      });
     }
     if (result.completion_time) {
       const analysis::LongTable analysed = trial_table.without("participant", left_out);
