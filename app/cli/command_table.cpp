@@ -22,6 +22,9 @@ const std::vector<Command>& all_commands() {
       {"simulate",
        "run a whole study with simulated participants on the soft hand (or the grasp proxy)",
        run_simulate},
+      {"power",
+       "simulation-based power of a study design for every N, per effect and planned contrast",
+       run_power},
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
 #ifdef HANDLAB_WITH_REPORT

@@ -342,3 +342,83 @@ TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
 }
 
 }  // namespace
+
+// The power of the paper's design from its effects file, in the JSON keys scripts read; the
+// exact answer in the same shape; the curve drawn; a pilot study's database as the model's
+// source (said to be observed power); bad options refused in one line.
+TEST(CliPower, SimulatesExactAndFromAPilotInOneShape) {
+  const std::string effects =
+      std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021-effects.json";
+  const std::string base = "power --protocol " + kProtocol + " --model " + effects +
+                           " --n 10:14:2 --sims 200 --seed 5 --quiet";
+  Result r = cli(base + " --jobs 2 --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = handlab::util::JsonValue::parse(r.out);
+  ASSERT_EQ(doc["n"].size(), 3u);
+  EXPECT_EQ(doc["n"][2].as_number(), 14);
+  const auto& interaction = doc["effects"]["strategy:manipulation"];
+  ASSERT_EQ(interaction.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_GT(interaction[k].as_number(), 0.2);
+    EXPECT_LT(interaction[k].as_number(), 0.9);
+  }
+  const std::string fine = "strategy:manipulation: naive fine - ours fine";
+  EXPECT_EQ(doc["contrasts"][fine].size(), 3u);
+  EXPECT_GT(doc["mc_se"][fine][0].as_number(), 0.0);
+  EXPECT_TRUE(doc["n_for_target"]["strategy:manipulation"].is_null());  // not by N = 14
+  EXPECT_EQ(doc["n_for_target"]["manipulation"].is_null(), false);
+  // The same seed gives the same powers, on any number of threads.
+  const Result again = cli(base + " --jobs 1 --json -");
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_EQ(handlab::util::JsonValue::parse(again.out)["effects"].dump(), doc["effects"].dump());
+
+  r = cli(base + " --exact --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto exact = handlab::util::JsonValue::parse(r.out);
+  EXPECT_TRUE(exact["exact"].as_bool());
+  EXPECT_EQ(exact["effects"]["strategy:manipulation"].size(), 3u);
+  EXPECT_EQ(exact["contrasts"][fine].size(), 3u);
+  // Exact and simulated agree within the simulation's error (200 simulations: SE <= 0.035).
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(exact["contrasts"][fine][k].as_number(), doc["contrasts"][fine][k].as_number(),
+                0.11);
+
+  // The curve is drawn by a handlab-cli built with Qt (the app's build, with `report`).
+  if (cli("report --help").status == 0) {
+    const std::string svg = handlab::test::fresh_path("power.svg");
+    r = cli(base + " --plot " + svg + " --plot-name strategy:manipulation --plot-name \"" + fine +
+            "\"");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(handlab::test::file_bytes(svg).find("<svg"), std::string::npos);
+    EXPECT_NE(cli(base + " --plot " + svg + " --plot-name nothing").out.find("'nothing'"),
+              std::string::npos);
+  } else {
+    EXPECT_NE(cli(base + " --plot x.svg").out.find("built with Qt"), std::string::npos);
+  }
+
+  // A pilot: a small simulated study of two blocks on the grasp proxy.
+  std::string protocol = handlab::test::file_bytes(kProtocol);
+  protocol.replace(protocol.find("\"blocks\": 5"), 11, "\"blocks\": 2");
+  const std::string two_blocks = handlab::test::fresh_path("cli_two_blocks.json");
+  std::ofstream(two_blocks) << protocol;
+  const std::string pilot = handlab::test::fresh_path("cli_pilot.db");
+  r = cli("simulate --protocol " + two_blocks + " --participants 5 --seed 2 --db " + pilot +
+          " --jobs 2 --world proxy --quiet");
+  ASSERT_EQ(r.status, 0) << r.out;
+  r = cli("power --protocol " + two_blocks + " --pilot " + pilot + " --n 6,8 --sims 50");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("observed power"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("strategy:manipulation:repetition"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(Friedman)"), std::string::npos) << r.out;
+
+  auto one_line_error = [](const Result& e, const std::string& what) {
+    EXPECT_NE(e.status, 0) << e.out;
+    EXPECT_EQ(e.out.find('\n'), e.out.size() - 1) << e.out;
+    EXPECT_NE(e.out.find(what), std::string::npos) << e.out;
+  };
+  one_line_error(cli("power --protocol " + kProtocol + " --model " + effects + " --pilot " + pilot),
+                 "one of --model FILE or --pilot DB");
+  one_line_error(cli("power --protocol " + kProtocol + " --model " + effects + " --n 10:x"), "--n");
+  // A pilot of another design (two blocks) for the five-block protocol.
+  one_line_error(cli("power --protocol " + kProtocol + " --pilot " + pilot), "design");
+}

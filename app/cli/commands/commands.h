@@ -18,5 +18,6 @@ int run_session(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);
 int run_simulate(const std::vector<std::string>& args);
 int run_report(const std::vector<std::string>& args);
+int run_power(const std::vector<std::string>& args);
 
 }  // namespace handlab::cli

@@ -1,0 +1,75 @@
+// Simulation-based power of a repeated-measures design (docs/power.md): for every number of
+// participants, data sets drawn from a PowerModel are analysed as `analyze --db` analyses a
+// study (RM-ANOVA with the sphericity correction, Tukey-adjusted pairwise comparisons,
+// Friedman and Bonferroni-adjusted Wilcoxon tests per questionnaire item), and the share of
+// significant results is the power, with its Monte Carlo standard error and 95 % interval.
+// exact_power gives the ANOVA effects' and contrasts' power from the noncentral F and t of
+// data with exactly the model's moments (as Superpower's ANOVA_exact).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "analysis/power/power_model.h"
+#include "core/util/portable_random.h"
+
+namespace handlab::power {
+
+// Which p an ANOVA effect with more than one numerator df is judged by.
+enum class SphericityCorrection { kAuto, kNone, kGreenhouseGeisser, kHuynhFeldt };
+
+struct PowerOptions {
+  std::vector<int> n;  // participants, each >= 3
+  int sims = 1000;
+  double alpha = 0.05;
+  std::uint64_t seed = 1;
+  int threads = 1;  // results do not depend on it
+  // kAuto: Greenhouse-Geisser where Mauchly's test rejects sphericity at alpha, as the study
+  // report decides.
+  SphericityCorrection correction = SphericityCorrection::kAuto;
+};
+
+struct PowerEstimate {
+  std::string name;
+  std::vector<double> power, mc_se, lower, upper;  // per N; lower/upper: 95 % (Wilson)
+};
+
+struct PowerReport {
+  std::vector<int> n;
+  int sims = 0;  // 0: exact
+  double alpha = 0.05;
+  std::vector<PowerEstimate> effects;    // ANOVA effects as analyze names them; then items
+  std::vector<PowerEstimate> contrasts;  // "effect: a - b"; then items' Wilcoxon pairs
+  std::vector<int> warnings;             // per N: simulations whose analysis warned
+  std::vector<std::string> warning_examples;
+  std::vector<double> seconds;  // per N, wall-clock
+  std::vector<std::string> notes;
+};
+
+// The smallest N of the report whose power reaches `target`.
+std::optional<int> n_for_target(const PowerReport& report, const PowerEstimate& e, double target);
+
+// One simulated study: participants x cells (NaN: a trial without a result), the
+// participants' covariate values, and per item participants x conditions answers.
+struct SimulatedData {
+  Eigen::MatrixXd cells;
+  Eigen::MatrixXd covariates;
+  std::vector<Eigen::MatrixXd> items;
+};
+SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom& random);
+
+// progress(done, total) after each N's simulations, from the calling thread.
+PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
+                           const std::function<void(int, int)>& progress = {});
+
+// The ANOVA effects (sphericity assumed) and the Tukey contrasts, without simulation. Items
+// have no exact answer here; with missing trials, N is the expected count of participants
+// with every cell.
+PowerReport exact_power(const PowerModel& model, const PowerOptions& options);
+
+}  // namespace handlab::power

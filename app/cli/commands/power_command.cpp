@@ -1,0 +1,273 @@
+// handlab-cli power: simulation-based power of a study design (docs/power.md).
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <thread>
+
+#include "analysis/power/power_analysis.h"
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "core/util/json_writer.h"
+#include "studies/power/pilot_model.h"
+#include "studies/protocol/protocol.h"
+#ifdef HANDLAB_WITH_REPORT
+#include "app/cli/gui_application.h"
+#include "app/report/power_figure.h"
+#endif
+
+namespace handlab::cli {
+namespace {
+
+// "10:40:2" (from, to, step), "10:40" (step 1), "12,20,30" or "20".
+std::vector<int> parse_n(const std::string& text) {
+  std::vector<int> n;
+  auto whole = [&](const std::string& s) {
+    std::size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || s.empty()) throw UsageError("--n: '" + s + "' is not a whole number");
+    return v;
+  };
+  if (text.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::size_t from = 0, at;
+    while ((at = text.find(':', from)) != std::string::npos) {
+      parts.push_back(text.substr(from, at - from));
+      from = at + 1;
+    }
+    parts.push_back(text.substr(from));
+    if (parts.size() > 3) throw UsageError("--n takes FROM:TO[:STEP]");
+    const int a = whole(parts[0]), b = whole(parts[1]),
+              step = parts.size() == 3 ? whole(parts[2]) : 1;
+    if (step < 1 || b < a) throw UsageError("--n: FROM:TO:STEP needs TO >= FROM and STEP >= 1");
+    for (int v = a; v <= b; v += step) n.push_back(v);
+  } else {
+    std::size_t from = 0, at;
+    while ((at = text.find(',', from)) != std::string::npos) {
+      n.push_back(whole(text.substr(from, at - from)));
+      from = at + 1;
+    }
+    n.push_back(whole(text.substr(from)));
+  }
+  for (int v : n)
+    if (v < 3 || v > 100000) throw UsageError("--n: every N must be between 3 and 100000");
+  return n;
+}
+
+void write_map(util::JsonWriter& w, const char* key, const power::PowerReport& r,
+               const std::vector<const power::PowerEstimate*>& list,
+               std::vector<double> power::PowerEstimate::*field) {
+  w.key(key).begin_object();
+  for (const power::PowerEstimate* e : list) {
+    w.key(e->name).begin_array();
+    for (double v : e->*field) w.value(v);
+    w.end_array();
+  }
+  w.end_object();
+  (void)r;
+}
+
+std::vector<const power::PowerEstimate*> pointers(const std::vector<power::PowerEstimate>& v) {
+  std::vector<const power::PowerEstimate*> out;
+  for (const auto& e : v) out.push_back(&e);
+  return out;
+}
+
+void print_table(const power::PowerReport& r, const std::vector<power::PowerEstimate>& list,
+                 const char* heading, double target) {
+  std::size_t width = std::string(heading).size();
+  for (const auto& e : list) width = std::max(width, e.name.size());
+  std::cout << std::left << std::setw(int(width) + 2) << heading << std::right;
+  for (int n : r.n) std::cout << std::setw(6) << ("N=" + std::to_string(n));
+  std::cout << "   N for " << std::setprecision(2) << target << "\n";
+  for (const auto& e : list) {
+    std::cout << std::left << std::setw(int(width) + 2) << e.name << std::right << std::fixed
+              << std::setprecision(2);
+    for (double p : e.power) std::cout << std::setw(6) << p;
+    const auto n = power::n_for_target(r, e, target);
+    std::cout << "   " << (n ? std::to_string(*n) : std::string("-")) << "\n";
+  }
+  std::cout << std::defaultfloat;
+}
+
+}  // namespace
+
+int run_power(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"protocol", "FILE", "the study protocol (its factors and blocks make the design)"},
+      {"model", "FILE", "the data's model: cell means, SDs, correlation, ... (docs/power.md)"},
+      {"pilot", "DB", "estimate the model from a pilot study's database instead"},
+      {"n", "LIST", "participants: FROM:TO:STEP (10:40:2), a list (12,20,30) or one N", "10:40:2"},
+      {"sims", "S", "simulated studies per N", "1000"},
+      {"alpha", "A", "the significance level", "0.05"},
+      {"target", "P", "the power whose smallest N is reported", "0.8"},
+      {"seed", "S", "the simulations' seed: the same seed gives the same powers", "1"},
+      {"jobs", "J", "threads (results do not depend on it; default: the machine's cores)", "0"},
+      {"correction", "auto|none|gg|hf",
+       "the p of effects with more than one df: auto = Greenhouse-Geisser where Mauchly's test "
+       "rejects sphericity, as the study report decides",
+       "auto"},
+      {"exact", "",
+       "the ANOVA effects and contrasts from the noncentral F and t of data with "
+       "exactly the model's moments, instead of simulating"},
+      {"plot", "FILE", "draw the power curves (.svg or .png)"},
+      {"plot-name", "NAME",
+       "an effect or contrast to draw (repeatable; default: the protocol's "
+       "factors' effects)",
+       "", true},
+      {"quiet", "", "no progress line"},
+      {"json", "OUT", "write the results as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout
+        << "Usage: handlab-cli power --protocol FILE (--pilot DB | --model FILE) --n 10:40:2 "
+           "--sims 1000 [--alpha 0.05] [--seed S] [--target 0.8] [--exact] [--plot FILE] "
+           "[--json OUT]\n\nFor every N, simulates studies of the protocol's design from the "
+           "model and analyses each as `analyze --db` does (RM-ANOVA with the sphericity "
+           "correction, Tukey-adjusted pairwise comparisons, Friedman and Bonferroni-adjusted "
+           "Wilcoxon tests per questionnaire item): the power of every effect and planned "
+           "contrast with its Monte Carlo SE and 95 % interval, and the smallest N reaching "
+           "the target.\n\nOptions:\n"
+        << format_options_help(specs);
+    return 0;
+  }
+  args.require({"protocol"});
+  if (args.has("model") == args.has("pilot"))
+    throw UsageError("give one of --model FILE or --pilot DB");
+  const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
+  const power::PowerDesign design = studies::power_design(protocol);
+  const power::PowerModel model = args.has("model")
+                                      ? power::read_power_model(args.text("model"), design)
+                                      : studies::estimate_from_pilot(args.text("pilot"), protocol);
+  power::PowerOptions options;
+  options.n = parse_n(args.text("n"));
+  options.sims = int(args.integer("sims"));
+  if (options.sims < 1) throw UsageError("--sims must be 1 or more");
+  options.alpha = args.number("alpha");
+  if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
+  const double target = args.number("target");
+  if (!(target > 0 && target < 1)) throw UsageError("--target must be in (0, 1)");
+  options.seed = std::uint64_t(args.integer("seed"));
+  options.threads = int(args.integer("jobs"));
+  if (options.threads < 0) throw UsageError("--jobs must be 0 (all cores) or more");
+  if (options.threads == 0)
+    options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string correction = args.text("correction");
+  if (correction == "auto")
+    options.correction = power::SphericityCorrection::kAuto;
+  else if (correction == "none")
+    options.correction = power::SphericityCorrection::kNone;
+  else if (correction == "gg")
+    options.correction = power::SphericityCorrection::kGreenhouseGeisser;
+  else if (correction == "hf")
+    options.correction = power::SphericityCorrection::kHuynhFeldt;
+  else
+    throw UsageError("--correction must be auto, none, gg or hf");
+  const bool exact = args.flag("exact");
+  const bool quiet = args.flag("quiet") || args.text("json") == "-";
+#ifndef HANDLAB_WITH_REPORT
+  if (args.has("plot")) throw UsageError("--plot needs handlab-cli built with Qt (the app)");
+#endif
+
+  const auto start = std::chrono::steady_clock::now();
+  const power::PowerReport report =
+      exact ? power::exact_power(model, options)
+            : power::simulate_power(model, options, [&](int done, int total) {
+                if (quiet) return;
+                const double s =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                std::fprintf(stderr, "\rN %d/%d  %d simulations  %.1f s ", done, total,
+                             done * options.sims, s);
+                std::fflush(stderr);
+              });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!quiet && !exact) std::fprintf(stderr, "\n");
+
+  if (args.text("json") != "-") {
+    if (args.has("pilot"))
+      std::cout << "Note: these powers are for the pilot's own observed effects (observed power), "
+                   "which says nothing the pilot's p values do not; the power of the design is "
+                   "for the effect you want to detect: write it in a --model file.\n\n";
+    for (const std::string& note : report.notes) std::cout << "Note: " << note << "\n";
+    std::cout << (exact ? "Exact power (noncentral F and t of the model's moments)"
+                        : std::to_string(options.sims) + " simulated studies per N")
+              << ", alpha = " << options.alpha << ", " << std::fixed << std::setprecision(2)
+              << seconds << " s\n\n"
+              << std::defaultfloat;
+    print_table(report, report.effects, "effect", target);
+    std::cout << "\n";
+    print_table(report, report.contrasts, "contrast", target);
+    int warned = 0;
+    for (int w : report.warnings) warned += w;
+    if (warned) {
+      std::cout << "\n" << warned << " simulation(s) with warnings, e.g.:\n";
+      for (const std::string& e : report.warning_examples) std::cout << "  " << e << "\n";
+    }
+  }
+#ifdef HANDLAB_WITH_REPORT
+  if (args.has("plot")) {
+    std::vector<std::string> names = args.all("plot-name");
+    if (names.empty())
+      for (const power::PowerEstimate& e : report.effects)
+        if (e.name.find("repetition") == std::string::npos &&
+            e.name.find(" (") == std::string::npos)
+          names.push_back(e.name);
+    ensure_gui_application();
+    report::write_power_figure(report, names, target,
+                               "Power of " + protocol.name + (exact ? " (exact)" : ""),
+                               args.text("plot"));
+  }
+#endif
+  if (args.has("json")) {
+    write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter w(out);
+      w.begin_object();
+      w.key("n").begin_array();
+      for (int n : report.n) w.value(n);
+      w.end_array();
+      const auto effects = pointers(report.effects), contrasts = pointers(report.contrasts);
+      std::vector<const power::PowerEstimate*> all = effects;
+      all.insert(all.end(), contrasts.begin(), contrasts.end());
+      write_map(w, "effects", report, effects, &power::PowerEstimate::power);
+      write_map(w, "contrasts", report, contrasts, &power::PowerEstimate::power);
+      write_map(w, "mc_se", report, all, &power::PowerEstimate::mc_se);
+      write_map(w, "lower", report, all, &power::PowerEstimate::lower);
+      write_map(w, "upper", report, all, &power::PowerEstimate::upper);
+      w.key("n_for_target").begin_object();
+      for (const power::PowerEstimate* e : all) {
+        w.key(e->name);
+        if (const auto n = power::n_for_target(report, *e, target))
+          w.value(*n);
+        else
+          w.null();
+      }
+      w.end_object();
+      w.field("target", target).field("alpha", options.alpha).field("exact", exact);
+      w.field("sims", exact ? 0 : options.sims).field("seed", double(options.seed));
+      w.field("seconds", seconds);
+      w.key("seconds_per_n").begin_array();
+      for (double s : report.seconds) w.value(s);
+      w.end_array();
+      w.key("warnings").begin_array();
+      for (int v : report.warnings) w.value(v);
+      w.end_array();
+      w.key("notes").begin_array();
+      for (const std::string& n : report.notes) w.value(n);
+      w.end_array();
+      w.field("observed_power", args.has("pilot"));
+      w.end_object();
+      out << "\n";
+    });
+  }
+  return 0;
+}
+
+}  // namespace handlab::cli
