@@ -48,6 +48,15 @@ const PowerEstimate& find(const std::vector<PowerEstimate>& list, const std::str
 // SEs is about 0.024 (10,000 simulations in docs/power.md).
 constexpr int kSims = 4000;
 
+// The paired t test's power: the noncentral t beyond the two-sided critical value.
+double paired_t_power(double n, double delta, double sd, double r) {
+  const double df = n - 1;
+  const double ncp = delta / (sd * std::sqrt(2 * (1 - r))) * std::sqrt(n);
+  const double critical = bm::quantile(bm::complement(bm::students_t(df), 0.025));
+  const bm::non_central_t t(df, ncp);
+  return bm::cdf(bm::complement(t, critical)) + bm::cdf(t, -critical);
+}
+
 TEST(PowerSimulation, PairedTTestMatchesTheNoncentralT) {
   const PowerDesign d = one_factor(2);
   const double delta = 0.5, sd = 1.0, r = 0.5;
@@ -61,11 +70,8 @@ TEST(PowerSimulation, PairedTTestMatchesTheNoncentralT) {
   const PowerEstimate& effect = find(report.effects, "condition");
   const PowerEstimate& contrast = find(report.contrasts, "condition: c1 - c2");
   for (std::size_t k = 0; k < o.n.size(); ++k) {
-    const double n = o.n[k], df = n - 1;
-    const double ncp = delta / (sd * std::sqrt(2 * (1 - r))) * std::sqrt(n);
-    const double critical = bm::quantile(bm::complement(bm::students_t(df), 0.025));
-    const bm::non_central_t t(df, ncp);
-    const double exact = bm::cdf(bm::complement(t, critical)) + bm::cdf(t, -critical);
+    const double n = o.n[k];
+    const double exact = paired_t_power(n, delta, sd, r);
     const double se = std::sqrt(exact * (1 - exact) / kSims);
     EXPECT_NEAR(effect.power[k], exact, 3 * se) << "N = " << n;
     // With two means the Tukey test is the t test.
@@ -77,11 +83,7 @@ TEST(PowerSimulation, PairedTTestMatchesTheNoncentralT) {
   // The exact path gives the same answer from the model's moments.
   const PowerReport exact = exact_power(m, o);
   for (std::size_t k = 0; k < o.n.size(); ++k) {
-    const double n = o.n[k], df = n - 1;
-    const double ncp = delta / (sd * std::sqrt(2 * (1 - r))) * std::sqrt(n);
-    const double critical = bm::quantile(bm::complement(bm::students_t(df), 0.025));
-    const bm::non_central_t t(df, ncp);
-    const double expected = bm::cdf(bm::complement(t, critical)) + bm::cdf(t, -critical);
+    const double expected = paired_t_power(o.n[k], delta, sd, r);
     EXPECT_NEAR(find(exact.contrasts, "condition: c1 - c2").power[k], expected, 1e-9);
     EXPECT_NEAR(find(exact.effects, "condition").power[k], expected, 1e-6);  // F = t^2
   }

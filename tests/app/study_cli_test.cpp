@@ -40,6 +40,13 @@ std::string enrol(const std::string& db, const std::string& id, double length) {
          "--hand-length " + std::to_string(length) + " --vr-experience some";
 }
 
+// A refusal: a non-zero exit and one line that says `what`.
+void one_line_error(const Result& e, const std::string& what) {
+  EXPECT_NE(e.status, 0) << e.out;
+  EXPECT_EQ(e.out.find('\n'), e.out.size() - 1) << e.out;
+  EXPECT_NE(e.out.find(what), std::string::npos) << e.out;
+}
+
 TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   const std::string db = handlab::test::fresh_path("cli_study.db");
   Result r = cli("study create --protocol " + kProtocol + " --db " + db);
@@ -142,11 +149,6 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
   EXPECT_NE(r.out.find("S01"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("S02"), std::string::npos) << r.out;
 
-  auto one_line_error = [](const Result& e, const std::string& what) {
-    EXPECT_NE(e.status, 0) << e.out;
-    EXPECT_EQ(e.out.find('\n'), e.out.size() - 1) << e.out;
-    EXPECT_NE(e.out.find(what), std::string::npos) << e.out;
-  };
   const std::string before = handlab::test::file_bytes(db);
   one_line_error(cli("simulate --protocol " + one_block + " --participants 1 --db " + db),
                  "exists");
@@ -164,11 +166,6 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);
   ASSERT_EQ(cli(enrol(db, "P01", 0.18)).status, 0);
   const std::string before = handlab::test::file_bytes(db);
-  auto one_line_error = [](const Result& r, const std::string& what) {
-    EXPECT_NE(r.status, 0) << r.out;
-    EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
-    EXPECT_NE(r.out.find(what), std::string::npos) << r.out;
-  };
   one_line_error(cli(enrol(db, "P01", 0.18)), "already exists");
   one_line_error(cli("study create --protocol " + kProtocol + " --db " + db), "already exists");
   one_line_error(cli("participant add --db " + db +
@@ -411,11 +408,6 @@ TEST(CliPower, SimulatesExactAndFromAPilotInOneShape) {
   EXPECT_NE(r.out.find("strategy:manipulation:repetition"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("(Friedman)"), std::string::npos) << r.out;
 
-  auto one_line_error = [](const Result& e, const std::string& what) {
-    EXPECT_NE(e.status, 0) << e.out;
-    EXPECT_EQ(e.out.find('\n'), e.out.size() - 1) << e.out;
-    EXPECT_NE(e.out.find(what), std::string::npos) << e.out;
-  };
   one_line_error(cli("power --protocol " + kProtocol + " --model " + effects + " --pilot " + pilot),
                  "one of --model FILE or --pilot DB");
   one_line_error(cli("power --protocol " + kProtocol + " --model " + effects + " --n 10:x"), "--n");
