@@ -1,5 +1,6 @@
 #include "analysis/power/power_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
