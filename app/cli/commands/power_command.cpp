@@ -60,7 +60,7 @@ std::vector<int> parse_n(const std::string& text) {
   return n;
 }
 
-void write_map(util::JsonWriter& w, const char* key, const power::PowerReport& r,
+void write_map(util::JsonWriter& w, const char* key,
                const std::vector<const power::PowerEstimate*>& list,
                std::vector<double> power::PowerEstimate::*field) {
   w.key(key).begin_object();
@@ -70,7 +70,6 @@ void write_map(util::JsonWriter& w, const char* key, const power::PowerReport& r
     w.end_array();
   }
   w.end_object();
-  (void)r;
 }
 
 std::vector<const power::PowerEstimate*> pointers(const std::vector<power::PowerEstimate>& v) {
@@ -236,11 +235,11 @@ int run_power(const std::vector<std::string>& argv) {
       const auto effects = pointers(report.effects), contrasts = pointers(report.contrasts);
       std::vector<const power::PowerEstimate*> all = effects;
       all.insert(all.end(), contrasts.begin(), contrasts.end());
-      write_map(w, "effects", report, effects, &power::PowerEstimate::power);
-      write_map(w, "contrasts", report, contrasts, &power::PowerEstimate::power);
-      write_map(w, "mc_se", report, all, &power::PowerEstimate::mc_se);
-      write_map(w, "lower", report, all, &power::PowerEstimate::lower);
-      write_map(w, "upper", report, all, &power::PowerEstimate::upper);
+      write_map(w, "effects", effects, &power::PowerEstimate::power);
+      write_map(w, "contrasts", contrasts, &power::PowerEstimate::power);
+      write_map(w, "mc_se", all, &power::PowerEstimate::mc_se);
+      write_map(w, "lower", all, &power::PowerEstimate::lower);
+      write_map(w, "upper", all, &power::PowerEstimate::upper);
       w.key("n_for_target").begin_object();
       for (const power::PowerEstimate* e : all) {
         w.key(e->name);
