@@ -82,6 +82,27 @@ std::string spaced(const PowerDesign& d, int condition) {
   return label;
 }
 
+// The design's conditions (first factor fastest) in the order analyze numbers them (first
+// factor slowest).
+std::vector<int> report_order(const PowerDesign& d) {
+  std::vector<int> order;
+  for (int slow = 0; slow < d.conditions(); ++slow) {
+    int index = slow, fast = 0, stride = 1;
+    std::vector<int> levels(d.factors.size());
+    for (std::size_t k = d.factors.size(); k-- > 0;) {
+      const int n = int(d.factors[k].levels.size());
+      levels[k] = index % n;
+      index /= n;
+    }
+    for (std::size_t k = 0; k < d.factors.size(); ++k) {
+      fast += levels[k] * stride;
+      stride *= int(d.factors[k].levels.size());
+    }
+    order.push_back(fast);
+  }
+  return order;
+}
+
 std::string contrast_name(const std::string& effect, const stats::PairwiseContrast& c) {
   std::string name = effect + ": " + c.contrast;
   if (!c.by.empty()) {
@@ -91,7 +112,7 @@ std::string contrast_name(const std::string& effect, const stats::PairwiseContra
   return name;
 }
 
-double effect_p(const stats::AnovaEffect& e, SphericityCorrection correction, double alpha) {
+double judged_p_impl(const stats::AnovaEffect& e, SphericityCorrection correction, double alpha) {
   if (e.df_num <= 1 || !std::isfinite(e.mauchly_p)) return e.p;
   switch (correction) {
     case SphericityCorrection::kNone:
@@ -160,7 +181,7 @@ class Analyser {
           const auto last = names.effects.begin() + std::ptrdiff_t(anova_effects);
           const auto at = std::find(names.effects.begin(), last, e.effect);
           if (at == last) continue;
-          const double p = effect_p(e, options_.correction, options_.alpha);
+          const double p = judged_p_impl(e, options_.correction, options_.alpha);
           if (!std::isfinite(p)) warn("effect " + e.effect + ": no p value");
           out.effects[std::size_t(at - names.effects.begin())] = p < options_.alpha;
         }
@@ -189,8 +210,11 @@ class Analyser {
       if (!std::isfinite(f.p)) warn(item + ": Friedman test without a p value (every answer tied)");
       out.effects.push_back(std::isfinite(f.p) && f.p < options_.alpha);
       std::vector<double> p;
-      for (int i = 0; i < q; ++i)
-        for (int j = i + 1; j < q; ++j) {
+      // Pairs in the order analyze takes them (the first factor varying slowest).
+      const std::vector<int> order = report_order(model_.design);
+      for (int ii = 0; ii < q; ++ii)
+        for (int jj = ii + 1; jj < q; ++jj) {
+          const int i = order[std::size_t(ii)], j = order[std::size_t(jj)];
           std::vector<double> x(a.col(i).data(), a.col(i).data() + a.rows());
           std::vector<double> z(a.col(j).data(), a.col(j).data() + a.rows());
           const double pij = stats::wilcoxon_signed_rank(x, z).p;
@@ -263,6 +287,34 @@ std::optional<int> n_for_target(const PowerReport& report, const PowerEstimate& 
   return std::nullopt;
 }
 
+double judged_p(const stats::AnovaEffect& effect, SphericityCorrection correction, double alpha) {
+  return judged_p_impl(effect, correction, alpha);
+}
+
+PowerReport empty_report(const std::vector<std::string>& effects,
+                         const std::vector<std::string>& contrasts, const std::vector<int>& n,
+                         int sims, double alpha) {
+  PowerReport report;
+  report.n = n;
+  report.sims = sims;
+  report.alpha = alpha;
+  for (const std::string& e : effects) report.effects.push_back(estimate(e, n.size()));
+  for (const std::string& c : contrasts) report.contrasts.push_back(estimate(c, n.size()));
+  report.warnings.assign(n.size(), 0);
+  report.seconds.assign(n.size(), 0.0);
+  return report;
+}
+
+void set_counts(PowerReport& report, std::size_t k, const std::vector<long>& effect_hits,
+                const std::vector<long>& contrast_hits, int warnings, double seconds) {
+  for (std::size_t e = 0; e < report.effects.size(); ++e)
+    set_binomial(report.effects[e], k, effect_hits.at(e), report.sims);
+  for (std::size_t c = 0; c < report.contrasts.size(); ++c)
+    set_binomial(report.contrasts[c], k, contrast_hits.at(c), report.sims);
+  report.warnings.at(k) = warnings;
+  report.seconds.at(k) = seconds;
+}
+
 SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom& random) {
   Normals normal(random);
   const int cells = model.design.cells(), q = model.design.conditions();
@@ -304,11 +356,6 @@ PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
   check_options(options);
   if (options.sims < 1) throw std::invalid_argument("sims must be 1 or more");
   const Analyser analyser(model, options);
-  PowerReport report;
-  report.n = options.n;
-  report.sims = options.sims;
-  report.alpha = options.alpha;
-  report.notes = model.notes;
   // The names come from one analysis of a study without missing results.
   Names names;
   {
@@ -317,10 +364,9 @@ PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
     util::PortableRandom random(splitmix(options.seed));
     analyser.analyse(simulate_data(whole, std::max(options.n.front(), 3), random), names);
   }
-  for (const std::string& e : names.effects)
-    report.effects.push_back(estimate(e, options.n.size()));
-  for (const std::string& c : names.contrasts)
-    report.contrasts.push_back(estimate(c, options.n.size()));
+  PowerReport report =
+      empty_report(names.effects, names.contrasts, options.n, options.sims, options.alpha);
+  report.notes = model.notes;
   const int threads = std::max(1, options.threads);
   for (std::size_t k = 0; k < options.n.size(); ++k) {
     const int n = options.n[k];
@@ -353,25 +399,18 @@ PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
     for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
     work(0);
     for (std::thread& th : pool) th.join();
+    std::vector<long> effect_hits(names.effects.size(), 0),
+        contrast_hits(names.contrasts.size(), 0);
     int warnings = 0;
-    for (std::size_t e = 0; e < names.effects.size(); ++e) {
-      long hits = 0;
-      for (const Tally& t : tallies) hits += t.effects[e];
-      set_binomial(report.effects[e], k, hits, options.sims);
-    }
-    for (std::size_t c = 0; c < names.contrasts.size(); ++c) {
-      long hits = 0;
-      for (const Tally& t : tallies) hits += t.contrasts[c];
-      set_binomial(report.contrasts[c], k, hits, options.sims);
-    }
     for (const Tally& t : tallies) {
+      for (std::size_t e = 0; e < effect_hits.size(); ++e) effect_hits[e] += t.effects[e];
+      for (std::size_t c = 0; c < contrast_hits.size(); ++c) contrast_hits[c] += t.contrasts[c];
       warnings += t.warnings;
       if (t.warnings && report.warning_examples.size() < 5)
         report.warning_examples.push_back("N = " + std::to_string(n) + ": " + t.example);
     }
-    report.warnings.push_back(warnings);
-    report.seconds.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    set_counts(report, k, effect_hits, contrast_hits, warnings,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (progress) progress(int(k + 1), int(options.n.size()));
   }
   return report;

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "analysis/power/power_model.h"
+#include "analysis/stats/rm_anova.h"
 #include "core/util/portable_random.h"
 
 namespace handlab::power {
@@ -66,6 +67,19 @@ SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom
 // progress(done, total) after each N's simulations, from the calling thread.
 PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
                            const std::function<void(int, int)>& progress = {});
+
+// The p an effect is judged by under `correction` (kAuto: the report's rule).
+double judged_p(const stats::AnovaEffect& effect, SphericityCorrection correction, double alpha);
+
+// A report of `n.size()` values of N for these effects and contrasts, counts to come.
+PowerReport empty_report(const std::vector<std::string>& effects,
+                         const std::vector<std::string>& contrasts, const std::vector<int>& n,
+                         int sims, double alpha);
+// Of the report's `sims` studies at its N number `k`: how many rejected each effect and
+// contrast (in the report's order) and how many warned; sets the powers, Monte Carlo SEs and
+// 95 % Wilson intervals. The model's and the pipeline's simulations share it.
+void set_counts(PowerReport& report, std::size_t k, const std::vector<long>& effect_hits,
+                const std::vector<long>& contrast_hits, int warnings, double seconds);
 
 // The ANOVA effects (sphericity assumed) and the Tukey contrasts, without simulation. Items
 // have no exact answer here; with missing trials, N is the expected count of participants

@@ -414,3 +414,36 @@ TEST(CliPower, SimulatesExactAndFromAPilotInOneShape) {
   // A pilot of another design (two blocks) for the five-block protocol.
   one_line_error(cli("power --protocol " + kProtocol + " --pilot " + pilot), "design");
 }
+
+// --pipeline: whole simulated studies (here two blocks on the grasp proxy, to be quick),
+// analysed as analyze --db analyses them, in the same JSON shape.
+TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
+  std::string protocol = handlab::test::file_bytes(kProtocol);
+  protocol.replace(protocol.find("\"blocks\": 5"), 11, "\"blocks\": 2");
+  const std::string two_blocks = handlab::test::fresh_path("cli_power_two_blocks.json");
+  std::ofstream(two_blocks) << protocol;
+  const std::string run = "power --protocol " + two_blocks +
+                          " --pipeline --world proxy --n 3 --sims 2 --seed 4 --jobs 2 --json -";
+  const Result r = cli(run);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = handlab::util::JsonValue::parse(r.out);
+  EXPECT_TRUE(doc["pipeline"].as_bool());
+  EXPECT_EQ(doc["sims"].as_number(), 2);
+  ASSERT_EQ(doc["n"].size(), 1u);
+  EXPECT_EQ(doc["effects"].as_object().size(), 7u + 3u);  // the 2x2x2 ANOVA's, the items'
+  for (const auto& [name, power] : doc["effects"].as_object()) {
+    ASSERT_EQ(power.size(), 1u) << name;
+    const double p = power[0].as_number();
+    EXPECT_TRUE(p == 0.0 || p == 0.5 || p == 1.0) << name << " " << p;  // a share of two studies
+  }
+  EXPECT_NO_THROW(doc["effects"]["strategy:manipulation:repetition"]);
+  EXPECT_EQ(doc["contrasts"].as_object().size(), 6u + 3 * 6u);  // Tukey pairs, items' pairs
+  EXPECT_EQ(doc["seconds_per_n"].size(), 1u);
+  EXPECT_GT(doc["seconds_per_n"][0].as_number(), 0.0);
+  // The same seed, the same studies.
+  const Result again = cli(run);
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_EQ(handlab::util::JsonValue::parse(again.out)["effects"].dump(), doc["effects"].dump());
+  one_line_error(cli("power --protocol " + two_blocks + " --pipeline --model " + two_blocks),
+                 "takes no --model");
+}

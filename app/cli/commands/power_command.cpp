@@ -11,6 +11,7 @@
 #include "app/cli/output_file.h"
 #include "core/util/json_writer.h"
 #include "studies/power/pilot_model.h"
+#include "studies/power/pipeline_power.h"
 #include "studies/protocol/protocol.h"
 #ifdef HANDLAB_WITH_REPORT
 #include "app/cli/gui_application.h"
@@ -112,6 +113,11 @@ int run_power(const std::vector<std::string>& argv) {
        "the p of effects with more than one df: auto = Greenhouse-Geisser where Mauchly's test "
        "rejects sphericity, as the study report decides",
        "auto"},
+      {"pipeline", "",
+       "answer with whole simulated studies (simulated participants, retargeting, physics, "
+       "task, study database) instead of a model; slow: use a small --sims (default 5)"},
+      {"world", "soft|proxy", "with --pipeline: the soft-hand simulator or the grasp proxy",
+       "soft"},
       {"exact", "",
        "the ANOVA effects and contrasts from the noncentral F and t of data with "
        "exactly the model's moments, instead of simulating"},
@@ -138,16 +144,21 @@ int run_power(const std::vector<std::string>& argv) {
     return 0;
   }
   args.require({"protocol"});
-  if (args.has("model") == args.has("pilot"))
-    throw UsageError("give one of --model FILE or --pilot DB");
+  const bool pipeline = args.flag("pipeline");
+  if (pipeline && (args.has("model") || args.has("pilot") || args.flag("exact")))
+    throw UsageError("--pipeline simulates participants: it takes no --model, --pilot or --exact");
+  if (!pipeline && args.has("model") == args.has("pilot"))
+    throw UsageError("give one of --model FILE or --pilot DB (or --pipeline)");
+  const std::string world = args.text("world");
+  if (world != "soft" && world != "proxy") throw UsageError("--world must be soft or proxy");
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const power::PowerDesign design = studies::power_design(protocol);
-  const power::PowerModel model = args.has("model")
-                                      ? power::read_power_model(args.text("model"), design)
-                                      : studies::estimate_from_pilot(args.text("pilot"), protocol);
+  power::PowerModel model;
+  if (args.has("model")) model = power::read_power_model(args.text("model"), design);
+  if (args.has("pilot")) model = studies::estimate_from_pilot(args.text("pilot"), protocol);
   power::PowerOptions options;
   options.n = parse_n(args.text("n"));
-  options.sims = int(args.integer("sims"));
+  options.sims = pipeline && !args.has("sims") ? 5 : int(args.integer("sims"));
   if (options.sims < 1) throw UsageError("--sims must be 1 or more");
   options.alpha = args.number("alpha");
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
@@ -176,16 +187,29 @@ int run_power(const std::vector<std::string>& argv) {
 #endif
 
   const auto start = std::chrono::steady_clock::now();
-  const power::PowerReport report =
-      exact ? power::exact_power(model, options)
-            : power::simulate_power(model, options, [&](int done, int total) {
-                if (quiet) return;
-                const double s =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                std::fprintf(stderr, "\rN %d/%d  %d simulations  %.1f s ", done, total,
-                             done * options.sims, s);
-                std::fflush(stderr);
-              });
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  power::PowerReport report;
+  if (exact) {
+    report = power::exact_power(model, options);
+  } else if (pipeline) {
+    studies::PipelinePowerOptions po;
+    po.power = options;
+    po.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
+    report = studies::pipeline_power(protocol, po, [&](int done, int total) {
+      if (quiet) return;
+      std::fprintf(stderr, "\rsimulated studies %d/%d  %.0f s ", done, total, elapsed());
+      std::fflush(stderr);
+    });
+  } else {
+    report = power::simulate_power(model, options, [&](int done, int total) {
+      if (quiet) return;
+      std::fprintf(stderr, "\rN %d/%d  %d simulations  %.1f s ", done, total, done * options.sims,
+                   elapsed());
+      std::fflush(stderr);
+    });
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet && !exact) std::fprintf(stderr, "\n");
@@ -196,8 +220,11 @@ int run_power(const std::vector<std::string>& argv) {
                    "which says nothing the pilot's p values do not; the power of the design is "
                    "for the effect you want to detect: write it in a --model file.\n\n";
     for (const std::string& note : report.notes) std::cout << "Note: " << note << "\n";
-    std::cout << (exact ? "Exact power (noncentral F and t of the model's moments)"
-                        : std::to_string(options.sims) + " simulated studies per N")
+    std::cout << (exact ? std::string("Exact power (noncentral F and t of the model's moments)")
+                  : pipeline
+                      ? std::to_string(options.sims) + " whole simulated studies per N on the " +
+                            (world == "soft" ? "soft hand" : "grasp proxy")
+                      : std::to_string(options.sims) + " simulated studies per N")
               << ", alpha = " << options.alpha << ", " << std::fixed << std::setprecision(2)
               << seconds << " s\n\n"
               << std::defaultfloat;
@@ -250,6 +277,7 @@ int run_power(const std::vector<std::string>& argv) {
       }
       w.end_object();
       w.field("target", target).field("alpha", options.alpha).field("exact", exact);
+      w.field("pipeline", pipeline);
       w.field("sims", exact ? 0 : options.sims).field("seed", double(options.seed));
       w.field("seconds", seconds);
       w.key("seconds_per_n").begin_array();
