@@ -1081,7 +1081,6 @@ struct HandSimulator::Impl {
   bool friction_changed(const HandSimState& s) {
     const SimParameters& par = model.parameters;
     const Eigen::Vector3d nf = par.floor_normal.normalized();
-    const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
     bool changed = false;
     for (Contact& c : contacts) {
       if (!c.touching || c.kind == Contact::kNodeCube) continue;
@@ -1095,18 +1094,13 @@ struct HandSimulator::Impl {
         }
         continue;
       }
-      Eigen::Vector3d x;  // surface frame
-      double depth;
-      if (c.kind == Contact::kNodeCube) {
-        x = cube_inv * (s.node_position[std::size_t(c.point)] - s.cube_pose.position);
-        depth = -box_proximity(model.cube_half, x).distance;
-      } else {
-        x = c.kind == Contact::kNodeFloor
-                ? s.node_position[std::size_t(c.point)]
-                : s.cube_pose.point(
-                      corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half));
-        depth = par.floor_height - nf.dot(x);
-      }
+      // Only floor contacts are left here (flesh on the floor, cube corners on the floor).
+      const Eigen::Vector3d x =
+          c.kind == Contact::kNodeFloor
+              ? s.node_position[std::size_t(c.point)]
+              : s.cube_pose.point(
+                    corner_signs()[std::size_t(c.point)].cwiseProduct(model.cube_half));
+      const double depth = par.floor_height - nf.dot(x);
       if (depth <= 0) continue;  // left the surface: it felt no friction
       const Eigen::Vector3d offset =
           (Eigen::Matrix3d::Identity() - c.normal * c.normal.transpose()) * (x - c.anchor);
