@@ -20,6 +20,31 @@
 #include "analysis/stats/rm_anova.h"
 
 namespace handlab::power {
+
+double judged_p(const stats::AnovaEffect& e, SphericityCorrection correction, double alpha) {
+  if (e.df_num <= 1 || !std::isfinite(e.mauchly_p)) return e.p;
+  switch (correction) {
+    case SphericityCorrection::kNone:
+      return e.p;
+    case SphericityCorrection::kGreenhouseGeisser:
+      return e.p_gg;
+    case SphericityCorrection::kHuynhFeldt:
+      return e.p_hf;
+    case SphericityCorrection::kAuto:
+      return e.mauchly_p < alpha ? e.p_gg : e.p;
+  }
+  return e.p;
+}
+
+std::string contrast_name(const stats::PairwiseContrast& c) {
+  std::string name = c.effect + ": " + c.contrast;
+  if (!c.by.empty()) {
+    name += " |";
+    for (const auto& [factor, level] : c.by) name += " " + factor + " " + level;
+  }
+  return name;
+}
+
 namespace {
 
 std::uint64_t splitmix(std::uint64_t x) {
@@ -103,30 +128,6 @@ std::vector<int> report_order(const PowerDesign& d) {
   return order;
 }
 
-std::string contrast_name(const std::string& effect, const stats::PairwiseContrast& c) {
-  std::string name = effect + ": " + c.contrast;
-  if (!c.by.empty()) {
-    name += " |";
-    for (const auto& [factor, level] : c.by) name += " " + factor + " " + level;
-  }
-  return name;
-}
-
-double judged_p_impl(const stats::AnovaEffect& e, SphericityCorrection correction, double alpha) {
-  if (e.df_num <= 1 || !std::isfinite(e.mauchly_p)) return e.p;
-  switch (correction) {
-    case SphericityCorrection::kNone:
-      return e.p;
-    case SphericityCorrection::kGreenhouseGeisser:
-      return e.p_gg;
-    case SphericityCorrection::kHuynhFeldt:
-      return e.p_hf;
-    case SphericityCorrection::kAuto:
-      return e.mauchly_p < alpha ? e.p_gg : e.p;
-  }
-  return e.p;
-}
-
 // What one simulated study rejects, in the order of the names.
 struct Outcome {
   std::vector<char> effects, contrasts;
@@ -181,7 +182,7 @@ class Analyser {
           const auto last = names.effects.begin() + std::ptrdiff_t(anova_effects);
           const auto at = std::find(names.effects.begin(), last, e.effect);
           if (at == last) continue;
-          const double p = judged_p_impl(e, options_.correction, options_.alpha);
+          const double p = judged_p(e, options_.correction, options_.alpha);
           if (!std::isfinite(p)) warn("effect " + e.effect + ": no p value");
           out.effects[std::size_t(at - names.effects.begin())] = p < options_.alpha;
         }
@@ -190,7 +191,7 @@ class Analyser {
           spec.r_level_names = false;
           const stats::PosthocResult r = stats::pairwise_comparisons(rm, spec);
           for (const stats::PairwiseContrast& c : r.contrasts) {
-            contrast_seen.push_back(contrast_name(effect, c));
+            contrast_seen.push_back(contrast_name(c));
             out.contrasts.push_back(c.p_tukey < options_.alpha);
           }
         }
@@ -285,10 +286,6 @@ std::optional<int> n_for_target(const PowerReport& report, const PowerEstimate& 
   for (std::size_t k = 0; k < report.n.size(); ++k)
     if (e.power[k] >= target) return report.n[k];
   return std::nullopt;
-}
-
-double judged_p(const stats::AnovaEffect& effect, SphericityCorrection correction, double alpha) {
-  return judged_p_impl(effect, correction, alpha);
 }
 
 PowerReport empty_report(const std::vector<std::string>& effects,
@@ -461,7 +458,7 @@ PowerReport exact_power(const PowerModel& model, const PowerOptions& options) {
     spec.r_level_names = false;
     const stats::PosthocResult r = stats::pairwise_comparisons(rm, spec);
     for (const stats::PairwiseContrast& pc : r.contrasts) {
-      PowerEstimate e = estimate(contrast_name(effect, pc), options.n.size());
+      PowerEstimate e = estimate(contrast_name(pc), options.n.size());
       // Cell weights: +1/m over the first combination's cells, -1/m over the second's.
       Eigen::VectorXd w = Eigen::VectorXd::Zero(design.cells());
       auto matches = [&](int cell, const std::vector<std::pair<std::string, std::string>>& at) {

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "analysis/power/power_model.h"
+#include "analysis/stats/posthoc.h"
 #include "analysis/stats/rm_anova.h"
 #include "core/util/portable_random.h"
 
@@ -67,6 +68,9 @@ SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom
 // progress(done, total) after each N's simulations, from the calling thread.
 PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
                            const std::function<void(int, int)>& progress = {});
+
+// A planned contrast's name: "effect: a - b", with " | factor level" for a by-group.
+std::string contrast_name(const stats::PairwiseContrast& contrast);
 
 // The p an effect is judged by under `correction` (kAuto: the report's rule).
 double judged_p(const stats::AnovaEffect& effect, SphericityCorrection correction, double alpha);

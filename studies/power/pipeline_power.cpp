@@ -17,15 +17,6 @@ struct Outcome {
   std::string warning;
 };
 
-std::string contrast_name(const stats::PairwiseContrast& c) {
-  std::string name = c.effect + ": " + c.contrast;
-  if (!c.by.empty()) {
-    name += " |";
-    for (const auto& [factor, level] : c.by) name += " " + factor + " " + level;
-  }
-  return name;
-}
-
 // What one simulated study's analysis rejects: as `power` judges a model's studies.
 Outcome outcome_of(const StudyDatabaseAnalysis& a, const std::string& planned,
                    const power::PowerOptions& o) {
@@ -38,7 +29,8 @@ Outcome outcome_of(const StudyDatabaseAnalysis& a, const std::string& planned,
       out.effects.emplace_back(e.effect, power::judged_p(e, o.correction, o.alpha) < o.alpha);
     for (const stats::PosthocResult& r : t.posthoc)
       for (const stats::PairwiseContrast& c : r.contrasts)
-        if (c.effect == planned) out.contrasts.emplace_back(contrast_name(c), c.p_tukey < o.alpha);
+        if (c.effect == planned)
+          out.contrasts.emplace_back(power::contrast_name(c), c.p_tukey < o.alpha);
     if (!t.dropped_subjects.empty())
       out.warning = std::to_string(t.dropped_subjects.size()) +
                     " participant(s) left out, lacking a result in some cell";
@@ -49,7 +41,7 @@ Outcome outcome_of(const StudyDatabaseAnalysis& a, const std::string& planned,
     for (const analysis::WilcoxonPair& w : a.questionnaire->wilcoxon)
       out.contrasts.emplace_back(w.dv + ": " + w.contrast + " (Wilcoxon)",
                                  w.p_bonferroni < o.alpha);
-  } else if (out.warning.empty()) {
+  } else if (out.warning.empty() && !a.protocol.items.empty()) {
     out.warning = "questionnaire not analysed: " + a.questionnaire_not_computed;
   }
   return out;
@@ -60,13 +52,12 @@ std::string reversed(const std::string& name) {
   const std::size_t colon = name.rfind(": ");
   const std::size_t dash = name.find(" - ", colon == std::string::npos ? 0 : colon);
   if (colon == std::string::npos || dash == std::string::npos) return name;
-  std::string suffix;
-  std::string right = name.substr(dash + 3);
-  for (const char* tail : {" (Wilcoxon)"})
-    if (right.size() > std::string(tail).size() && right.ends_with(tail)) {
-      suffix = tail;
-      right.resize(right.size() - suffix.size());
-    }
+  const std::string tail = " (Wilcoxon)";
+  std::string right = name.substr(dash + 3), suffix;
+  if (right.ends_with(tail)) {
+    suffix = tail;
+    right.resize(right.size() - tail.size());
+  }
   return name.substr(0, colon + 2) + right + " - " + name.substr(colon + 2, dash - colon - 2) +
          suffix;
 }
