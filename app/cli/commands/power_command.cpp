@@ -132,10 +132,11 @@ int run_power(const std::vector<std::string>& argv) {
   const Arguments args(specs, argv);
   if (args.help_requested()) {
     std::cout
-        << "Usage: handlab-cli power --protocol FILE (--pilot DB | --model FILE) --n 10:40:2 "
-           "--sims 1000 [--alpha 0.05] [--seed S] [--target 0.8] [--exact] [--plot FILE] "
-           "[--json OUT]\n\nFor every N, simulates studies of the protocol's design from the "
-           "model and analyses each as `analyze --db` does (RM-ANOVA with the sphericity "
+        << "Usage: handlab-cli power --protocol FILE (--pilot DB | --model FILE | --pipeline "
+           "[--world soft|proxy]) --n 10:40:2 --sims 1000 [--alpha 0.05] [--seed S] [--target "
+           "0.8] [--exact] [--plot FILE] [--json OUT]\n\nFor every N, simulates studies of the "
+           "protocol's design from the model (or, with --pipeline, runs whole simulated studies) "
+           "and analyses each as `analyze --db` does (RM-ANOVA with the sphericity "
            "correction, Tukey-adjusted pairwise comparisons, Friedman and Bonferroni-adjusted "
            "Wilcoxon tests per questionnaire item): the power of every effect and planned "
            "contrast with its Monte Carlo SE and 95 % interval, and the smallest N reaching "
@@ -210,8 +211,7 @@ int run_power(const std::vector<std::string>& argv) {
       std::fflush(stderr);
     });
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = elapsed();
   if (!quiet && !exact) std::fprintf(stderr, "\n");
 
   if (args.text("json") != "-") {
