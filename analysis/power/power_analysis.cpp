@@ -47,43 +47,6 @@ std::string contrast_name(const stats::PairwiseContrast& c) {
 
 namespace {
 
-std::uint64_t splitmix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-// Standard normal draws by Box-Muller from the portable uniform stream.
-class Normals {
- public:
-  explicit Normals(util::PortableRandom& random) : random_(random) {}
-  double next() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    double u = 0.0;
-    while (u <= 0.0) u = random_.uniform();
-    const double radius = std::sqrt(-2.0 * std::log(u));
-    const double angle = 2.0 * std::numbers::pi * random_.uniform();
-    spare_ = radius * std::sin(angle);
-    has_spare_ = true;
-    return radius * std::cos(angle);
-  }
-
- private:
-  util::PortableRandom& random_;
-  bool has_spare_ = false;
-  double spare_ = 0.0;
-};
-
-Eigen::MatrixXd exchangeable(int n, double r) {
-  Eigen::MatrixXd m = Eigen::MatrixXd::Constant(n, n, r);
-  m.diagonal().setOnes();
-  return m;
-}
-
 // The covariance of a participant's cells with the covariates' spread included.
 Eigen::MatrixXd total_covariance(const PowerModel& m) {
   Eigen::MatrixXd s = m.covariance();
@@ -313,7 +276,6 @@ void set_counts(PowerReport& report, std::size_t k, const std::vector<long>& eff
 }
 
 SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom& random) {
-  Normals normal(random);
   const int cells = model.design.cells(), q = model.design.conditions();
   const Eigen::MatrixXd l = model.covariance().llt().matrixL();
   SimulatedData d;
@@ -321,16 +283,17 @@ SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom
   d.covariates.resize(n, Eigen::Index(model.covariates.size()));
   std::vector<Eigen::MatrixXd> item_l;
   for (const PowerItem& item : model.items) {
-    item_l.push_back(Eigen::MatrixXd(exchangeable(q, item.correlation).llt().matrixL()));
+    item_l.push_back(
+        Eigen::MatrixXd(exchangeable_correlation(q, item.correlation).llt().matrixL()));
     d.items.emplace_back(n, q);
   }
   Eigen::VectorXd z(cells), zq(q);
   for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < cells; ++c) z[c] = normal.next();
+    for (int c = 0; c < cells; ++c) z[c] = random.normal();
     Eigen::VectorXd y = model.mean + l * z;
     for (std::size_t k = 0; k < model.covariates.size(); ++k) {
       const PowerCovariate& cov = model.covariates[k];
-      const double x = cov.mean + cov.sd * normal.next();
+      const double x = cov.mean + cov.sd * random.normal();
       d.covariates(i, Eigen::Index(k)) = x;
       y += (x - cov.mean) * cov.slope;
     }
@@ -339,7 +302,7 @@ SimulatedData simulate_data(const PowerModel& model, int n, util::PortableRandom
     d.cells.row(i) = y.transpose();
     for (std::size_t k = 0; k < model.items.size(); ++k) {
       const PowerItem& item = model.items[k];
-      for (int c = 0; c < q; ++c) zq[c] = normal.next();
+      for (int c = 0; c < q; ++c) zq[c] = random.normal();
       const Eigen::VectorXd latent = item.mean + item.sd * (item_l[k] * zq);
       for (int c = 0; c < q; ++c)
         d.items[k](i, c) = std::clamp(std::round(latent[c]), 1.0, double(item.scale_points));
@@ -358,7 +321,7 @@ PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
   {
     PowerModel whole = model;
     whole.missing = 0;
-    util::PortableRandom random(splitmix(options.seed));
+    util::PortableRandom random(util::splitmix64(options.seed));
     analyser.analyse(simulate_data(whole, std::max(options.n.front(), 3), random), names);
   }
   PowerReport report =
@@ -381,8 +344,9 @@ PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
       Names fixed = names;
       // Simulation s draws from its own stream: the same data whatever thread runs it.
       for (int s = t; s < options.sims; s += threads) {
-        util::PortableRandom random(splitmix(
-            options.seed ^ splitmix(std::uint64_t(n) * 0x100000001B3ull + std::uint64_t(s))));
+        util::PortableRandom random(util::splitmix64(
+            options.seed ^
+            util::splitmix64(std::uint64_t(n) * 0x100000001B3ull + std::uint64_t(s))));
         const Outcome o = analyser.analyse(simulate_data(model, n, random), fixed);
         for (std::size_t e = 0; e < tally.effects.size(); ++e) tally.effects[e] += o.effects.at(e);
         for (std::size_t c = 0; c < tally.contrasts.size(); ++c)

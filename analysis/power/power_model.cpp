@@ -74,18 +74,18 @@ double number(const JsonValue& o, const char* key, double fallback, const std::s
   return v->as_number();
 }
 
-Eigen::MatrixXd exchangeable(int n, double r) {
-  Eigen::MatrixXd m = Eigen::MatrixXd::Constant(n, n, r);
-  m.diagonal().setOnes();
-  return m;
-}
-
 bool positive_definite(const Eigen::MatrixXd& m) {
   Eigen::LLT<Eigen::MatrixXd> llt(m);
   return llt.info() == Eigen::Success;
 }
 
 }  // namespace
+
+Eigen::MatrixXd exchangeable_correlation(int n, double r) {
+  Eigen::MatrixXd m = Eigen::MatrixXd::Constant(n, n, r);
+  m.diagonal().setOnes();
+  return m;
+}
 
 std::vector<stats::Factor> PowerDesign::within() const {
   std::vector<stats::Factor> w = factors;
@@ -160,7 +160,7 @@ PowerModel parse_power_model(const std::string& text, const PowerDesign& design,
     const double r = corr ? corr->as_number() : 0.0;
     if (!(r > -1.0 / (cells - 1) && r < 1.0))
       fail(source, "'correlation' must lie between -1/(cells - 1) and 1 (exclusive)");
-    m.correlation = exchangeable(cells, r);
+    m.correlation = exchangeable_correlation(cells, r);
   } else {
     if (!corr->is_array() || int(corr->size()) != cells)
       fail(source, "'correlation' must be a number or a " + std::to_string(cells) + " x " +
@@ -250,7 +250,7 @@ PowerModel estimate_power_model(const PowerDesign& design, const Eigen::MatrixXd
   } else {
     const double r = (full.sum() - full.trace()) / double(k * (k - 1));
     const double floor = -1.0 / (k - 1) + 1e-6;
-    m.correlation = exchangeable(k, std::clamp(r, floor, 0.999));
+    m.correlation = exchangeable_correlation(k, std::clamp(r, floor, 0.999));
     m.notes.push_back(
         "correlation: one value, the mean of the pilot's " + std::to_string(k * (k - 1) / 2) +
         " cell correlations (r = " + std::to_string(r) +

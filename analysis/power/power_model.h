@@ -60,6 +60,9 @@ struct PowerModel {
   Eigen::MatrixXd covariance() const;  // of a participant's cells
 };
 
+// One correlation r between every two of n cells (ones on the diagonal).
+Eigen::MatrixXd exchangeable_correlation(int n, double r);
+
 // Reads a model file (format "handlab-power-model", docs/power.md) for `design`, validating
 // every condition label, length and value; throws std::runtime_error naming what is wrong.
 PowerModel read_power_model(const std::string& path, const PowerDesign& design);

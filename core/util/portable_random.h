@@ -17,6 +17,8 @@ class PortableRandom {
   std::uint64_t below(std::uint64_t n);
   // Uniform in [0, 1) with 53 random bits.
   double uniform();
+  // Standard normal, by Box-Muller from two uniforms (one draw per call, no spare kept).
+  double normal();
   // Fisher-Yates shuffle.
   template <typename T>
   void shuffle(std::vector<T>& items) {
@@ -26,6 +28,9 @@ class PortableRandom {
  private:
   std::mt19937_64 engine_;
 };
+
+// SplitMix64's finaliser: a well-mixed 64-bit value from a seed and a counter combined.
+std::uint64_t splitmix64(std::uint64_t x);
 
 // FNV-1a 64-bit hash of text, to derive per-participant seeds from their ids.
 std::uint64_t fnv1a64(std::string_view text);

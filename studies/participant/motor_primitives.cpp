@@ -17,10 +17,7 @@ double fitts_time(double a, double b, double distance, double width) {
 }
 
 double MotorRandom::normal() {
-  // Box-Muller from two 53-bit uniforms: the same numbers on every platform.
-  const double u1 = 1.0 - random_.uniform();  // (0, 1]
-  const double u2 = random_.uniform();
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+  return random_.normal();
 }
 
 double MotorRandom::truncated_normal(double mean, double sd, double low, double high) {

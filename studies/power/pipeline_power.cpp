@@ -62,13 +62,6 @@ std::string reversed(const std::string& name) {
          suffix;
 }
 
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 void remove_study(const std::filesystem::path& db) {
   for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
     std::error_code ignored;
@@ -100,11 +93,12 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
     for (int s = 0; s < o.sims; ++s) {
       const std::filesystem::path db =
           dir / ("handlab-power-" + std::to_string(o.n[k]) + "-" + std::to_string(s) + "-" +
-                 std::to_string(mix(o.seed) % 100000) + ".db");
+                 std::to_string(util::splitmix64(o.seed) % 100000) + ".db");
       remove_study(db);
       SimulationOptions so;
       so.participants = o.n[k];
-      so.seed = mix(o.seed ^ mix(std::uint64_t(o.n[k]) * 1000003ull + std::uint64_t(s)));
+      so.seed = util::splitmix64(
+          o.seed ^ util::splitmix64(std::uint64_t(o.n[k]) * 1000003ull + std::uint64_t(s)));
       so.jobs = std::max(1, o.threads);
       so.world = options.world;
       try {
