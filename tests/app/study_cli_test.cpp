@@ -266,6 +266,26 @@ pid_t spawn_session(const std::string& db, const std::string& id) {
   return pid;
 }
 
+std::int64_t last_trial_id(const std::string& path) {
+  Database db(path, Database::Mode::kReadOnly);
+  return std::stoll(*db.query_text("SELECT coalesce(max(id), 0) FROM trial"));
+}
+
+// Waits until the session `pid` has started a trial (a running trial newer than `after`);
+// false when the process ended first, its exit status in `status`.
+bool wait_for_running_trial(const std::string& path, std::int64_t after, pid_t pid, int& status) {
+  for (;;) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;
+    {
+      Database db(path, Database::Mode::kReadOnly);
+      const auto running = db.query_text("SELECT count(*) FROM trial WHERE status = 'running' "
+                                         "AND id > " + std::to_string(after));
+      if (running && *running != "0") return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
 TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
   const std::string db = handlab::test::fresh_path("crash.db");
   const std::string reference = handlab::test::fresh_path("crash_reference.db");
@@ -278,16 +298,30 @@ TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
 
   std::mt19937 rng(20211004);
   std::uniform_int_distribution<int> delay_ms(15, 400);
+  std::uniform_int_distribution<int> in_trial_delay_ms(0, 20);
   int kills = 0;
+  int attempts = 0;
   std::size_t participant = 0;
   std::map<std::int64_t, Result_> kept;  // every result seen so far, must never change
   while (participant < ids.size()) {
     const std::string& id = ids[participant];
+    const std::int64_t last_trial = last_trial_id(db);
     const pid_t pid = spawn_session(db, id);
-    if (kills < 20) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
-    if (kills < 20) ::kill(pid, SIGKILL);  // unless it has finished already
     int status = 0;
-    waitpid(pid, &status, 0);
+    bool exited = false;
+    if (kills < 20) {
+      // Even attempts kill at a moment measured from the start (start-up, between trials or
+      // inside one); odd ones wait until this process has a trial running and kill inside it,
+      // so that trials are cut however slow the machine is.
+      if (attempts++ % 2 == 0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+      else {
+        exited = !wait_for_running_trial(db, last_trial, pid, status);
+        if (!exited) std::this_thread::sleep_for(std::chrono::milliseconds(in_trial_delay_ms(rng)));
+      }
+      if (!exited) ::kill(pid, SIGKILL);  // unless it has finished already
+    }
+    if (!exited) waitpid(pid, &status, 0);
     const bool killed = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
     kills += killed;
     if (!killed) {
