@@ -55,7 +55,7 @@ HandSimModel make_soft_body_sim_model(const mesh::TetMesh& mesh, const SimParame
     const std::array<Eigen::Vector3d, 4> x = {
         m.rest[std::size_t(ids[0])], m.rest[std::size_t(ids[1])], m.rest[std::size_t(ids[2])],
         m.rest[std::size_t(ids[3])]};
-    m.tets.push_back(make_tet_element(x, ids, p.flesh));
+    m.tets.push_back(make_tet_element(x, ids));
     for (int id : ids) m.node_mass[std::size_t(id)] += p.flesh_density * m.tets.back().volume / 4;
   }
   m.surface_nodes = boundary_nodes(mesh.tets, int(m.rest.size()));

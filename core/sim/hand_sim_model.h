@@ -13,8 +13,8 @@
 #include "core/hand/flesh.h"
 #include "core/hand/skeleton.h"
 #include "core/mesh/tet_mesh.h"
-#include "core/sim/corotated_tet.h"
 #include "core/sim/rigid_body.h"
+#include "core/sim/tet_element.h"
 
 namespace handlab::sim {
 

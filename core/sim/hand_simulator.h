@@ -2,7 +2,9 @@
 // stiffening, joints, coupling, tracking, contact and friction, gravity) summed with the
 // kinetic term into E(q) = 1/(2h^2) |q - q_pred|^2_M + U(q), minimised by Newton (one
 // iteration by default, as Verschoor et al. do). Contacts are found at the predicted state;
-// after the step each friction anchor sticks, or slides to the edge of Coulomb's cone.
+// after the step each friction anchor sticks, or slides to the edge of Coulomb's cone. The
+// stages are in their own files; hand_simulator.cpp lists them, docs/simulator.md explains
+// them.
 #pragma once
 
 #include <memory>
@@ -35,9 +37,6 @@ struct SimOptions {
   // is left of the residual would still move an unknown by more than this many times
   // linear_tolerance (0: never).
   double halfway_gap = 1e3;
-  // Tests: compare every matrix-free product of CG with the assembled matrix's (slow; a
-  // mismatch throws std::logic_error).
-  bool check_products = false;
   // Threads the per-tet work is split over. Results depend on it (the order forces are
   // summed in) but on nothing else: the same inputs and thread count give the same states.
   int threads = 2;
@@ -67,7 +66,13 @@ class HandSimulator {
 
   // Advances `state` by one time step towards the bones' targets (one per bone, centres of
   // mass: see bone_targets). A target that is not finite, or of another hand, is rejected
-  // with std::invalid_argument and the state is left as it was.
+  // with std::invalid_argument, and on any exception the state is left as it was.
+  // Besides the model, the state and the targets, the step reads the solver's memory that the
+  // simulator keeps from its earlier steps (SolverMemory in linear_solve.h: the factorisation
+  // of an earlier Newton matrix that preconditions CG, its age and the policy's counters).
+  // CG stops within a tolerance, so the results depend on that memory within the tolerance,
+  // and bit for bit on the steps taken before: the same simulator options, the same sequence
+  // of states and targets from construction, give the same states.
   SimStepReport step(HandSimState& state, const std::vector<RigidPose>& targets);
 
   const HandSimModel& model() const;

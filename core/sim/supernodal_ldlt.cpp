@@ -7,7 +7,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "core/sim/lanes.h"
+#include "core/sim/thread_pool.h"
 
 namespace handlab::sim {
 
@@ -274,34 +274,34 @@ void SupernodalLdlt::plan_split() {
   top_updates_ = Eigen::VectorXd::Zero(top_values);
 }
 
-bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, Lanes* lanes) {
+bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, ThreadPool* pool) {
   if (int(a.nonZeros()) != matrix_entries_ || !a.isCompressed())
     throw std::invalid_argument("SupernodalLdlt: factorize a matrix of the analysed pattern");
   clear_values();
   const double* av = a.valuePtr();
   for (std::size_t v = 0; v < scatter_.size(); ++v)
     if (scatter_[v] >= 0) values_[std::size_t(scatter_[v])] += av[v];
-  return factorize_values(lanes);
+  return factorize_values(pool);
 }
 
-bool SupernodalLdlt::factorize_values(Lanes* lanes) {
+bool SupernodalLdlt::factorize_values(ThreadPool* pool) {
   diagonal_.resize(inverse_diagonal_.size());
   const int count = int(nodes_.size());
   int first = 0;
-  if (lanes && lanes->count() >= 2 && top_first_ < count) {
+  if (pool && pool->workers() >= 2 && top_first_ < count) {
     bool definite[2] = {true, true};
-    // Lane 0 updates the top's panels in place, lane 1 into its own copy, added afterwards.
-    lanes->run([&](int lane) {
-      if (lane > 1) return;
+    // Worker 0 updates the top's panels in place, worker 1 into its own copy, added afterwards.
+    pool->run([&](int worker) {
+      if (worker > 1) return;
       double* top = nullptr;
-      if (lane == 1) {
+      if (worker == 1) {
         top_updates_.setZero();
         top = top_updates_.data();
       }
-      Eigen::MatrixXd& scratch = lane == 0 ? rank_update_ : rank_update_second_;
-      for (int t = 0; t < top_first_ && definite[lane]; ++t)
-        if (group_[std::size_t(t)] == lane)
-          definite[lane] = factorize_node(std::size_t(t), scratch, top);
+      Eigen::MatrixXd& scratch = worker == 0 ? rank_update_ : rank_update_second_;
+      for (int t = 0; t < top_first_ && definite[worker]; ++t)
+        if (group_[std::size_t(t)] == worker)
+          definite[worker] = factorize_node(std::size_t(t), scratch, top);
     });
     if (!definite[0] || !definite[1]) return false;
     const std::size_t top_begin = std::size_t(nodes_[std::size_t(top_first_)].value_begin);
@@ -454,13 +454,13 @@ void SupernodalLdlt::backward(int t, Eigen::VectorXd& gathered) {
   panel.topRows(s.width).triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
 }
 
-void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, Lanes* lanes) {
+void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, ThreadPool* pool) {
   if (p_.size() > 0)
     work_ = p_ * b;
   else
     work_ = b;
   const int count = int(nodes_.size());
-  const bool split = lanes && lanes->count() >= 2 && top_first_ < count;
+  const bool split = pool && pool->workers() >= 2 && top_first_ < count;
   // L y = b, panel by panel: the diagonal block's triangle, then its rows below at once. Split,
   // the two groups of subtrees at once (the second's updates to the top's rows through a copy,
   // added afterwards), then the top.
@@ -468,12 +468,12 @@ void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, Lanes* lanes) {
   if (split) {
     const int top_column = nodes_[std::size_t(top_first_)].first;
     top_work_.setZero(work_.size() - top_column);
-    lanes->run([&](int lane) {
-      if (lane > 1) return;
-      Eigen::VectorXd& gathered = lane == 0 ? gathered_ : gathered_second_;
+    pool->run([&](int worker) {
+      if (worker > 1) return;
+      Eigen::VectorXd& gathered = worker == 0 ? gathered_ : gathered_second_;
       for (int t = 0; t < top_first_; ++t)
-        if (group_[std::size_t(t)] == lane)
-          forward(t, gathered, lane == 1 ? top_work_.data() : nullptr);
+        if (group_[std::size_t(t)] == worker)
+          forward(t, gathered, worker == 1 ? top_work_.data() : nullptr);
     });
     work_.tail(top_work_.size()) += top_work_;
     first = top_first_;
@@ -484,11 +484,11 @@ void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, Lanes* lanes) {
   // columns and its ancestors').
   for (int t = count - 1; t >= (split ? top_first_ : 0); --t) backward(t, gathered_);
   if (split)
-    lanes->run([&](int lane) {
-      if (lane > 1) return;
-      Eigen::VectorXd& gathered = lane == 0 ? gathered_ : gathered_second_;
+    pool->run([&](int worker) {
+      if (worker > 1) return;
+      Eigen::VectorXd& gathered = worker == 0 ? gathered_ : gathered_second_;
       for (int t = top_first_ - 1; t >= 0; --t)
-        if (group_[std::size_t(t)] == lane) backward(t, gathered);
+        if (group_[std::size_t(t)] == worker) backward(t, gathered);
     });
   if (p_inverse_.size() > 0)
     b = p_inverse_ * work_;

@@ -17,7 +17,7 @@
 
 namespace handlab::sim {
 
-class Lanes;
+class ThreadPool;
 
 class SupernodalLdlt {
  public:
@@ -29,10 +29,10 @@ class SupernodalLdlt {
   // stored entries goes, so that factorize() can take any matrix with a's pattern.
   void analyze(const Factor& factor, const Eigen::SparseMatrix<double>& a);
   // Factorises `a` (the analysed pattern) into the panels; false if it is not positive definite.
-  // With `lanes` of two or more, the elimination tree's two largest groups of subtrees are
-  // factorised on lanes 0 and 1 at once, then the supernodes above them; the result depends
-  // on whether lanes are given, never on timing.
-  bool factorize(const Eigen::SparseMatrix<double>& a, Lanes* lanes = nullptr);
+  // With a `pool` of two workers or more, the elimination tree's two largest groups of subtrees are
+  // factorised on workers 0 and 1 at once, then the supernodes above them; the result depends
+  // on whether a pool is given, never on timing.
+  bool factorize(const Eigen::SparseMatrix<double>& a, ThreadPool* pool = nullptr);
 
   // Assembling in place, without the sparse matrix: clear_values(), then add each entry of the
   // matrix's lower triangle after the ordering at position(row, col) of values() (row and col
@@ -46,7 +46,7 @@ class SupernodalLdlt {
   int panel_start(int value) const;
   int position(int row, int col) const;
   int column_stride(int col) const;
-  bool factorize_values(Lanes* lanes = nullptr);
+  bool factorize_values(ThreadPool* pool = nullptr);
   // Whether the ordering puts `row` after `col` (A(row, col) is stored as itself, not as its
   // transpose).
   bool ordered_after(int row, int col) const { return permuted(row) >= permuted(col); }
@@ -61,18 +61,18 @@ class SupernodalLdlt {
   // Whether modify_trailing takes these unknowns (the ordering put them last, in one panel).
   bool trailing(const std::vector<int>& dofs) const;
 
-  // b <- A^-1 b for the factorised A. With `lanes` of two or more, the groups of subtrees
-  // that factorize() splits are solved at once (the result depends on whether lanes are
+  // b <- A^-1 b for the factorised A. With a `pool` of two workers or more, the groups of subtrees
+  // that factorize() splits are solved at once (the result depends on whether a pool is
   // given, never on timing).
   // Not const: the solve works in the object's own buffers (one solve at a time).
-  void solve_in_place(Eigen::VectorXd& b, Lanes* lanes = nullptr);
-  Eigen::VectorXd solve(const Eigen::VectorXd& b, Lanes* lanes = nullptr) {
+  void solve_in_place(Eigen::VectorXd& b, ThreadPool* pool = nullptr);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, ThreadPool* pool = nullptr) {
     Eigen::VectorXd x = b;
-    solve_in_place(x, lanes);
+    solve_in_place(x, pool);
     return x;
   }
   int supernodes() const { return int(nodes_.size()); }
-  // Whether factorize() with lanes splits the work (analyze found subtrees to deal out).
+  // Whether factorize() with a pool splits the work (analyze found subtrees to deal out).
   bool splits() const { return top_first_ < int(nodes_.size()); }
 
  private:
@@ -89,7 +89,7 @@ class SupernodalLdlt {
   // is not positive definite.
   bool factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top);
   // Supernode t's part of the forward and the backward solve on work_ (`gathered` a scratch
-  // of the lane's; updates to rows of the top's columns into `top` when given).
+  // of the worker's; updates to rows of the top's columns into `top` when given).
   void forward(int t, Eigen::VectorXd& gathered, double* top);
   void backward(int t, Eigen::VectorXd& gathered);
   int permuted(int i) const { return p_.size() > 0 ? p_.indices()[i] : i; }
@@ -120,7 +120,7 @@ class SupernodalLdlt {
   std::vector<int> column_node_;
   int matrix_entries_ = -1;
   Eigen::MatrixXd rank_update_;
-  // The split over two lanes: supernodes before top_first_ belong to whole subtrees, each in
+  // The split over two workers: supernodes before top_first_ belong to whole subtrees, each in
   // group 0 or 1 (group_); group 1's updates to supernodes from top_first_ on go into a copy
   // of their values (top_updates_), added to them before they are factorised.
   std::vector<int> group_;

@@ -5,9 +5,9 @@
 
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
-#include "core/sim/elastic_body.h"
-#include "core/sim/lanes.h"
 #include "core/sim/supernodal_ldlt.h"
+#include "core/sim/thread_pool.h"
+#include "tests/core/sim/reference/elastic_body.h"
 #include "tests/support/hand_like_matrix.h"
 
 namespace {
@@ -58,13 +58,17 @@ void BM_SupernodalFactorize(benchmark::State& state) {
   const Eigen::SparseMatrix<double>& a = hand_like_system();
   sim::SupernodalLdlt panels;
   analyse(panels);
-  sim::Lanes lanes(int(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(panels.factorize(a, &lanes));
+  sim::ThreadPool pool(int(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(panels.factorize(a, &pool));
   state.counters["supernodes"] = panels.supernodes();
   state.counters["values"] = panels.value_count();
   state.counters["dofs"] = double(a.cols());
 }
-BENCHMARK(BM_SupernodalFactorize)->Arg(1)->Arg(2)->ArgName("lanes")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SupernodalFactorize)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("workers")
+    ->Unit(benchmark::kMillisecond);
 
 void BM_SupernodalSolve(benchmark::State& state) {
   using namespace handlab;

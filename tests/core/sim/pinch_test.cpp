@@ -184,34 +184,5 @@ TEST(PinchRefreshSteps, RenewADriftedPreconditioner) {
   EXPECT_LE(longest_drift(8), 8);
 }
 
-// Conjugate gradients multiply by the Newton matrix term by term, never assembling it; through
-// the approach, the closing (contacts appear, stick and slip) and the start of the lift, every
-// such product and the diagonal the preconditioner's test uses equal the assembled matrix's.
-// A step's later passes after a factorisation solve with the factor alone, taken to be the
-// matrix's (the cube's corners changed between stick and slip): there the direct solve leaves
-// no more residual than CG's tolerance.
-TEST(PinchNewtonMatrix, ProductsTermByTermEqualTheAssembledMatrix) {
-  const PinchScene scene = make_pinch_scene(SimParameters{}.cube_size);
-  const HandSimModel& model = scene.model;
-  const hand::Skeleton& skeleton = scene.skeleton;
-  const PinchScript& script = scene.script;
-  SimOptions options;
-  options.check_products = true;
-  options.direct_steps = 0;  // CG at every step's first solve: more products to compare
-  options.halfway_gap = 0;   // and all its iterations
-  PinchReport r;
-  EXPECT_NO_THROW(r = run_pinch(model, skeleton, script, options, script.lift_start + 0.1));
-  int products = 0, touching = 0;  // a direct solve counts one linear iteration, no product
-  int later_direct = 0;            // direct solves without a factorisation
-  for (std::size_t i = 0; i < r.linear_iterations.size(); ++i) {
-    products += r.linear_iterations[i] - r.direct_solves[i];
-    later_direct += r.direct_solves[i] - r.factorizations[i];
-    if (r.contacts[i] > 0) ++touching;
-  }
-  EXPECT_GT(products, 700) << "products compared";
-  EXPECT_GT(later_direct, 20) << "later passes solved with the factor alone";
-  EXPECT_GT(touching, 100) << "steps with contacts";
-}
-
 }  // namespace
 }  // namespace handlab::sim

@@ -1,4 +1,4 @@
-#include "core/sim/elastic_body.h"
+#include "tests/core/sim/reference/elastic_body.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +31,8 @@ ElasticBodyModel make_elastic_body(const mesh::TetMesh& mesh, const Material& ma
     const std::array<Eigen::Vector3d, 4> rest = {
         mesh.nodes[std::size_t(ids[0])], mesh.nodes[std::size_t(ids[1])],
         mesh.nodes[std::size_t(ids[2])], mesh.nodes[std::size_t(ids[3])]};
-    model.tets.push_back(make_tet_element(rest, ids, material));
+    model.tets.push_back(make_tet_element(rest, ids));
+    model.stiffness.push_back(corotated_stiffness(model.tets.back(), material));
     for (int id : ids) model.mass[std::size_t(id)] += density * model.tets.back().volume / 4.0;
   }
   return model;
@@ -113,7 +114,7 @@ struct ElasticBodySolver::Impl {
     double* values = matrix.valuePtr();
     for (std::size_t e = 0; e < model.tets.size(); ++e) {
       const TetElement& t = model.tets[e];
-      evaluate_corotated(t, gather(model.rest, t), gather(state.position, t),
+      evaluate_corotated(model.stiffness[e], gather(model.rest, t), gather(state.position, t),
                          state.rotation[e].toRotationMatrix(), element, with_hessian);
       energy += element.energy;
       for (int a = 0; a < 4; ++a)

@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sim/lanes.h"
 #include "core/sim/supernodal_ldlt.h"
+#include "core/sim/thread_pool.h"
 #include "tests/support/hand_like_matrix.h"
 
 namespace handlab::sim {
@@ -30,7 +30,7 @@ SupernodalLdlt analysed(const Sparse& a) {
   return panels;
 }
 
-TEST(SupernodalLdlt, SolvesAsTheFactorisationItRearranges) {
+TEST(SupernodalLdlt, SolvesAsTheFactorizationItRearranges) {
   const Sparse a = hand_like_matrix(study_flesh(), 16, 1);
   SupernodalLdlt::Factor ldlt(a);
   ASSERT_EQ(ldlt.info(), Eigen::Success);
@@ -73,7 +73,7 @@ TEST(SupernodalLdlt, FollowsNewValuesAndNewPatterns) {
 }
 
 // Analysed once on Eigen's factorisation, it factorises other matrices of that pattern itself.
-TEST(SupernodalLdlt, FactorisesMatricesOfTheAnalysedPattern) {
+TEST(SupernodalLdlt, FactorizesMatricesOfTheAnalysedPattern) {
   const Sparse first = hand_like_matrix(study_flesh(), 16, 7);
   SupernodalLdlt::Factor ldlt(first);
   ASSERT_EQ(ldlt.info(), Eigen::Success);
@@ -100,39 +100,39 @@ TEST(SupernodalLdlt, FactorisesMatricesOfTheAnalysedPattern) {
   EXPECT_FALSE(panels.factorize(indefinite));
 }
 
-// Split over two lanes (the elimination tree's subtrees at once, then the supernodes above
+// Split over two workers (the elimination tree's subtrees at once, then the supernodes above
 // them), the factorisation solves as the serial one does, and gives the same factor bit for
 // bit from call to call; so does the solve split alike; an indefinite matrix is refused on
 // either lane.
-TEST(SupernodalLdlt, FactorisesOnTwoLanesAsOnOne) {
+TEST(SupernodalLdlt, FactorizesOnTwoWorkersAsOnOne) {
   const Sparse a = hand_like_matrix(study_flesh(), 16, 11);
   SupernodalLdlt serial = analysed(a), split = analysed(a);
   ASSERT_TRUE(split.splits()) << "the hand's elimination tree has subtrees to deal out";
-  Lanes lanes(2);
+  ThreadPool pool(2);
   ASSERT_TRUE(serial.factorize(a));
-  ASSERT_TRUE(split.factorize(a, &lanes));
+  ASSERT_TRUE(split.factorize(a, &pool));
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(a.cols(), -1.0, 2.0);
   const Eigen::VectorXd x = split.solve(b), reference = serial.solve(b);
   EXPECT_LT((x - reference).norm(), 1e-10 * reference.norm());
   EXPECT_LT((a * x - b).norm(), 1e-9 * b.norm());
   for (int again = 0; again < 3; ++again) {
-    ASSERT_TRUE(split.factorize(a, &lanes));
+    ASSERT_TRUE(split.factorize(a, &pool));
     ASSERT_EQ(split.solve(b), x) << "call " << again;
   }
-  // The solve on two lanes too: the same answer to rounding, the same bits from call to call.
-  const Eigen::VectorXd on_lanes = split.solve(b, &lanes);
-  EXPECT_LT((on_lanes - x).norm(), 1e-12 * x.norm());
-  EXPECT_LT((a * on_lanes - b).norm(), 1e-9 * b.norm());
-  for (int again = 0; again < 3; ++again) ASSERT_EQ(split.solve(b, &lanes), on_lanes) << again;
+  // The solve on two workers too: the same answer to rounding, the same bits from call to call.
+  const Eigen::VectorXd on_pool = split.solve(b, &pool);
+  EXPECT_LT((on_pool - x).norm(), 1e-12 * x.norm());
+  EXPECT_LT((a * on_pool - b).norm(), 1e-9 * b.norm());
+  for (int again = 0; again < 3; ++again) ASSERT_EQ(split.solve(b, &pool), on_pool) << again;
   const Sparse indefinite = -a;
-  EXPECT_FALSE(split.factorize(indefinite, &lanes));
+  EXPECT_FALSE(split.factorize(indefinite, &pool));
 }
 
 // The simulator writes its matrix into the panels itself: each entry of the lower triangle
 // (after the ordering) at position(row, col), then factorize_values(). That gives the factor
 // factorize() finds from the sparse matrix, bit for bit, and a node pair's 3x3 block lies in
 // one panel, its entry (r, c) at position + r + stride c.
-TEST(SupernodalLdlt, FactorisesWhatIsWrittenIntoItsPanels) {
+TEST(SupernodalLdlt, FactorizesWhatIsWrittenIntoItsPanels) {
   const Sparse first = hand_like_matrix(study_flesh(), 16, 5);
   SupernodalLdlt from_matrix = analysed(first), in_place = analysed(first);
   Sparse a = first;

@@ -1,5 +1,7 @@
-// A deformable body of linear co-rotational tetrahedra, as an immutable model and a state that
-// a backward-Euler step advances (the flesh part of the soft-hand simulator). Energies:
+// For tests: a deformable body of textbook linear co-rotational tetrahedra (corotated_element.h)
+// with an assembled Newton matrix and Eigen's LDLT, as an immutable model and a state that a
+// backward-Euler step advances: the reference the soft-hand simulator's flesh was built from,
+// checked against the patch test and beam theory. Energies:
 // elasticity, gravity, zero-length springs pulling nodes towards anchor points (the coupling
 // and tracking springs' form), and nodes held fixed.
 #pragma once
@@ -11,7 +13,8 @@
 #include <Eigen/Geometry>
 
 #include "core/mesh/tet_mesh.h"
-#include "core/sim/corotated_tet.h"
+#include "core/sim/tet_element.h"
+#include "tests/core/sim/reference/corotated_element.h"
 
 namespace handlab::sim {
 
@@ -23,6 +26,7 @@ struct AnchorSpring {
 struct ElasticBodyModel {
   std::vector<Eigen::Vector3d> rest;  // node positions at rest (m)
   std::vector<TetElement> tets;
+  std::vector<Matrix12d> stiffness;   // per tet
   std::vector<double> mass;           // lumped, per node (kg)
   std::vector<bool> fixed;            // nodes held where the state puts them
   std::vector<AnchorSpring> springs;  // towards the anchors given to each step

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "core/mesh/tetrahedralize.h"
-#include "core/sim/elastic_body.h"
 #include "core/sim/rotation_extraction.h"
+#include "tests/core/sim/reference/elastic_body.h"
 
 namespace handlab::sim {
 namespace {

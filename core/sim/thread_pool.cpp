@@ -1,4 +1,4 @@
-#include "core/sim/lanes.h"
+#include "core/sim/thread_pool.h"
 
 #include <stdexcept>
 
@@ -7,12 +7,13 @@ namespace {
 constexpr int kSpins = 20000;  // some tens of microseconds of polling before a thread sleeps
 }
 
-Lanes::Lanes(int count) : count_(count) {
-  if (count < 1) throw std::invalid_argument("Lanes: at least one lane");
-  for (int lane = 1; lane < count; ++lane) threads_.emplace_back([this, lane] { serve(lane); });
+ThreadPool::ThreadPool(int workers) : workers_(workers) {
+  if (workers < 1) throw std::invalid_argument("ThreadPool: at least one worker");
+  for (int worker = 1; worker < workers; ++worker)
+    threads_.emplace_back([this, worker] { serve(worker); });
 }
 
-Lanes::~Lanes() {
+ThreadPool::~ThreadPool() {
   {
     const std::lock_guard lock(mutex_);
     stopping_ = true;
@@ -21,15 +22,15 @@ Lanes::~Lanes() {
   for (std::thread& t : threads_) t.join();
 }
 
-void Lanes::run(const std::function<void(int lane)>& work) {
-  if (count_ == 1) {
+void ThreadPool::run(const std::function<void(int worker)>& work) {
+  if (workers_ == 1) {
     work(0);
     return;
   }
   {
     const std::lock_guard lock(mutex_);
     work_ = &work;
-    running_.store(count_ - 1, std::memory_order_relaxed);
+    running_.store(workers_ - 1, std::memory_order_relaxed);
     generation_.fetch_add(1, std::memory_order_release);
   }
   start_.notify_all();
@@ -38,7 +39,7 @@ void Lanes::run(const std::function<void(int lane)>& work) {
     if (spin > kSpins) std::this_thread::yield();
 }
 
-void Lanes::serve(int lane) {
+void ThreadPool::serve(int worker) {
   long seen = 0;
   for (;;) {
     int spin = 0;
@@ -56,7 +57,7 @@ void Lanes::serve(int lane) {
       seen = generation_.load();
       work = work_;
     }
-    (*work)(lane);
+    (*work)(worker);
     running_.fetch_sub(1, std::memory_order_release);
   }
 }

@@ -1,0 +1,129 @@
+#include <algorithm>
+#include <array>
+
+#include "core/sim/contact.h"
+
+namespace handlab::sim {
+namespace {
+
+// Points this close to a surface (m), beyond what they can move in a step, are candidates.
+constexpr double kContactMargin = 0.001;
+
+const ContactAnchor* previous_anchor(const std::vector<ContactAnchor>& list, int point) {
+  const auto it = std::lower_bound(list.begin(), list.end(), point,
+                                   [](const ContactAnchor& a, int p) { return a.point < p; });
+  return it != list.end() && it->point == point ? &*it : nullptr;
+}
+
+}  // namespace
+
+Eigen::Vector3d corner_offset(const HandSimModel& model, int k) {
+  static const std::array<Eigen::Vector3d, 8> signs = [] {
+    std::array<Eigen::Vector3d, 8> s;
+    for (int c = 0; c < 8; ++c)
+      s[std::size_t(c)] = Eigen::Vector3d(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1);
+    return s;
+  }();
+  return signs[std::size_t(k)].cwiseProduct(model.cube_half);
+}
+
+double contact_stiffness(const HandSimModel& model, const Contact& c) {
+  return c.kind == Contact::kCornerFloor ? model.parameters.cube_floor_stiffness
+                                         : model.parameters.contact_stiffness;
+}
+
+double contact_stiffening(const HandSimModel& model, const Contact& c) {
+  return c.kind == Contact::kCornerFloor ? 0.0 : model.parameters.contact_stiffening;
+}
+
+double friction_cone(const HandSimModel& model, const Contact& c, double depth) {
+  depth = std::max(depth, 0.0);
+  return model.parameters.friction * depth *
+         (1.0 + contact_stiffening(model, c) * depth / contact_stiffness(model, c));
+}
+
+ContactGap contact_gap(const HandSimModel& model, const HandSimState& s, const Contact& c) {
+  const SimParameters& par = model.parameters;
+  ContactGap g;
+  if (c.kind == Contact::kNodeCube) {
+    g.x = s.cube_pose.rotation.conjugate() *
+          (s.node_position[std::size_t(c.point)] - s.cube_pose.position);
+    g.box = box_proximity(model.cube_half, g.x);
+    g.gap = g.box.distance;
+    return g;
+  }
+  g.x = c.kind == Contact::kNodeFloor ? s.node_position[std::size_t(c.point)]
+                                      : s.cube_pose.point(corner_offset(model, c.point));
+  g.gap = par.floor_normal.normalized().dot(g.x) - par.floor_height;
+  return g;
+}
+
+void find_contacts(const HandSimModel& model, const HandSimState& s,
+                   std::vector<Contact>& contacts) {
+  const SimParameters& par = model.parameters;
+  const double h = par.time_step;
+  contacts.clear();
+  const Eigen::Vector3d nf = par.floor_normal.normalized();
+  // `x` and `surface` in the surface's frame, `gap` the signed distance.
+  auto add = [&](Contact::Kind kind, int point, const Eigen::Vector3d& x,
+                 const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
+                 const ContactAnchor* old, double k) {
+    Contact c{kind, point, normal, old ? old->anchor : surface};
+    c.across = kind == Contact::kNodeCube ? s.cube_pose.rotation * normal : normal;
+    c.touching = gap < 0;
+    c.curved = c.touching;
+    if (c.touching && old) {
+      const Eigen::Vector3d t = tangent_part(normal, x - old->anchor);
+      const double stretch = t.norm(), limit = friction_cone(model, c, -gap);
+      if (stretch > limit) {
+        if (kind == Contact::kNodeCube) {
+          // Flesh on the cube keeps an anchor spring, its anchor moved to the cone's edge: a
+          // constant kinetic force, fixed for the step, set the light cube ringing when a
+          // node's slip reversed within it (measured: a soft block resting on the cube).
+          c.anchor = old->anchor + t * (1.0 - limit / stretch);
+        } else {
+          // Sliding: the anchor stays where the point held, in case the slide stops.
+          c.sliding = true;
+          c.slip = t / stretch;
+          c.friction_force = k * limit;
+        }
+      }
+    }
+    contacts.push_back(c);
+  };
+  const double cube_speed =
+      s.cube_velocity.linear.norm() + s.cube_velocity.angular.norm() * model.cube_half.norm();
+  const Eigen::Quaterniond cube_inv = s.cube_pose.rotation.conjugate();
+  for (int node : model.surface_nodes) {
+    const Eigen::Vector3d& x = s.node_position[std::size_t(node)];
+    const double speed = s.node_velocity[std::size_t(node)].norm();
+    const Eigen::Vector3d q = cube_inv * (x - s.cube_pose.position);
+    const BoxProximity b = box_proximity(model.cube_half, q);
+    if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
+      add(Contact::kNodeCube, node, q, b.normal, b.closest, b.distance,
+          previous_anchor(s.node_cube, node), par.contact_stiffness);
+    if (par.hand_floor_contact) {
+      const double height = nf.dot(x) - par.floor_height;
+      if (height < kContactMargin + 2 * h * speed)
+        add(Contact::kNodeFloor, node, x, nf, x - height * nf, height,
+            previous_anchor(s.node_floor, node), par.contact_stiffness);
+    }
+  }
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d x = s.cube_pose.point(corner_offset(model, k));
+    const double height = nf.dot(x) - par.floor_height;
+    if (height < kContactMargin + 2 * h * cube_speed)
+      add(Contact::kCornerFloor, k, x, nf, x - height * nf, height,
+          previous_anchor(s.corner_floor, k), par.cube_floor_stiffness);
+  }
+}
+
+bool contacts_entered(const HandSimModel& model, const HandSimState& s,
+                      std::vector<Contact>& contacts) {
+  bool entered = false;
+  for (Contact& c : contacts)
+    if (!c.curved && contact_gap(model, s, c).gap < 0) c.curved = entered = true;
+  return entered;
+}
+
+}  // namespace handlab::sim

@@ -1,0 +1,130 @@
+// The bodies' stage (core/sim/body_energies.h), each energy alone: coupling, joints, tracking,
+// gravity and the kinetic terms. Gradients against central differences of the energy along
+// directions through every unknown (node positions, the bodies' translations and rotation
+// vectors) on the hand gripping the fine cube, where every spring is stretched; Hessians against
+// central differences of the gradient where the springs are at rest length (the hand at rest,
+// its targets where its bones are), where the Gauss-Newton Hessian J'KJ is the Hessian, and the
+// kinetic terms' everywhere (they are quadratic).
+#include <functional>
+
+#include <gtest/gtest.h>
+
+#include "core/sim/body_energies.h"
+#include "tests/core/sim/stage_fixture.h"
+
+namespace handlab::sim {
+namespace {
+
+using test::GraspScene;
+
+const GraspScene& gripping() {
+  static const GraspScene g = test::grasp_scene(1.2);
+  return g;
+}
+
+// One energy: adds itself to the terms at a state.
+using Energy =
+    std::function<void(const HandSimState&, const std::vector<Eigen::Vector3d>&, NewtonTerms&)>;
+
+struct Named {
+  const char* name;
+  Energy add;
+};
+
+std::vector<Named> energies(const HandSimModel& model, const std::vector<RigidPose>& targets,
+                            const HandSimState& start) {
+  return {
+      {"coupling",
+       [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_coupling(model, s, t); }},
+      {"joints",
+       [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_joints(model, s, t); }},
+      {"tracking", [&](const HandSimState& s, const auto&,
+                       NewtonTerms& t) { add_tracking(model, s, targets, t); }},
+      {"gravity",
+       [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_gravity(model, s, t); }},
+      {"kinetic", [&](const HandSimState& s, const std::vector<Eigen::Vector3d>& turned,
+                      NewtonTerms& t) { add_kinetic(model, s, turned, start, t); }},
+  };
+}
+
+struct At {
+  HandSimState state;
+  std::vector<Eigen::Vector3d> turned;
+};
+
+// Terms of one energy at the state moved by t d.
+NewtonTerms terms_at(const HandSimModel& model, const At& at, const Energy& energy,
+                     const Eigen::VectorXd& d, double t, bool hessian) {
+  HandSimState s = at.state;
+  std::vector<Eigen::Vector3d> turned = at.turned;
+  test::move_by(model, s, turned, d, t);
+  NewtonTerms terms = test::empty_terms(model, hessian);
+  energy(s, turned, terms);
+  return terms;
+}
+
+// The kinetic terms' start: the state a step before, moving towards it.
+HandSimState step_before(const HandSimModel& model, const HandSimState& s) {
+  HandSimState start = s;
+  std::vector<Eigen::Vector3d> turned(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
+  test::move_by(model, start, turned, test::direction(model, 1e-3, 0.02, 4.0), -1.0);
+  return start;
+}
+
+TEST(BodyEnergies, GradientsAreTheEnergiesSlopes) {
+  const GraspScene& g = gripping();
+  const HandSimModel& model = g.scene.model;
+  const HandSimState start = step_before(model, g.state);
+  At at{g.state, std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1),
+                                              Eigen::Vector3d::Constant(0.01))};
+  for (const Named& e : energies(model, g.targets, start)) {
+    const NewtonTerms terms =
+        terms_at(model, at, e.add, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
+    EXPECT_GT(terms.gradient.lpNorm<Eigen::Infinity>(), 0.0) << e.name;
+    for (double phase : {1.0, 2.0}) {
+      const Eigen::VectorXd d = test::direction(model, 1.0, 1.0, phase);
+      const auto [slope, curvature] = test::differences(
+          [&](double t) { return terms_at(model, at, e.add, d, t, false).energy; }, 1e-6);
+      const double scale = terms.gradient.cwiseAbs().dot(d.cwiseAbs());
+      EXPECT_NEAR(slope, terms.gradient.dot(d), 1e-6 * scale) << e.name << " phase " << phase;
+    }
+  }
+}
+
+TEST(BodyEnergies, HessiansAreTheGradientsDerivativesAtRestLength) {
+  const GraspScene& g = gripping();
+  const HandSimModel& model = g.scene.model;
+  // The hand at rest where the pinch starts, its targets its bones' poses: coupling springs,
+  // joints and tracking at rest length.
+  At at{initial_state(model, g.scene.skeleton, g.scene.script.start_root(), g.state.cube_pose),
+        std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero())};
+  const std::vector<RigidPose> targets = at.state.bone_pose;
+  const HandSimState start = step_before(model, at.state);
+  for (const Named& e : energies(model, targets, start)) {
+    const NewtonTerms terms =
+        terms_at(model, at, e.add, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
+    const bool kinetic = std::string(e.name) == "kinetic";
+    const Eigen::SparseMatrix<double> hessian = test::assembled(model, terms, kinetic);
+    for (double phase : {1.0, 2.0}) {
+      const Eigen::VectorXd d = test::direction(model, 1.0, 1.0, phase);
+      const double step = 1e-6;
+      const Eigen::VectorXd change = (terms_at(model, at, e.add, d, step, true).gradient -
+                                      terms_at(model, at, e.add, d, -step, true).gradient) /
+                                     (2 * step);
+      const Eigen::VectorXd expected = hessian * d;
+      const double scale = (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * d.cwiseAbs())
+                               .lpNorm<Eigen::Infinity>();
+      if (std::string(e.name) == "gravity") {
+        EXPECT_EQ(hessian.nonZeros(), 0);
+        EXPECT_LT(change.lpNorm<Eigen::Infinity>(), 1e-9 * terms.gradient.norm());
+        continue;
+      }
+      ASSERT_GT(scale, 0.0) << e.name;
+      EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-5 * scale)
+          << e.name << " phase " << phase;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace handlab::sim

@@ -1,0 +1,143 @@
+// The linear solve (core/sim/linear_solve.h) on the Newton systems of the hand gripping the
+// fine cube: its first solve factorises; a solve of the same matrix again uses the factor
+// alone; a solve of a matrix found anew at a nearby state runs CG, preconditioned by the older
+// factor. Each leaves no more residual than its tolerance per unknown, and says what it did.
+#include <gtest/gtest.h>
+
+#include "core/sim/body_energies.h"
+#include "core/sim/contact.h"
+#include "core/sim/flesh_energy.h"
+#include "core/sim/hand_simulator.h"
+#include "core/sim/linear_solve.h"
+#include "tests/core/sim/stage_fixture.h"
+
+namespace handlab::sim {
+namespace {
+
+struct System {
+  const HandSimModel& model;
+  NewtonLayout layout;
+  SolverMemory memory;
+  ThreadPool pool{2};
+  FleshBuffers buffers;
+  NewtonTerms terms;
+  NewtonDiagonal diagonal_cache;
+
+  explicit System(const HandSimModel& m) : model(m) {
+    analyze_newton_matrix(model, memory, layout);
+  }
+
+  // Every term at the state, found anew (as a step's first evaluation).
+  void evaluate(HandSimState s, const std::vector<RigidPose>& targets) {
+    terms = test::empty_terms(model, true);
+    diagonal_cache.known = false;
+    ++memory.terms_found;
+    add_flesh(model, s, terms, pool, buffers);
+    add_coupling(model, s, terms, &layout);
+    add_joints(model, s, terms, &layout);
+    add_tracking(model, s, targets, terms);
+    add_gravity(model, s, terms);
+    add_kinetic(
+        model, s,
+        std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero()),
+        s, terms);
+    terms.first_contact_spring = terms.springs.size();
+    terms.first_contact_block = terms.blocks.size();
+    std::vector<Contact> contacts;
+    find_contacts(model, s, contacts);
+    add_contact_energies(model, s, contacts, terms);
+  }
+
+  // The largest move the residual left would make of an unknown on its own.
+  double left(const Eigen::VectorXd& x) {
+    Eigen::VectorXd ax;
+    multiply(model, terms, x, ax);
+    NewtonDiagonal fresh;
+    return ((-terms.gradient - ax).cwiseQuotient(diagonal(model, terms, fresh)))
+        .lpNorm<Eigen::Infinity>();
+  }
+};
+
+TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
+  const test::GraspScene g = test::grasp_scene(1.2);
+  const HandSimModel& model = g.scene.model;
+  System system(model);
+  const SimOptions options;
+  system.evaluate(g.state, g.targets);
+
+  ++system.memory.step;
+  system.memory.solves_this_step = 0;
+  SimStepReport first;
+  const Eigen::VectorXd direct =
+      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
+                        system.pool, system.memory, first);
+  EXPECT_EQ(first.factorizations, 1) << "nothing factorised yet";
+  EXPECT_EQ(first.direct_solves, 1);
+  EXPECT_GT(direct.lpNorm<Eigen::Infinity>(), 0.0);
+  EXPECT_LT(system.left(direct), 1e-3 * options.linear_tolerance);
+
+  // The same matrix again (a later pass whose contacts did not change): the factor alone.
+  SimStepReport again;
+  const Eigen::VectorXd same =
+      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
+                        system.pool, system.memory, again);
+  EXPECT_EQ(again.factorizations, 0);
+  EXPECT_EQ(again.direct_solves, 1);
+  EXPECT_EQ(same, direct);
+
+  // The next step's matrix, a little way on: CG with the old factor as preconditioner.
+  HandSimState next = g.state;
+  std::vector<Eigen::Vector3d> turned(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
+  test::move_by(model, next, turned, direct, 1.0);
+  system.evaluate(next, g.targets);
+  ++system.memory.step;
+  system.memory.solves_this_step = 0;
+  SimStepReport cg;
+  const Eigen::VectorXd iterated =
+      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
+                        system.pool, system.memory, cg);
+  EXPECT_EQ(cg.factorizations, 0);
+  EXPECT_EQ(cg.direct_solves, 0);
+  EXPECT_GE(cg.linear_iterations, 1);
+  EXPECT_LE(cg.linear_iterations, options.max_linear_iterations);
+  EXPECT_LE(system.left(iterated), options.linear_tolerance);
+}
+
+// When CG cannot reach the tolerance in its iterations, the matrix is factorised and solved
+// directly; and with the previous step's factor behind that failure, the next steps factorise
+// at once.
+TEST(LinearSolve, FallsBackToTheFactorizationWhenCgFails) {
+  const test::GraspScene g = test::grasp_scene(1.2);
+  const HandSimModel& model = g.scene.model;
+  System system(model);
+  SimOptions options;
+  options.max_linear_iterations = 1;
+  options.linear_tolerance = 1e-14;
+  options.halfway_gap = 0;
+  system.evaluate(g.state, g.targets);
+  ++system.memory.step;
+  system.memory.solves_this_step = 0;
+  SimStepReport first;
+  solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options, system.pool,
+                    system.memory, first);
+  ASSERT_EQ(first.factorizations, 1);
+
+  HandSimState next = g.state;
+  std::vector<Eigen::Vector3d> turned(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
+  test::move_by(model, next, turned, test::direction(model, 1e-4, 1e-3), 1.0);
+  system.evaluate(next, g.targets);
+  ++system.memory.step;
+  system.memory.solves_this_step = 0;
+  SimStepReport failed;
+  const Eigen::VectorXd x =
+      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
+                        system.pool, system.memory, failed);
+  EXPECT_EQ(failed.factorizations, 1);
+  EXPECT_EQ(failed.direct_solves, 1);
+  EXPECT_EQ(failed.linear_iterations, 2) << "one CG iteration, then the direct solve";
+  EXPECT_LT(system.left(x), 1e-3 * 1e-8);
+  EXPECT_EQ(system.memory.direct_until, system.memory.step + 1 + options.direct_steps);
+}
+
+}  // namespace
+}  // namespace handlab::sim

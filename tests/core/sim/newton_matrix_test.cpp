@@ -1,0 +1,142 @@
+// The Newton matrix held as its terms (core/sim/newton_matrix.h), at states of the scripted
+// pinch (approach, closing, grip, lift): every energy's terms as a step finds them; the
+// term-by-term product and diagonal that CG uses, and the matrix written into the
+// factorisation's panels, against the matrix assembled entry by entry from the same terms.
+#include <gtest/gtest.h>
+
+#include "core/sim/body_energies.h"
+#include "core/sim/contact.h"
+#include "core/sim/flesh_energy.h"
+#include "core/sim/linear_solve.h"
+#include "core/sim/newton_matrix.h"
+#include "tests/core/sim/stage_fixture.h"
+
+namespace handlab::sim {
+namespace {
+
+struct Evaluated {
+  test::GraspScene grasp;
+  NewtonTerms terms;
+};
+
+// Every term of a step's first evaluation at the grasp's state (its start and its prediction
+// taken to be the state itself).
+Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
+  Evaluated e{test::grasp_scene(time), {}};
+  const HandSimModel& model = e.grasp.scene.model;
+  HandSimState s = e.grasp.state;
+  NewtonTerms& terms = e.terms;
+  terms = test::empty_terms(model, true);
+  ThreadPool pool(2);
+  FleshBuffers buffers;
+  add_flesh(model, s, terms, pool, buffers);
+  add_coupling(model, s, terms, layout);
+  add_joints(model, s, terms, layout);
+  add_tracking(model, s, e.grasp.targets, terms);
+  add_gravity(model, s, terms);
+  add_kinetic(
+      model, s,
+      std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero()),
+      e.grasp.state, terms);
+  terms.first_contact_spring = terms.springs.size();
+  terms.first_contact_block = terms.blocks.size();
+  std::vector<Contact> contacts;
+  find_contacts(model, s, contacts);
+  add_contact_energies(model, s, contacts, terms);
+  return e;
+}
+
+class NewtonMatrixAt : public ::testing::TestWithParam<double> {};
+
+TEST_P(NewtonMatrixAt, ProductAndDiagonalEqualTheAssembledMatrix) {
+  const Evaluated e = evaluated(GetParam());
+  const HandSimModel& model = e.grasp.scene.model;
+  const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
+  const Eigen::SparseMatrix<double> magnitude = a.cwiseAbs();
+  for (double phase : {1.0, 2.0, 3.0}) {
+    const Eigen::VectorXd x = test::direction(model, 1.0, 1.0, phase);
+    Eigen::VectorXd y;
+    multiply(model, e.terms, x, y);
+    // Rounding scales with the terms summed, |A| |x|, not with the (cancelling) result.
+    const Eigen::VectorXd bound = 1e-12 * (magnitude * x.cwiseAbs());
+    EXPECT_TRUE(((y - a * x).cwiseAbs().array() <= bound.array()).all()) << "phase " << phase;
+  }
+  NewtonDiagonal cache;
+  const Eigen::VectorXd diagonal_found = diagonal(model, e.terms, cache);
+  EXPECT_TRUE(cache.known);
+  EXPECT_LT((diagonal_found - a.diagonal()).lpNorm<Eigen::Infinity>(),
+            1e-12 * a.diagonal().lpNorm<Eigen::Infinity>());
+  // The kept part found once: the same diagonal again from the cache.
+  EXPECT_EQ(diagonal(model, e.terms, cache), diagonal_found);
+}
+
+TEST_P(NewtonMatrixAt, PanelsHoldTheAssembledMatrix) {
+  test::GraspScene scene = test::grasp_scene(GetParam());
+  SolverMemory memory;
+  NewtonLayout layout;
+  analyze_newton_matrix(scene.scene.model, memory, layout);
+  const Evaluated e = evaluated(GetParam(), &layout);
+  const HandSimModel& model = e.grasp.scene.model;
+  const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
+  const SupernodalLdlt& factor = memory.factor;
+  std::vector<double> panels(std::size_t(factor.value_count()), 0.0);
+  write_panels(model, e.terms, layout, factor, panels.data());
+  // Entry by entry, rounding on the scale of the entry's row and column (|A_rc| <=
+  // sqrt(A_rr A_cc), and an entry summed to nearly zero keeps its terms' rounding); the lower
+  // triangle after the ordering holds them all.
+  const Eigen::VectorXd diag = a.diagonal();
+  int compared = 0;
+  for (int col = 0; col < a.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
+      if (!factor.ordered_after(int(it.row()), col)) continue;
+      const int at = factor.position(int(it.row()), col);
+      ASSERT_GE(at, 0);
+      EXPECT_LE(std::abs(panels[std::size_t(at)] - it.value()),
+                1e-12 * std::sqrt(diag[it.row()] * diag[col]))
+          << it.row() << ", " << col;
+      ++compared;
+    }
+  EXPECT_GT(compared, 50000);
+  // Split between two workers, the same sums bit for bit.
+  std::vector<double> split(panels.size(), 0.0);
+  write_panels(model, e.terms, layout, factor, split.data(), 0);
+  write_panels(model, e.terms, layout, factor, split.data(), 1);
+  EXPECT_EQ(split, panels);
+}
+
+// The cube's own terms: its inertia and the floor's contacts with its corners.
+TEST_P(NewtonMatrixAt, CubeMatrixIsTheCubesOwnTerms) {
+  const Evaluated e = evaluated(GetParam());
+  const HandSimModel& model = e.grasp.scene.model;
+  NewtonTerms own = e.terms;
+  own.tets.clear();
+  own.springs.clear();
+  for (std::size_t i = e.terms.first_contact_spring; i < e.terms.springs.size(); ++i) {
+    const SpringTerm& t = e.terms.springs[i];
+    bool alone = true;
+    for (int k = 0; k < t.p.count; ++k)
+      alone = alone && t.p.block[std::size_t(k)] >= cube_block(model);
+    if (alone) own.springs.push_back(t);
+  }
+  own.blocks.clear();
+  for (const BlockTerm& t : e.terms.blocks)
+    if (t.block >= cube_block(model)) own.blocks.push_back(t);
+  const Eigen::MatrixXd a =
+      Eigen::MatrixXd(test::assembled(model, own, false)).bottomRightCorner(6, 6);
+  EXPECT_LT((cube_matrix(model, e.terms) - a).lpNorm<Eigen::Infinity>(),
+            1e-12 * a.lpNorm<Eigen::Infinity>());
+  // Contacts on other unknowns are found again bit for bit, and a change is seen.
+  std::vector<SpringTerm> others;
+  other_contacts(model, e.terms, others);
+  EXPECT_TRUE(same_other_contacts(model, e.terms, others));
+  if (!others.empty()) {
+    others.back().k *= 1.0 + 1e-15;
+    EXPECT_FALSE(same_other_contacts(model, e.terms, others));
+  }
+}
+
+// The approach (no contact but the floor's), the closing, the grip, the lift.
+INSTANTIATE_TEST_SUITE_P(Pinch, NewtonMatrixAt, ::testing::Values(0.7, 1.0, 1.2, 1.7));
+
+}  // namespace
+}  // namespace handlab::sim

@@ -1,0 +1,145 @@
+// What the simulator's stage tests share: the study hand gripping the fine cube in the middle
+// of the scripted pinch (stiffened tets, bones turned, flesh pressed on the cube, the cube's
+// corners on the floor), the increment's map (positions plus dq, rotations turned by the
+// rotation vector in the world, as the step moves them), the Newton matrix assembled as a sparse
+// matrix from its terms (the reference the term-by-term operations are checked against), and
+// finite differences along a direction.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "core/sim/hand_simulator.h"
+#include "core/sim/newton_terms.h"
+#include "core/sim/pinch_scene.h"
+#include "core/sim/pinch_script.h"
+
+namespace handlab::sim::test {
+
+struct GraspScene {
+  PinchScene scene;
+  HandSimState state;              // after the step that reached `time`
+  std::vector<RigidPose> targets;  // the bones' targets of the next step
+  double time = 0.0;
+};
+
+// The scripted pinch of the cube of `cube_size`, run to `time` s.
+inline GraspScene grasp_scene(double time, double cube_size = 0.01) {
+  GraspScene g{make_pinch_scene(cube_size), {}, {}, time};
+  const PinchScript& script = g.scene.script;
+  run_pinch(g.scene.model, g.scene.skeleton, script, SimOptions{}, time,
+            [&](const HandSimState& s) { g.state = s; });
+  g.targets = bone_targets(g.scene.model, g.scene.skeleton,
+                           script.target(time + g.scene.model.parameters.time_step));
+  return g;
+}
+
+// The state moved by t dq, each body's rotation by the rotation vector t dq (in the world, on
+// the left), `turned` (each body's rotation vector since the step began) by the same.
+inline void move_by(const HandSimModel& model, HandSimState& s,
+                    std::vector<Eigen::Vector3d>& turned, const Eigen::VectorXd& dq, double t) {
+  for (int n = 0; n < model.node_count(); ++n)
+    s.node_position[std::size_t(n)] += t * dq.segment<3>(3 * n);
+  auto move = [&](int block, RigidPose& pose, Eigen::Vector3d& rotated) {
+    pose.position += t * dq.segment<3>(3 * block);
+    const Eigen::Vector3d d_theta = t * dq.segment<3>(3 * (block + 1));
+    rotated += d_theta;
+    pose.rotation = (rotation_from_vector(d_theta) * pose.rotation).normalized();
+  };
+  for (int b = 0; b < model.bone_count(); ++b)
+    move(bone_block(model, b), s.bone_pose[std::size_t(b)], turned[std::size_t(b)]);
+  move(cube_block(model), s.cube_pose, turned.back());
+}
+
+// A direction through every unknown: positions by up to `length` (m), rotations by up to
+// `angle` (rad), deterministic.
+inline Eigen::VectorXd direction(const HandSimModel& model, double length, double angle,
+                                 double phase = 1.0) {
+  Eigen::VectorXd d(model.dof_count());
+  for (int i = 0; i < d.size(); ++i) d[i] = std::sin(phase + 7.3 * i);
+  for (int b = 0; b <= model.bone_count(); ++b) {
+    d.segment<3>(3 * bone_block(model, b)) *= length;
+    d.segment<3>(3 * (bone_block(model, b) + 1)) *= angle;
+  }
+  d.head(3 * model.node_count()) *= length;
+  return d;
+}
+
+// Only the unknowns of `keep` (node, translation or rotation blocks) of d.
+inline Eigen::VectorXd only(const HandSimModel& model, Eigen::VectorXd d, bool nodes,
+                            bool translations, bool rotations) {
+  if (!nodes) d.head(3 * model.node_count()).setZero();
+  for (int b = 0; b <= model.bone_count(); ++b) {
+    if (!translations) d.segment<3>(3 * bone_block(model, b)).setZero();
+    if (!rotations) d.segment<3>(3 * (bone_block(model, b) + 1)).setZero();
+  }
+  return d;
+}
+
+// Empty terms for an evaluation, at the model's h^2.
+inline NewtonTerms empty_terms(const HandSimModel& model, bool hessian) {
+  NewtonTerms t;
+  t.scale = model.parameters.time_step * model.parameters.time_step;
+  t.clear(model.dof_count(), hessian);
+  return t;
+}
+
+// A tet's block (a, b) of the matrix from its terms; block (b, a) is its transpose.
+inline Eigen::Matrix3d tet_block(const NewtonTerms& terms, std::size_t e, int a, int b) {
+  const TetTerms4& t = terms.tets[e / kTetBatch];
+  const int l = int(e % kTetBatch);
+  Eigen::Vector3d ra, rb, qa, qb;
+  for (int i = 0; i < 3; ++i) {
+    ra[i] = t.rotated[3 * a + i][l];
+    rb[i] = t.rotated[3 * b + i][l];
+    qa[i] = t.q[3 * a + i][l];
+    qb[i] = t.q[3 * b + i][l];
+  }
+  Eigen::Matrix3d block = t.vmu[l] * rb * ra.transpose() + t.vlambda[l] * ra * rb.transpose();
+  block.diagonal().array() += t.vmu[l] * ra.dot(rb);
+  return block + qa * qb.transpose();
+}
+
+// The matrix the terms stand for, assembled entry by entry; with `masses`, the node masses
+// (the flesh's kinetic Hessian, which the product takes from the model) included.
+inline Eigen::SparseMatrix<double> assembled(const HandSimModel& model, const NewtonTerms& terms,
+                                             bool masses = true) {
+  std::vector<Eigen::Triplet<double>> entries;
+  auto add = [&](int bi, int bj, const Eigen::Matrix3d& m) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) entries.emplace_back(3 * bi + r, 3 * bj + c, m(r, c));
+  };
+  if (masses)
+    for (int n = 0; n < model.node_count(); ++n)
+      add(n, n, model.node_mass[std::size_t(n)] * Eigen::Matrix3d::Identity());
+  if (!terms.tets.empty())
+    for (std::size_t e = 0; e < model.tets.size(); ++e) {
+      const auto& ids = model.tets[e].nodes;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a; b < 4; ++b) {
+          const Eigen::Matrix3d block = tet_block(terms, e, a, b);
+          add(ids[std::size_t(a)], ids[std::size_t(b)], block);
+          if (a != b) add(ids[std::size_t(b)], ids[std::size_t(a)], block.transpose());
+        }
+    }
+  for (const SpringTerm& t : terms.springs)
+    for (int a = 0; a < t.p.count; ++a)
+      for (int b = 0; b < t.p.count; ++b)
+        add(t.p.block[std::size_t(a)], t.p.block[std::size_t(b)],
+            t.p.j[std::size_t(a)].transpose() * t.k * t.p.j[std::size_t(b)]);
+  for (const BlockTerm& t : terms.blocks) add(t.block, t.block, t.m);
+  Eigen::SparseMatrix<double> m(model.dof_count(), model.dof_count());
+  m.setFromTriplets(entries.begin(), entries.end());
+  return m;
+}
+
+// Central differences of f along t in [-step, step]: the first derivative and the second.
+template <class F>
+std::pair<double, double> differences(const F& f, double step) {
+  const double plus = f(step), minus = f(-step), centre = f(0.0);
+  return {(plus - minus) / (2 * step), (plus - 2 * centre + minus) / (step * step)};
+}
+
+}  // namespace handlab::sim::test
