@@ -13,8 +13,8 @@ packages=(
   libosmesa6-dev zlib1g-dev
   # numerics, meshing, storage, distributions
   libeigen3-dev libtet1.5-dev libsqlite3-dev sqlite3 libboost-math-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks (Bullet: the simulator's peer benchmark, docs/performance.md)
+  libgtest-dev libgmock-dev libbenchmark-dev libbullet-dev
   # GUI and report checks
   xvfb xauth poppler-utils
 )

@@ -12,6 +12,7 @@
 #include "core/sim/body_energies.h"
 #include "core/sim/contact.h"
 #include "core/sim/flesh_energy.h"
+#include "core/sim/increment.h"
 #include "core/sim/linear_solve.h"
 #include "core/sim/newton_matrix.h"
 #include "core/sim/newton_terms.h"
@@ -66,21 +67,6 @@ Iterate predict(const HandSimModel& model, const HandSimState& start) {
     carry(s.bone_pose[std::size_t(b)], s.bone_velocity[std::size_t(b)], it.turned[std::size_t(b)]);
   carry(s.cube_pose, s.cube_velocity, it.turned.back());
   return it;
-}
-
-// The iterate moved by `length` times the increment dq.
-void move(const HandSimModel& model, Iterate& it, const Eigen::VectorXd& dq, double length) {
-  for (int n = 0; n < model.node_count(); ++n)
-    it.state.node_position[std::size_t(n)] += length * dq.segment<3>(3 * n);
-  auto turn = [&](int block, RigidPose& pose, Eigen::Vector3d& rotated) {
-    pose.position += length * dq.segment<3>(3 * block);
-    const Eigen::Vector3d d_theta = length * dq.segment<3>(3 * (block + 1));
-    rotated += d_theta;
-    pose.rotation = (rotation_from_vector(d_theta) * pose.rotation).normalized();
-  };
-  for (int b = 0; b < model.bone_count(); ++b)
-    turn(bone_block(model, b), it.state.bone_pose[std::size_t(b)], it.turned[std::size_t(b)]);
-  turn(cube_block(model), it.state.cube_pose, it.turned.back());
 }
 
 // The longest step along dq that no body turns by more than kMaxTurn in: the linearisation of
@@ -215,7 +201,7 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
       // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
       for (int halving = 0; halving < 12 && slope < 0; ++halving, length *= 0.5) {
         trial = iterate;
-        move(model, trial, dq, length);
+        apply_increment(model, trial.state, trial.turned, dq, length);
         if (sim.evaluate(trial, start, targets, false) <= current + 1e-4 * length * slope) break;
         ++report.halvings;
       }

@@ -147,6 +147,43 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
   return script;
 }
 
+PinchMeter::PinchMeter(const HandSimModel& model, const PinchScript& script)
+    : model_(model), script_(script) {}
+
+void PinchMeter::observe(const HandSimState& state, double t, double max_penetration) {
+  if (t < script_.lift_end - 1e-9 || t > script_.hold_end + 1e-9) return;
+  // The hold: the cube seen from the distal bones, relative to the midpoint of their origins.
+  const hand::BoneFrames frames = simulated_bone_frames(model_, state);
+  const std::size_t ti = std::size_t(script_.thumb_bone), ii = std::size_t(script_.index_bone);
+  const Eigen::Vector3d between =
+      frames.rotation[ii].transpose() *
+      (state.cube_pose.position - 0.5 * (frames.origin[ti] + frames.origin[ii]));
+  if (!reference_set_) {
+    reference_ = between;
+    reference_set_ = true;
+  }
+  slip_mm_ = std::max(slip_mm_, 1000 * (between - reference_).norm());
+  max_penetration_mm_ = std::max(max_penetration_mm_, 1000 * max_penetration);
+  lift_ = state.cube_pose.position.y() - script_.cube_centre.y();
+  holding_ = holding_ && lift_ >= 0.8 * script_.lift_height;
+}
+
+void PinchMeter::finish(const HandSimState& state, double duration, bool flesh_on_cube,
+                        PinchReport& report) const {
+  report.held = reference_set_ && holding_;
+  report.lift = lift_;
+  report.slip_mm = slip_mm_;
+  report.max_penetration_mm = max_penetration_mm_;
+  // Released: no flesh on the cube and the cube back down, a corner within 1 mm of the floor
+  // (dropped from the lift's height it may still be tumbling, as a real one does).
+  double lowest = INFINITY;
+  const Eigen::Vector3d up = model_.parameters.floor_normal.normalized();
+  for (int k = 0; k < 8; ++k)
+    lowest = std::min(
+        lowest, up.dot(cube_corner(model_, state.cube_pose, k)) - model_.parameters.floor_height);
+  report.released = duration >= script_.end && lowest < 0.001 && !flesh_on_cube;
+}
+
 PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
                       const PinchScript& script, const SimOptions& options, double duration,
                       const std::function<void(const HandSimState&)>& observer) {
@@ -158,8 +195,7 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
   const double h = model.parameters.time_step;
   const int steps = int(std::ceil(duration / h - 1e-9));
   PinchReport report;
-  bool holding = true, reference_set = false;
-  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+  PinchMeter meter(model, script);
   for (int i = 0; i < steps; ++i) {
     const double t = (i + 1) * h;  // the time the step reaches
     const std::vector<RigidPose> targets = bone_targets(model, skeleton, script.target(t));
@@ -175,31 +211,9 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
     report.halvings.push_back(step.halvings);
     report.direct_solves.push_back(step.direct_solves);
     if (observer) observer(state);
-    if (t < script.lift_end - 1e-9 || t > script.hold_end + 1e-9) continue;
-    // The hold: the cube seen from the distal bones, relative to the midpoint of their origins.
-    const hand::BoneFrames frames = simulated_bone_frames(model, state);
-    const std::size_t ti = std::size_t(script.thumb_bone), ii = std::size_t(script.index_bone);
-    const Eigen::Vector3d between =
-        frames.rotation[ii].transpose() *
-        (state.cube_pose.position - 0.5 * (frames.origin[ti] + frames.origin[ii]));
-    if (!reference_set) {
-      reference = between;
-      reference_set = true;
-    }
-    report.slip_mm = std::max(report.slip_mm, 1000 * (between - reference).norm());
-    report.max_penetration_mm = std::max(report.max_penetration_mm, 1000 * step.max_penetration);
-    report.lift = state.cube_pose.position.y() - script.cube_centre.y();
-    holding = holding && report.lift >= 0.8 * script.lift_height;
+    meter.observe(state, t, step.max_penetration);
   }
-  report.held = reference_set && holding;
-  // Released: no flesh on the cube and the cube back down, a corner within 1 mm of the floor
-  // (dropped from the lift's height it may still be tumbling, as a real one does).
-  double lowest = INFINITY;
-  const Eigen::Vector3d up = model.parameters.floor_normal.normalized();
-  for (int k = 0; k < 8; ++k)
-    lowest = std::min(
-        lowest, up.dot(cube_corner(model, state.cube_pose, k)) - model.parameters.floor_height);
-  report.released = duration >= script.end && lowest < 0.001 && state.node_cube.empty();
+  meter.finish(state, duration, !state.node_cube.empty(), report);
   return report;
 }
 

@@ -50,6 +50,27 @@ struct PinchReport {
   std::vector<int> halvings, direct_solves;                                         // per step
 };
 
+// The measures of the report, fed the state after each step: held, lift, slip and penetration
+// through the hold, released at the end. run_pinch feeds it handlab's states; a peer
+// simulator's run of the same script is measured by the same rules (tests/bench).
+class PinchMeter {
+ public:
+  PinchMeter(const HandSimModel& model, const PinchScript& script);
+  // After the step that reached time t; `max_penetration` (m) the deepest flesh node inside the
+  // cube after it.
+  void observe(const HandSimState& state, double t, double max_penetration);
+  // At the end of a run of `duration` s: `flesh_on_cube`, whether any flesh still touches it.
+  void finish(const HandSimState& state, double duration, bool flesh_on_cube,
+              PinchReport& report) const;
+
+ private:
+  const HandSimModel& model_;
+  const PinchScript& script_;
+  bool holding_ = true, reference_set_ = false;
+  Eigen::Vector3d reference_ = Eigen::Vector3d::Zero();
+  double lift_ = 0.0, slip_mm_ = 0.0, max_penetration_mm_ = 0.0;
+};
+
 // Runs the script up to `duration` seconds (its end when 0). `observer`, if given, sees the
 // state after every step.
 PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,

@@ -17,11 +17,6 @@ namespace {
 
 using test::GraspScene;
 
-const GraspScene& gripping() {
-  static const GraspScene g = test::grasp_scene(1.2);
-  return g;
-}
-
 // One energy: adds itself to the terms at a state.
 using Energy =
     std::function<void(const HandSimState&, const std::vector<Eigen::Vector3d>&, NewtonTerms&)>;
@@ -72,7 +67,7 @@ HandSimState step_before(const HandSimModel& model, const HandSimState& s) {
 }
 
 TEST(BodyEnergies, GradientsAreTheEnergiesSlopes) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   const HandSimState start = step_before(model, g.state);
   At at{g.state, std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1),
@@ -92,7 +87,7 @@ TEST(BodyEnergies, GradientsAreTheEnergiesSlopes) {
 }
 
 TEST(BodyEnergies, HessiansAreTheGradientsDerivativesAtRestLength) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   // The hand at rest where the pinch starts, its targets its bones' poses: coupling springs,
   // joints and tracking at rest length.

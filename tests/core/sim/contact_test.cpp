@@ -13,11 +13,6 @@ namespace {
 
 using test::GraspScene;
 
-const GraspScene& gripping() {
-  static const GraspScene g = test::grasp_scene(1.2);
-  return g;
-}
-
 std::vector<Eigen::Vector3d> no_turn(const HandSimModel& model) {
   return std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
 }
@@ -26,7 +21,7 @@ std::vector<Eigen::Vector3d> no_turn(const HandSimModel& model) {
 // candidate; those inside touch; flesh that touched before keeps its anchor or moves it to
 // the cone's edge.
 TEST(ContactSearch, FindsEveryPointNearASurface) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   std::vector<Contact> contacts;
   find_contacts(model, g.state, contacts);
@@ -82,7 +77,7 @@ HandSimState moved(const HandSimModel& model, const HandSimState& s, const Eigen
 // The Hessian is the gradient's derivative along the nodes and the cube's translation (the
 // Gauss-Newton Hessian leaves out the surface's curvature under a turn of the cube).
 TEST(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   std::vector<Contact> contacts;
   find_contacts(model, g.state, contacts);
@@ -118,7 +113,7 @@ TEST(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
 
 // After a step, every anchor lies within Coulomb's cone of its point, on the surface's side.
 TEST(Friction, AnchorsStayInsideCoulombsCone) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   std::vector<Contact> contacts;
   find_contacts(model, g.state, contacts);

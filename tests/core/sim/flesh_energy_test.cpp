@@ -15,11 +15,6 @@ namespace {
 
 using test::GraspScene;
 
-const GraspScene& gripping() {
-  static const GraspScene g = test::grasp_scene(1.2);
-  return g;
-}
-
 // The flesh's terms at the state (its rotations extracted there, into `state`).
 NewtonTerms flesh_terms(const HandSimModel& model, HandSimState& state, int workers = 2) {
   NewtonTerms terms = test::empty_terms(model, true);
@@ -37,7 +32,7 @@ int stiffened_tets(const NewtonTerms& terms) {
 }
 
 TEST(FleshEnergy, GradientAndHessianAreTheEnergysDerivatives) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   HandSimState state = g.state;
   const NewtonTerms terms = flesh_terms(model, state);
@@ -83,7 +78,7 @@ TEST(FleshEnergy, GradientAndHessianAreTheEnergysDerivatives) {
 // Below the stiffening threshold the flesh is the textbook co-rotational element: the same
 // energy and forces as 1/2 u'Ku with K the 12x12 stiffness, tet by tet.
 TEST(FleshEnergy, BelowTheThresholdIsTheTextbookElement) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   HandSimState state =
       initial_state(model, g.scene.skeleton, g.scene.script.start_root(), g.state.cube_pose);
@@ -118,7 +113,7 @@ TEST(FleshEnergy, BelowTheThresholdIsTheTextbookElement) {
 // One worker or two: the same energy and forces to rounding (the order they are summed in
 // differs), the same terms bit for bit.
 TEST(FleshEnergy, OneWorkerAsTwo) {
-  const GraspScene& g = gripping();
+  const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   HandSimState one_state = g.state, two_state = g.state;
   const NewtonTerms one = flesh_terms(model, one_state, 1), two = flesh_terms(model, two_state, 2);

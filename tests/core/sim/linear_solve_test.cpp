@@ -4,9 +4,6 @@
 // factor. Each leaves no more residual than its tolerance per unknown, and says what it did.
 #include <gtest/gtest.h>
 
-#include "core/sim/body_energies.h"
-#include "core/sim/contact.h"
-#include "core/sim/flesh_energy.h"
 #include "core/sim/hand_simulator.h"
 #include "core/sim/linear_solve.h"
 #include "tests/core/sim/stage_fixture.h"
@@ -19,7 +16,6 @@ struct System {
   NewtonLayout layout;
   SolverMemory memory;
   ThreadPool pool{2};
-  FleshBuffers buffers;
   NewtonTerms terms;
   NewtonDiagonal diagonal_cache;
 
@@ -32,20 +28,16 @@ struct System {
     terms = test::empty_terms(model, true);
     diagonal_cache.known = false;
     ++memory.terms_found;
-    add_flesh(model, s, terms, pool, buffers);
-    add_coupling(model, s, terms, &layout);
-    add_joints(model, s, terms, &layout);
-    add_tracking(model, s, targets, terms);
-    add_gravity(model, s, terms);
-    add_kinetic(
-        model, s,
-        std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero()),
-        s, terms);
-    terms.first_contact_spring = terms.springs.size();
-    terms.first_contact_block = terms.blocks.size();
-    std::vector<Contact> contacts;
-    find_contacts(model, s, contacts);
-    add_contact_energies(model, s, contacts, terms);
+    test::add_every_term(model, s, targets, terms, &layout);
+  }
+
+  // A solve: the first of a new step, or the step's next.
+  Eigen::VectorXd solve(const SimOptions& options, SimStepReport& report, bool new_step) {
+    if (new_step) {
+      ++memory.step;
+      memory.solves_this_step = 0;
+    }
+    return solve_newton_step(model, terms, layout, diagonal_cache, options, pool, memory, report);
   }
 
   // The largest move the residual left would make of an unknown on its own.
@@ -59,18 +51,14 @@ struct System {
 };
 
 TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
-  const test::GraspScene g = test::grasp_scene(1.2);
+  const test::GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   System system(model);
   const SimOptions options;
   system.evaluate(g.state, g.targets);
 
-  ++system.memory.step;
-  system.memory.solves_this_step = 0;
   SimStepReport first;
-  const Eigen::VectorXd direct =
-      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
-                        system.pool, system.memory, first);
+  const Eigen::VectorXd direct = system.solve(options, first, true);
   EXPECT_EQ(first.factorizations, 1) << "nothing factorised yet";
   EXPECT_EQ(first.direct_solves, 1);
   EXPECT_GT(direct.lpNorm<Eigen::Infinity>(), 0.0);
@@ -78,9 +66,7 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
 
   // The same matrix again (a later pass whose contacts did not change): the factor alone.
   SimStepReport again;
-  const Eigen::VectorXd same =
-      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
-                        system.pool, system.memory, again);
+  const Eigen::VectorXd same = system.solve(options, again, false);
   EXPECT_EQ(again.factorizations, 0);
   EXPECT_EQ(again.direct_solves, 1);
   EXPECT_EQ(same, direct);
@@ -90,12 +76,8 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
   std::vector<Eigen::Vector3d> turned(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
   test::move_by(model, next, turned, direct, 1.0);
   system.evaluate(next, g.targets);
-  ++system.memory.step;
-  system.memory.solves_this_step = 0;
   SimStepReport cg;
-  const Eigen::VectorXd iterated =
-      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
-                        system.pool, system.memory, cg);
+  const Eigen::VectorXd iterated = system.solve(options, cg, true);
   EXPECT_EQ(cg.factorizations, 0);
   EXPECT_EQ(cg.direct_solves, 0);
   EXPECT_GE(cg.linear_iterations, 1);
@@ -107,7 +89,7 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
 // directly; and with the previous step's factor behind that failure, the next steps factorise
 // at once.
 TEST(LinearSolve, FallsBackToTheFactorizationWhenCgFails) {
-  const test::GraspScene g = test::grasp_scene(1.2);
+  const test::GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   System system(model);
   SimOptions options;
@@ -115,23 +97,16 @@ TEST(LinearSolve, FallsBackToTheFactorizationWhenCgFails) {
   options.linear_tolerance = 1e-14;
   options.halfway_gap = 0;
   system.evaluate(g.state, g.targets);
-  ++system.memory.step;
-  system.memory.solves_this_step = 0;
   SimStepReport first;
-  solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options, system.pool,
-                    system.memory, first);
+  system.solve(options, first, true);
   ASSERT_EQ(first.factorizations, 1);
 
   HandSimState next = g.state;
   std::vector<Eigen::Vector3d> turned(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
   test::move_by(model, next, turned, test::direction(model, 1e-4, 1e-3), 1.0);
   system.evaluate(next, g.targets);
-  ++system.memory.step;
-  system.memory.solves_this_step = 0;
   SimStepReport failed;
-  const Eigen::VectorXd x =
-      solve_newton_step(model, system.terms, system.layout, system.diagonal_cache, options,
-                        system.pool, system.memory, failed);
+  const Eigen::VectorXd x = system.solve(options, failed, true);
   EXPECT_EQ(failed.factorizations, 1);
   EXPECT_EQ(failed.direct_solves, 1);
   EXPECT_EQ(failed.linear_iterations, 2) << "one CG iteration, then the direct solve";

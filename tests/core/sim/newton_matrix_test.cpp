@@ -4,9 +4,6 @@
 // factorisation's panels, against the matrix assembled entry by entry from the same terms.
 #include <gtest/gtest.h>
 
-#include "core/sim/body_energies.h"
-#include "core/sim/contact.h"
-#include "core/sim/flesh_energy.h"
 #include "core/sim/linear_solve.h"
 #include "core/sim/newton_matrix.h"
 #include "tests/core/sim/stage_fixture.h"
@@ -19,30 +16,12 @@ struct Evaluated {
   NewtonTerms terms;
 };
 
-// Every term of a step's first evaluation at the grasp's state (its start and its prediction
-// taken to be the state itself).
 Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
   Evaluated e{test::grasp_scene(time), {}};
   const HandSimModel& model = e.grasp.scene.model;
   HandSimState s = e.grasp.state;
-  NewtonTerms& terms = e.terms;
-  terms = test::empty_terms(model, true);
-  ThreadPool pool(2);
-  FleshBuffers buffers;
-  add_flesh(model, s, terms, pool, buffers);
-  add_coupling(model, s, terms, layout);
-  add_joints(model, s, terms, layout);
-  add_tracking(model, s, e.grasp.targets, terms);
-  add_gravity(model, s, terms);
-  add_kinetic(
-      model, s,
-      std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero()),
-      e.grasp.state, terms);
-  terms.first_contact_spring = terms.springs.size();
-  terms.first_contact_block = terms.blocks.size();
-  std::vector<Contact> contacts;
-  find_contacts(model, s, contacts);
-  add_contact_energies(model, s, contacts, terms);
+  e.terms = test::empty_terms(model, true);
+  test::add_every_term(model, s, e.grasp.targets, e.terms, layout);
   return e;
 }
 

@@ -11,7 +11,12 @@
 
 #include <Eigen/SparseCore>
 
+#include "core/sim/body_energies.h"
+#include "core/sim/contact.h"
+#include "core/sim/flesh_energy.h"
 #include "core/sim/hand_simulator.h"
+#include "core/sim/increment.h"
+#include "core/sim/newton_matrix.h"
 #include "core/sim/newton_terms.h"
 #include "core/sim/pinch_scene.h"
 #include "core/sim/pinch_script.h"
@@ -36,21 +41,39 @@ inline GraspScene grasp_scene(double time, double cube_size = 0.01) {
   return g;
 }
 
-// The state moved by t dq, each body's rotation by the rotation vector t dq (in the world, on
-// the left), `turned` (each body's rotation vector since the step began) by the same.
+// The hand gripping the 1 cm cube as the closing ends (1.2 s), made once.
+inline const GraspScene& gripping_fine_cube() {
+  static const GraspScene g = grasp_scene(1.2);
+  return g;
+}
+
+// Every term of a step's first evaluation at `s` (its start and its prediction taken to be the
+// state itself; the tets' rotations extracted into it), the contacts' last.
+inline void add_every_term(const HandSimModel& model, HandSimState& s,
+                           const std::vector<RigidPose>& targets, NewtonTerms& terms,
+                           const NewtonLayout* layout = nullptr) {
+  ThreadPool pool(2);
+  FleshBuffers buffers;
+  add_flesh(model, s, terms, pool, buffers);
+  add_coupling(model, s, terms, layout);
+  add_joints(model, s, terms, layout);
+  add_tracking(model, s, targets, terms);
+  add_gravity(model, s, terms);
+  add_kinetic(
+      model, s,
+      std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero()), s,
+      terms);
+  terms.first_contact_spring = terms.springs.size();
+  terms.first_contact_block = terms.blocks.size();
+  std::vector<Contact> contacts;
+  find_contacts(model, s, contacts);
+  add_contact_energies(model, s, contacts, terms);
+}
+
+// The state moved by t dq (the step's increment: core/sim/increment.h).
 inline void move_by(const HandSimModel& model, HandSimState& s,
                     std::vector<Eigen::Vector3d>& turned, const Eigen::VectorXd& dq, double t) {
-  for (int n = 0; n < model.node_count(); ++n)
-    s.node_position[std::size_t(n)] += t * dq.segment<3>(3 * n);
-  auto move = [&](int block, RigidPose& pose, Eigen::Vector3d& rotated) {
-    pose.position += t * dq.segment<3>(3 * block);
-    const Eigen::Vector3d d_theta = t * dq.segment<3>(3 * (block + 1));
-    rotated += d_theta;
-    pose.rotation = (rotation_from_vector(d_theta) * pose.rotation).normalized();
-  };
-  for (int b = 0; b < model.bone_count(); ++b)
-    move(bone_block(model, b), s.bone_pose[std::size_t(b)], turned[std::size_t(b)]);
-  move(cube_block(model), s.cube_pose, turned.back());
+  apply_increment(model, s, turned, dq, t);
 }
 
 // A direction through every unknown: positions by up to `length` (m), rotations by up to
