@@ -6,6 +6,7 @@
 // its targets where its bones are), where the Gauss-Newton Hessian J'KJ is the Hessian, and the
 // kinetic terms' everywhere (they are quadratic).
 #include <functional>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -21,24 +22,21 @@ using test::GraspScene;
 using Energy =
     std::function<void(const HandSimState&, const std::vector<Eigen::Vector3d>&, NewtonTerms&)>;
 
-struct Named {
-  const char* name;
-  Energy add;
-};
-
-std::vector<Named> energies(const HandSimModel& model, const std::vector<RigidPose>& targets,
-                            const HandSimState& start) {
-  return {
-      {"coupling",
-       [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_coupling(model, s, t); }},
-      {"joints",
-       [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_joints(model, s, t); }},
-      {"tracking", [&](const HandSimState& s, const auto&,
-                       NewtonTerms& t) { add_tracking(model, s, targets, t); }},
-      {"gravity",
-       [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_gravity(model, s, t); }},
-      {"kinetic", [&](const HandSimState& s, const std::vector<Eigen::Vector3d>& turned,
-                      NewtonTerms& t) { add_kinetic(model, s, turned, start, t); }},
+// The energy named `name`, with the targets and the step's start it reads.
+Energy energy_named(const std::string& name, const HandSimModel& model,
+                    const std::vector<RigidPose>& targets, const HandSimState& start) {
+  if (name == "coupling")
+    return [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_coupling(model, s, t); };
+  if (name == "joints")
+    return [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_joints(model, s, t); };
+  if (name == "tracking")
+    return [&](const HandSimState& s, const auto&, NewtonTerms& t) {
+      add_tracking(model, s, targets, t);
+    };
+  if (name == "gravity")
+    return [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_gravity(model, s, t); };
+  return [&](const HandSimState& s, const std::vector<Eigen::Vector3d>& turned, NewtonTerms& t) {
+    add_kinetic(model, s, turned, start, t);
   };
 }
 
@@ -66,27 +64,28 @@ HandSimState step_before(const HandSimModel& model, const HandSimState& s) {
   return start;
 }
 
-TEST(BodyEnergies, GradientsAreTheEnergiesSlopes) {
+class BodyEnergy : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BodyEnergy, GradientIsTheEnergysSlope) {
   const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   const HandSimState start = step_before(model, g.state);
   At at{g.state, std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1),
                                               Eigen::Vector3d::Constant(0.01))};
-  for (const Named& e : energies(model, g.targets, start)) {
-    const NewtonTerms terms =
-        terms_at(model, at, e.add, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
-    EXPECT_GT(terms.gradient.lpNorm<Eigen::Infinity>(), 0.0) << e.name;
-    for (double phase : {1.0, 2.0}) {
-      const Eigen::VectorXd d = test::direction(model, 1.0, 1.0, phase);
-      const auto [slope, curvature] = test::differences(
-          [&](double t) { return terms_at(model, at, e.add, d, t, false).energy; }, 1e-6);
-      const double scale = terms.gradient.cwiseAbs().dot(d.cwiseAbs());
-      EXPECT_NEAR(slope, terms.gradient.dot(d), 1e-6 * scale) << e.name << " phase " << phase;
-    }
+  const Energy energy = energy_named(GetParam(), model, g.targets, start);
+  const NewtonTerms terms =
+      terms_at(model, at, energy, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
+  EXPECT_GT(terms.gradient.lpNorm<Eigen::Infinity>(), 0.0);
+  for (double phase : {1.0, 2.0}) {
+    const Eigen::VectorXd d = test::direction(model, 1.0, 1.0, phase);
+    const auto [slope, curvature] = test::differences(
+        [&](double t) { return terms_at(model, at, energy, d, t, false).energy; }, 1e-6);
+    const double scale = terms.gradient.cwiseAbs().dot(d.cwiseAbs());
+    EXPECT_NEAR(slope, terms.gradient.dot(d), 1e-6 * scale) << "phase " << phase;
   }
 }
 
-TEST(BodyEnergies, HessiansAreTheGradientsDerivativesAtRestLength) {
+TEST_P(BodyEnergy, HessianIsTheGradientsDerivativeAtRestLength) {
   const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   // The hand at rest where the pinch starts, its targets its bones' poses: coupling springs,
@@ -95,31 +94,33 @@ TEST(BodyEnergies, HessiansAreTheGradientsDerivativesAtRestLength) {
         std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero())};
   const std::vector<RigidPose> targets = at.state.bone_pose;
   const HandSimState start = step_before(model, at.state);
-  for (const Named& e : energies(model, targets, start)) {
-    const NewtonTerms terms =
-        terms_at(model, at, e.add, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
-    const bool kinetic = std::string(e.name) == "kinetic";
-    const Eigen::SparseMatrix<double> hessian = test::assembled(model, terms, kinetic);
-    for (double phase : {1.0, 2.0}) {
-      const Eigen::VectorXd d = test::direction(model, 1.0, 1.0, phase);
-      const double step = 1e-6;
-      const Eigen::VectorXd change = (terms_at(model, at, e.add, d, step, true).gradient -
-                                      terms_at(model, at, e.add, d, -step, true).gradient) /
-                                     (2 * step);
-      const Eigen::VectorXd expected = hessian * d;
-      const double scale = (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * d.cwiseAbs())
-                               .lpNorm<Eigen::Infinity>();
-      if (std::string(e.name) == "gravity") {
-        EXPECT_EQ(hessian.nonZeros(), 0);
-        EXPECT_LT(change.lpNorm<Eigen::Infinity>(), 1e-9 * terms.gradient.norm());
-        continue;
-      }
-      ASSERT_GT(scale, 0.0) << e.name;
-      EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-5 * scale)
-          << e.name << " phase " << phase;
+  const Energy energy = energy_named(GetParam(), model, targets, start);
+  const NewtonTerms terms =
+      terms_at(model, at, energy, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
+  const bool kinetic = GetParam() == "kinetic";
+  const Eigen::SparseMatrix<double> hessian = test::assembled(model, terms, kinetic);
+  for (double phase : {1.0, 2.0}) {
+    const Eigen::VectorXd d = test::direction(model, 1.0, 1.0, phase);
+    const double step = 1e-6;
+    const Eigen::VectorXd change = (terms_at(model, at, energy, d, step, true).gradient -
+                                    terms_at(model, at, energy, d, -step, true).gradient) /
+                                   (2 * step);
+    if (GetParam() == "gravity") {  // a linear potential
+      EXPECT_EQ(hessian.nonZeros(), 0);
+      EXPECT_LT(change.lpNorm<Eigen::Infinity>(), 1e-9 * terms.gradient.norm());
+      continue;
     }
+    const Eigen::VectorXd expected = hessian * d;
+    const double scale =
+        (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * d.cwiseAbs()).lpNorm<Eigen::Infinity>();
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-5 * scale) << "phase " << phase;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Each, BodyEnergy,
+                         ::testing::Values("coupling", "joints", "tracking", "gravity", "kinetic"),
+                         [](const auto& info) { return info.param; });
 
 }  // namespace
 }  // namespace handlab::sim
