@@ -2,6 +2,7 @@
 // the candidates it finds, its energies' gradient and Hessian against finite differences, and
 // friction's anchors inside Coulomb's cone.
 #include <algorithm>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -72,27 +73,51 @@ HandSimState moved(const HandSimModel& model, const HandSimState& s, const Eigen
   return m;
 }
 
-// The penalties, the friction springs of flesh on the cube and of the corners on the floor:
-// the gradient is the energy's slope along the nodes, the cube's translation and its rotation.
+// One of the contact energies alone: the normal penalties (the contacts taken as not touching,
+// which friction needs), or friction (the springs and kinetic forces: all less the penalties).
+struct ContactEnergyPart {
+  std::vector<Contact> all, penalties;
+  bool friction = false;
+
+  NewtonTerms at(const HandSimModel& model, const HandSimState& s, bool hessian) const {
+    NewtonTerms terms = contact_terms(model, s, friction ? all : penalties, hessian);
+    if (!friction) return terms;
+    const NewtonTerms penalty = contact_terms(model, s, penalties, hessian);
+    terms.energy -= penalty.energy;
+    terms.gradient -= penalty.gradient;
+    return terms;
+  }
+  Eigen::SparseMatrix<double> hessian(const HandSimModel& model, const HandSimState& s) const {
+    const Eigen::SparseMatrix<double> h = test::assembled(model, at(model, s, true), false);
+    if (!friction) return h;
+    return h - test::assembled(model, contact_terms(model, s, penalties, true), false);
+  }
+};
+
+class ContactEnergy : public ::testing::TestWithParam<std::string> {};
+
+// The gradient is the energy's slope along the nodes, the cube's translation and its rotation.
 // The Hessian is the gradient's derivative along the nodes and the cube's translation (the
 // Gauss-Newton Hessian leaves out the surface's curvature under a turn of the cube).
-TEST(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
+TEST_P(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
   const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
-  std::vector<Contact> contacts;
-  find_contacts(model, g.state, contacts);
-  const NewtonTerms terms = contact_terms(model, g.state, contacts, true);
-  ASSERT_GT(terms.springs.size(), 10u);
-  const Eigen::SparseMatrix<double> hessian = test::assembled(model, terms, false);
+  ContactEnergyPart part;
+  find_contacts(model, g.state, part.all);
+  part.penalties = part.all;
+  for (Contact& c : part.penalties) c.touching = false;
+  part.friction = GetParam() == "friction";
+  const NewtonTerms terms = part.at(model, g.state, true);
+  ASSERT_GT(terms.gradient.lpNorm<Eigen::Infinity>(), 0.0);
+  const Eigen::SparseMatrix<double> hessian = part.hessian(model, g.state);
+  ASSERT_GT(hessian.nonZeros(), 0);
   for (double phase : {1.0, 2.0, 3.0}) {
     // 0.1 mm and 0.01 rad at t = 1: steps of 1e-4 of that stay in each contact's face region.
     Eigen::VectorXd along =
         test::only(model, test::direction(model, 1e-4, 1e-2, phase), true, false, false);
     along.tail(6) = test::direction(model, 1e-4, 1e-2, phase + 0.3).tail(6);  // the cube
     const auto [slope, curvature] = test::differences(
-        [&](double t) {
-          return contact_terms(model, moved(model, g.state, along, t), contacts, false).energy;
-        },
+        [&](double t) { return part.at(model, moved(model, g.state, along, t), false).energy; },
         1e-4);
     const double slope_scale = terms.gradient.cwiseAbs().dot(along.cwiseAbs());
     EXPECT_NEAR(slope, terms.gradient.dot(along), 1e-6 * slope_scale) << "phase " << phase;
@@ -101,8 +126,8 @@ TEST(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
     straight.tail(3).setZero();
     const double step = 1e-4;
     const Eigen::VectorXd change =
-        (contact_terms(model, moved(model, g.state, straight, step), contacts, true).gradient -
-         contact_terms(model, moved(model, g.state, straight, -step), contacts, true).gradient) /
+        (part.at(model, moved(model, g.state, straight, step), true).gradient -
+         part.at(model, moved(model, g.state, straight, -step), true).gradient) /
         (2 * step);
     const Eigen::VectorXd expected = hessian * straight;
     const double scale = (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * straight.cwiseAbs())
@@ -110,6 +135,9 @@ TEST(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
     EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-4 * scale) << "phase " << phase;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Each, ContactEnergy, ::testing::Values("penalty", "friction"),
+                         [](const auto& info) { return info.param; });
 
 // After a step, every anchor lies within Coulomb's cone of its point, on the surface's side.
 TEST(Friction, AnchorsStayInsideCoulombsCone) {
