@@ -2,6 +2,8 @@
 // pinch (approach, closing, grip, lift): every energy's terms as a step finds them; the
 // term-by-term product and diagonal that CG uses, and the matrix written into the
 // factorisation's panels, against the matrix assembled entry by entry from the same terms.
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "core/sim/linear_solve.h"
@@ -11,13 +13,23 @@
 namespace handlab::sim {
 namespace {
 
+// The pinch run to `time`, once for all the tests at that moment.
+const test::GraspScene& grasp_at(double time) {
+  static std::map<double, test::GraspScene> scenes;
+  auto it = scenes.find(time);
+  if (it == scenes.end()) it = scenes.emplace(time, test::grasp_scene(time)).first;
+  return it->second;
+}
+
 struct Evaluated {
-  test::GraspScene grasp;
+  const test::GraspScene& grasp;
   NewtonTerms terms;
 };
 
+// Every term of a step's first evaluation at the grasp's state; `layout`, when given, the
+// fixed springs' places in the panels (as the engine passes them).
 Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
-  Evaluated e{test::grasp_scene(time), {}};
+  Evaluated e{grasp_at(time), {}};
   const HandSimModel& model = e.grasp.scene.model;
   HandSimState s = e.grasp.state;
   e.terms = test::empty_terms(model, true);
@@ -50,10 +62,9 @@ TEST_P(NewtonMatrixAt, ProductAndDiagonalEqualTheAssembledMatrix) {
 }
 
 TEST_P(NewtonMatrixAt, PanelsHoldTheAssembledMatrix) {
-  test::GraspScene scene = test::grasp_scene(GetParam());
   SolverMemory memory;
   NewtonLayout layout;
-  analyze_newton_matrix(scene.scene.model, memory, layout);
+  analyze_newton_matrix(grasp_at(GetParam()).scene.model, memory, layout);
   const Evaluated e = evaluated(GetParam(), &layout);
   const HandSimModel& model = e.grasp.scene.model;
   const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
