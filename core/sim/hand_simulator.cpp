@@ -92,7 +92,13 @@ void finish(const HandSimModel& model, const HandSimState& start, Iterate& it) {
     s.bone_velocity[std::size_t(b)].angular = it.turned[std::size_t(b)] / h;
   }
   s.cube_velocity.linear = (s.cube_pose.position - start.cube_pose.position) / h;
-  s.cube_velocity.angular = it.turned.back() / h;
+  // A cube that turned by more than kMaxTurn in the step spins faster than a step resolves:
+  // carried on, its next prediction would turn it by a good part of a quarter turn, where its
+  // contacts alias (the corners that touch the floor change places unseen) and the floor
+  // pushes it on instead of braking it. Its spin is bounded by kMaxTurn a step (30 rad/s at
+  // 120 Hz; game engines bound it likewise, Unity's default at 50 rad/s).
+  const double turn = it.turned.back().norm();
+  s.cube_velocity.angular = (turn > kMaxTurn ? kMaxTurn / turn : 1.0) * it.turned.back() / h;
   s.time = start.time + h;
 }
 
