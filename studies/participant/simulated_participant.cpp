@@ -7,21 +7,30 @@
 namespace handlab::studies {
 namespace {
 
-constexpr double kApproachHeight = 0.04;     // m above the grasp point before coming down
-constexpr double kLiftHeight = 0.08;         // m
-constexpr double kWithdrawHeight = 0.10;     // m
-constexpr double kPlaceClearance = 0.003;    // m between the cube and the floor when letting go
-constexpr double kReleaseOpening = 0.03;     // m the aperture opens to let go
-constexpr double kSlowClosing = 0.02;        // m/s when the planned closing did not reach the cube
-constexpr double kServoGain = 3.0;           // 1/s, continuous visual correction
-constexpr int kMaxCorrections = 3;           // corrective submovements per aimed movement
-constexpr double kRestSpeed = 0.02;          // m/s: the cube looks at rest
-constexpr double kRestLook = 0.2;            // s it watches the cube at rest before leaving it
-constexpr double kPreContactMargin = 0.015;  // m each side of the cube before the closing
+constexpr double kApproachHeight = 0.04;  // m above the grasp point before coming down
+constexpr double kLiftHeight = 0.08;      // m
+constexpr double kWithdrawHeight = 0.10;  // m
+// m: it sets the cube down until it sees it on the floor, aiming this far past (the cube stops
+// there and the pads slide on it), so that the floor holds it as the fingers open.
+constexpr double kPlaceDepth = 0.001;
+constexpr double kReleaseOpening = 0.03;  // m the aperture opens to let go
+constexpr double kSlowClosing = 0.02;     // m/s when the planned closing did not reach the cube
+constexpr double kServoGain = 3.0;        // 1/s, continuous visual correction
+constexpr int kMaxCorrections = 3;        // corrective submovements per aimed movement
+// The cube looks at rest when it stays within kRestTravel of where it was for kRestLook: a
+// person sees whether it still slides or tumbles, not a fingertip's tremor nudging it.
+constexpr double kRestTravel = 0.002;          // m
+constexpr double kRestLook = 0.2;              // s
+constexpr double kPreContactMargin = 0.015;    // m each side of the cube before the closing
 constexpr double kClosingPastContact = 0.003;  // m the closing aims past the seen size
 constexpr double kGripLoading = 0.003;   // m it closes on after seeing contact (loading phase)
 constexpr double kTipPinchBelow = 0.02;  // m: a cube this small is picked with the tips
 constexpr double kPadOnFace = 0.007;     // m: a pad's bone this close (surface) is on the cube
+// A cube seen this high for this long without both pads on it is caught on the hand (a
+// dropped cube falls from the lift's height in a seventh of a second).
+constexpr double kCaughtHeight = 0.02;  // m
+constexpr double kCaughtLook = 0.2;     // s
+constexpr double kWipeDepth = 0.01;     // m under the floor it takes a caught cube to wipe it off
 
 Eigen::Vector3d horizontal(const Eigen::Vector3d& v) {
   return Eigen::Vector3d(v.x(), 0, v.z());
@@ -42,10 +51,11 @@ SimulatedParticipant::SimulatedParticipant(const SimulatedPerson& person, const 
 }
 
 const char* SimulatedParticipant::phase_name() const {
-  static const char* names[] = {
-      "react",      "reach",   "check reach", "descend",    "check descent", "close",
-      "slow close", "confirm", "lift",        "check lift", "transport",     "check transport",
-      "lower",      "release", "wait rest",   "withdraw",   "reopen",        "idle"};
+  static const char* names[] = {"react",         "reach",      "check reach", "descend",
+                                "check descent", "close",      "slow close",  "confirm",
+                                "lift",          "check lift", "transport",   "check transport",
+                                "lower",         "release",    "wait rest",   "withdraw",
+                                "reopen",        "free cube",  "idle"};
   return names[int(phase_)];
 }
 
@@ -71,11 +81,6 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
   Seen s;
   s.cube = o.cube_position;
   s.both_touching = o.thumb_touching && o.index_touching;
-  // The cube's speed from the observation before this one.
-  for (std::size_t k = 1; k < shown_.size(); ++k)
-    if (&shown_[k] == &o && o.time > shown_[k - 1].time)
-      s.cube_speed =
-          (o.cube_position - shown_[k - 1].cube_position).norm() / (o.time - shown_[k - 1].time);
   const SeenHandGeometry& g = context_.hand;
   if (o.bones.empty() || g.thumb_distal < 0 || g.index_distal < 0) return s;
   // A distal phalanx as it is drawn: a capsule along the bone. What it watches of each is
@@ -120,6 +125,20 @@ Eigen::Vector3d SimulatedParticipant::grasp_point(const Observation& o) const {
   const double bottom = o.cube_position.y() - 0.5 * side;
   const double height = pinch_ == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012);
   return Eigen::Vector3d(o.cube_position.x(), bottom + height, o.cube_position.z());
+}
+
+bool SimulatedParticipant::cube_at_rest(const Seen& s) {
+  if (resting_since_ < 0 || (s.cube - resting_at_).norm() > kRestTravel) {
+    resting_since_ = time_;
+    resting_at_ = s.cube;
+    return false;
+  }
+  return time_ - resting_since_ >= kRestLook;
+}
+
+bool SimulatedParticipant::in_zone_b(const Seen& s, const Observation& o) {
+  const Eigen::Vector3d off = horizontal(s.cube - o.zone_b);
+  return std::abs(off.x()) < 0.5 * o.zone_size && std::abs(off.z()) < 0.5 * o.zone_size;
 }
 
 double SimulatedParticipant::clearance(const Seen& s, const Observation& o) const {
@@ -202,6 +221,27 @@ void SimulatedParticipant::update(const Observation* o) {
   auto loss_seen = [&] {
     return o && s.hand && (s.cube - s.grip).norm() > 0.5 * o->cube_size + 0.015;
   };
+
+  // A cube it sees caught on the hand while it goes for the cube (stuck to a fingertip, in a
+  // finger's crease): reaching for it would carry it along. It opens the hand wide for the
+  // cube to fall, then looks again (kFreeCube).
+  if (o && s.hand && !s.both_touching && s.cube.y() - 0.5 * o->cube_size > kCaughtHeight) {
+    if (off_floor_since_ < 0) off_floor_since_ = t;
+  } else if (o) {
+    off_floor_since_ = -1;
+  }
+  const bool caught = off_floor_since_ >= 0 && t - off_floor_since_ >= kCaughtLook;
+  const bool going_for_cube = phase_ == Phase::kReach || phase_ == Phase::kCheckReach ||
+                              phase_ == Phase::kDescend || phase_ == Phase::kCheckDescent ||
+                              phase_ == Phase::kReopen;
+  if (going_for_cube && caught) {
+    ++experience_.corrections;
+    wipes_ = 0;
+    servo_on_ = false;
+    move_grip(grip_.at(t) + servo_, dt_, false);  // it stops where it is
+    move_aperture(hand_.max_aperture(pinch_), 0.3 * practice());
+    phase_ = Phase::kFreeCube;
+  }
 
   switch (phase_) {
     case Phase::kReact:
@@ -345,7 +385,7 @@ void SimulatedParticipant::update(const Observation* o) {
         phase_ = Phase::kTransport;
         break;
       }
-      const double drop = cube_now.y() - (0.5 * o->cube_size + kPlaceClearance);
+      const double drop = cube_now.y() - (0.5 * o->cube_size - kPlaceDepth);
       move_grip(own_now - Eigen::Vector3d(0, drop, 0),
                 fitts_time(m.fitts_a, m.fitts_b, std::abs(drop), o->cube_size) * practice(), false);
       phase_ = Phase::kLower;
@@ -371,16 +411,8 @@ void SimulatedParticipant::update(const Observation* o) {
       }
       break;
     case Phase::kWaitRest: {
-      if (!o || o->time < aperture_end) break;
-      if (s.cube_speed >= kRestSpeed) {
-        resting_since_ = -1;
-        break;
-      }
-      if (resting_since_ < 0) resting_since_ = t;
-      if (t - resting_since_ < kRestLook) break;
-      const Eigen::Vector3d off = horizontal(s.cube - o->zone_b);
-      const double half = 0.5 * o->zone_size;
-      if (std::abs(off.x()) < half && std::abs(off.z()) < half) {
+      if (!o || o->time < aperture_end || !cube_at_rest(s)) break;
+      if (in_zone_b(s, *o)) {
         move_grip(grip_.at(t) + servo_ + Eigen::Vector3d(0, kWithdrawHeight, 0),
                   fitts_time(m.fitts_a, m.fitts_b, kWithdrawHeight, kWithdrawHeight) * practice(),
                   false);
@@ -400,6 +432,7 @@ void SimulatedParticipant::update(const Observation* o) {
         move_aperture(hand_.max_aperture(pinch_), 0.3 * practice());
         phase_ = Phase::kRelease;
       } else if (grip_.done(t)) {
+        resting_since_ = -1;
         phase_ = Phase::kIdle;
       }
       break;
@@ -407,7 +440,28 @@ void SimulatedParticipant::update(const Observation* o) {
       if (!grip_.done(t) || t < aperture_end || !o || o->time < grip_end) break;
       plan_reach(*o, s);
       break;
+    case Phase::kFreeCube: {
+      if (!grip_.done(t) || t < aperture_end || !o || o->time < std::max(grip_end, aperture_end))
+        break;
+      if (!caught) {
+        plan_reach(*o, s);
+        break;
+      }
+      // Still on the hand, opened wide: it wipes the cube off on the floor, the hand down
+      // until the cube would be kWipeDepth under it (deeper each time it stays).
+      ++experience_.corrections;
+      ++wipes_;
+      const double down = s.cube.y() - 0.5 * o->cube_size + wipes_ * kWipeDepth;
+      move_grip(grip_.at(t) + servo_ - Eigen::Vector3d(0, down, 0),
+                fitts_time(m.fitts_a, m.fitts_b, down, o->cube_size) * practice(), false);
+      break;
+    }
     case Phase::kIdle:
+      // The trial goes on, so the cube it left in B has slid out of it: it goes back for it.
+      if (o && cube_at_rest(s) && !in_zone_b(s, *o)) {
+        ++experience_.losses;
+        start_regrasp();
+      }
       break;
   }
 }

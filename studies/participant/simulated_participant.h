@@ -57,6 +57,7 @@ class SimulatedParticipant {
     kWaitRest,
     kWithdraw,
     kReopen,
+    kFreeCube,  // a cube caught on the hand: open wide, then wipe it off on the floor
     kIdle
   };
   struct OwnState {
@@ -71,7 +72,6 @@ class SimulatedParticipant {
     bool both_touching = false;                      // thumb and index pads on the cube
     double thumb_gap = 1.0, index_gap = 1.0;         // m from each pad's surface to the cube
     Eigen::Vector3d cube = Eigen::Vector3d::Zero();
-    double cube_speed = 0.0;
   };
 
   const Observation* delayed() const;  // the newest observation at least one delay old
@@ -80,6 +80,9 @@ class SimulatedParticipant {
   Eigen::Vector3d grasp_point(const Observation& o) const;
   double practice() const;
   double clearance(const Seen& s, const Observation& o) const;
+  // Whether it has seen the cube stay put for a while (it watches on from each call).
+  bool cube_at_rest(const Seen& s);
+  static bool in_zone_b(const Seen& s, const Observation& o);
   void move_grip(const Eigen::Vector3d& target, double duration, bool noisy);
   void move_aperture(double target, double duration);
   void plan_reach(const Observation& o, const Seen& s);
@@ -107,7 +110,11 @@ class SimulatedParticipant {
   double gain_estimate_ = 1.0;  // seen aperture per own aperture, learnt while open
   int gain_samples_ = 0;
   double extra_squeeze_ = 0.0;
-  double touching_since_ = -1.0, resting_since_ = -1.0;
+  double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
+  int wipes_ = 0;                  // of a caught cube on the floor, since it was seen caught
+  double touching_since_ = -1.0;
+  double resting_since_ = -1.0;  // since when the cube has stayed near resting_at_
+  Eigen::Vector3d resting_at_ = Eigen::Vector3d::Zero();
   int corrections_this_move_ = 0;
   Eigen::Vector3d tremor_phase_ = Eigen::Vector3d::Zero();
   TrialExperience experience_;

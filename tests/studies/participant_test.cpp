@@ -1,6 +1,8 @@
 // The simulated participant: its motor primitives, its population, the tracker jitter it adds
 // (measured from the Leap recordings), its blindness to the condition, and its questionnaire.
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -217,6 +219,109 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
     }
     EXPECT_TRUE(differs);
   }
+}
+
+// A world whose cube sticks to the virtual thumb's tip when the tip comes up from it (as a
+// cube caught in the flesh does), until the tip presses it 5 mm into the floor: the hand's bones
+// are the grasp proxy's (the participant's own motion, retargeted), the cube is the test's.
+class CaughtCubeWorld : public task::HandCubeWorld {
+ public:
+  CaughtCubeWorld(const hand::Skeleton& sim, const task::SceneLayout& layout)
+      : proxy_(sim, proxy_settings(layout.cube_size), Eigen::Vector3d(0.3, 0.1, 0.3)),
+        thumb_(sim.bone_index("thumb3")),
+        length_(sim.bones[std::size_t(thumb_)].length),
+        half_(layout.cube_size / 2) {
+    cube_.position = layout.zone_a + Eigen::Vector3d(0, half_, 0);
+  }
+  void step(const hand::HandPose* target, double dt) override {
+    proxy_.step(target, dt);
+    if (proxy_.bones().empty()) return;
+    const Eigen::Isometry3d& bone = proxy_.bones()[std::size_t(thumb_)];
+    const Eigen::Vector3d tip = bone.translation() + length_ * bone.linear().col(1);
+    // Caught when the tip, at the cube, comes up 5 mm from the lowest it went there.
+    const bool near = (tip - cube_.position).norm() < 0.025;
+    lowest_ = near ? std::min(lowest_, tip.y()) : INFINITY;
+    if (!caught_ && !freed_ && near && tip.y() > lowest_ + 0.005) {
+      caught_ = true;
+      offset_ = cube_.position - tip;
+    }
+    if (!caught_) return;
+    cube_.position = tip + offset_;
+    highest_caught_ = std::max(highest_caught_, cube_.position.y());
+    if (cube_.position.y() < half_ - 0.005) {  // pressed into the floor: it strips it off
+      cube_.position.y() = half_;
+      caught_ = false;
+      freed_ = true;
+    }
+  }
+  const task::CubeState& cube() const override { return cube_; }
+  bool thumb_contact() const override { return caught_; }
+  bool index_contact() const override { return false; }
+  const std::vector<Eigen::Isometry3d>& bones() const override { return proxy_.bones(); }
+  bool freed() const { return freed_; }
+  double highest_caught() const { return highest_caught_; }
+
+ private:
+  static task::GraspProxySettings proxy_settings(double cube_size) {
+    task::GraspProxySettings s;
+    s.cube_size = cube_size;
+    return s;
+  }
+  task::GraspProxyWorld proxy_;  // its own cube out of the way: the hand's bones alone
+  int thumb_;
+  double length_, half_;
+  bool caught_ = false, freed_ = false;
+  double highest_caught_ = 0.0, lowest_ = INFINITY;
+  Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
+  task::CubeState cube_;
+};
+
+// A cube stuck to the virtual thumb does not make it chase the cube upwards (each reach for
+// a cube it carries lifts the cube with it): it opens the hand, then wipes the cube off on the
+// floor, and reaches for it where it fell.
+TEST(SimulatedParticipantCare, WipesOffACubeCaughtOnItsThumb) {
+  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
+  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  const SimulatedPerson person = draw_person(Population{}, 5, 3);
+  const OwnHand own(person.participant.hand_length);
+  TrialSetup setup;
+  setup.protocol = &protocol;
+  for (const Condition& c : protocol.conditions())
+    if (c.cube_size == 0.01) setup.condition = c;
+  setup.participant = person.participant;
+  setup.planned.position = 7;
+  setup.calibration = driver.calibrate(protocol, person.participant);
+  const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
+  task::SceneLayout layout = protocol.scene;
+  layout.cube_size = 0.01;
+  CaughtCubeWorld world(sim, layout);
+  retarget::Retargeter retargeter(retarget::Strategy::kOurs, sim, setup.calibration);
+  auto participant = participant_for_trial(setup, 5, own, 120.0);
+  Observation shown = display_observation(world, layout, 0.0);
+  double freed_at = -1.0, nearest_after = INFINITY;
+  Eigen::Vector3d resting = Eigen::Vector3d::Zero();
+  for (long step = 1; step <= 120 * 40; ++step) {
+    const double t = double(step) / 120.0;
+    const tracking::TrackedFrame sent = participant->act(shown);
+    const hand::HandPose pose = retargeter.retarget(sent.hands.at(0)).pose;
+    world.step(&pose, 1.0 / 120.0);
+    shown = display_observation(world, layout, t);
+    if (freed_at < 0 && world.freed()) {
+      freed_at = t;
+      resting = world.cube().position;
+    }
+    if (freed_at >= 0 && !shown.bones.empty()) {
+      const Eigen::Isometry3d& tip = shown.bones[std::size_t(sim.bone_index("index3"))];
+      nearest_after = std::min(nearest_after, (tip.translation() - resting).norm());
+    }
+  }
+  std::cout << "caught cube: freed at " << freed_at << " s, highest " << world.highest_caught()
+            << " m, index tip within " << nearest_after << " m of it after, "
+            << participant->experience().corrections << " corrections\n";
+  ASSERT_GE(freed_at, 0.0) << "it never took the caught cube down to the floor";
+  EXPECT_LT(world.highest_caught(), 0.15) << "it chased the cube it carried upwards";
+  EXPECT_LT(nearest_after, 0.05) << "it did not reach for the cube where it fell";
+  EXPECT_GE(participant->experience().corrections, 2);  // opening wide, wiping
 }
 
 // Its own hand: the tracked skeleton at its size, the pads the asked aperture apart.
