@@ -1,5 +1,6 @@
 // The simulated participant: its motor primitives, its population, the tracker jitter it adds
-// (measured from the Leap recordings), its blindness to the condition, and its questionnaire.
+// (measured from the Leap recordings), its blindness to the condition, what it does with a cube
+// caught on its hand, and its questionnaire.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
