@@ -287,23 +287,34 @@ TEST(SimulatedParticipantCare, WipesOffACubeCaughtOnItsThumb) {
   const OwnHand own(person.participant.hand_length);
   TrialSetup setup;
   setup.protocol = &protocol;
-  for (const Condition& c : protocol.conditions())
-    if (c.cube_size == 0.01) setup.condition = c;
   setup.participant = person.participant;
   setup.planned.position = 7;
   setup.calibration = driver.calibrate(protocol, person.participant);
+  // The 1 cm cube's two conditions: the participant of the second, fed what the first saw,
+  // must send the same frames (blinding, through the behaviours this world provokes).
+  std::vector<Condition> fine;
+  for (const Condition& c : protocol.conditions())
+    if (c.cube_size == 0.01) fine.push_back(c);
+  ASSERT_EQ(fine.size(), 2u);
+  ASSERT_NE(fine[0].naive_strategy, fine[1].naive_strategy);
+  setup.condition = fine[0];
+  TrialSetup swapped = setup;
+  swapped.condition = fine[1];
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
   task::SceneLayout layout = protocol.scene;
   layout.cube_size = 0.01;
   CaughtCubeWorld world(sim, layout);
   retarget::Retargeter retargeter(retarget::Strategy::kOurs, sim, setup.calibration);
   auto participant = participant_for_trial(setup, 5, own, 120.0);
+  auto blind = participant_for_trial(swapped, 5, own, 120.0);
   Observation shown = display_observation(world, layout, 0.0);
+  bool same_frames = true;
   double freed_at = -1.0, nearest_after = INFINITY;
   Eigen::Vector3d resting = Eigen::Vector3d::Zero();
   for (long step = 1; step <= 120 * 40; ++step) {
     const double t = double(step) / 120.0;
     const tracking::TrackedFrame sent = participant->act(shown);
+    same_frames = same_frames && blind->act(shown).hands.at(0).joints == sent.hands.at(0).joints;
     const hand::HandPose pose = retargeter.retarget(sent.hands.at(0)).pose;
     world.step(&pose, 1.0 / 120.0);
     shown = display_observation(world, layout, t);
@@ -323,6 +334,8 @@ TEST(SimulatedParticipantCare, WipesOffACubeCaughtOnItsThumb) {
   EXPECT_LT(world.highest_caught(), 0.15) << "it chased the cube it carried upwards";
   EXPECT_LT(nearest_after, 0.05) << "it did not reach for the cube where it fell";
   EXPECT_GE(participant->experience().corrections, 2);  // opening wide, wiping
+  EXPECT_TRUE(same_frames) << "the other strategy's label changed what it sent";
+  EXPECT_EQ(blind->experience().corrections, participant->experience().corrections);
 }
 
 // Its own hand: the tracked skeleton at its size, the pads the asked aperture apart.

@@ -1,6 +1,7 @@
 // The simulator's rigid bodies and contact against known answers: inertia of solids, the
-// box distance, a dropped cube (free fall at g, then rest on the floor) and a cube on a tilted
-// floor (sticks below atan(mu), slides above).
+// box distance, a dropped cube (free fall at g, then rest on the floor), a cube on a tilted
+// floor (sticks below atan(mu), slides above), a pushed cube sliding to a stop, and a spinning
+// cube tumbling to rest.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
