@@ -1,15 +1,19 @@
 #include "app/gui/scene_view.h"
 
+#include <functional>
 #include <memory>
+
+#include <QCoreApplication>
 
 #include <QMouseEvent>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QOpenGLFramebufferObject>
 #include <QOpenGLFunctions>
-#include <QOpenGLWidget>
 #include <QPainter>
 #include <QVBoxLayout>
 #include <QWheelEvent>
+#include <QWindow>
 
 #include "core/hand/simulated_hand.h"
 #include "core/hand/skin.h"
@@ -56,34 +60,111 @@ Eigen::Vector3f SceneView::simulated_palm_position() {
   return (hand_placement(kSimulatedHandAt) * Eigen::Vector3d(0, 0.25 * 0.214, 0)).cast<float>();
 }
 
-// Draws the scene with the core renderer; owned by a SceneView, which feeds it the camera.
-class SceneCanvas : public QOpenGLWidget {
+// Draws the scene with the core renderer into a native window of its own, embedded in the
+// SceneView. A window, not a QOpenGLWidget: a widget's picture is composed into its top-level
+// window on every frame (the whole window drawn again from textures), which on a software
+// renderer costs twice the scene itself; a window of its own swaps just its own pixels. It
+// draws as soon as the event loop is free after a request, not at the platform's next update
+// tick (5 ms later on X11): the live view's latency counts every millisecond. Input goes to
+// the SceneView (its event filter).
+class SceneCanvas : public QWindow {
  public:
-  explicit SceneCanvas(SceneView* view) : QOpenGLWidget(view), view_(view) {
-    setAttribute(Qt::WA_TransparentForMouseEvents);  // the SceneView handles input
+  SceneCanvas(SceneView* view, std::function<void()> shown)
+      : view_(view), shown_(std::move(shown)) {
+    setSurfaceType(QSurface::OpenGLSurface);
+    setFlag(Qt::WindowDoesNotAcceptFocus);  // keys stay with the widgets and their shortcuts
   }
-  ~SceneCanvas() override { release(); }
+  ~SceneCanvas() override {
+    if (context_ && renderer_ && context_->makeCurrent(this)) {
+      renderer_.reset();  // GL objects are deleted with their context current
+      context_->doneCurrent();
+    }
+  }
 
-  QString error() const { return error_; }
+  // Coalesced: requests made before the picture is drawn are one picture.
+  void request_picture() {
+    if (pending_) return;
+    pending_ = true;
+    QCoreApplication::postEvent(this, new QEvent(QEvent::UpdateRequest));
+  }
+
+  // The picture as it would be drawn now, at the view's size, drawn off screen (the view
+  // need not be shown).
+  QImage grab(const QSize& size) {
+    if (!create_context()) return {};
+    QOffscreenSurface surface;
+    surface.setFormat(context_->format());
+    surface.create();
+    if (!context_->makeCurrent(&surface) || !create_renderer()) return {};
+    QImage image;
+    {
+      QOpenGLFramebufferObject target(size, QOpenGLFramebufferObject::CombinedDepthStencil);
+      target.bind();
+      draw(size);
+      image = target.toImage();
+      target.release();
+    }
+    context_->doneCurrent();
+    return image;
+  }
 
  protected:
-  void initializeGL() override {
-    QOpenGLContext* gl = context();
-    connect(gl, &QOpenGLContext::aboutToBeDestroyed, this, [this] { release(); });
+  bool event(QEvent* event) override {
+    if (event->type() == QEvent::UpdateRequest) {
+      pending_ = false;
+      show_picture();
+      return true;
+    }
+    return QWindow::event(event);
+  }
+
+  void exposeEvent(QExposeEvent*) override {
+    if (isExposed()) show_picture();
+  }
+
+ private:
+  QSize pixel_size() const { return size() * devicePixelRatio(); }
+
+  bool create_context() {
+    if (failed_) return false;
+    if (!context_) {
+      context_ = std::make_unique<QOpenGLContext>();
+      context_->setFormat(requestedFormat());
+      if (!context_->create()) {
+        failed_ = true;
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // With the context current.
+  bool create_renderer() {
+    if (renderer_) return true;
+    QOpenGLContext* gl = context_.get();
     try {
       renderer_ = std::make_unique<render::Renderer>(
           [gl](const char* name) -> render::GlProc { return gl->getProcAddress(name); });
     } catch (const std::exception& e) {
-      error_ = QString::fromUtf8(e.what());
+      failed_ = true;
       qWarning("handlab: 3D view unavailable: %s", e.what());
+      context_->doneCurrent();
+      return false;
     }
+    return true;
   }
 
-  void paintGL() override {
-    if (!renderer_) return;
-    const qreal ratio = devicePixelRatioF();
+  void show_picture() {
+    if (!isExposed() || !create_context() || !context_->makeCurrent(this) || !create_renderer())
+      return;
+    draw(pixel_size());
+    context_->swapBuffers(this);
+    if (shown_) shown_();
+  }
+
+  void draw(const QSize& size) {
     if (const auto& frame = view_->frame()) {
-      renderer_->render(*frame, view_->camera(), int(width() * ratio), int(height() * ratio));
+      renderer_->render(*frame, view_->camera(), size.width(), size.height());
       return;
     }
     const task::SceneLayout& layout = view_->layout();
@@ -96,20 +177,14 @@ class SceneCanvas : public QOpenGLWidget {
                             hand_placement(kTrackedHandAt), {0.35f, 0.6f, 0.85f, 1.0f},
                             {0.95f, 0.95f, 0.95f, 1.0f});
     }
-    renderer_->render(list, view_->camera(), int(width() * ratio), int(height() * ratio));
-  }
-
- private:
-  void release() {
-    if (!renderer_) return;
-    makeCurrent();  // GL objects are deleted with their context current
-    renderer_.reset();
-    doneCurrent();
+    renderer_->render(list, view_->camera(), size.width(), size.height());
   }
 
   SceneView* view_;
+  std::function<void()> shown_;
+  std::unique_ptr<QOpenGLContext> context_;
   std::unique_ptr<render::Renderer> renderer_;
-  QString error_;
+  bool pending_ = false, failed_ = false;
 };
 
 namespace {
@@ -152,16 +227,16 @@ SceneView::SceneView(QWidget* parent) : QWidget(parent) {
   setMinimumSize(320, 240);
   setFocusPolicy(Qt::StrongFocus);
   if (opengl_available()) {
-    canvas_ = new SceneCanvas(this);
-    // The view multisamples in its own framebuffer, not the window's, and not at all on a
-    // software renderer, where every sample costs CPU time the display's latency needs.
-    QSurfaceFormat format = canvas_->format();
+    canvas_ = new SceneCanvas(this, [this] { emit picture_shown(); });
+    // Multisampled, except on a software renderer, where every sample costs CPU time the
+    // display's latency needs.
+    QSurfaceFormat format = QSurfaceFormat::defaultFormat();
     format.setSamples(opengl_probe().software ? 0 : 4);
     canvas_->setFormat(format);
-    connect(canvas_, &QOpenGLWidget::frameSwapped, this, &SceneView::picture_shown);
+    canvas_->installEventFilter(this);
     auto* box = new QVBoxLayout(this);
     box->setContentsMargins(0, 0, 0, 0);
-    box->addWidget(canvas_);
+    box->addWidget(QWidget::createWindowContainer(canvas_, this));
   }
 }
 
@@ -186,15 +261,43 @@ void SceneView::set_layout(const task::SceneLayout& layout) {
   redraw();
 }
 
+QWindow* SceneView::canvas() const {
+  return canvas_;
+}
+
 QImage SceneView::grab_picture() {
-  return canvas_ ? canvas_->grabFramebuffer() : QImage();
+  return canvas_ ? canvas_->grab(size() * devicePixelRatioF()) : QImage();
 }
 
 void SceneView::redraw() {
   if (canvas_)
-    canvas_->update();
+    canvas_->request_picture();
   else
     update();
+}
+
+SceneView::~SceneView() {
+  delete canvas_;  // its container owns it, but goes only after the members the canvas reads
+}
+
+bool SceneView::eventFilter(QObject* watched, QEvent* event) {
+  if (watched != canvas_) return QWidget::eventFilter(watched, event);
+  switch (event->type()) {
+    case QEvent::MouseButtonPress:
+      mousePressEvent(static_cast<QMouseEvent*>(event));
+      return true;
+    case QEvent::MouseMove:
+      mouseMoveEvent(static_cast<QMouseEvent*>(event));
+      return true;
+    case QEvent::MouseButtonRelease:
+      mouseReleaseEvent(static_cast<QMouseEvent*>(event));
+      return true;
+    case QEvent::Wheel:
+      wheelEvent(static_cast<QWheelEvent*>(event));
+      return true;
+    default:
+      return false;
+  }
 }
 
 void SceneView::paintEvent(QPaintEvent*) {

@@ -7,6 +7,7 @@
 
 #include <QPoint>
 #include <QWidget>
+#include <QWindow>
 
 #include <Eigen/Geometry>
 
@@ -23,6 +24,7 @@ class SceneView : public QWidget {
 
  public:
   explicit SceneView(QWidget* parent = nullptr);
+  ~SceneView() override;
 
   const render::OrbitCamera& camera() const { return camera_; }
   void set_camera(const render::OrbitCamera& camera);
@@ -36,8 +38,9 @@ class SceneView : public QWidget {
   // A frame to show instead of the static scene (a simulation's state); null: the scene.
   void set_frame(std::shared_ptr<const render::DrawList> frame);
   const std::shared_ptr<const render::DrawList>& frame() const { return frame_; }
-  // Null when the platform has no OpenGL 3.3 (e.g. the offscreen platform).
-  SceneCanvas* canvas() const { return canvas_; }
+  // The native window the scene is drawn in, where the mouse lands; null when the platform
+  // has no OpenGL 3.3 (e.g. the offscreen platform).
+  QWindow* canvas() const;
   // The picture currently shown (empty without OpenGL).
   QImage grab_picture();
 
@@ -47,6 +50,7 @@ class SceneView : public QWidget {
   void picture_shown();
 
  protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
   void paintEvent(QPaintEvent* event) override;
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;

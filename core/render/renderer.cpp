@@ -181,7 +181,6 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LEQUAL);
   gl.Disable(GL_CULL_FACE);
-  gl.Enable(GL_BLEND);
   gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
 
   const float aspect = height > 0 ? float(width) / float(height) : 1.0f;
@@ -199,6 +198,12 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
     gl.UniformMatrix3fv(impl_->u_normal_matrix, 1, GL_FALSE, normal_matrix.data());
     gl.Uniform4fv(impl_->u_color, 1, item.color.data());
     gl.Uniform1f(impl_->u_shading, static_cast<float>(item.shading));
+    // Blending only where it shows: an opaque item blended still reads every pixel it covers
+    // back, which a software renderer pays for per pixel.
+    if (item.color.w() < 1.0f)
+      gl.Enable(GL_BLEND);
+    else
+      gl.Disable(GL_BLEND);
     gl.BindVertexArray(gpu.vao);
     gl.DrawElements(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr);
   };
@@ -208,6 +213,7 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
   for (const DrawItem& item : list.items)
     if (item.overlay) draw(item);
   gl.Enable(GL_DEPTH_TEST);
+  gl.Disable(GL_BLEND);
   gl.BindVertexArray(0);
   gl.UseProgram(0);
 }

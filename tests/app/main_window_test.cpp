@@ -1,4 +1,5 @@
 #include <QMenuBar>
+#include <QSignalSpy>
 #include <QTest>
 
 #include <gtest/gtest.h>
@@ -174,6 +175,46 @@ TEST(SceneViewGl, DrawsTheSceneInAWindow) {
   EXPECT_GT(skin.red(), 150) << qPrintable(skin.name());
   EXPECT_GT(skin.red(), skin.green() + 20) << qPrintable(skin.name());
   EXPECT_GT(skin.green(), skin.blue()) << qPrintable(skin.name());
+}
+
+// The scene is drawn in a window of its own: the mouse lands there and still moves the
+// camera, and a new frame is drawn and reported on screen without waiting for other events.
+TEST(SceneViewGl, TheDrawingWindowTakesTheMouseAndShowsEachNewFrame) {
+  if (!opengl_available())
+    GTEST_SKIP() << "no OpenGL on platform " << qPrintable(QGuiApplication::platformName());
+  SceneView scene;
+  scene.resize(640, 480);
+  scene.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&scene));
+  SceneView* view = &scene;
+  QWindow* canvas = view->canvas();
+  ASSERT_NE(canvas, nullptr);
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(canvas));
+  EXPECT_NE(canvas->parent(), nullptr) << "embedded in the view, not a window of its own";
+
+  const render::OrbitCamera before = view->camera();
+  const QPoint start(canvas->width() / 2, canvas->height() / 2);
+  QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, start);
+  QTest::mouseMove(canvas, start + QPoint(50, 0));
+  QTest::mouseMove(canvas, start + QPoint(100, 30));
+  QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, start + QPoint(100, 30));
+  EXPECT_NEAR(view->camera().yaw, before.yaw - 100 * 0.01f, 1e-5f);
+  EXPECT_NEAR(view->camera().pitch, before.pitch + 30 * 0.01f, 1e-5f);
+
+  QSignalSpy shown(view, &SceneView::picture_shown);
+  task::SceneLayout layout = view->layout();
+  for (int i = 0; i < 3; ++i) {
+    view->set_frame(std::make_shared<const render::DrawList>(
+        render::draw_task_scene(layout, task::cube_start_pose(layout))));
+    ASSERT_TRUE(shown.wait(2000)) << "frame " << i;
+  }
+  // Requests made before the picture is drawn are one picture.
+  const int drawn = int(shown.count());
+  for (int i = 0; i < 5; ++i)
+    view->set_frame(std::make_shared<const render::DrawList>(
+        render::draw_task_scene(layout, task::cube_start_pose(layout))));
+  QTest::qWait(200);
+  EXPECT_EQ(shown.count(), drawn + 1);
 }
 
 }  // namespace
