@@ -246,7 +246,7 @@ int main(int argc, char** argv) {
   }
   if (parser.isSet(screenshot)) {
     auto save = [&] {
-      QImage picture = window.grab().toImage();
+      QImage picture = handlab::gui::grab_with_views(&window);
       if (auto* dialog = window.session()->questionnaire()) {  // as it stands over the window
         QPainter painter(&picture);
         painter.drawPixmap(dialog->frameGeometry().topLeft() - window.frameGeometry().topLeft(),
@@ -256,7 +256,8 @@ int main(int argc, char** argv) {
       if (window.participant_window()) {  // beside it: NAME-participant.png
         QString path = parser.value(screenshot);
         path.replace(QRegularExpression("\\.png$"), "");
-        saved = saved && window.participant_window()->grab().save(path + "-participant.png");
+        saved = saved && handlab::gui::grab_with_views(window.participant_window())
+                             .save(path + "-participant.png");
       }
       if (!saved)
         std::fprintf(stderr, "handlab: cannot write %s\n", qPrintable(parser.value(screenshot)));

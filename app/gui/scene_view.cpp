@@ -269,6 +269,18 @@ QImage SceneView::grab_picture() {
   return canvas_ ? canvas_->grab(size() * devicePixelRatioF()) : QImage();
 }
 
+QImage grab_with_views(QWidget* widget) {
+  QImage picture = widget->grab().toImage();
+  QPainter painter(&picture);
+  QList<SceneView*> views = widget->findChildren<SceneView*>();
+  if (auto* self = qobject_cast<SceneView*>(widget)) views.prepend(self);
+  for (SceneView* view : views)
+    if (view->isVisible() && view->canvas() && view->window() == widget->window())
+      painter.drawImage(QRect(view->mapTo(widget, QPoint(0, 0)), view->size()),
+                        view->grab_picture());
+  return picture;
+}
+
 void SceneView::redraw() {
   if (canvas_)
     canvas_->request_picture();

@@ -69,6 +69,10 @@ class SceneView : public QWidget {
   std::shared_ptr<const render::DrawList> frame_;
 };
 
+// A picture of `widget` as it is on screen, its 3D views drawn in (QWidget::grab leaves out
+// the native windows they draw in).
+QImage grab_with_views(QWidget* widget);
+
 // True when an OpenGL 3.3 core context can be created on this platform (checked once).
 bool opengl_available();
 

@@ -208,6 +208,16 @@ TEST(SceneViewGl, TheDrawingWindowTakesTheMouseAndShowsEachNewFrame) {
         render::draw_task_scene(layout, task::cube_start_pose(layout))));
     ASSERT_TRUE(shown.wait(2000)) << "frame " << i;
   }
+  // A screenshot of the window has the scene in it (QWidget::grab alone leaves it out).
+  const QImage composed = grab_with_views(&scene);
+  Eigen::Vector2f p;
+  const Eigen::Vector3f top =
+      layout.zone_a.cast<float>() + Eigen::Vector3f(0, float(layout.cube_size), 0);
+  ASSERT_TRUE(
+      render::project_to_pixel(view->camera(), composed.width(), composed.height(), top, &p));
+  const QColor cube = composed.pixelColor(int(p.x()), int(p.y()));
+  EXPECT_GT(cube.red(), cube.blue() + 60) << qPrintable(cube.name());
+
   // Requests made before the picture is drawn are one picture.
   const int drawn = int(shown.count());
   for (int i = 0; i < 5; ++i)
