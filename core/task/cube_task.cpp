@@ -83,16 +83,18 @@ TaskPhase CubeTask::update(const TaskObservation& o) {
         ++grasps_;
         record(o.time, "grasp");
       } else if (resting && !pinched) {
-        if (!in_zone_b(o.cube_position)) {
-          phase_ = TaskPhase::kStarted;
-          ++drops_;
-          record(o.time, "drop");
-        } else {
-          if (resting_since_ < 0) resting_since_ = o.time;
-          if (o.time - resting_since_ >= settings_.rest_time) {
+        // Where it stays decides, in B or out of it: a tumbling cube can pause for a step on
+        // its way (below the rest speed at the top of a roll) and still end in B.
+        if (resting_since_ < 0) resting_since_ = o.time;
+        if (o.time - resting_since_ >= settings_.rest_time) {
+          if (in_zone_b(o.cube_position)) {
             phase_ = TaskPhase::kDone;
             completion_time_ = resting_since_ - start_time_;  // when it was put down
             record(o.time, "done");
+          } else {
+            phase_ = TaskPhase::kStarted;
+            ++drops_;
+            record(resting_since_, "drop");  // when it came to rest out of B
           }
         }
       } else {

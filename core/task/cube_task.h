@@ -20,7 +20,7 @@ const char* phase_name(TaskPhase phase);
 
 struct TaskSettings {
   SceneLayout layout;          // zones and cube size
-  double rest_time = 0.5;      // s in zone B, at rest, to succeed
+  double rest_time = 0.5;      // s at rest after a release: in zone B a success, else a drop
   double timeout = 60.0;       // s from start
   double lift_height = 0.002;  // m: the cube is off the floor when its bottom is this high
   double rest_speed = 0.02;    // m/s: slower than this on the floor counts as resting
@@ -66,7 +66,7 @@ class CubeTask {
   TaskSettings settings_;
   TaskPhase phase_ = TaskPhase::kReady;
   double start_time_ = 0.0;
-  double resting_since_ = -1.0;  // time the cube came to rest in B; < 0 when it is not
+  double resting_since_ = -1.0;  // time the released cube came to rest; < 0 when it is not
   int grasps_ = 0, drops_ = 0;
   double completion_time_ = 0.0;
   std::vector<TaskEvent> events_;

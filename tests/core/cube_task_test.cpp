@@ -67,9 +67,13 @@ TEST(CubeTask, DropOutsideBWaitsForAnotherGraspAndMovingCubesDoNotCount) {
   const Eigen::Vector3d floor_between(0.0, 0.005, 0.0);
   s.hold(0.2, lifted, true);
   s.hold(0.2, lifted, false);
+  s.hold(0.4, floor_between, false);
+  EXPECT_EQ(task.phase(), TaskPhase::kReleased) << "not yet seen to stay there";
   s.hold(0.2, floor_between, false);
   EXPECT_EQ(task.phase(), TaskPhase::kStarted);
   EXPECT_EQ(task.drops(), 1);
+  ASSERT_EQ(task.events().back().kind, "drop");
+  EXPECT_NEAR(task.events().back().time, 0.41, 1e-9) << "when it came to rest";
   s.hold(0.2, lifted, true);
   EXPECT_EQ(task.grasps(), 2);
   s.hold(0.2, l.zone_b + Eigen::Vector3d(0, 0.05, 0), false);
@@ -78,6 +82,26 @@ TEST(CubeTask, DropOutsideBWaitsForAnotherGraspAndMovingCubesDoNotCount) {
   EXPECT_EQ(task.phase(), TaskPhase::kReleased);
   s.hold(0.6, l.zone_b + Eigen::Vector3d(0, 0.005, 0), false);
   EXPECT_EQ(task.phase(), TaskPhase::kDone);
+}
+
+// A released cube that pauses out of B for a moment (the top of a roll, the edge of a
+// tumble) and then slides on into B and stays there was put in B: no drop, and no new grasp
+// needed (before, the pause counted as a drop and the trial waited for a grasp of a cube
+// lying in B).
+TEST(CubeTask, APauseOnTheWayIntoBIsNotADrop) {
+  CubeTask task(settings());
+  const SceneLayout& l = task.settings().layout;
+  task.start(0.0);
+  Script s{task};
+  s.hold(0.2, l.zone_a + Eigen::Vector3d(0, 0.05, 0), true);
+  s.hold(0.1, l.zone_b + Eigen::Vector3d(-0.07, 0.05, 0), false);  // let go short of B
+  s.hold(0.05, l.zone_b + Eigen::Vector3d(-0.06, 0.005, 0), false);  // paused out of B
+  s.hold(0.1, l.zone_b + Eigen::Vector3d(-0.04, 0.005, 0), false, Eigen::Vector3d(0.2, 0, 0));
+  EXPECT_EQ(task.drops(), 0);
+  s.hold(0.6, l.zone_b + Eigen::Vector3d(-0.03, 0.005, 0), false);  // stays in B
+  EXPECT_EQ(task.phase(), TaskPhase::kDone);
+  EXPECT_EQ(task.drops(), 0);
+  EXPECT_EQ(task.grasps(), 1);
 }
 
 TEST(CubeTask, TimeoutFails) {
