@@ -1,5 +1,5 @@
 // Draws a DrawList with OpenGL 3.3 core into whatever framebuffer the caller has bound.
-// The same code serves the Qt view (QOpenGLWidget) and offscreen pictures (OSMesa).
+// The same code serves the Qt view (an OpenGL window) and offscreen pictures (OSMesa).
 #pragma once
 
 #include <memory>
