@@ -4,7 +4,6 @@
 #include <memory>
 
 #include <QCoreApplication>
-
 #include <QMouseEvent>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>

@@ -41,7 +41,8 @@ class SceneView : public QWidget {
   // The native window the scene is drawn in, where the mouse lands; null when the platform
   // has no OpenGL 3.3 (e.g. the offscreen platform).
   QWindow* canvas() const;
-  // The picture currently shown (empty without OpenGL).
+  // The picture as the view draws it now, drawn off screen at the view's size (so the view
+  // need not be shown); empty without OpenGL.
   QImage grab_picture();
 
  signals:
