@@ -291,21 +291,15 @@ SceneView::~SceneView() {
   delete canvas_;  // its container owns it, but goes only after the members the canvas reads
 }
 
+// The drawing window's mouse is the view's: the view's own handlers take it.
 bool SceneView::eventFilter(QObject* watched, QEvent* event) {
   if (watched != canvas_) return QWidget::eventFilter(watched, event);
   switch (event->type()) {
     case QEvent::MouseButtonPress:
-      mousePressEvent(static_cast<QMouseEvent*>(event));
-      return true;
     case QEvent::MouseMove:
-      mouseMoveEvent(static_cast<QMouseEvent*>(event));
-      return true;
     case QEvent::MouseButtonRelease:
-      mouseReleaseEvent(static_cast<QMouseEvent*>(event));
-      return true;
     case QEvent::Wheel:
-      wheelEvent(static_cast<QWheelEvent*>(event));
-      return true;
+      return QWidget::event(event);
     default:
       return false;
   }

@@ -7,13 +7,14 @@
 
 #include <QPoint>
 #include <QWidget>
-#include <QWindow>
 
 #include <Eigen/Geometry>
 
 #include "core/render/draw_list.h"
 #include "core/render/orbit_camera.h"
 #include "core/task/scene_layout.h"
+
+class QWindow;
 
 namespace handlab::gui {
 

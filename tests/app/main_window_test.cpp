@@ -1,6 +1,7 @@
 #include <QMenuBar>
 #include <QSignalSpy>
 #include <QTest>
+#include <QWindow>
 
 #include <gtest/gtest.h>
 
@@ -183,10 +184,10 @@ TEST(SceneViewGl, TheDrawingWindowTakesTheMouseAndShowsEachNewFrame) {
   if (!opengl_available())
     GTEST_SKIP() << "no OpenGL on platform " << qPrintable(QGuiApplication::platformName());
   SceneView scene;
-  scene.resize(640, 480);
-  scene.show();
-  ASSERT_TRUE(QTest::qWaitForWindowExposed(&scene));
   SceneView* view = &scene;
+  view->resize(640, 480);
+  view->show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(view));
   QWindow* canvas = view->canvas();
   ASSERT_NE(canvas, nullptr);
   ASSERT_TRUE(QTest::qWaitForWindowExposed(canvas));
@@ -202,10 +203,13 @@ TEST(SceneViewGl, TheDrawingWindowTakesTheMouseAndShowsEachNewFrame) {
   EXPECT_NEAR(view->camera().pitch, before.pitch + 30 * 0.01f, 1e-5f);
 
   QSignalSpy shown(view, &SceneView::picture_shown);
-  task::SceneLayout layout = view->layout();
-  for (int i = 0; i < 3; ++i) {
+  const task::SceneLayout layout = view->layout();
+  auto new_frame = [&] {
     view->set_frame(std::make_shared<const render::DrawList>(
         render::draw_task_scene(layout, task::cube_start_pose(layout))));
+  };
+  for (int i = 0; i < 3; ++i) {
+    new_frame();
     ASSERT_TRUE(shown.wait(2000)) << "frame " << i;
   }
   // A screenshot of the window has the scene in it (QWidget::grab alone leaves it out).
@@ -220,9 +224,7 @@ TEST(SceneViewGl, TheDrawingWindowTakesTheMouseAndShowsEachNewFrame) {
 
   // Requests made before the picture is drawn are one picture.
   const int drawn = int(shown.count());
-  for (int i = 0; i < 5; ++i)
-    view->set_frame(std::make_shared<const render::DrawList>(
-        render::draw_task_scene(layout, task::cube_start_pose(layout))));
+  for (int i = 0; i < 5; ++i) new_frame();
   QTest::qWait(200);
   EXPECT_EQ(shown.count(), drawn + 1);
 }
