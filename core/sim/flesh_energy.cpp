@@ -74,6 +74,8 @@ double flesh_terms(const HandSimModel& model, HandSimState& s, std::size_t begin
   const double mu = par.flesh.mu(), lambda = par.flesh.lambda();
   const double stiffening = par.stiffening_factor * par.flesh.youngs_modulus;
   const double threshold = par.stiffening_strain;
+  const double blend_width = std::max(par.stiffening_blend * threshold, 1e-300);
+  const double blend_from = threshold - par.stiffening_blend * threshold;
   Lane4 sum = Lane4::Zero();
   TetBatch b;
   for (std::size_t e = begin; e < end; e += kTetBatch) {
@@ -90,13 +92,20 @@ double flesh_terms(const HandSimModel& model, HandSimState& s, std::size_t begin
     const Lane4 trace = n[0] + n[1] + n[2], squared = squared_norm(n), norm = squared.sqrt();
     // Stiffening beyond a strain threshold: (k V / 2)(|e| - e0)^2, whose stress is
     // k (|e| - e0) e / |e|; its Hessian k V [(e0/|e|) q q' + (1 - e0/|e|) B'B] (q the
-    // gradient direction, B the strain map) is positive semidefinite.
-    const auto stiff = norm > threshold;
-    const Lane4 excess = stiff.select(norm - threshold, 0.0);
+    // gradient direction, B the strain map) is positive semidefinite. In the blend band below
+    // the threshold the matrix takes k V s(t) q q' (s a smoothstep over the band, 1 at the
+    // threshold, where it meets the Hessian above): continuous, so a step from below does not
+    // overshoot into the stiff range, and a factor stays a good preconditioner.
+    const auto stiff = norm > blend_from;
+    const auto beyond = norm > threshold;
+    const Lane4 excess = beyond.select(norm - threshold, 0.0);
     const Lane4 safe_norm = stiff.select(norm, 1.0);
-    const Lane4 ratio = stiff.select(threshold / safe_norm, 1.0);
-    const Lane4 k = stiff.select(stiffening * b.volume, 0.0);
-    sum += b.volume * (mu * squared + 0.5 * lambda * trace.square()) + 0.5 * k * excess.square();
+    const Lane4 ratio = beyond.select(threshold / safe_norm, 1.0);
+    const Lane4 t = ((norm - blend_from) / blend_width).min(1.0);
+    const Lane4 k = beyond.select(stiffening * b.volume,
+                                  stiff.select(t * t * (3 - 2 * t) * stiffening * b.volume, 0.0));
+    sum += b.volume * (mu * squared + 0.5 * lambda * trace.square()) +
+           0.5 * stiffening * b.volume * excess.square();
     // stress = 2 mu e + lambda tr(e) I + (stiffening excess / |e|) e, row-major.
     const Lane4 shear = 2 * mu + stiffening * excess / safe_norm;
     const Lane4 stress[9] = {

@@ -168,6 +168,32 @@ TEST(CliRetarget, DrawsThePinchPicture) {
   EXPECT_EQ(cli("retarget " + recording + " --picture " + png + " --frame 1").status, 1);
 }
 
+// A real recording on the soft hand: played, and held still in its first pose, where the
+// flesh comes to rest.
+TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
+  const std::string json = test::fresh_path("sim_replay.json");
+  const Result held = cli("sim replay " + recording + " --hold --duration 2 --json " + json);
+  ASSERT_EQ(held.status, 0) << held.out;
+  EXPECT_NE(held.out.find("held still"), std::string::npos) << held.out;
+  const std::string text = test::file_bytes(json);
+  for (const char* key :
+       {"\"strategy\": \"ours\"", "\"hold\": true", "\"steps\": 240", "\"step_ms_median\"",
+        "\"step_ms_p95\"", "\"factorizations\"", "\"linear_iterations_per_step\"",
+        "\"fastest_node_last_half_second_m_s\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
+  const std::size_t at = text.find("\"fastest_node_last_half_second_m_s\": ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_LT(std::stod(text.substr(at + 37)), 1e-3) << "m/s: the held hand came to rest";
+  const Result played = cli("sim replay " + recording + " --strategy naive");
+  ASSERT_EQ(played.status, 0) << played.out;
+  EXPECT_NE(played.out.find("naive"), std::string::npos) << played.out;
+  EXPECT_EQ(cli("sim replay").status, 2);
+  EXPECT_EQ(cli("sim replay " + recording + " --strategy best").status, 2);
+  EXPECT_EQ(cli("sim replay " + recording + " --hold --duration 0").status, 2);
+  EXPECT_EQ(cli("sim replay /nonexistent.json.lz").status, 1);
+}
+
 TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string json = test::fresh_path("sim_bench.json");
   const std::string steps = test::fresh_path("sim_steps.csv");

@@ -33,7 +33,9 @@ int stiffened_tets(const NewtonTerms& terms) {
 
 TEST(FleshEnergy, GradientAndHessianAreTheEnergysDerivatives) {
   const GraspScene& g = test::gripping_fine_cube();
-  const HandSimModel& model = g.scene.model;
+  // The energy's own Hessian: no blend below the threshold.
+  HandSimModel model = g.scene.model;
+  model.parameters.stiffening_blend = 0.0;
   HandSimState state = g.state;
   const NewtonTerms terms = flesh_terms(model, state);
   ASSERT_GT(stiffened_tets(terms), 10) << "the grip stiffens some tets";
@@ -73,6 +75,75 @@ TEST(FleshEnergy, GradientAndHessianAreTheEnergysDerivatives) {
         << "phase " << phase;
   }
   EXPECT_GT(tets, 2000);
+}
+
+// The blend below the stiffening threshold changes Newton's matrix only: the same energy and
+// forces, the same terms beyond the threshold and below the band; in the band the stiffening's
+// curvature added, which makes the matrix larger (a step from below shorter), never smaller.
+TEST(FleshEnergy, TheBlendAddsCurvatureBelowTheThresholdOnly) {
+  const GraspScene& g = test::gripping_fine_cube();
+  HandSimModel sharp = g.scene.model;
+  sharp.parameters.stiffening_blend = 0.0;
+  const HandSimModel& blended = g.scene.model;
+  ASSERT_GT(blended.parameters.stiffening_blend, 0.0) << "the default blends";
+  HandSimState sharp_state = g.state, blended_state = g.state;
+  const NewtonTerms a = flesh_terms(sharp, sharp_state), b = flesh_terms(blended, blended_state);
+  EXPECT_EQ(a.energy, b.energy);
+  EXPECT_EQ(a.gradient, b.gradient);
+  int in_band = 0;
+  for (std::size_t k = 0; k < a.tets.size(); ++k)
+    for (int l = 0; l < kTetBatch; ++l) {
+      for (int i = 0; i < 12; ++i) ASSERT_EQ(a.tets[k].rotated[i][l], b.tets[k].rotated[i][l]);
+      ASSERT_EQ(a.tets[k].vmu[l], b.tets[k].vmu[l]);
+      ASSERT_EQ(a.tets[k].vlambda[l], b.tets[k].vlambda[l]);
+      bool same_q = true, sharp_q = false;
+      for (int i = 0; i < 12; ++i) {
+        same_q = same_q && a.tets[k].q[i][l] == b.tets[k].q[i][l];
+        sharp_q = sharp_q || a.tets[k].q[i][l] != 0;
+      }
+      if (!same_q) {
+        EXPECT_FALSE(sharp_q) << "a tet beyond the threshold has the same terms";
+        ++in_band;
+      }
+    }
+  EXPECT_GT(in_band, 0) << "the grip has tets in the band";
+  const Eigen::SparseMatrix<double> difference =
+      test::assembled(blended, b, false) - test::assembled(sharp, a, false);
+  for (double phase : {1.0, 2.0, 3.0}) {
+    const Eigen::VectorXd d =
+        test::only(blended, test::direction(blended, 1.0, 0.0, phase), true, false, false);
+    EXPECT_GE(d.dot(difference * d), 0.0) << "phase " << phase;
+  }
+}
+
+// Newton's matrix is continuous where a tet's strain crosses the threshold: with the blend, a
+// stretch just below and just above it give nearly the same matrix; without, they differ by
+// the stiffening's curvature (20 times the flesh's).
+TEST(FleshEnergy, TheMatrixIsContinuousAcrossTheThreshold) {
+  const mesh::TetMesh tet{{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01, 0, 0),
+                           Eigen::Vector3d(0, 0.01, 0), Eigen::Vector3d(0, 0, 0.01)},
+                          {{0, 1, 2, 3}}};
+  auto jump = [&](double blend) {
+    SimParameters parameters;
+    parameters.stiffening_blend = blend;
+    const HandSimModel model = make_soft_body_sim_model(tet, parameters);
+    auto matrix = [&](double stretch) {  // along x: a strain norm of `stretch`
+      HandSimState s;
+      s.node_position = model.rest;
+      for (Eigen::Vector3d& x : s.node_position) x.x() *= 1.0 + stretch;
+      s.tet_rotation.assign(1, Eigen::Quaterniond::Identity());
+      NewtonTerms terms = test::empty_terms(model, true);
+      ThreadPool pool(1);
+      FleshBuffers buffers;
+      add_flesh(model, s, terms, pool, buffers);
+      return Eigen::MatrixXd(test::assembled(model, terms, false));
+    };
+    const double threshold = parameters.stiffening_strain;
+    const Eigen::MatrixXd below = matrix(threshold - 1e-7), above = matrix(threshold + 1e-7);
+    return (above - below).norm() / below.norm();
+  };
+  EXPECT_LT(jump(0.2), 1e-5);
+  EXPECT_GT(jump(0.0), 1.0);
 }
 
 // Below the stiffening threshold the flesh is the textbook co-rotational element: the same

@@ -1,5 +1,6 @@
-// The soft hand in the simulator: it holds a pose against gravity, and targets that jump,
-// leave the joint limits or are not numbers leave its state finite and bounded.
+// The soft hand in the simulator: it holds a pose against gravity, comes to rest held still in
+// a tracked pose, and targets that jump, leave the joint limits or are not numbers leave its
+// state finite and bounded.
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -7,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "core/hand/simulated_hand.h"
+#include "core/retarget/retargeter.h"
 #include "core/sim/hand_simulator.h"
+#include "core/tracking/recording_io.h"
 
 namespace handlab::sim {
 namespace {
@@ -78,6 +81,43 @@ TEST(HandSimulator, HoldsAPoseAgainstGravity) {
   double speed = 0.0;
   for (const Eigen::Vector3d& v : s.node_velocity) speed = std::max(speed, v.norm());
   EXPECT_LT(speed, 0.01) << "m/s: the hand should have come to rest";
+}
+
+// Held still in a pose a person made (the first frame of a real recording, retargeted by Ours
+// onto the study hand: fingers half curled, where the flesh at the joints is strained near the
+// stiffening threshold), the hand comes to rest: no node keeps moving, and the steps stop
+// factorising. With a Newton matrix that jumps at the threshold (no blend), nodes there went
+// on oscillating at 30-60 Hz by 0.1-0.3 mm, and every step factorised.
+TEST(HandSimulator, ComesToRestHeldStillInATrackedPose) {
+  const StudyHand& h = study_hand();
+  const tracking::Recording recording =
+      tracking::read_recording(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz");
+  const auto side = tracking::Side::kRight;
+  auto fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
+  ASSERT_TRUE(fitter);
+  const auto calibration =
+      retarget::calibrate_open_palm(recording.frames, side, h.skeleton, *fitter);
+  ASSERT_TRUE(calibration);
+  retarget::Retargeter retargeter(retarget::Strategy::kOurs, h.skeleton, *calibration);
+  const tracking::TrackedHand* first = recording.frames.front().hand(side);
+  ASSERT_NE(first, nullptr);
+  const hand::HandPose pose = retargeter.retarget(*first).pose;
+
+  HandSimulator sim(h.model);
+  HandSimState s = start_state(h, pose);
+  const std::vector<RigidPose> targets = bone_targets(h.model, h.skeleton, pose);
+  int factorizations = 0;
+  double speed = 0.0;
+  for (int i = 0; i < 240; ++i) {
+    const SimStepReport r = sim.step(s, targets);
+    if (i < 180) continue;  // the last half second
+    factorizations += r.factorizations;
+    for (const Eigen::Vector3d& v : s.node_velocity) speed = std::max(speed, v.norm());
+  }
+  std::cout << "held still, last 0.5 s: fastest node " << speed * 1000 << " mm/s, "
+            << factorizations << " factorisations in 60 steps\n";
+  EXPECT_LT(speed, 1e-3) << "m/s";
+  EXPECT_LE(factorizations, 3);
 }
 
 TEST(HandSimulator, StaysBoundedWhenItsTargetJumpsHalfAMetre) {

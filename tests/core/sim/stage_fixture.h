@@ -41,9 +41,10 @@ inline GraspScene grasp_scene(double time, double cube_size = 0.01) {
   return g;
 }
 
-// The hand gripping the 1 cm cube as the closing ends (1.2 s), made once.
+// The hand gripping the 1 cm cube just after the closing ends (1.25 s: both pads settled on it,
+// four or more nodes inside), made once.
 inline const GraspScene& gripping_fine_cube() {
-  static const GraspScene g = grasp_scene(1.2);
+  static const GraspScene g = grasp_scene(1.25);
   return g;
 }
 

@@ -1,0 +1,169 @@
+// handlab-cli sim replay: a real recording, calibrated and retargeted onto the study hand, drives
+// the soft hand in free motion (the cube out of reach): the simulator's cost on tracked input,
+// which moves as a person's hand does (fast, with tremor and the tracker's jitter), where `sim
+// bench` measures a smooth scripted pinch. With --hold the hand is held still in the
+// recording's first pose: it should come to rest.
+#include "app/cli/commands/sim_replay.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/cli/arguments.h"
+#include "app/cli/output_file.h"
+#include "core/hand/flesh.h"
+#include "core/hand/simulated_hand.h"
+#include "core/retarget/retargeter.h"
+#include "core/sim/hand_simulator.h"
+#include "core/tracking/recording_io.h"
+#include "core/util/json_writer.h"
+
+namespace handlab::cli {
+namespace {
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double at = q * double(values.size() - 1);
+  const std::size_t below = std::size_t(std::floor(at));
+  const std::size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (at - double(below)) * (values[above] - values[below]);
+}
+
+}  // namespace
+
+int sim_replay(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"strategy", "naive|ours", "the retargeting", "ours"},
+      {"hold", "", "hold the recording's first pose still instead of playing it"},
+      {"duration", "SECONDS", "with --hold: how long (default: the recording's length)"},
+      {"threads", "N", "threads the flesh's work is split over", "1"},
+      {"stiffening-blend", "FRACTION",
+       "of the stiffening threshold, below it, over which Newton's matrix takes in the "
+       "stiffening (0: a matrix that jumps at the threshold)",
+       "0.2"},
+      {"json", "OUT", "write the result as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv, 1);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
+                 "[--json OUT]\n\n"
+                 "Plays a recording (its right hand, or its left), calibrated and retargeted "
+                 "onto the 21.4 cm study\nhand, on the soft hand in free motion, one step of "
+                 "1/120 s taking the latest frame; reports the\nstep times, factorisations and "
+                 "CG iterations, and how fast the flesh still moves at the end.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  if (args.positional().size() != 1) throw UsageError("name one recording");
+  const std::string strategy_name = args.text("strategy");
+  if (strategy_name != "naive" && strategy_name != "ours")
+    throw UsageError("--strategy must be naive or ours");
+  const int threads = int(args.integer("threads"));
+  if (threads < 1 || threads > 64) throw UsageError("--threads must be 1 to 64");
+
+  const tracking::Recording recording = tracking::read_recording(args.positional()[0]);
+  tracking::Side side = tracking::Side::kRight;
+  auto fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
+  if (!fitter) {
+    side = tracking::Side::kLeft;
+    fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
+  }
+  if (!fitter) throw std::runtime_error(recording.source + ": no hand in the recording");
+  hand::HandShape shape = hand::HandShape::with_length(0.214);
+  shape.left = side == tracking::Side::kLeft;
+  const hand::Skeleton skeleton = hand::build_simulated_hand(shape);
+  auto calibration = retarget::calibrate_open_palm(recording.frames, side, skeleton, *fitter);
+  if (!calibration) {  // no open hand: the ratio of hand lengths, as `retarget` does
+    calibration = retarget::Calibration{};
+    calibration->scale = 0.214 / *tracking::estimate_hand_length(recording.frames, side);
+  }
+  const auto strategy =
+      strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
+  retarget::Retargeter retargeter(strategy, skeleton, *calibration,
+                                  strategy == retarget::Strategy::kNaive ? fitter : std::nullopt);
+  std::vector<hand::HandPose> poses;
+  std::vector<double> times;
+  for (const tracking::TrackedFrame& frame : recording.frames)
+    if (const tracking::TrackedHand* h = frame.hand(side)) {
+      poses.push_back(retargeter.retarget(*h).pose);
+      times.push_back(frame.timestamp);
+    }
+  const bool hold = args.flag("hold");
+  const double length = times.back() - times.front();
+  const double duration = hold && args.has("duration") ? args.number("duration") : length;
+  if (!(duration > 0 && duration <= 600)) throw UsageError("--duration must be in (0, 600] s");
+
+  const hand::HandFlesh flesh = hand::build_flesh(skeleton, shape);
+  sim::SimParameters parameters;
+  parameters.stiffening_blend = args.number("stiffening-blend");
+  if (!(parameters.stiffening_blend >= 0 && parameters.stiffening_blend < 1))
+    throw UsageError("--stiffening-blend must be in [0, 1)");
+  const sim::HandSimModel model = sim::make_hand_sim_model(skeleton, flesh, parameters);
+  sim::SimOptions options;
+  options.threads = threads;
+  sim::HandSimulator simulator(model, options);
+  Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
+  root.linear() = poses.front().root_rotation;
+  root.translation() = poses.front().root_position;
+  sim::RigidPose cube;  // out of reach
+  cube.position = root.translation() + Eigen::Vector3d(1.0, 0, 0);
+  cube.position.y() = model.parameters.cube_size / 2;
+  sim::HandSimState state = sim::initial_state(model, skeleton, root, cube);
+
+  const double h = model.parameters.time_step;
+  const int steps = int(std::floor(duration / h));
+  std::vector<double> step_ms;
+  long factorizations = 0, linear_iterations = 0;
+  double fastest_at_end = 0.0;
+  std::size_t frame = 0;
+  for (int i = 0; i < steps; ++i) {
+    const double t = times.front() + double(i) * h;
+    while (!hold && frame + 1 < times.size() && times[frame + 1] <= t) ++frame;
+    const std::vector<sim::RigidPose> targets = sim::bone_targets(model, skeleton, poses[frame]);
+    const auto start = std::chrono::steady_clock::now();
+    const sim::SimStepReport r = simulator.step(state, targets);
+    step_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    factorizations += r.factorizations;
+    linear_iterations += r.linear_iterations;
+    if (double(steps - i) * h <= 0.5)
+      for (const Eigen::Vector3d& v : state.node_velocity)
+        fastest_at_end = std::max(fastest_at_end, v.norm());
+  }
+  const double median = quantile(step_ms, 0.5), p95 = quantile(step_ms, 0.95);
+  const std::string json_out = args.text("json");
+  if (json_out != "-") {
+    std::cout << std::fixed << std::setprecision(2) << recording.source << " (" << strategy_name
+              << (hold ? ", held still" : "") << "): " << steps << " steps, median " << median
+              << " ms, p95 " << p95 << " ms; " << factorizations << " factorisations, CG "
+              << double(linear_iterations) / steps
+              << " a step; fastest flesh node in the last 0.5 s " << std::setprecision(3)
+              << fastest_at_end * 1000 << " mm/s\n";
+  }
+  if (args.has("json")) {
+    write_output(json_out, [&](std::ostream& out) {
+      util::JsonWriter json(out);
+      json.begin_object()
+          .field("recording", recording.source)
+          .field("strategy", strategy_name)
+          .field("hold", hold)
+          .field("threads", threads)
+          .field("stiffening_blend", model.parameters.stiffening_blend)
+          .field("steps", steps)
+          .field("step_ms_median", median)
+          .field("step_ms_p95", p95)
+          .field("factorizations", static_cast<long long>(factorizations))
+          .field("linear_iterations_per_step", double(linear_iterations) / steps)
+          .field("fastest_node_last_half_second_m_s", fastest_at_end)
+          .end_object();
+    });
+  }
+  return 0;
+}
+
+}  // namespace handlab::cli
