@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/sim_replay.h"
@@ -28,13 +29,11 @@
 namespace handlab::cli {
 namespace {
 
+// R's type-7 quantile (stats::quantile_type7) of unsorted values; 0 for none.
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
-  const double at = q * double(values.size() - 1);
-  const std::size_t below = std::size_t(std::floor(at));
-  const std::size_t above = std::min(below + 1, values.size() - 1);
-  return values[below] + (at - double(below)) * (values[above] - values[below]);
+  return stats::quantile_type7(values, q);
 }
 
 template <typename T>

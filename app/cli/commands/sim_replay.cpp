@@ -12,6 +12,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
 #include "app/cli/output_file.h"
 #include "core/hand/flesh.h"
@@ -24,13 +25,11 @@
 namespace handlab::cli {
 namespace {
 
+// R's type-7 quantile (stats::quantile_type7) of unsorted values; 0 for none.
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
-  const double at = q * double(values.size() - 1);
-  const std::size_t below = std::size_t(std::floor(at));
-  const std::size_t above = std::min(below + 1, values.size() - 1);
-  return values[below] + (at - double(below)) * (values[above] - values[below]);
+  return stats::quantile_type7(values, q);
 }
 
 }  // namespace
@@ -73,13 +72,13 @@ int sim_replay(const std::vector<std::string>& argv) {
     fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
   }
   if (!fitter) throw std::runtime_error(recording.source + ": no hand in the recording");
-  hand::HandShape shape = hand::HandShape::with_length(0.214);
+  hand::HandShape shape;  // the study's hand, 21.4 cm
   shape.left = side == tracking::Side::kLeft;
   const hand::Skeleton skeleton = hand::build_simulated_hand(shape);
   auto calibration = retarget::calibrate_open_palm(recording.frames, side, skeleton, *fitter);
   if (!calibration) {  // no open hand: the ratio of hand lengths, as `retarget` does
     calibration = retarget::Calibration{};
-    calibration->scale = 0.214 / *tracking::estimate_hand_length(recording.frames, side);
+    calibration->scale = shape.length / *tracking::estimate_hand_length(recording.frames, side);
   }
   const auto strategy =
       strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
