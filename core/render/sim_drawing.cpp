@@ -27,6 +27,8 @@ DrawList draw_sim_state(const task::SceneLayout& layout, const hand::HandFlesh& 
   };
   for (const sim::ContactAnchor& c : state.node_cube)
     point(state.node_position[std::size_t(c.point)], style.hand_on_cube);
+  for (const sim::ContactAnchor& c : state.sample_cube)
+    point(sim::skin_sample_position(model, state, c.point), style.hand_on_cube);
   for (const sim::ContactAnchor& c : state.node_floor)
     point(state.node_position[std::size_t(c.point)], style.hand_on_floor);
   for (const sim::ContactAnchor& c : state.corner_floor)

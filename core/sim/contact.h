@@ -1,8 +1,8 @@
 // Contact: finding the candidates at the predicted state (contact_search.cpp), their energies
 // (contact_energy.cpp: a normal penalty and a friction spring or force), and friction's
 // decisions (friction.cpp: Coulomb's cone at a pass's result, the anchors the next step keeps).
-// Flesh nodes touch the cube and (when the model says so) the floor; the cube's corners touch
-// the floor.
+// Flesh nodes and skin samples (points inside the boundary faces) touch the cube, flesh nodes
+// (when the model says so) the floor; the cube's corners touch the floor.
 #pragma once
 
 #include <vector>
@@ -21,8 +21,8 @@ namespace handlab::sim {
 // spring (sticking) or a kinetic force of mu f_n against the slip (sliding), the latter so that
 // the anchor spring's stiffness does not hold back a slide's acceleration.
 struct Contact {
-  enum Kind { kNodeCube, kNodeFloor, kCornerFloor } kind;
-  int point;               // node or corner
+  enum Kind { kNodeCube, kSampleCube, kNodeFloor, kCornerFloor } kind;
+  int point;               // node, skin sample or corner
   Eigen::Vector3d normal;  // at the predicted state, in the surface's frame (cube or world)
   Eigen::Vector3d anchor;  // friction anchor, in the surface's frame
   bool touching = false;   // inside the surface at the predicted state: friction acts
@@ -65,7 +65,7 @@ bool friction_changed(const HandSimModel& model, const HandSimState& state,
 
 // After the step: contacts that separated let go of their anchors; the others stick, or slide
 // to the edge of the friction cone (|f_t| = mu f_n), into the state's anchor lists. Returns
-// the deepest flesh node inside the cube (m).
+// the deepest flesh point inside the cube (m).
 double update_anchors(const HandSimModel& model, const std::vector<Contact>& contacts,
                       HandSimState& state);
 
@@ -75,13 +75,18 @@ double update_anchors(const HandSimModel& model, const std::vector<Contact>& con
 struct ContactGap {
   Eigen::Vector3d x;
   double gap = 0.0;
-  BoxProximity box;  // kNodeCube only
+  BoxProximity box;  // on the cube only
 };
 ContactGap contact_gap(const HandSimModel& model, const HandSimState& state, const Contact& c);
+inline bool on_cube(const Contact& c) {
+  return c.kind == Contact::kNodeCube || c.kind == Contact::kSampleCube;
+}
+// A flesh point's position in the world: a node's, or a skin sample's between its face's nodes.
+Eigen::Vector3d flesh_point(const HandSimModel& model, const HandSimState& state, const Contact& c);
 // The normal penalty's stiffness at the surface (and the friction spring's), and its growth
 // with depth: a flesh node's force is k d + k3 d^2 (soft where the skin first touches, so that
 // the pad takes a light cube on several nodes; stiff deeper in, so that a heavy one does not
-// sink).
+// sink). On the cube, the nodes and skin samples share them (cube_contact_share).
 double contact_stiffness(const HandSimModel& model, const Contact& c);
 double contact_stiffening(const HandSimModel& model, const Contact& c);
 // The friction cone's radius about the anchor at a depth: mu f_n / k.

@@ -28,12 +28,20 @@ Eigen::Vector3d corner_offset(const HandSimModel& model, int k) {
 }
 
 double contact_stiffness(const HandSimModel& model, const Contact& c) {
-  return c.kind == Contact::kCornerFloor ? model.parameters.cube_floor_stiffness
-                                         : model.parameters.contact_stiffness;
+  const SimParameters& p = model.parameters;
+  if (c.kind == Contact::kCornerFloor) return p.cube_floor_stiffness;
+  return on_cube(c) ? model.cube_contact_share * p.contact_stiffness : p.contact_stiffness;
 }
 
 double contact_stiffening(const HandSimModel& model, const Contact& c) {
-  return c.kind == Contact::kCornerFloor ? 0.0 : model.parameters.contact_stiffening;
+  const SimParameters& p = model.parameters;
+  if (c.kind == Contact::kCornerFloor) return 0.0;
+  return on_cube(c) ? model.cube_contact_share * p.contact_stiffening : p.contact_stiffening;
+}
+
+Eigen::Vector3d flesh_point(const HandSimModel& model, const HandSimState& s, const Contact& c) {
+  return c.kind == Contact::kSampleCube ? skin_sample_position(model, s, c.point)
+                                        : s.node_position[std::size_t(c.point)];
 }
 
 double friction_cone(const HandSimModel& model, const Contact& c, double depth) {
@@ -45,9 +53,8 @@ double friction_cone(const HandSimModel& model, const Contact& c, double depth) 
 ContactGap contact_gap(const HandSimModel& model, const HandSimState& s, const Contact& c) {
   const SimParameters& par = model.parameters;
   ContactGap g;
-  if (c.kind == Contact::kNodeCube) {
-    g.x = s.cube_pose.rotation.conjugate() *
-          (s.node_position[std::size_t(c.point)] - s.cube_pose.position);
+  if (on_cube(c)) {
+    g.x = s.cube_pose.rotation.conjugate() * (flesh_point(model, s, c) - s.cube_pose.position);
     g.box = box_proximity(model.cube_half, g.x);
     g.gap = g.box.distance;
     return g;
@@ -69,14 +76,14 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
                  const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
                  const ContactAnchor* old, double k) {
     Contact c{kind, point, normal, old ? old->anchor : surface};
-    c.across = kind == Contact::kNodeCube ? s.cube_pose.rotation * normal : normal;
+    c.across = on_cube(c) ? s.cube_pose.rotation * normal : normal;
     c.touching = gap < 0;
     c.curved = c.touching;
     if (c.touching && old) {
       const Eigen::Vector3d t = tangent_part(normal, x - old->anchor);
       const double stretch = t.norm(), limit = friction_cone(model, c, -gap);
       if (stretch > limit) {
-        if (kind == Contact::kNodeCube) {
+        if (on_cube(c)) {
           // Flesh on the cube keeps an anchor spring, its anchor moved to the cone's edge: a
           // constant kinetic force, fixed for the step, set the light cube ringing when a
           // node's slip reversed within it (measured: a soft block resting on the cube).
@@ -108,6 +115,18 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
         add(Contact::kNodeFloor, node, x, nf, x - height * nf, height,
             previous_anchor(s.node_floor, node), par.contact_stiffness);
     }
+  }
+  for (int i = 0; i < int(model.skin_samples.size()); ++i) {
+    const SkinSample& sample = model.skin_samples[std::size_t(i)];
+    const Eigen::Vector3d x = skin_sample_position(model, s, i);
+    double speed = 0.0;  // its fastest node's bounds its own
+    for (int node : sample.nodes)
+      speed = std::max(speed, s.node_velocity[std::size_t(node)].norm());
+    const Eigen::Vector3d q = cube_inv * (x - s.cube_pose.position);
+    const BoxProximity b = box_proximity(model.cube_half, q);
+    if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
+      add(Contact::kSampleCube, i, q, b.normal, b.closest, b.distance,
+          previous_anchor(s.sample_cube, i), par.contact_stiffness);
   }
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d x = s.cube_pose.point(corner_offset(model, k));

@@ -24,7 +24,7 @@ bool friction_changed(const HandSimModel& model, const HandSimState& s,
                       std::vector<Contact>& contacts) {
   bool changed = false;
   for (Contact& c : contacts) {
-    if (!c.touching || c.kind == Contact::kNodeCube) continue;
+    if (!c.touching || on_cube(c)) continue;
     if (c.switches >= 2) {
       // A contact that keeps switching ends sticking: the anchor spring is conservative,
       // a kinetic force that disagrees with the motion is not.
@@ -68,6 +68,7 @@ double update_anchors(const HandSimModel& model, const std::vector<Contact>& con
                       HandSimState& s) {
   const Eigen::Vector3d nf = model.parameters.floor_normal.normalized();
   s.node_cube.clear();
+  s.sample_cube.clear();
   s.node_floor.clear();
   s.corner_floor.clear();
   double max_penetration = 0.0;
@@ -75,11 +76,11 @@ double update_anchors(const HandSimModel& model, const std::vector<Contact>& con
     const ContactGap g = contact_gap(model, s, c);
     if (g.gap >= 0) continue;
     const double depth = -g.gap;
-    if (c.kind == Contact::kNodeCube) {
+    if (on_cube(c)) {
       max_penetration = std::max(max_penetration, depth);
-      s.node_cube.push_back(
-          {c.point, coulomb_anchor(g.x, g.box.normal, friction_cone(model, c, depth),
-                                   c.touching ? c.anchor : g.box.closest)});
+      (c.kind == Contact::kNodeCube ? s.node_cube : s.sample_cube)
+          .push_back({c.point, coulomb_anchor(g.x, g.box.normal, friction_cone(model, c, depth),
+                                              c.touching ? c.anchor : g.box.closest)});
       continue;
     }
     (c.kind == Contact::kNodeFloor ? s.node_floor : s.corner_floor)

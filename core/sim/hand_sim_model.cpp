@@ -6,7 +6,7 @@
 
 namespace handlab::sim {
 
-std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int node_count) {
+std::vector<std::array<int, 3>> boundary_faces(const std::vector<std::array<int, 4>>& tets) {
   std::map<std::array<int, 3>, int> faces;
   for (const auto& t : tets)
     for (int skip = 0; skip < 4; ++skip) {
@@ -17,10 +17,16 @@ std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int
       std::sort(f.begin(), f.end());
       ++faces[f];
     }
-  std::vector<bool> on(std::size_t(node_count), false);
+  std::vector<std::array<int, 3>> out;
   for (const auto& [f, count] : faces)
-    if (count == 1)
-      for (int n : f) on[std::size_t(n)] = true;
+    if (count == 1) out.push_back(f);
+  return out;
+}
+
+std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int node_count) {
+  std::vector<bool> on(std::size_t(node_count), false);
+  for (const auto& f : boundary_faces(tets))
+    for (int n : f) on[std::size_t(n)] = true;
   std::vector<int> out;
   for (int n = 0; n < node_count; ++n)
     if (on[std::size_t(n)]) out.push_back(n);
@@ -35,6 +41,17 @@ void add_cube(HandSimModel& m) {
     throw std::invalid_argument("the cube needs a positive size and density");
   m.cube = box_inertia(Eigen::Vector3d::Constant(p.cube_size), p.cube_density);
   m.cube_half = Eigen::Vector3d::Constant(p.cube_size / 2);
+}
+
+// A sample at each boundary face's centroid.
+void add_skin_samples(HandSimModel& m, const std::vector<std::array<int, 3>>& faces) {
+  const int per_face = m.parameters.skin_samples;
+  if (per_face != 0 && per_face != 1)
+    throw std::invalid_argument("skin samples per face must be 0 or 1");
+  if (per_face == 1)
+    for (const auto& f : faces) m.skin_samples.push_back({f, Eigen::Vector3d::Constant(1.0 / 3)});
+  const double points = double(m.surface_nodes.size() + m.skin_samples.size());
+  m.cube_contact_share = points > 0 ? double(m.surface_nodes.size()) / points : 1.0;
 }
 
 }  // namespace
@@ -59,6 +76,7 @@ HandSimModel make_soft_body_sim_model(const mesh::TetMesh& mesh, const SimParame
     for (int id : ids) m.node_mass[std::size_t(id)] += p.flesh_density * m.tets.back().volume / 4;
   }
   m.surface_nodes = boundary_nodes(mesh.tets, int(m.rest.size()));
+  add_skin_samples(m, boundary_faces(mesh.tets));
   return m;
 }
 

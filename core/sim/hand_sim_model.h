@@ -44,12 +44,23 @@ struct SimParameters {
   double contact_stiffness = 5e3;     // N/m, a flesh node against the cube or floor, at first
   double contact_stiffening = 2.5e7;  // N/m^2: its force k d + k3 d^2 at a depth d
   double cube_floor_stiffness = 1e4;  // N/m, a cube corner against the floor
+  // Contact points against the cube inside each boundary face of the flesh, besides its nodes:
+  // 0 or 1 (the centroid). The fingertips' nodes are about as far apart as the fine cube is
+  // wide; between them a corner passed into the flesh and a face rested on two or three nodes.
+  // The nodes and samples share contact_stiffness (HandSimModel::cube_contact_share).
+  int skin_samples = 1;
   double friction = 0.8;
   bool hand_floor_contact = false;  // the study: off
   Eigen::Vector3d floor_normal = Eigen::Vector3d::UnitY();
   double floor_height = 0.0;    // the floor: floor_normal . x = floor_height
   double cube_size = 0.01;      // m (the study: 0.06 gross, 0.01 fine)
   double cube_density = 500.0;  // kg/m^3 (wood)
+};
+
+// A point of the skin inside a boundary face of the flesh, a contact point against the cube.
+struct SkinSample {
+  std::array<int, 3> nodes{};
+  Eigen::Vector3d weights;  // barycentric, summing to 1
 };
 
 // A bone as a rigid body: its frame is the skeleton bone's frame moved to the centre of mass.
@@ -82,7 +93,11 @@ struct HandSimModel {
   std::vector<Eigen::Vector3d> rest;  // nodes at rest, in the hand's root frame
   std::vector<TetElement> tets;
   std::vector<double> node_mass;
-  std::vector<int> surface_nodes;  // nodes on the flesh's boundary: the contact points
+  std::vector<int> surface_nodes;        // nodes on the flesh's boundary: the contact points
+  std::vector<SkinSample> skin_samples;  // and points between them, against the cube
+  // The part of contact_stiffness (and contact_stiffening) each flesh point on the cube takes:
+  // nodes / (nodes + samples), so that the skin is as stiff per area as with nodes alone.
+  double cube_contact_share = 1.0;
   // Bones
   std::vector<SimBone> bones;
   std::vector<SimJoint> joints;
@@ -106,7 +121,9 @@ HandSimModel make_cube_sim_model(const SimParameters& parameters = {});
 HandSimModel make_soft_body_sim_model(const mesh::TetMesh& mesh,
                                       const SimParameters& parameters = {});
 
-// The nodes on a tet mesh's boundary (on a face that only one tet has).
+// The faces on a tet mesh's boundary (that only one tet has), their nodes in ascending order,
+// and the nodes on them.
+std::vector<std::array<int, 3>> boundary_faces(const std::vector<std::array<int, 4>>& tets);
 std::vector<int> boundary_nodes(const std::vector<std::array<int, 4>>& tets, int node_count);
 
 }  // namespace handlab::sim

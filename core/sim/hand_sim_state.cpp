@@ -45,4 +45,12 @@ Eigen::Vector3d cube_corner(const HandSimModel& model, const RigidPose& pose, in
   return pose.point(sign.cwiseProduct(model.cube_half));
 }
 
+Eigen::Vector3d skin_sample_position(const HandSimModel& model, const HandSimState& state, int i) {
+  const SkinSample& sample = model.skin_samples[std::size_t(i)];
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int a = 0; a < 3; ++a)
+    x += sample.weights[a] * state.node_position[std::size_t(sample.nodes[std::size_t(a)])];
+  return x;
+}
+
 }  // namespace handlab::sim

@@ -16,7 +16,7 @@ namespace handlab::sim {
 // A contact point held by a friction anchor: where on the other surface the point sticks
 // (Eq. 2.12-2.13). The anchor slides when the friction force would leave Coulomb's cone.
 struct ContactAnchor {
-  int point = 0;           // a flesh node, or a cube corner (0..7)
+  int point = 0;           // a flesh node, a skin sample, or a cube corner (0..7)
   Eigen::Vector3d anchor;  // on the cube (cube frame) or on the floor (world)
 };
 
@@ -28,7 +28,7 @@ struct HandSimState {
   std::vector<RigidVelocity> bone_velocity;
   RigidPose cube_pose;
   RigidVelocity cube_velocity;
-  std::vector<ContactAnchor> node_cube, node_floor, corner_floor;
+  std::vector<ContactAnchor> node_cube, sample_cube, node_floor, corner_floor;
 };
 
 // The hand in its rest pose (the flesh undeformed), its root frame (the wrist) at `root`; the
@@ -39,6 +39,9 @@ HandSimState initial_state(const HandSimModel& model, const hand::Skeleton& skel
 // Corner k (0..7) of the cube at `pose`: its x, y and z signs are bits 0, 1 and 2 of k (set:
 // +, clear: -), the numbering of ContactAnchor::point for corners.
 Eigen::Vector3d cube_corner(const HandSimModel& model, const RigidPose& pose, int k);
+
+// Skin sample i's position at `state` (between its face's nodes).
+Eigen::Vector3d skin_sample_position(const HandSimModel& model, const HandSimState& state, int i);
 
 // The bodies' targets (centres of mass) for the bone frames of a pose of the skeleton.
 std::vector<RigidPose> bone_targets(const HandSimModel& model, const hand::Skeleton& skeleton,

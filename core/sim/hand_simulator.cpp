@@ -221,8 +221,9 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   }
   finish(model, start, iterate);
   report.max_penetration = update_anchors(model, sim.contacts, iterate.state);
-  report.contacts = int(iterate.state.node_cube.size() + iterate.state.node_floor.size() +
-                        iterate.state.corner_floor.size());
+  const HandSimState& r = iterate.state;
+  report.contacts =
+      int(r.node_cube.size() + r.sample_cube.size() + r.node_floor.size() + r.corner_floor.size());
   state = std::move(iterate.state);
   return report;
 }

@@ -24,8 +24,9 @@ struct PinchScene {
 };
 
 // `resolution`: the flesh mesh's (1 the study's, 4 and 16 finer); `squeeze`: how far inside
-// the faces the pads' targets are (see make_pinch_script).
+// the faces the pads' targets are (see make_pinch_script); `parameters`: the simulator's, but
+// for the cube's size.
 PinchScene make_pinch_scene(double cube_size, int resolution = 1, double squeeze = 0.003,
-                            double hand_length = 0.214);
+                            double hand_length = 0.214, SimParameters parameters = {});
 
 }  // namespace handlab::sim

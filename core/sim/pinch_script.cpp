@@ -213,7 +213,7 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
     if (observer) observer(state);
     meter.observe(state, t, step.max_penetration);
   }
-  meter.finish(state, duration, !state.node_cube.empty(), report);
+  meter.finish(state, duration, !state.node_cube.empty() || !state.sample_cube.empty(), report);
   return report;
 }
 

@@ -71,10 +71,18 @@ void SoftHandWorld::observe() {
   cube_.orientation = state_->cube_pose.rotation;
   cube_.velocity = state_->cube_velocity.linear;
   thumb_contact_ = index_contact_ = false;
-  for (const sim::ContactAnchor& a : state_->node_cube) {
-    const int finger = finger_[std::size_t(node_bone_[std::size_t(a.point)])];
+  auto touches = [&](int node) {
+    const int finger = finger_[std::size_t(node_bone_[std::size_t(node)])];
     thumb_contact_ = thumb_contact_ || finger == kThumb;
     index_contact_ = index_contact_ || finger == kIndex;
+  };
+  for (const sim::ContactAnchor& a : state_->node_cube) touches(a.point);
+  // A skin sample belongs to the finger of its face's nearest node.
+  for (const sim::ContactAnchor& a : state_->sample_cube) {
+    const sim::SkinSample& sample = model_.skin_samples[std::size_t(a.point)];
+    Eigen::Index nearest = 0;
+    sample.weights.maxCoeff(&nearest);
+    touches(sample.nodes[std::size_t(nearest)]);
   }
   const hand::BoneFrames frames = sim::simulated_bone_frames(model_, *state_);
   bones_.resize(frames.origin.size());

@@ -240,6 +240,8 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(cli("sim bench --halfway-gap -1").status, 2);
   EXPECT_EQ(cli("sim bench --scale 3").status, 2);
   EXPECT_EQ(cli("sim pinch --cube 2").status, 2);
+  EXPECT_EQ(cli("sim pinch --skin-samples 3").status, 2);
+  EXPECT_EQ(cli("sim bench --skin-samples -1").status, 2);
   EXPECT_EQ(cli("sim wobble").status, 2);
   EXPECT_EQ(cli("sim pinch --help").status, 0);
 }

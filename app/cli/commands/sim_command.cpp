@@ -19,6 +19,7 @@
 #include "app/cli/commands/sim_replay.h"
 #include "app/cli/output_file.h"
 #include "core/hand/flesh.h"
+#include "core/hand/hand_shape.h"
 #include "core/hand/simulated_hand.h"
 #include "core/render/hand_drawing.h"
 #include "core/render/offscreen_context.h"
@@ -47,6 +48,13 @@ double cube_option(const Arguments& args) {
   const double cube = args.number("cube");
   if (!(cube >= 0.005 && cube <= 0.1)) throw UsageError("--cube must be between 0.005 and 0.1 m");
   return cube;
+}
+
+sim::SimParameters simulator_parameters(const Arguments& args) {
+  sim::SimParameters p;
+  p.skin_samples = int(args.integer("skin-samples"));
+  if (p.skin_samples != 0 && p.skin_samples != 1) throw UsageError("--skin-samples must be 0 or 1");
+  return p;
 }
 
 // The script's phases and the steps each took (a step belongs to the phase its end time is in).
@@ -177,6 +185,10 @@ int sim_bench(const std::vector<std::string>& argv) {
        "CG gives up halfway when the residual left would still move an unknown by more than "
        "this many times the linear tolerance (0: never)",
        "1000"},
+      {"skin-samples", "N",
+       "contact points against the cube inside each of the flesh's boundary faces besides its "
+       "nodes: 1 (the centroid) or 0 (the nodes alone, as before 2026-11-26)",
+       "1"},
       {"threads", "N", "threads the per-tet work is split over", "2"},
       {"runs", "N",
        "run the script N times and time each step by its fastest run (the machine's other load "
@@ -197,7 +209,8 @@ int sim_bench(const std::vector<std::string>& argv) {
   }
   const long scale = args.integer("scale");
   if (scale != 1 && scale != 4 && scale != 16) throw UsageError("--scale must be 1, 4 or 16");
-  const sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), int(scale));
+  const sim::PinchScene setup = sim::make_pinch_scene(
+      cube_option(args), int(scale), 0.003, hand::HandShape{}.length, simulator_parameters(args));
   const double duration =
       args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
   if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
@@ -315,6 +328,10 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"frame-interval", "SECONDS", "with --frames: time between frames", "0.25"},
       {"view-yaw", "RAD", "with --frames: the camera's turn about the vertical", "-0.8"},
       {"contacts", "", "with --frames: draw the contact points"},
+      {"skin-samples", "N",
+       "contact points against the cube inside each of the flesh's boundary faces besides its "
+       "nodes: 1 (the centroid) or 0 (the nodes alone, as before 2026-11-26)",
+       "1"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
   const Arguments args(specs, argv);
@@ -328,7 +345,8 @@ int sim_pinch(const std::vector<std::string>& argv) {
   }
   const double squeeze = args.number("squeeze");
   if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
-  const sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), 1, squeeze);
+  const sim::PinchScene setup = sim::make_pinch_scene(
+      cube_option(args), 1, squeeze, hand::HandShape{}.length, simulator_parameters(args));
   std::function<void(const sim::HandSimState&)> observer;
   std::optional<FrameWriter> frames;
   if (args.has("frames")) {

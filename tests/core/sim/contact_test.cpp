@@ -3,9 +3,11 @@
 // friction's anchors inside Coulomb's cone.
 #include <algorithm>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
+#include "core/mesh/tet_mesh.h"
 #include "core/sim/contact.h"
 #include "tests/core/sim/stage_fixture.h"
 
@@ -18,44 +20,57 @@ std::vector<Eigen::Vector3d> no_turn(const HandSimModel& model) {
   return std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero());
 }
 
-// Every surface node within a millimetre of the cube, and every corner on the floor, is a
-// candidate; those inside touch; flesh that touched before keeps its anchor or moves it to
-// the cone's edge.
+// Every surface node and skin sample within a millimetre of the cube, and every corner on the
+// floor, is a candidate; those inside touch; flesh that touched before keeps its anchor or moves
+// it to the cone's edge.
 TEST(ContactSearch, FindsEveryPointNearASurface) {
   const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
   std::vector<Contact> contacts;
   find_contacts(model, g.state, contacts);
-  int node_cube = 0, touching = 0, corners = 0;
+  int on_the_cube = 0, samples_touching = 0, corners = 0;
+  std::vector<Eigen::Vector3d> pressed;  // the cube's faces flesh presses on (cube frame)
   for (const Contact& c : contacts) {
     const ContactGap gap = contact_gap(model, g.state, c);
     EXPECT_EQ(c.touching, gap.gap < 0);
-    node_cube += c.kind == Contact::kNodeCube;
-    touching += c.touching && c.kind == Contact::kNodeCube;
+    on_the_cube += on_cube(c);
+    if (c.touching && on_cube(c)) pressed.push_back(c.normal);
+    samples_touching += c.touching && c.kind == Contact::kSampleCube;
     corners += c.kind == Contact::kCornerFloor && c.touching;
     EXPECT_NE(c.kind, Contact::kNodeFloor) << "hand-floor contact is off in the study";
   }
-  EXPECT_GE(touching, 4) << "both pads press on the cube";
+  EXPECT_TRUE(std::any_of(pressed.begin(), pressed.end(), [&](const Eigen::Vector3d& n) {
+    return std::any_of(pressed.begin(), pressed.end(),
+                       [&](const Eigen::Vector3d& m) { return n.dot(m) < -0.9; });
+  })) << "both pads press on the cube, on opposite faces";
+  EXPECT_GT(samples_touching, 0) << "the skin between the pads' nodes presses too";
   EXPECT_GE(corners, 2) << "the cube, tipped a little by the grip, rests on its lower corners";
+  auto found = [&](Contact::Kind kind, int point) {
+    return std::any_of(contacts.begin(), contacts.end(),
+                       [&](const Contact& c) { return c.kind == kind && c.point == point; });
+  };
   for (int node : model.surface_nodes) {
     const Contact probe{Contact::kNodeCube, node, {}, {}};
     if (contact_gap(model, g.state, probe).gap > 0.001) continue;
-    EXPECT_TRUE(std::any_of(
-        contacts.begin(), contacts.end(),
-        [&](const Contact& c) { return c.kind == Contact::kNodeCube && c.point == node; }))
-        << "node " << node;
+    EXPECT_TRUE(found(Contact::kNodeCube, node)) << "node " << node;
+  }
+  for (int i = 0; i < int(model.skin_samples.size()); ++i) {
+    const Contact probe{Contact::kSampleCube, i, {}, {}};
+    if (contact_gap(model, g.state, probe).gap > 0.001) continue;
+    EXPECT_TRUE(found(Contact::kSampleCube, i)) << "skin sample " << i;
   }
   // An anchor kept from the step before stays, or moves along the surface to the cone's edge.
   for (const Contact& c : contacts) {
-    if (c.kind != Contact::kNodeCube || !c.touching) continue;
-    const auto old = std::find_if(g.state.node_cube.begin(), g.state.node_cube.end(),
+    if (!on_cube(c) || !c.touching) continue;
+    const auto& list = c.kind == Contact::kNodeCube ? g.state.node_cube : g.state.sample_cube;
+    const auto old = std::find_if(list.begin(), list.end(),
                                   [&](const ContactAnchor& a) { return a.point == c.point; });
-    if (old == g.state.node_cube.end()) continue;
+    if (old == list.end()) continue;
     const ContactGap gap = contact_gap(model, g.state, c);
     const double reach = tangent_part(c.normal, gap.x - c.anchor).norm();
     EXPECT_LE(reach, friction_cone(model, c, -gap.gap) * (1 + 1e-9) + 1e-15);
   }
-  EXPECT_GT(node_cube, touching);
+  EXPECT_GT(on_the_cube, int(pressed.size()));
 }
 
 NewtonTerms contact_terms(const HandSimModel& model, const HandSimState& s,
@@ -97,8 +112,10 @@ struct ContactEnergyPart {
 class ContactEnergy : public ::testing::TestWithParam<std::string> {};
 
 // The gradient is the energy's slope along the nodes, the cube's translation and its rotation.
-// The Hessian is the gradient's derivative along the nodes and the cube's translation (the
-// Gauss-Newton Hessian leaves out the surface's curvature under a turn of the cube).
+// The Hessian is the gradient's derivative along the nodes and the cube's translation, but for
+// the cube's torque: the Gauss-Newton Hessian leaves out how the torque's arm moves with the
+// point (f x dx, as large as the depth is against the arm) and the surface's curvature under a
+// turn of the cube.
 TEST_P(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
   const GraspScene& g = test::gripping_fine_cube();
   const HandSimModel& model = g.scene.model;
@@ -125,11 +142,13 @@ TEST_P(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
     Eigen::VectorXd straight = along;
     straight.tail(3).setZero();
     const double step = 1e-4;
-    const Eigen::VectorXd change =
+    Eigen::VectorXd change =
         (part.at(model, moved(model, g.state, straight, step), true).gradient -
          part.at(model, moved(model, g.state, straight, -step), true).gradient) /
         (2 * step);
-    const Eigen::VectorXd expected = hessian * straight;
+    Eigen::VectorXd expected = hessian * straight;
+    change.tail(3).setZero();  // the cube's torque
+    expected.tail(3).setZero();
     const double scale = (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * straight.cwiseAbs())
                              .lpNorm<Eigen::Infinity>();
     EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-4 * scale) << "phase " << phase;
@@ -153,15 +172,17 @@ TEST(Friction, AnchorsStayInsideCoulombsCone) {
   EXPECT_GT(penetration, 0.0);
   EXPECT_LT(penetration, 0.002);
   int anchors = 0;
-  for (const auto* list : {&s.node_cube, &s.corner_floor}) {
+  const std::pair<const std::vector<ContactAnchor>*, Contact::Kind> lists[] = {
+      {&s.node_cube, Contact::kNodeCube},
+      {&s.sample_cube, Contact::kSampleCube},
+      {&s.corner_floor, Contact::kCornerFloor}};
+  for (const auto& [list, kind] : lists) {
     for (const ContactAnchor& a : *list) {
-      const Contact probe{
-          list == &s.node_cube ? Contact::kNodeCube : Contact::kCornerFloor, a.point, {}, a.anchor};
+      const Contact probe{kind, a.point, {}, a.anchor};
       const ContactGap gap = contact_gap(model, s, probe);
       ASSERT_LT(gap.gap, 0.0);
-      const Eigen::Vector3d normal = probe.kind == Contact::kNodeCube
-                                         ? gap.box.normal
-                                         : model.parameters.floor_normal.normalized();
+      const Eigen::Vector3d normal =
+          on_cube(probe) ? gap.box.normal : model.parameters.floor_normal.normalized();
       EXPECT_LE(tangent_part(normal, gap.x - a.anchor).norm(),
                 friction_cone(model, probe, -gap.gap) * (1 + 1e-9) + 1e-15);
       ++anchors;
@@ -172,6 +193,64 @@ TEST(Friction, AnchorsStayInsideCoulombsCone) {
         << "find_contacts looks anchors up by point";
   }
   EXPECT_GE(anchors, 2) << "the pads' anchors at least";
+  EXPECT_FALSE(s.sample_cube.empty()) << "the skin between the pads' nodes holds too";
+}
+
+// A corner of the cube pressed into the middle of a skin face, between its nodes: the face's
+// skin sample finds it and pushes the face's nodes and the cube apart, a third of the force on
+// each node. With the nodes alone nothing touches, and the corner goes on into the flesh.
+TEST(ContactSearch, ASkinSampleMeetsACornerBetweenNodes) {
+  const mesh::TetMesh tet{{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.03, 0, 0.02),
+                           Eigen::Vector3d(0, 0.03, 0.02), Eigen::Vector3d(0, 0, 0.05)},
+                          {{0, 1, 2, 3}}};
+  // The face (0, 1, 2) has its centroid at (0.01, 0.01, 0.0133); the corner (+, +, +) of the
+  // cube, turned to point along the face's inward normal, 0.5 mm past it.
+  auto pressed = [&](int samples, std::vector<Contact>& contacts) {
+    SimParameters parameters;
+    parameters.skin_samples = samples;
+    parameters.floor_height = -1.0;  // out of the way
+    HandSimModel model = make_soft_body_sim_model(tet, parameters);
+    const Eigen::Vector3d a = model.rest[0], b = model.rest[1], c = model.rest[2];
+    const Eigen::Vector3d inward = (b - a).cross(c - a).normalized();  // towards node 3
+    EXPECT_GT(inward.dot(model.rest[3] - a), 0.0);
+    HandSimState s;
+    s.node_position = model.rest;
+    s.node_velocity.assign(model.rest.size(), Eigen::Vector3d::Zero());
+    s.tet_rotation.assign(1, Eigen::Quaterniond::Identity());
+    s.cube_pose.rotation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones(), inward);
+    const Eigen::Vector3d corner = s.cube_pose.rotation * corner_offset(model, 7);
+    s.cube_pose.position = (a + b + c) / 3 + 0.0005 * inward - corner;
+    find_contacts(model, s, contacts);
+    return std::tuple{model, s, inward};
+  };
+  std::vector<Contact> contacts;
+  const auto [model, s, inward] = pressed(1, contacts);
+  ASSERT_EQ(model.skin_samples.size(), 4u);
+  int touching = 0;
+  for (const Contact& c : contacts) {
+    EXPECT_FALSE(c.kind == Contact::kNodeCube && c.touching) << "node " << c.point;
+    touching += c.kind == Contact::kSampleCube && c.touching;
+  }
+  EXPECT_EQ(touching, 1);
+  NewtonTerms terms = test::empty_terms(model, true);
+  add_contact_energies(model, s, contacts, terms);
+  EXPECT_GT(terms.energy, 0.0);
+  // Forces (minus the gradient): each of the face's nodes pushed into the flesh, equally.
+  const Eigen::Vector3d f0 = -terms.gradient.segment<3>(0);
+  EXPECT_GT(f0.dot(inward), 0.0);
+  for (int n : {1, 2})
+    EXPECT_LT((-terms.gradient.segment<3>(3 * n) - f0).norm(), 1e-12 * f0.norm());
+  EXPECT_EQ(terms.gradient.segment<3>(9).norm(), 0.0) << "node 3 is not on the face";
+  const Eigen::Vector3d on_cube = -terms.gradient.segment<3>(3 * cube_block(model));
+  EXPECT_LT((on_cube + 3 * f0).norm(), 1e-9 * f0.norm()) << "and the cube back, as hard";
+  HandSimState after = s;
+  update_anchors(model, contacts, after);
+  EXPECT_EQ(after.sample_cube.size(), 1u);
+
+  std::vector<Contact> nodes_only;
+  pressed(0, nodes_only);
+  EXPECT_TRUE(std::none_of(nodes_only.begin(), nodes_only.end(),
+                           [](const Contact& c) { return c.touching; }));
 }
 
 }  // namespace
