@@ -115,11 +115,13 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
                         index = hand::marker_position(ik, frames, first + 2);
   // The faces the pads go to: across the cube along z, the thumb on its own side.
   const Eigen::Vector3d axis(0, 0, (thumb - index).z() > 0 ? 1.0 : -1.0);
-  // Where the pads take the faces: 12 mm under the top, so that the curled fingers clear it,
-  // but not above 0.4 of the side, so that a finger that touches first slides a light cube
-  // instead of tipping it (pushed at height z, a cube on a floor of friction mu tips before it
-  // slides when z > side / (2 mu)).
-  const double pad_height = std::max(0.4 * script.cube_size, script.cube_size - 0.012);
+  // Where the pads take the faces: 20 mm under the top, so that the distal phalanges (about
+  // 2 cm) lie on the faces rather than over the top edge (at 12 mm the fingertips hooked over
+  // it, and once the skin no longer let the edge sink in between its nodes the heavy cube
+  // turned out of the pads at the lift for 4 of 15 squeezes), but not above 0.4 of the side,
+  // so that a finger that touches first slides a light cube instead of tipping it (pushed at
+  // height z, a cube on a floor of friction mu tips before it slides when z > side / (2 mu)).
+  const double pad_height = std::max(0.4 * script.cube_size, script.cube_size - 0.020);
   const Eigen::Vector3d centre(script.cube_centre.x(), pad_height, script.cube_centre.z());
   pose.root_position = centre + Eigen::Vector3d(0, 0.01, 0) - 0.5 * (thumb + index);
   auto goals = [&](double gap) {

@@ -11,10 +11,8 @@
 namespace handlab::task {
 namespace {
 
-// The light cube: the script's grip on the heavy one is marginal (tested over squeezes in
-// tests/core/sim/pinch_test.cpp).
 TEST(SoftHandWorld, PinchesLiftsAndReleasesTheCubeByContact) {
-  const sim::PinchScene scene = sim::make_pinch_scene(0.01);
+  const sim::PinchScene scene = sim::make_pinch_scene(0.06);
   const sim::PinchScript& script = scene.script;
   SoftHandWorld world(scene.model, scene.skeleton, script.cube_centre);
   EXPECT_TRUE(world.bones().empty());

@@ -3,7 +3,6 @@
 // it slip or sink into the flesh, and opening the fingers lets it fall back to the floor.
 #include <array>
 #include <iostream>
-#include <iterator>
 #include <numeric>
 
 #include <gtest/gtest.h>
@@ -32,7 +31,9 @@ TEST_P(Pinch, LiftsHoldsAndReleasesTheCube) {
   EXPECT_TRUE(r.held);
   EXPECT_GT(r.lift, 0.08) << "m, of the hand's 0.10";
   EXPECT_LT(r.slip_mm, 1.0);
-  EXPECT_LT(r.max_penetration_mm, 0.5) << "at the flesh's nodes and skin samples";
+  // At the flesh's nodes and skin samples: the heavy cube (108 g, 200 times the light one)
+  // presses further into the pads.
+  EXPECT_LT(r.max_penetration_mm, GetParam() < 0.03 ? 0.5 : 1.5);
   EXPECT_TRUE(r.released) << "opening the fingers should drop it back on the floor";
   EXPECT_LT(highest - script.cube_centre.y(), script.lift_height + 0.01) << "m: flung upwards";
   // Holding still, the energy and its gradient agree: the line search takes Newton's step
@@ -50,8 +51,7 @@ TEST_P(Pinch, LiftsHoldsAndReleasesTheCube) {
       << "line-search halvings in " << hold_steps << " steps of the hold";
 }
 
-// The 6 cm cube, whose scripted grip is marginal, is tested over squeezes below.
-INSTANTIATE_TEST_SUITE_P(LightCube, Pinch, testing::Values(0.01));
+INSTANTIATE_TEST_SUITE_P(StudyCubes, Pinch, testing::Values(0.01, 0.06));
 
 // The light cube's grasp does not hang on one setting: however hard the script squeezes (its
 // pads' targets 2.5 to 3.5 mm inside the faces), the pads take the 1 cm cube, lift it and hold
@@ -69,28 +69,19 @@ TEST(PinchRobustness, HoldsTheLightCubeForAnySqueeze) {
   }
 }
 
-// The heavy cube (108 g) in the script's grip: thumb and index near the top edges, the other
-// fingers curled on the top face, which the lift leaves first. The cube tips on a floor edge
-// as it leaves the floor, and at some squeezes it turns out of the two pads (3.0, 3.2, 3.4 and
-// 3.6 mm of fifteen from 2.5 to 4 mm). With contact at the nodes alone it was held at every
-// squeeze, the top edge hooked 2.2 mm into the skin between the pads' nodes. Where it is held,
-// it does not slip and the skin stays within 1.5 mm of its faces (between the nodes, nodes alone
-// let it 2.2 mm in).
-TEST(PinchRobustness, HoldsTheHeavyCubeAtMostSqueezes) {
-  int held = 0;
-  const double squeezes[] = {0.0025, 0.0027, 0.0028, 0.003, 0.0031, 0.0035};
-  for (const double squeeze : squeezes) {
+// The heavy cube (108 g) too, its pads 20 mm under the top. With them 12 mm under it the
+// fingertips hooked over the top edge, and once the skin no longer let the edge sink in between
+// its nodes (2.2 mm with contact at the nodes alone), the cube turned out of the pads at the
+// lift for 3.0, 3.2, 3.4 and 3.6 mm of fifteen squeezes from 2.5 to 4 mm.
+TEST(PinchRobustness, HoldsTheHeavyCubeForAnySqueeze) {
+  for (const double squeeze : {0.0025, 0.0027, 0.0028, 0.003, 0.0031, 0.0035}) {
     const PinchScene scene = make_pinch_scene(0.06, 1, squeeze);
     const PinchReport r =
         run_pinch(scene.model, scene.skeleton, scene.script, {}, scene.script.lift_end + 1.0);
-    std::cout << "squeeze " << squeeze * 1000 << " mm: " << (r.held ? "held" : "not held")
-              << ", lifted " << r.lift * 100 << " cm\n";
-    if (!r.held) continue;
-    ++held;
+    EXPECT_TRUE(r.held) << "squeeze " << squeeze * 1000 << " mm: lifted " << r.lift * 100 << " cm";
     EXPECT_LT(r.slip_mm, 1.0) << "squeeze " << squeeze * 1000 << " mm";
     EXPECT_LT(r.max_penetration_mm, 1.5) << "squeeze " << squeeze * 1000 << " mm";
   }
-  EXPECT_GE(held, 4) << "of " << std::size(squeezes);
 }
 
 // The skin, not only its nodes, keeps out of the cube: in the held light pinch no point of the
