@@ -45,8 +45,8 @@ struct SimParameters {
   double contact_stiffening = 2.5e7;  // N/m^2: its force k d + k3 d^2 at a depth d
   double cube_floor_stiffness = 1e4;  // N/m, a cube corner against the floor
   // Contact points against the cube inside each boundary face of the flesh, besides its nodes:
-  // 0 or 1 (the centroid). The fingertips' nodes are about as far apart as the fine cube is
-  // wide; between them a corner passed into the flesh and a face rested on two or three nodes.
+  // 0 or 1 (the centroid). With the nodes alone the cube's edges and corners sank into the
+  // skin between them (1.7 mm in the scripted light pinch's hold).
   // The nodes and samples share contact_stiffness (HandSimModel::cube_contact_share).
   int skin_samples = 1;
   double friction = 0.8;
