@@ -25,6 +25,10 @@ const std::vector<Command>& all_commands() {
       {"power",
        "simulation-based power of a study design for every N, per effect and planned contrast",
        run_power},
+      {"replications",
+       "several studies of one protocol side by side: each test's distribution, the published "
+       "values",
+       run_replications},
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
 #ifdef HANDLAB_WITH_REPORT

@@ -191,37 +191,18 @@ ParticipantSummary summarise_participants(const std::vector<store::Participant>&
   return s;
 }
 
-DataQuality assess_data(store::StudyStore& store, const std::vector<store::Participant>& people) {
+DataQuality assess_data(store::StudyStore& store, const Protocol& protocol) {
   DataQuality q;
-  for (const store::Participant& p : people) {
-    const std::vector<store::PlannedTrialRow> plan = store.plan(p.id);
-    const std::vector<store::TrialRow> trials = store.trials(p.id);
-    for (const store::PlannedTrialRow& planned : plan) {
-      const store::TrialRow* last = nullptr;
-      for (const store::TrialRow& t : trials) {
-        if (t.planned_id != planned.id) continue;
-        if (!planned.practice) {
-          q.attempts_aborted += t.status == store::TrialStatus::kAborted ? 1 : 0;
-          q.attempts_redone += t.status == store::TrialStatus::kRedone ? 1 : 0;
-        }
-        if (t.status == store::TrialStatus::kCompleted ||
-            t.status == store::TrialStatus::kTimeout || t.status == store::TrialStatus::kSkipped)
-          last = &t;
-      }
-      if (planned.practice) {
-        q.practice_run += last ? 1 : 0;
-        continue;
-      }
-      ++q.planned;
-      if (!last)
-        ++q.not_run;
-      else if (last->status == store::TrialStatus::kCompleted)
-        ++q.completed;
-      else if (last->status == store::TrialStatus::kTimeout)
-        ++q.timeouts;
-      else
-        ++q.skipped;
-    }
+  q.by_condition = condition_outcomes(store, protocol);
+  for (const ConditionOutcome& c : q.by_condition) {
+    q.planned += c.planned;
+    q.completed += c.completed;
+    q.timeouts += c.timeouts;
+    q.skipped += c.skipped;
+    q.not_run += c.not_run;
+    q.attempts_aborted += c.attempts_aborted;
+    q.attempts_redone += c.attempts_redone;
+    q.practice_run += c.practice_run;
   }
   q.frames = store.frame_count();
   return q;
@@ -291,7 +272,7 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
   const store::StudyInfo& info = result.study;
   const std::vector<store::Participant> people = store.participants();
   result.participants = summarise_participants(people);
-  result.quality = assess_data(store, people);
+  result.quality = assess_data(store, result.protocol);
 
   std::ostringstream trials, answers;
   write_trials_csv(store, trials, false);  // skipped trials have no time
@@ -416,7 +397,17 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
 
 void write_study_analysis_text(const StudyDatabaseAnalysis& a, const std::string& path,
                                std::ostream& out) {
-  out << "Study " << a.study.name << " (" << path << "): completion time\n\n";
+  out << "Study " << a.study.name << " (" << path << ")\n\nScheduled trials (practice excluded)\n";
+  auto outcome_line = [&](const std::string& what, int planned, int completed, int timeouts,
+                          int skipped, int not_run) {
+    out << "  " << what << ": " << planned << " planned, " << completed << " completed, "
+        << timeouts << " timed out, " << skipped << " skipped, " << not_run << " not run\n";
+  };
+  for (const ConditionOutcome& c : a.quality.by_condition)
+    outcome_line(c.condition, c.planned, c.completed, c.timeouts, c.skipped, c.not_run);
+  const DataQuality& q = a.quality;
+  outcome_line("all", q.planned, q.completed, q.timeouts, q.skipped, q.not_run);
+  out << "\nCompletion time\n\n";
   if (a.completion_time)
     analysis::write_text(*a.completion_time, out);
   else
@@ -475,6 +466,20 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
     json.field("timeouts", q.timeouts).field("skipped", q.skipped).field("not_run", q.not_run);
     json.field("attempts_aborted", q.attempts_aborted).field("attempts_redone", q.attempts_redone);
     json.field("practice_run", q.practice_run).field("frames", static_cast<long long>(q.frames));
+    json.key("by_condition").begin_array();
+    for (const ConditionOutcome& c : q.by_condition)
+      json.begin_object()
+          .field("condition", c.condition)
+          .field("planned", c.planned)
+          .field("completed", c.completed)
+          .field("timeouts", c.timeouts)
+          .field("skipped", c.skipped)
+          .field("not_run", c.not_run)
+          .field("mean_time_s", c.mean_time_s)
+          .field("grasps", c.grasps)
+          .field("drops", c.drops)
+          .end_object();
+    json.end_array();
     json.key("left_out").begin_array();
     for (const auto& [id, why] : q.left_out)
       json.begin_object().field("participant", id).field("why", why).end_object();

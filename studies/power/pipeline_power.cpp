@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "studies/analysis/study_database_analysis.h"
+#include "studies/analysis/study_tests.h"
 #include "studies/simulate/simulated_study.h"
 
 namespace handlab::studies {
@@ -17,49 +18,15 @@ struct Outcome {
   std::string warning;
 };
 
-// What one simulated study's analysis rejects: as `power` judges a model's studies.
-Outcome outcome_of(const StudyDatabaseAnalysis& a, const std::string& planned,
-                   const power::PowerOptions& o) {
+// What one simulated study's analysis rejects: as `power` judges a model's studies. Its
+// tests are named as study_tests names them, pairs of cells in the protocol's order.
+Outcome outcome_of(const StudyDatabaseAnalysis& a, const power::PowerOptions& o) {
+  const StudyTests found = study_tests(a, o.correction, o.alpha);
   Outcome out;
-  if (!a.completion_time) {
-    out.warning = "completion time not analysed: " + a.completion_time_not_computed;
-  } else {
-    const analysis::AnalysisReport& t = *a.completion_time;
-    for (const stats::AnovaEffect& e : t.anova.effects)
-      out.effects.emplace_back(e.effect, power::judged_p(e, o.correction, o.alpha) < o.alpha);
-    for (const stats::PosthocResult& r : t.posthoc)
-      for (const stats::PairwiseContrast& c : r.contrasts)
-        if (c.effect == planned)
-          out.contrasts.emplace_back(power::contrast_name(c), c.p_tukey < o.alpha);
-    if (!t.dropped_subjects.empty())
-      out.warning = std::to_string(t.dropped_subjects.size()) +
-                    " participant(s) left out, lacking a result in some cell";
-  }
-  if (a.questionnaire) {
-    for (const analysis::FriedmanItem& f : a.questionnaire->friedman)
-      out.effects.emplace_back(f.dv + " (Friedman)", f.result.p < o.alpha);
-    for (const analysis::WilcoxonPair& w : a.questionnaire->wilcoxon)
-      out.contrasts.emplace_back(w.dv + ": " + w.contrast + " (Wilcoxon)",
-                                 w.p_bonferroni < o.alpha);
-  } else if (out.warning.empty() && !a.protocol.items.empty()) {
-    out.warning = "questionnaire not analysed: " + a.questionnaire_not_computed;
-  }
+  for (const StudyTest& t : found.tests)
+    (t.contrast ? out.contrasts : out.effects).emplace_back(t.name, t.p < o.alpha);
+  out.warning = found.warning;
   return out;
-}
-
-// "a - b" and "b - a" name one two-sided test (levels are ordered as the data first show them).
-std::string reversed(const std::string& name) {
-  const std::size_t colon = name.rfind(": ");
-  const std::size_t dash = name.find(" - ", colon == std::string::npos ? 0 : colon);
-  if (colon == std::string::npos || dash == std::string::npos) return name;
-  const std::string tail = " (Wilcoxon)";
-  std::string right = name.substr(dash + 3), suffix;
-  if (right.ends_with(tail)) {
-    suffix = tail;
-    right.resize(right.size() - tail.size());
-  }
-  return name.substr(0, colon + 2) + right + " - " + name.substr(colon + 2, dash - colon - 2) +
-         suffix;
 }
 
 void remove_study(const std::filesystem::path& db) {
@@ -76,8 +43,6 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
   const power::PowerOptions& o = options.power;
   if (o.n.empty()) throw std::invalid_argument("no N to compute the power for");
   if (o.sims < 1) throw std::invalid_argument("sims must be 1 or more");
-  std::string planned;
-  for (const Factor& f : protocol.factors) planned += (planned.empty() ? "" : ":") + f.name;
   const std::filesystem::path dir = options.work_dir.empty()
                                         ? std::filesystem::temp_directory_path()
                                         : std::filesystem::path(options.work_dir);
@@ -103,7 +68,7 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
       so.world = options.world;
       try {
         simulate_study(protocol, db.string(), so);
-        outcomes[k].push_back(outcome_of(analyze_study_database(db.string()), planned, o));
+        outcomes[k].push_back(outcome_of(analyze_study_database(db.string()), o));
       } catch (...) {
         remove_study(db);
         throw;
@@ -114,17 +79,13 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
     seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   std::vector<std::string> effects, contrasts;
-  auto known = [](const std::vector<std::string>& names, const std::string& name, bool contrast) {
-    for (const std::string& n : names)
-      if (n == name || (contrast && reversed(name) == n)) return true;
-    return false;
+  auto add = [](std::vector<std::string>& names, const std::string& name) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   };
   for (const auto& per_n : outcomes)
     for (const Outcome& out : per_n) {
-      for (const auto& [name, _] : out.effects)
-        if (!known(effects, name, false)) effects.push_back(name);
-      for (const auto& [name, _] : out.contrasts)
-        if (!known(contrasts, name, true)) contrasts.push_back(name);
+      for (const auto& [name, _] : out.effects) add(effects, name);
+      for (const auto& [name, _] : out.contrasts) add(contrasts, name);
     }
   power::PowerReport report = power::empty_report(effects, contrasts, o.n, o.sims, o.alpha);
   std::vector<std::string> examples;
@@ -133,19 +94,19 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
     int warnings = 0;
     for (Outcome out : outcomes[k]) {
       auto count = [&](const std::vector<std::string>& names, std::vector<long>& hits,
-                       const std::vector<std::pair<std::string, bool>>& seen, bool contrast) {
+                       const std::vector<std::pair<std::string, bool>>& seen) {
         std::size_t found = 0;
         for (std::size_t i = 0; i < names.size(); ++i)
           for (const auto& [name, rejected] : seen)
-            if (name == names[i] || (contrast && reversed(name) == names[i])) {
+            if (name == names[i]) {
               hits[i] += rejected;
               ++found;
               break;
             }
         return found == names.size();
       };
-      const bool all = count(effects, effect_hits, out.effects, false) &
-                       count(contrasts, contrast_hits, out.contrasts, true);
+      const bool all =
+          count(effects, effect_hits, out.effects) & count(contrasts, contrast_hits, out.contrasts);
       if (!all && out.warning.empty()) out.warning = "some tests were not computed";
       if (!out.warning.empty()) {
         ++warnings;

@@ -141,40 +141,18 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
 
   SimulationReport report;
   report.participants = n;
-  const std::vector<Condition> conditions = protocol.conditions();
-  for (const Condition& c : conditions) report.conditions.push_back({c.label});
-  for (const store::Participant& p : people) {
-    const std::vector<store::PlannedTrialRow> plan = study.plan(p.id);
-    std::vector<const store::TrialRow*> last(plan.size(), nullptr);
-    const std::vector<store::TrialRow> trials = study.trials(p.id);
-    for (const store::TrialRow& t : trials) {
+  report.conditions = condition_outcomes(study, protocol);
+  for (const store::Participant& p : people)
+    for (const store::TrialRow& t : study.trials(p.id)) {
       ++report.trials;
-      if (t.status == store::TrialStatus::kCompleted) ++report.completed;
-      if (t.status == store::TrialStatus::kTimeout) ++report.timeouts;
-      if (t.status == store::TrialStatus::kCompleted)
-        report.simulated_seconds += t.completion_time_s;
-      if (t.status == store::TrialStatus::kTimeout) report.simulated_seconds += protocol.timeout_s;
-      if (std::size_t(t.position) < last.size()) last[std::size_t(t.position)] = &t;
-    }
-    for (std::size_t k = 0; k < plan.size(); ++k) {
-      if (plan[k].practice || !last[k]) continue;
-      ConditionOutcome& o = report.conditions.at(std::size_t(plan[k].condition));
-      const store::TrialRow& t = *last[k];
-      ++o.trials;
-      o.grasps += t.grasps;
-      o.drops += t.drops;
       if (t.status == store::TrialStatus::kCompleted) {
-        ++o.completed;
-        o.mean_time_s += t.completion_time_s;
+        ++report.completed;
+        report.simulated_seconds += t.completion_time_s;
       } else if (t.status == store::TrialStatus::kTimeout) {
-        ++o.timeouts;
-      } else if (t.status == store::TrialStatus::kSkipped) {
-        ++o.skipped;
+        ++report.timeouts;
+        report.simulated_seconds += protocol.timeout_s;
       }
     }
-  }
-  for (ConditionOutcome& o : report.conditions)
-    if (o.completed) o.mean_time_s /= o.completed;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "studies/analysis/condition_outcomes.h"
 #include "studies/participant/participant_model.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/trial_driver.h"
@@ -25,18 +26,10 @@ struct SimulationOptions {
   Population population;
 };
 
-// The final attempts of the scheduled (not practice) trials of one condition.
-struct ConditionOutcome {
-  std::string label;
-  int trials = 0, completed = 0, timeouts = 0, skipped = 0;
-  double mean_time_s = 0.0;  // of the completed
-  int grasps = 0, drops = 0;
-};
-
 struct SimulationReport {
   int participants = 0;
   int trials = 0, completed = 0, timeouts = 0;  // every trial run, practice included
-  std::vector<ConditionOutcome> conditions;     // in the protocol's order
+  std::vector<ConditionOutcome> conditions;     // in the protocol's order (scheduled trials)
   double seconds = 0.0;                         // wall-clock
   double simulated_seconds = 0.0;               // trial time simulated
 };

@@ -172,6 +172,47 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
                  "--participants");
 }
 
+// Studies side by side as a script runs them: Markdown for people, JSON for programs, the
+// published values matched, and one clear line for what cannot be summarised.
+TEST(CliReplications, SetsStudiesSideBySideBesideThePublishedValues) {
+  const std::string db = handlab::test::fresh_path("cli_replications.db");
+  std::filesystem::copy_file(
+      std::string(HANDLAB_SOURCE_DIR) + "/tests/data/studies/simulated-n20-seed1.db", db);
+  const std::string published =
+      std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021-published.json";
+  const std::string copy = handlab::test::fresh_path("cli_replications_copy.db");
+  std::filesystem::copy_file(db, copy);
+  Result r = cli("replications " + db + " " + copy + " --published " + published);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("| strategy:manipulation | F | 8.78 (.008) | 8.74 (.008) | 8.74 (.008) | "
+                       "8.74 | 8.74 to 8.74 | .008 | 2 of 2 |"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("| ours-fine | 98 % | 98 % | 98.0 % | 98–98 % |"), std::string::npos)
+      << r.out;
+  r = cli("replications " + db + " --published " + published +
+          " --test strategy:manipulation --test \"precision (Friedman)\" --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = handlab::util::JsonValue::parse(r.out);
+  EXPECT_EQ(doc["protocol"].as_string(), "fine-manipulation-2021");
+  ASSERT_EQ(doc["studies"].size(), 1u);
+  EXPECT_EQ(doc["studies"][0]["conditions"][1]["condition"].as_string(), "naive-fine");
+  EXPECT_EQ(doc["studies"][0]["conditions"][1]["success_rate"].as_number(), 0.78);
+  ASSERT_EQ(doc["tests"].size(), 2u);
+  EXPECT_EQ(doc["tests"][1]["test"].as_string(), "precision (Friedman)");
+  EXPECT_EQ(doc["tests"][1]["statistic"].as_string(), "chi2");
+  EXPECT_EQ(doc["tests"][0]["published"]["value"].as_number(), 8.78);
+  EXPECT_EQ(doc["tests"][0]["rejected"].as_number(), 1);
+  one_line_error(cli("replications"), "give one or more study databases");
+  one_line_error(cli("replications " + db + " " + db), "given twice");
+  one_line_error(cli("replications " + db +
+                     " --test \"strategy:manipulation: ours fine - naive "
+                     "fine\""),
+                 "no study made the test");
+  one_line_error(cli("replications " + db + " --alpha 2"), "--alpha");
+  one_line_error(cli("replications " + db + " --published " + kProtocol), "handlab-published");
+}
+
 TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   const std::string db = handlab::test::fresh_path("cli_bad.db");
   ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);
@@ -278,8 +319,10 @@ bool wait_for_running_trial(const std::string& path, std::int64_t after, pid_t p
     if (waitpid(pid, &status, WNOHANG) == pid) return false;
     {
       Database db(path, Database::Mode::kReadOnly);
-      const auto running = db.query_text("SELECT count(*) FROM trial WHERE status = 'running' "
-                                         "AND id > " + std::to_string(after));
+      const auto running = db.query_text(
+          "SELECT count(*) FROM trial WHERE status = 'running' "
+          "AND id > " +
+          std::to_string(after));
       if (running && *running != "0") return true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));

@@ -76,10 +76,11 @@ TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {
   ASSERT_EQ(report.conditions.size(), 4u);
   int scheduled = 0;
   for (const ConditionOutcome& c : report.conditions) {
-    EXPECT_EQ(c.trials, 2) << c.label;
-    scheduled += c.trials;
-    EXPECT_GE(c.completed, 1) << c.label;  // the grasp proxy is forgiving
-    EXPECT_EQ(c.completed + c.timeouts, c.trials) << c.label;
+    EXPECT_EQ(c.planned, 2) << c.condition;
+    EXPECT_EQ(c.not_run, 0) << c.condition;
+    scheduled += c.planned;
+    EXPECT_GE(c.completed, 1) << c.condition;  // the grasp proxy is forgiving
+    EXPECT_EQ(c.completed + c.timeouts, c.planned) << c.condition;
   }
   EXPECT_EQ(scheduled, 8);
   {

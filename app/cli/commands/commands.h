@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "analysis/power/power_analysis.h"
+
 namespace handlab::cli {
 
 int run_analyze(const std::vector<std::string>& args);
@@ -19,5 +21,9 @@ int run_export(const std::vector<std::string>& args);
 int run_simulate(const std::vector<std::string>& args);
 int run_report(const std::vector<std::string>& args);
 int run_power(const std::vector<std::string>& args);
+int run_replications(const std::vector<std::string>& args);
+
+// --correction auto|none|gg|hf (power, replications); UsageError otherwise.
+power::SphericityCorrection sphericity_correction(const std::string& option);
 
 }  // namespace handlab::cli

@@ -98,6 +98,14 @@ void print_table(const power::PowerReport& r, const std::vector<power::PowerEsti
 
 }  // namespace
 
+power::SphericityCorrection sphericity_correction(const std::string& option) {
+  if (option == "auto") return power::SphericityCorrection::kAuto;
+  if (option == "none") return power::SphericityCorrection::kNone;
+  if (option == "gg") return power::SphericityCorrection::kGreenhouseGeisser;
+  if (option == "hf") return power::SphericityCorrection::kHuynhFeldt;
+  throw UsageError("--correction must be auto, none, gg or hf");
+}
+
 int run_power(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"protocol", "FILE", "the study protocol (its factors and blocks make the design)"},
@@ -170,17 +178,7 @@ int run_power(const std::vector<std::string>& argv) {
   if (options.threads < 0) throw UsageError("--jobs must be 0 (all cores) or more");
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  const std::string correction = args.text("correction");
-  if (correction == "auto")
-    options.correction = power::SphericityCorrection::kAuto;
-  else if (correction == "none")
-    options.correction = power::SphericityCorrection::kNone;
-  else if (correction == "gg")
-    options.correction = power::SphericityCorrection::kGreenhouseGeisser;
-  else if (correction == "hf")
-    options.correction = power::SphericityCorrection::kHuynhFeldt;
-  else
-    throw UsageError("--correction must be auto, none, gg or hf");
+  options.correction = sphericity_correction(args.text("correction"));
   const bool exact = args.flag("exact");
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
 #ifndef HANDLAB_WITH_REPORT

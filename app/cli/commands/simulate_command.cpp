@@ -74,9 +74,9 @@ int run_simulate(const std::vector<std::string>& argv) {
               << std::setw(11) << "completed" << std::setw(9) << "success" << std::setw(9)
               << "timeout" << std::setw(12) << "mean time" << std::setw(8) << "drops\n";
     for (const studies::ConditionOutcome& c : report.conditions)
-      std::cout << std::left << std::setw(16) << c.label << std::right << std::setw(8) << c.trials
-                << std::setw(11) << c.completed << std::setw(8) << std::setprecision(1)
-                << (c.trials ? 100.0 * c.completed / c.trials : 0.0) << "%" << std::setw(9)
+      std::cout << std::left << std::setw(16) << c.condition << std::right << std::setw(8)
+                << c.planned << std::setw(11) << c.completed << std::setw(8) << std::setprecision(1)
+                << (c.planned ? 100.0 * c.completed / c.planned : 0.0) << "%" << std::setw(9)
                 << c.timeouts << std::setw(10) << std::setprecision(2) << c.mean_time_s << " s"
                 << std::setw(7) << c.drops << "\n";
   }
@@ -98,12 +98,12 @@ int run_simulate(const std::vector<std::string>& argv) {
           .begin_array();
       for (const studies::ConditionOutcome& c : report.conditions)
         w.begin_object()
-            .field("condition", c.label)
-            .field("trials", c.trials)
+            .field("condition", c.condition)
+            .field("trials", c.planned)
             .field("completed", c.completed)
             .field("timeouts", c.timeouts)
             .field("skipped", c.skipped)
-            .field("success_rate", c.trials ? double(c.completed) / c.trials : 0.0)
+            .field("success_rate", c.planned ? double(c.completed) / c.planned : 0.0)
             .field("mean_time_s", c.mean_time_s)
             .field("grasps", c.grasps)
             .field("drops", c.drops)

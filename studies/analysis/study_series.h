@@ -1,0 +1,82 @@
+// Several studies of one protocol side by side (`handlab-cli replications`): simulated
+// studies of different seeds, or replications of a study. For each study what became of each
+// condition's trials and every test its analysis made (study_tests.h); for each test the
+// distribution of its statistic over the studies and how many rejected at alpha, which is the
+// power the series shows; and beside them the values a published study reported.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "studies/analysis/study_tests.h"
+
+namespace handlab::studies {
+
+// A study's reported test, named as study_tests names it. `value` and `p` are NaN when the
+// publication did not give them; `p_below`: it gave only a bound ("p < .001").
+struct PublishedTest {
+  std::string name, statistic;
+  double value = 0.0;
+  std::vector<double> df;
+  double p = 0.0;
+  bool p_below = false;
+};
+
+struct PublishedStudy {
+  std::string protocol;  // the protocol's name it reports a study of
+  std::string source;
+  int participants = 0;
+  std::vector<PublishedTest> tests;
+};
+
+// A JSON file {"format": "handlab-published-results", "version": 1, "protocol", "source",
+// "participants", "tests": [{"test", "statistic", "value", "df", "p" | "p_below"}]}.
+PublishedStudy read_published_study(const std::string& path);
+
+struct SeriesStudy {
+  std::string path;
+  int participants = 0;  // in the completion-time ANOVA
+  std::vector<ConditionOutcome> conditions;
+  std::string warning;
+};
+
+struct SeriesTest {
+  std::string name, statistic;
+  std::vector<double> value, p;               // per study; NaN where a study lacks the test
+  int studies = 0;                            // that have it
+  int rejected = 0;                           // of those, with p < alpha
+  double median = 0.0, min = 0.0, max = 0.0;  // of the statistic over the studies with it
+  double p_median = 0.0;
+  std::optional<PublishedTest> published;
+};
+
+struct StudySeries {
+  std::string protocol, protocol_sha256;
+  double alpha = 0.05;
+  std::vector<SeriesStudy> studies;
+  std::vector<std::string> conditions;
+  std::vector<SeriesTest> tests;  // in the order the first study that has each names them
+  std::optional<PublishedStudy> published;
+  std::vector<std::string> published_unmatched;  // published tests no study made
+};
+
+struct SeriesOptions {
+  double alpha = 0.05;
+  power::SphericityCorrection correction = power::SphericityCorrection::kAuto;
+  std::optional<PublishedStudy> published;
+  // Keep only these tests (by name), in this order; empty: every test.
+  std::vector<std::string> only;
+};
+
+// Throws std::runtime_error when the studies are not of one protocol (its hash), when a
+// published study is of another protocol, or when `only` names a test no study made.
+StudySeries summarize_series(const std::vector<std::string>& paths, const SeriesOptions& options);
+
+// Markdown tables: the studies, the share of trials completed per condition, and the tests
+// (statistic and p per study, median, range, rejections, the published value).
+void write_series_markdown(const StudySeries& series, std::ostream& out);
+void write_series_json(const StudySeries& series, std::ostream& out);
+
+}  // namespace handlab::studies

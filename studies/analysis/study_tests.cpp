@@ -1,0 +1,140 @@
+#include "studies/analysis/study_tests.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace handlab::studies {
+namespace {
+
+// A cell's levels as indices into the protocol's levels, in the protocol's order of factors.
+std::vector<int> level_indices(const Protocol& protocol,
+                               const std::vector<std::pair<std::string, std::string>>& cell) {
+  std::vector<int> indices;
+  for (const Factor& f : protocol.factors)
+    for (const auto& [factor, level] : cell) {
+      if (factor != f.name) continue;
+      const auto at = std::find_if(f.levels.begin(), f.levels.end(),
+                                   [&](const Level& l) { return l.name == level; });
+      if (at == f.levels.end())
+        throw std::runtime_error("the analysis names a level '" + level + "' of " + factor +
+                                 " that the protocol lacks");
+      indices.push_back(int(at - f.levels.begin()));
+    }
+  return indices;
+}
+
+std::string cell_label(const std::vector<std::pair<std::string, std::string>>& cell) {
+  std::string label;
+  for (const auto& [factor, level] : cell) label += (label.empty() ? "" : " ") + level;
+  return label;
+}
+
+// Two cells in the protocol's order of levels (the first factor's first), labelled so.
+struct Pair {
+  std::string label;  // "naive fine - ours fine"
+  bool swapped = false;
+  std::vector<int> key;  // the first cell's level indices, then the second's
+};
+
+Pair in_order(const Protocol& protocol,
+              const std::vector<std::pair<std::string, std::string>>& first,
+              const std::vector<std::pair<std::string, std::string>>& second) {
+  std::vector<int> a = level_indices(protocol, first), b = level_indices(protocol, second);
+  Pair pair;
+  pair.swapped = b < a;
+  pair.label = pair.swapped ? cell_label(second) + " - " + cell_label(first)
+                            : cell_label(first) + " - " + cell_label(second);
+  if (pair.swapped) std::swap(a, b);
+  pair.key = a;
+  pair.key.insert(pair.key.end(), b.begin(), b.end());
+  return pair;
+}
+
+// Tests of pairs of cells, listed in the order of their cells whatever the data's order was.
+struct Ordered {
+  std::vector<int> key;
+  StudyTest test;
+};
+
+void append_sorted(std::vector<Ordered>& pairs, std::vector<StudyTest>& tests) {
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [](const Ordered& x, const Ordered& y) { return x.key < y.key; });
+  for (Ordered& p : pairs) tests.push_back(std::move(p.test));
+}
+
+std::vector<std::pair<std::string, std::string>> named(const std::vector<std::string>& factors,
+                                                       const std::vector<std::string>& levels) {
+  std::vector<std::pair<std::string, std::string>> cell;
+  for (std::size_t f = 0; f < factors.size() && f < levels.size(); ++f)
+    cell.emplace_back(factors[f], levels[f]);
+  return cell;
+}
+
+}  // namespace
+
+StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrection correction,
+                       double alpha) {
+  StudyTests out;
+  const Protocol& protocol = a.protocol;
+  std::string planned;
+  for (const Factor& f : protocol.factors) planned += (planned.empty() ? "" : ":") + f.name;
+  if (!a.completion_time) {
+    out.warning = "completion time not analysed: " + a.completion_time_not_computed;
+  } else {
+    const analysis::AnalysisReport& t = *a.completion_time;
+    for (const stats::AnovaEffect& e : t.anova.effects) {
+      const double p = power::judged_p(e, correction, alpha);
+      const double scale = p == e.p ? 1.0 : p == e.p_gg ? e.eps_gg : std::min(1.0, e.eps_hf);
+      out.tests.push_back({e.effect, "F", e.f, {scale * e.df_num, scale * e.df_den}, p, false});
+    }
+    std::vector<Ordered> pairs;
+    for (const stats::PosthocResult& r : t.posthoc)
+      for (const stats::PairwiseContrast& c : r.contrasts) {
+        if (c.effect != planned || !c.by.empty()) continue;
+        const Pair pair = in_order(protocol, c.first, c.second);
+        stats::PairwiseContrast named = c;
+        named.contrast = pair.label;
+        pairs.push_back({pair.key,
+                         {power::contrast_name(named),
+                          "t",
+                          pair.swapped ? -c.t : c.t,
+                          {c.df},
+                          c.p_tukey,
+                          true}});
+      }
+    append_sorted(pairs, out.tests);
+    if (!t.dropped_subjects.empty())
+      out.warning = std::to_string(t.dropped_subjects.size()) +
+                    " participant(s) left out, lacking a result in some cell";
+  }
+  if (a.questionnaire) {
+    for (const QuestionnaireItem& item : protocol.items) {
+      for (const analysis::FriedmanItem& f : a.questionnaire->friedman)
+        if (f.dv == item.id)
+          out.tests.push_back(
+              {f.dv + " (Friedman)", "chi2", f.result.chisq, {f.result.df}, f.result.p, false});
+      std::vector<Ordered> pairs;
+      for (const analysis::WilcoxonPair& w : a.questionnaire->wilcoxon) {
+        if (w.dv != item.id) continue;
+        const Pair pair =
+            in_order(protocol, named(a.study.factors, w.first), named(a.study.factors, w.second));
+        // V sums the ranks of the positive differences: the other way round, of the negative.
+        const double all_ranks = 0.5 * w.result.n * (w.result.n + 1.0);
+        pairs.push_back({pair.key,
+                         {w.dv + ": " + pair.label + " (Wilcoxon)",
+                          "V",
+                          pair.swapped ? all_ranks - w.result.v : w.result.v,
+                          {},
+                          w.p_bonferroni,
+                          true}});
+      }
+      append_sorted(pairs, out.tests);
+    }
+  } else if (out.warning.empty() && !protocol.items.empty()) {
+    out.warning = "questionnaire not analysed: " + a.questionnaire_not_computed;
+  }
+  return out;
+}
+
+}  // namespace handlab::studies

@@ -1,0 +1,39 @@
+// The tests one study's analysis made, one row each with its statistic, degrees of freedom
+// and the p it is judged by, named so that the studies of a series line up: ANOVA effects as
+// `analyze` names them ("strategy:manipulation"), the cells of the protocol's factors compared
+// pairwise ("strategy:manipulation: naive fine - ours fine", Tukey), and per questionnaire
+// item Friedman's test ("precision (Friedman)") and the pairwise Wilcoxon tests
+// ("precision: naive fine - ours fine (Wilcoxon)", Bonferroni). A pair of cells is always
+// written in the protocol's order of levels (the first factor's first), whichever way the
+// data happened to order them, and its statistic's sign follows: t is the first cell's mean
+// minus the second's.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/power/power_analysis.h"
+#include "studies/analysis/study_database_analysis.h"
+
+namespace handlab::studies {
+
+struct StudyTest {
+  std::string name;
+  std::string statistic;   // "F", "t", "chi2" or "V"
+  double value = 0.0;      // NaN when the test has none (every difference zero)
+  std::vector<double> df;  // F: numerator and denominator (corrected when p is); t, chi2: one
+  double p = 0.0;          // as judged: the sphericity correction, Tukey, Bonferroni
+  bool contrast = false;   // a comparison of two cells (t, V), not an omnibus test
+};
+
+struct StudyTests {
+  std::vector<StudyTest> tests;  // effects, contrasts, then items
+  std::string warning;           // what could not be analysed, or who was left out
+};
+
+// The ANOVA effects judged with `correction` at `alpha` (kAuto: Greenhouse-Geisser where
+// Mauchly's test rejects sphericity, as the study report decides).
+StudyTests study_tests(const StudyDatabaseAnalysis& analysis,
+                       power::SphericityCorrection correction, double alpha);
+
+}  // namespace handlab::studies

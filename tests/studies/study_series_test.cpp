@@ -1,0 +1,210 @@
+// Studies side by side (`handlab-cli replications`): each study's tests are its analysis's,
+// pairs of cells named and signed in the protocol's order whatever order the data had, each
+// test described over the studies, and the published study's values matched by name.
+// The real inputs: simulated N = 20 studies of the ISMAR 2021 protocol on the soft hand
+// (tests/data/studies, made by `handlab-cli simulate --participants 20 --seed S --jobs 2`).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/store/study_store.h"
+#include "studies/analysis/study_series.h"
+#include "studies/protocol/protocol.h"
+#include "studies/session/session_runner.h"
+#include "tests/support/test_files.h"
+
+namespace handlab::studies {
+namespace {
+
+const std::string kSource = HANDLAB_SOURCE_DIR;
+const std::string kProtocol = kSource + "/studies/fine-manipulation-2021.json";
+const std::string kPublished = kSource + "/studies/fine-manipulation-2021-published.json";
+
+// A copy of a committed study database (opening a study may write to it).
+std::string simulated_study(int seed) {
+  const std::string copy = test::fresh_path("series_seed" + std::to_string(seed) + ".db");
+  std::filesystem::copy_file(
+      kSource + "/tests/data/studies/simulated-n20-seed" + std::to_string(seed) + ".db", copy);
+  return copy;
+}
+
+const StudyTest* find_test(const StudyTests& tests, const std::string& name) {
+  for (const StudyTest& t : tests.tests)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+const stats::PairwiseContrast* find_contrast(const analysis::AnalysisReport& r,
+                                             const std::string& label) {
+  for (const stats::PosthocResult& p : r.posthoc)
+    for (const stats::PairwiseContrast& c : p.contrasts)
+      if (c.effect == "strategy:manipulation" && c.contrast == label) return &c;
+  return nullptr;
+}
+
+// Six participants whose Naive fine trials are slow and whose answers rate Ours above Naive
+// in every condition; `protocol_text` may be another protocol's.
+std::string synthetic_study(const std::string& name, const Protocol& protocol) {
+  const std::string path = test::fresh_path(name);
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore store(path);
+  const std::vector<Condition> conditions = protocol.conditions();
+  for (int p = 0; p < 6; ++p) {
+    store::Participant person;
+    person.id = "P0" + std::to_string(p + 1);
+    person.age = 25 + p;
+    person.sex = p % 2 ? "F" : "M";
+    person.handedness = "right";
+    person.hand_length = 0.17 + 0.005 * p;
+    person.vr_experience = "some";
+    store.add_participant(person, planned_rows(protocol, person.id, p));
+    const std::int64_t session = store.begin_session(person.id, "test");
+    for (const store::PlannedTrialRow& t : store.plan(person.id)) {
+      const Condition& c = conditions[std::size_t(t.condition)];
+      const bool naive = c.label.starts_with("naive"), fine = c.label.ends_with("fine");
+      store::TrialOutcome outcome;
+      outcome.success = true;
+      outcome.completion_time_s = 5.0 + 0.3 * p + (fine ? 3.0 : 0.0) + (naive && fine ? 2.0 : 0.0) +
+                                  0.1 * double((p * 7 + t.condition * 3 + t.repetition * 5) % 11);
+      if (t.questionnaire)
+        for (const QuestionnaireItem& item : protocol.items)
+          outcome.answers.emplace_back(item.id, naive ? 1 + (p % 2) : 4 + (p % 2));
+      store.finish_trial(store.begin_trial(t.id, session), outcome);
+    }
+    store.end_session(session, "finished");
+  }
+  return path;
+}
+
+TEST(StudyTests, NamePairsOfCellsInTheProtocolsOrderWithTheirSigns) {
+  const Protocol protocol = read_protocol(kProtocol);
+  const StudyDatabaseAnalysis a =
+      analyze_study_database(synthetic_study("series_synthetic.db", protocol));
+  const StudyTests tests = study_tests(a, power::SphericityCorrection::kAuto, 0.05);
+  EXPECT_EQ(tests.warning, "");
+  // The ANOVA's seven effects, the six pairs of cells, and per item Friedman and six pairs.
+  ASSERT_EQ(tests.tests.size(), 7u + 6u + 3u * 7u);
+  const StudyTest* fine = find_test(tests, "strategy:manipulation: naive fine - ours fine");
+  ASSERT_TRUE(fine);
+  EXPECT_EQ(fine->statistic, "t");
+  EXPECT_GT(fine->value, 5.0);  // Naive's fine trials are 2 s slower for every participant
+  EXPECT_LT(fine->p, 0.05);
+  const StudyTest* gross = find_test(tests, "strategy:manipulation: naive gross - naive fine");
+  ASSERT_TRUE(gross);
+  EXPECT_LT(gross->value, 0.0);  // gross is the faster: the first cell minus the second
+  for (const std::string item : {"precision", "ease", "naturalness"}) {
+    const StudyTest* w = find_test(tests, item + ": naive fine - ours fine (Wilcoxon)");
+    ASSERT_TRUE(w) << item;
+    // Every participant rated Ours 3 points higher: no positive difference Naive - Ours.
+    EXPECT_EQ(w->value, 0.0) << item;
+    EXPECT_TRUE(find_test(tests, item + " (Friedman)")) << item;
+  }
+  // Each test is the analysis's own, whichever way round the data ordered the cells.
+  for (const stats::AnovaEffect& e : a.completion_time->anova.effects)
+    EXPECT_EQ(find_test(tests, e.effect)->value, e.f) << e.effect;
+  for (const std::string label : {"naive fine - ours fine", "ours fine - naive fine"})
+    if (const stats::PairwiseContrast* c = find_contrast(*a.completion_time, label)) {
+      EXPECT_EQ(std::abs(c->t), fine->value);
+      EXPECT_EQ(c->p_tukey, fine->p);
+    }
+}
+
+TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
+  const std::string db = simulated_study(1);
+  const StudyDatabaseAnalysis a = analyze_study_database(db);
+  SeriesOptions options;
+  options.published = read_published_study(kPublished);
+  const StudySeries s = summarize_series({db}, options);
+  EXPECT_EQ(s.protocol, "fine-manipulation-2021");
+  ASSERT_EQ(s.studies.size(), 1u);
+  EXPECT_EQ(s.studies[0].participants, 20);
+  // What `simulate` reported of this study (docs/simulated-participants.md, the fifth).
+  ASSERT_EQ(s.conditions,
+            (std::vector<std::string>{"naive-gross", "naive-fine", "ours-gross", "ours-fine"}));
+  const std::vector<int> completed = {100, 78, 100, 98};
+  for (std::size_t c = 0; c < 4; ++c) {
+    EXPECT_EQ(s.studies[0].conditions[c].planned, 100);
+    EXPECT_EQ(s.studies[0].conditions[c].completed, completed[c]) << s.conditions[c];
+    EXPECT_EQ(s.studies[0].conditions[c].completed + s.studies[0].conditions[c].timeouts, 100);
+  }
+  // Every test the publication reports is one this study made, under the same name.
+  EXPECT_TRUE(s.published_unmatched.empty());
+  int published = 0;
+  for (const SeriesTest& t : s.tests) {
+    EXPECT_EQ(t.studies, 1) << t.name;
+    EXPECT_EQ(t.median, t.value[0]) << t.name;
+    EXPECT_EQ(t.min, t.max) << t.name;
+    EXPECT_EQ(t.rejected, t.p[0] < 0.05 ? 1 : 0) << t.name;
+    published += t.published ? 1 : 0;
+  }
+  EXPECT_EQ(published, 21);
+  const auto test = [&](const std::string& name) -> const SeriesTest& {
+    for (const SeriesTest& t : s.tests)
+      if (t.name == name) return t;
+    ADD_FAILURE() << name;
+    return s.tests.front();
+  };
+  // The interaction and the fine comparison as the fifth study's write-up gives them; the data
+  // listed Ours fine first ("ours fine - naive fine", t = -3.34): named and signed in the
+  // protocol's order here.
+  EXPECT_NEAR(test("strategy:manipulation").value[0], 8.7376, 1e-4);
+  EXPECT_NEAR(test("strategy:manipulation").p[0], 0.00811, 1e-5);
+  ASSERT_TRUE(find_contrast(*a.completion_time, "ours fine - naive fine"));
+  EXPECT_EQ(test("strategy:manipulation: naive fine - ours fine").value[0],
+            -find_contrast(*a.completion_time, "ours fine - naive fine")->t);
+  EXPECT_NEAR(test("strategy:manipulation: naive fine - ours fine").value[0], 3.3357, 1e-4);
+  EXPECT_NEAR(test("strategy:manipulation: naive fine - ours fine").p[0], 0.01674, 1e-5);
+  EXPECT_NEAR(test("precision (Friedman)").value[0], 10.24, 0.005);
+  EXPECT_EQ(test("strategy:manipulation").published->value, 8.78);
+  EXPECT_TRUE(test("repetition").published->p_below);
+}
+
+TEST(StudySeries, RefusesStudiesOfAnotherProtocolAndTestsNoStudyMade) {
+  const std::string db = simulated_study(1);
+  std::string text = test::file_bytes(kProtocol);
+  text.replace(text.find("\"blocks\": 5"), 11, "\"blocks\": 2");
+  const Protocol other = parse_protocol(text, "two blocks");
+  const std::string two_blocks = synthetic_study("series_two_blocks.db", other);
+  try {
+    summarize_series({db, two_blocks}, {});
+    ADD_FAILURE() << "a study of another protocol was summarised";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("another protocol"), std::string::npos) << e.what();
+  }
+  SeriesOptions only;
+  only.only = {"strategy:manipulation", "strategy:manipulation: ours fine - naive fine"};
+  EXPECT_THROW(summarize_series({db}, only), std::runtime_error);  // named the other way round
+  only.only.pop_back();
+  EXPECT_EQ(summarize_series({db}, only).tests.size(), 1u);
+  SeriesOptions foreign;
+  foreign.published = read_published_study(kPublished);
+  foreign.published->protocol = "another-study";
+  EXPECT_THROW(summarize_series({db}, foreign), std::runtime_error);
+}
+
+TEST(PublishedStudy, RefusesAFileThatIsNotOne) {
+  const PublishedStudy paper = read_published_study(kPublished);
+  EXPECT_EQ(paper.participants, 20);
+  EXPECT_EQ(paper.tests.size(), 21u);
+  const auto refused = [](const std::string& text) {
+    const std::string path = test::fresh_path("published.json");
+    std::ofstream(path) << text;
+    EXPECT_THROW(read_published_study(path), std::runtime_error) << text;
+  };
+  const std::string head =
+      R"({"format": "handlab-published-results", "version": 1, "protocol": "p", "source": "s",
+          "participants": 20, "tests": )";
+  refused(R"({"format": "handlab-protocol", "version": 1})");
+  refused(head + R"([{"test": "a", "statistic": "F", "p": 0.01, "p_below": 0.05}]})");
+  refused(head + R"([{"test": "a", "statistic": "z", "p": 0.01}]})");
+  refused(head + R"([{"test": "a", "statistic": "F"}, {"test": "a", "statistic": "F"}]})");
+  refused(head + R"([{"test": "a", "statistic": "F", "value": "large"}]})");
+  EXPECT_THROW(read_published_study(test::fresh_path("absent.json")), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace handlab::studies
