@@ -1,5 +1,6 @@
 #include "studies/report/report_document.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -254,6 +255,22 @@ class Builder {
     row("Practice trials run", q.practice_run, "practice_run");
     row("Frames stored", q.frames, "frames");
     table(std::move(t));
+    ReportTable per;
+    per.caption = "Scheduled trials per condition: each counted by its last attempt that ended.";
+    per.header = {"Condition", "Scheduled", "Completed", "Timed out", "Skipped", "Not run"};
+    for (std::size_t i = 0; i < q.by_condition.size(); ++i) {
+      const ConditionOutcome& c = q.by_condition[i];
+      const std::string key = "/data_quality/by_condition/" + std::to_string(i) + "/";
+      std::string label = display(c.condition);  // levels joined by '-'
+      std::replace(label.begin(), label.end(), '-', ' ');
+      per.rows.push_back({{words(label)},
+                          {count(c.planned, key + "planned")},
+                          {count(c.completed, key + "completed")},
+                          {count(c.timeouts, key + "timeouts")},
+                          {count(c.skipped, key + "skipped")},
+                          {count(c.not_run, key + "not_run")}});
+    }
+    table(std::move(per));
     if (q.left_out.empty()) {
       paragraph({words("No participant was left out of an analysis.")});
     } else {
