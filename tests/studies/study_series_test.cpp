@@ -163,6 +163,36 @@ TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
   EXPECT_TRUE(test("repetition").published->p_below);
 }
 
+TEST(StudySeries, DescribesEachTestOverTheStudies) {
+  const std::vector<std::string> dbs = {simulated_study(1), simulated_study(2)};
+  const StudySeries both = summarize_series(dbs, {});
+  const StudySeries first = summarize_series({dbs[0]}, {});
+  const StudySeries second = summarize_series({dbs[1]}, {});
+  ASSERT_EQ(both.studies.size(), 2u);
+  // The second study (seed 2): Naive fine completed 60 of 100, Ours fine 98.
+  EXPECT_EQ(both.studies[1].conditions[1].completed, 60);
+  EXPECT_EQ(both.studies[1].conditions[3].completed, 98);
+  ASSERT_EQ(both.tests.size(), first.tests.size());
+  ASSERT_EQ(both.tests.size(), second.tests.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < both.tests.size(); ++i) {
+    const SeriesTest& t = both.tests[i];
+    ASSERT_EQ(t.name, first.tests[i].name);
+    ASSERT_EQ(t.name, second.tests[i].name);
+    EXPECT_EQ(t.studies, 2) << t.name;
+    EXPECT_EQ(t.value[0], first.tests[i].value[0]) << t.name;
+    EXPECT_EQ(t.value[1], second.tests[i].value[0]) << t.name;
+    EXPECT_EQ(t.p[1], second.tests[i].p[0]) << t.name;
+    // Of two values the median is their mean.
+    EXPECT_DOUBLE_EQ(t.median, 0.5 * (t.value[0] + t.value[1])) << t.name;
+    EXPECT_EQ(t.min, std::min(t.value[0], t.value[1])) << t.name;
+    EXPECT_EQ(t.max, std::max(t.value[0], t.value[1])) << t.name;
+    EXPECT_EQ(t.rejected, first.tests[i].rejected + second.tests[i].rejected) << t.name;
+    differ += t.value[0] != t.value[1] ? 1 : 0;
+  }
+  EXPECT_GT(differ, 30);  // two studies, not one twice
+}
+
 TEST(StudySeries, RefusesStudiesOfAnotherProtocolAndTestsNoStudyMade) {
   const std::string db = simulated_study(1);
   std::string text = test::file_bytes(kProtocol);
