@@ -85,6 +85,7 @@ StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrecti
     const analysis::AnalysisReport& t = *a.completion_time;
     for (const stats::AnovaEffect& e : t.anova.effects) {
       const double p = power::judged_p(e, correction, alpha);
+      // The df of the p it took: corrected by that correction's epsilon.
       const double scale = p == e.p ? 1.0 : p == e.p_gg ? e.eps_gg : std::min(1.0, e.eps_hf);
       out.tests.push_back({e.effect, "F", e.f, {scale * e.df_num, scale * e.df_den}, p, false});
     }
@@ -93,10 +94,10 @@ StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrecti
       for (const stats::PairwiseContrast& c : r.contrasts) {
         if (c.effect != planned || !c.by.empty()) continue;
         const Pair pair = in_order(protocol, c.first, c.second);
-        stats::PairwiseContrast named = c;
-        named.contrast = pair.label;
+        stats::PairwiseContrast oriented = c;
+        oriented.contrast = pair.label;
         pairs.push_back({pair.key,
-                         {power::contrast_name(named),
+                         {power::contrast_name(oriented),
                           "t",
                           pair.swapped ? -c.t : c.t,
                           {c.df},
