@@ -1,6 +1,7 @@
 #include "core/task/soft_hand_world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <stdexcept>
 
@@ -60,7 +61,10 @@ void SoftHandWorld::step(const hand::HandPose* target, double dt) {
   const double h = model_.parameters.time_step;
   pending_ += dt;
   while (pending_ > 0.5 * h) {
-    simulator_.step(*state_, targets_);
+    const auto start = std::chrono::steady_clock::now();
+    const sim::SimStepReport report = simulator_.step(*state_, targets_);
+    totals_.add(report,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     pending_ -= h;
   }
   observe();

@@ -13,6 +13,7 @@
 #include "core/sim/hand_sim_model.h"
 #include "core/sim/hand_sim_state.h"
 #include "core/sim/hand_simulator.h"
+#include "core/sim/step_totals.h"
 #include "core/task/hand_cube_world.h"
 
 namespace handlab::task {
@@ -35,6 +36,8 @@ class SoftHandWorld : public HandCubeWorld {
 
   // The simulator's state (null before the first target).
   const sim::HandSimState* state() const { return state_.get(); }
+  // What its steps have cost since the world was made.
+  const sim::StepTotals& totals() const { return totals_; }
 
  private:
   void observe();
@@ -52,6 +55,7 @@ class SoftHandWorld : public HandCubeWorld {
   CubeState cube_;
   bool thumb_contact_ = false, index_contact_ = false;
   std::vector<Eigen::Isometry3d> bones_;
+  sim::StepTotals totals_;
 };
 
 }  // namespace handlab::task

@@ -259,6 +259,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
                                   sim, setup.calibration, fitter);
   const Eigen::Vector3d cube_start = task::cube_start_pose(layout).translation();
   std::unique_ptr<task::HandCubeWorld> physics;
+  const task::SoftHandWorld* soft = nullptr;
   if (world_ == WorldKind::kSoftHand) {
     const hand::HandShape& shape = setup.condition.simulated_hand;
     auto same = [&](const std::unique_ptr<SoftHand>& h) {
@@ -281,8 +282,10 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
     }
     sim::SimOptions options;
     options.threads = sim_threads_;
-    physics = std::make_unique<task::SoftHandWorld>((*found)->model, (*found)->skeleton, cube_start,
-                                                    options);
+    auto world = std::make_unique<task::SoftHandWorld>((*found)->model, (*found)->skeleton,
+                                                       cube_start, options);
+    soft = world.get();
+    physics = std::move(world);
   } else {
     task::GraspProxySettings world_settings;
     world_settings.cube_size = layout.cube_size;
@@ -372,6 +375,10 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
       o.time = protocol.timeout_s;
       task.update(o);
     }
+  }
+  if (soft) {
+    run.simulator = soft->totals();
+    simulator_totals_[setup.condition.label] += run.simulator;
   }
   run.success = task.phase() == task::TaskPhase::kDone;
   run.completion_time_s = task.completion_time();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/retarget/retargeter.h"
+#include "core/sim/step_totals.h"
 #include "core/store/frame_record.h"
 #include "core/store/study_store.h"
 #include "core/task/hand_cube_world.h"
@@ -42,6 +44,8 @@ struct TrialRun {
   std::optional<TrialExperience> experience;
   // Stopped by the experimenter before its end (SessionControl::request_stop): no result.
   bool aborted = false;
+  // What the soft hand's simulator steps cost in the trial (none on the grasp proxy).
+  sim::StepTotals simulator;
 };
 
 // Thrown by a calibration that a stop request ended.
@@ -141,6 +145,10 @@ class PipelineTrialDriver : public TrialDriver {
   retarget::Calibration calibrate(const Protocol& protocol,
                                   const store::Participant& participant) override;
   TrialRun run(const TrialSetup& setup, const FrameSink& sink) override;
+  // The soft hand's steps of every trial run so far, per condition label.
+  const std::map<std::string, sim::StepTotals>& simulator_totals() const {
+    return simulator_totals_;
+  }
 
  private:
   // `simulated` is the condition's simulated hand (the scripted pinch closes on its tips).
@@ -157,6 +165,7 @@ class PipelineTrialDriver : public TrialDriver {
   std::vector<tracking::TrackedFrame> recording_;  // loaded once
   struct SoftHand;  // the soft hand's flesh and model for a simulated hand and cube
   std::vector<std::unique_ptr<SoftHand>> soft_hands_;  // built once each, kept
+  std::map<std::string, sim::StepTotals> simulator_totals_;
 };
 
 }  // namespace handlab::studies

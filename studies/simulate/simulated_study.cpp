@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -70,6 +71,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   int trials_done = 0;
+  std::map<std::string, sim::StepTotals> simulator;  // per condition label
 
   auto work = [&] {
     for (int i = next++; i < n && !stop; i = next++) {
@@ -84,6 +86,8 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
           ++trials_done;
           changed.notify_all();
         });
+        const std::lock_guard lock(mutex);
+        for (const auto& [label, t] : driver.simulator_totals()) simulator[label] += t;
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();
@@ -142,6 +146,8 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   SimulationReport report;
   report.participants = n;
   report.conditions = condition_outcomes(study, protocol);
+  for (const Condition& c : protocol.conditions())
+    report.simulator.emplace_back(c.label, simulator[c.label]);
   for (const store::Participant& p : people)
     for (const store::TrialRow& t : study.trials(p.id)) {
       ++report.trials;

@@ -32,6 +32,9 @@ struct SimulationReport {
   std::vector<ConditionOutcome> conditions;     // in the protocol's order (scheduled trials)
   double seconds = 0.0;                         // wall-clock
   double simulated_seconds = 0.0;               // trial time simulated
+  // The soft hand's steps per condition, in the protocol's order (practice included; all
+  // zero on the grasp proxy): where the study's time went.
+  std::vector<std::pair<std::string, sim::StepTotals>> simulator;
 };
 
 struct SimulationProgress {

@@ -98,6 +98,16 @@ TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
     if (!touched && (f.cube_position - start).norm() > 1e-4f) ++moved_untouched;
   });
   EXPECT_EQ(run.frames, frames);
+  // One simulator step a 120 Hz frame (the first frame places the hand), each with its passes
+  // and solves counted; the first factorises.
+  EXPECT_GE(run.simulator.steps, frames - 1);
+  EXPECT_LE(run.simulator.steps, frames);
+  EXPECT_GE(run.simulator.passes, run.simulator.steps);
+  EXPECT_GE(run.simulator.linear_iterations, run.simulator.factorizations);
+  EXPECT_GE(run.simulator.factorizing_steps, 1);
+  EXPECT_GE(run.simulator.factorizations, run.simulator.factorizing_steps);
+  EXPECT_GT(run.simulator.seconds, 0.0);
+  EXPECT_EQ(driver.simulator_totals().at(setup.condition.label).steps, run.simulator.steps);
   EXPECT_GT(touching, 10) << "frames with thumb or index on the cube";
   EXPECT_EQ(moved_untouched, 0) << "the cube moved before the hand touched it";
 }

@@ -1,4 +1,5 @@
 // handlab-cli simulate: a whole study run by simulated participants, headless.
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -79,6 +80,25 @@ int run_simulate(const std::vector<std::string>& argv) {
                 << (c.planned ? 100.0 * c.completed / c.planned : 0.0) << "%" << std::setw(9)
                 << c.timeouts << std::setw(10) << std::setprecision(2) << c.mean_time_s << " s"
                 << std::setw(7) << c.drops << "\n";
+    sim::StepTotals all;
+    for (const auto& [label, t] : report.simulator) all += t;
+    if (all.steps > 0) {
+      // Where the time went: the soft hand's steps, all trials (practice included).
+      std::cout << "\n"
+                << std::left << std::setw(16) << "soft hand" << std::right << std::setw(10)
+                << "steps" << std::setw(12) << "factorising" << std::setw(9) << "passes"
+                << std::setw(6) << "CG" << std::setw(12) << "ms a step\n";
+      auto line = [](const std::string& what, const sim::StepTotals& t) {
+        const double steps = double(std::max(1L, t.steps));
+        std::cout << std::left << std::setw(16) << what << std::right << std::setw(10) << t.steps
+                  << std::setw(11) << std::setprecision(1) << 100.0 * t.factorizing_steps / steps
+                  << "%" << std::setw(9) << std::setprecision(2) << t.passes / steps << std::setw(6)
+                  << std::setprecision(2) << t.linear_iterations / steps << std::setw(11)
+                  << std::setprecision(2) << 1000.0 * t.seconds / steps << "\n";
+      };
+      for (const auto& [label, t] : report.simulator) line(label, t);
+      line("all", all);
+    }
   }
   if (args.has("json")) {
     write_output(args.text("json"), [&](std::ostream& out) {
@@ -107,6 +127,19 @@ int run_simulate(const std::vector<std::string>& argv) {
             .field("mean_time_s", c.mean_time_s)
             .field("grasps", c.grasps)
             .field("drops", c.drops)
+            .end_object();
+      w.end_array().key("simulator").begin_array();
+      for (const auto& [label, t] : report.simulator)
+        w.begin_object()
+            .field("condition", label)
+            .field("steps", static_cast<long long>(t.steps))
+            .field("factorizing_steps", static_cast<long long>(t.factorizing_steps))
+            .field("factorizations", static_cast<long long>(t.factorizations))
+            .field("passes", static_cast<long long>(t.passes))
+            .field("linear_iterations", static_cast<long long>(t.linear_iterations))
+            .field("direct_solves", static_cast<long long>(t.direct_solves))
+            .field("halvings", static_cast<long long>(t.halvings))
+            .field("seconds", t.seconds)
             .end_object();
       w.end_array().end_object();
       out << "\n";

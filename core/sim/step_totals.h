@@ -1,0 +1,41 @@
+// What the simulator's steps cost over a run (a trial, a session, a study): how many steps,
+// how many of them factorised the Newton matrix, their passes, CG iterations and wall-clock
+// time. Counting only: where a simulated study's time goes (docs/performance.md).
+#pragma once
+
+#include "core/sim/hand_simulator.h"
+
+namespace handlab::sim {
+
+struct StepTotals {
+  long steps = 0;
+  long factorizing_steps = 0;  // steps with at least one factorisation
+  long factorizations = 0;
+  long passes = 0;  // Newton iterations: a step takes more than one when contacts changed
+  long linear_iterations = 0, direct_solves = 0, halvings = 0;
+  double seconds = 0.0;  // wall clock inside HandSimulator::step
+
+  void add(const SimStepReport& r, double step_seconds) {
+    ++steps;
+    factorizing_steps += r.factorizations > 0 ? 1 : 0;
+    factorizations += r.factorizations;
+    passes += r.newton_iterations;
+    linear_iterations += r.linear_iterations;
+    direct_solves += r.direct_solves;
+    halvings += r.halvings;
+    seconds += step_seconds;
+  }
+  StepTotals& operator+=(const StepTotals& o) {
+    steps += o.steps;
+    factorizing_steps += o.factorizing_steps;
+    factorizations += o.factorizations;
+    passes += o.passes;
+    linear_iterations += o.linear_iterations;
+    direct_solves += o.direct_solves;
+    halvings += o.halvings;
+    seconds += o.seconds;
+    return *this;
+  }
+};
+
+}  // namespace handlab::sim
