@@ -53,4 +53,19 @@ std::vector<ConditionOutcome> condition_outcomes(store::StudyStore& store,
   return out;
 }
 
+void write_condition_outcome(util::JsonWriter& json, const ConditionOutcome& c) {
+  json.begin_object()
+      .field("condition", c.condition)
+      .field("planned", c.planned)
+      .field("completed", c.completed)
+      .field("timeouts", c.timeouts)
+      .field("skipped", c.skipped)
+      .field("not_run", c.not_run)
+      .field("success_rate", c.planned > 0 ? double(c.completed) / c.planned : 0.0)
+      .field("mean_time_s", c.mean_time_s)
+      .field("grasps", c.grasps)
+      .field("drops", c.drops)
+      .end_object();
+}
+
 }  // namespace handlab::studies

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/store/study_store.h"
+#include "core/util/json_writer.h"
 #include "studies/protocol/protocol.h"
 
 namespace handlab::studies {
@@ -23,5 +24,10 @@ struct ConditionOutcome {
 // In the protocol's order of conditions, over every participant the store holds.
 std::vector<ConditionOutcome> condition_outcomes(store::StudyStore& store,
                                                  const Protocol& protocol);
+
+// One object: condition, planned, completed, timeouts, skipped, not_run, success_rate
+// (completed of planned), mean_time_s, grasps, drops (`analyze --db`'s data_quality and
+// `replications`).
+void write_condition_outcome(util::JsonWriter& json, const ConditionOutcome& outcome);
 
 }  // namespace handlab::studies

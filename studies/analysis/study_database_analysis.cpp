@@ -467,18 +467,7 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
     json.field("attempts_aborted", q.attempts_aborted).field("attempts_redone", q.attempts_redone);
     json.field("practice_run", q.practice_run).field("frames", static_cast<long long>(q.frames));
     json.key("by_condition").begin_array();
-    for (const ConditionOutcome& c : q.by_condition)
-      json.begin_object()
-          .field("condition", c.condition)
-          .field("planned", c.planned)
-          .field("completed", c.completed)
-          .field("timeouts", c.timeouts)
-          .field("skipped", c.skipped)
-          .field("not_run", c.not_run)
-          .field("mean_time_s", c.mean_time_s)
-          .field("grasps", c.grasps)
-          .field("drops", c.drops)
-          .end_object();
+    for (const ConditionOutcome& c : q.by_condition) write_condition_outcome(json, c);
     json.end_array();
     json.key("left_out").begin_array();
     for (const auto& [id, why] : q.left_out)

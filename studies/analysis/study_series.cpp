@@ -271,16 +271,7 @@ void write_series_json(const StudySeries& s, std::ostream& out) {
   for (const SeriesStudy& study : s.studies) {
     json.begin_object().field("db", study.path).field("participants", study.participants);
     json.field("warning", study.warning).key("conditions").begin_array();
-    for (const ConditionOutcome& c : study.conditions)
-      json.begin_object()
-          .field("condition", c.condition)
-          .field("planned", c.planned)
-          .field("completed", c.completed)
-          .field("timeouts", c.timeouts)
-          .field("skipped", c.skipped)
-          .field("not_run", c.not_run)
-          .field("success_rate", c.planned > 0 ? double(c.completed) / c.planned : kNaN)
-          .end_object();
+    for (const ConditionOutcome& c : study.conditions) write_condition_outcome(json, c);
     json.end_array().end_object();
   }
   json.end_array();
