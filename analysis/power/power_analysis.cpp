@@ -21,19 +21,20 @@
 
 namespace handlab::power {
 
-double judged_p(const stats::AnovaEffect& e, SphericityCorrection correction, double alpha) {
-  if (e.df_num <= 1 || !std::isfinite(e.mauchly_p)) return e.p;
+JudgedP judged(const stats::AnovaEffect& e, SphericityCorrection correction, double alpha) {
+  const JudgedP uncorrected{e.p, 1.0}, gg{e.p_gg, e.eps_gg}, hf{e.p_hf, std::min(1.0, e.eps_hf)};
+  if (e.df_num <= 1 || !std::isfinite(e.mauchly_p)) return uncorrected;
   switch (correction) {
     case SphericityCorrection::kNone:
-      return e.p;
+      return uncorrected;
     case SphericityCorrection::kGreenhouseGeisser:
-      return e.p_gg;
+      return gg;
     case SphericityCorrection::kHuynhFeldt:
-      return e.p_hf;
+      return hf;
     case SphericityCorrection::kAuto:
-      return e.mauchly_p < alpha ? e.p_gg : e.p;
+      return e.mauchly_p < alpha ? gg : uncorrected;
   }
-  return e.p;
+  return uncorrected;
 }
 
 std::string contrast_name(const stats::PairwiseContrast& c) {

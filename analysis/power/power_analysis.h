@@ -72,8 +72,17 @@ PowerReport simulate_power(const PowerModel& model, const PowerOptions& options,
 // A planned contrast's name: "effect: a - b", with " | factor level" for a by-group.
 std::string contrast_name(const stats::PairwiseContrast& contrast);
 
-// The p an effect is judged by under `correction` (kAuto: the report's rule).
-double judged_p(const stats::AnovaEffect& effect, SphericityCorrection correction, double alpha);
+// The p an effect is judged by under `correction` (kAuto: the report's rule), and the factor
+// its df take with it (the correction's epsilon; 1 uncorrected).
+struct JudgedP {
+  double p = 0.0;
+  double df_scale = 1.0;
+};
+JudgedP judged(const stats::AnovaEffect& effect, SphericityCorrection correction, double alpha);
+inline double judged_p(const stats::AnovaEffect& effect, SphericityCorrection correction,
+                       double alpha) {
+  return judged(effect, correction, alpha).p;
+}
 
 // A report of `n.size()` values of N for these effects and contrasts, counts to come.
 PowerReport empty_report(const std::vector<std::string>& effects,

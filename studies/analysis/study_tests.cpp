@@ -84,10 +84,9 @@ StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrecti
   } else {
     const analysis::AnalysisReport& t = *a.completion_time;
     for (const stats::AnovaEffect& e : t.anova.effects) {
-      const double p = power::judged_p(e, correction, alpha);
-      // The df of the p it took: corrected by that correction's epsilon.
-      const double scale = p == e.p ? 1.0 : p == e.p_gg ? e.eps_gg : std::min(1.0, e.eps_hf);
-      out.tests.push_back({e.effect, "F", e.f, {scale * e.df_num, scale * e.df_den}, p, false});
+      const power::JudgedP j = power::judged(e, correction, alpha);
+      out.tests.push_back(
+          {e.effect, "F", e.f, {j.df_scale * e.df_num, j.df_scale * e.df_den}, j.p, false});
     }
     std::vector<Ordered> pairs;
     for (const stats::PosthocResult& r : t.posthoc)

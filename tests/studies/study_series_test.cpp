@@ -3,6 +3,7 @@
 // test described over the studies, and the published study's values matched by name.
 // The real inputs: simulated N = 20 studies of the ISMAR 2021 protocol on the soft hand
 // (tests/data/studies, made by `handlab-cli simulate --participants 20 --seed S --jobs 2`).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -111,6 +112,39 @@ TEST(StudyTests, NamePairsOfCellsInTheProtocolsOrderWithTheirSigns) {
       EXPECT_EQ(std::abs(c->t), fine->value);
       EXPECT_EQ(c->p_tukey, fine->p);
     }
+}
+
+// An effect judged with a sphericity correction carries that correction's df: each
+// correction's own epsilon, taken from the correction (not guessed from the p it returned).
+TEST(StudyTests, CorrectedEffectsCarryTheirCorrectionsDf) {
+  const StudyDatabaseAnalysis a = analyze_study_database(simulated_study(1));
+  ASSERT_TRUE(a.completion_time);
+  using power::SphericityCorrection;
+  int corrected = 0;
+  for (const SphericityCorrection c :
+       {SphericityCorrection::kNone, SphericityCorrection::kGreenhouseGeisser,
+        SphericityCorrection::kHuynhFeldt}) {
+    const StudyTests tests = study_tests(a, c, 0.05);
+    for (const stats::AnovaEffect& e : a.completion_time->anova.effects) {
+      const StudyTest* t = find_test(tests, e.effect);
+      ASSERT_TRUE(t) << e.effect;
+      ASSERT_EQ(t->df.size(), 2u);
+      const bool one_df = e.df_num <= 1;
+      const double scale = one_df || c == SphericityCorrection::kNone ? 1.0
+                           : c == SphericityCorrection::kGreenhouseGeisser
+                               ? e.eps_gg
+                               : std::min(1.0, e.eps_hf);
+      const double p = one_df || c == SphericityCorrection::kNone      ? e.p
+                       : c == SphericityCorrection::kGreenhouseGeisser ? e.p_gg
+                                                                       : e.p_hf;
+      EXPECT_EQ(t->df[0], scale * e.df_num) << e.effect;
+      EXPECT_EQ(t->df[1], scale * e.df_den) << e.effect;
+      EXPECT_EQ(t->p, p) << e.effect;
+      corrected += scale < 1.0 ? 1 : 0;
+    }
+  }
+  // Repetition and its interactions (4 df) are corrected by both corrections in this study.
+  EXPECT_GE(corrected, 4);
 }
 
 TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
