@@ -54,8 +54,13 @@ std::vector<ConditionOutcome> condition_outcomes(store::StudyStore& store,
 }
 
 void write_condition_outcome(util::JsonWriter& json, const ConditionOutcome& c) {
-  json.begin_object()
-      .field("condition", c.condition)
+  json.begin_object();
+  write_condition_outcome_fields(json, c);
+  json.end_object();
+}
+
+void write_condition_outcome_fields(util::JsonWriter& json, const ConditionOutcome& c) {
+  json.field("condition", c.condition)
       .field("planned", c.planned)
       .field("completed", c.completed)
       .field("timeouts", c.timeouts)
@@ -64,8 +69,7 @@ void write_condition_outcome(util::JsonWriter& json, const ConditionOutcome& c) 
       .field("success_rate", c.planned > 0 ? double(c.completed) / c.planned : 0.0)
       .field("mean_time_s", c.mean_time_s)
       .field("grasps", c.grasps)
-      .field("drops", c.drops)
-      .end_object();
+      .field("drops", c.drops);
 }
 
 }  // namespace handlab::studies

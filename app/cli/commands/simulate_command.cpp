@@ -9,6 +9,7 @@
 #include "app/cli/commands/commands.h"
 #include "app/cli/output_file.h"
 #include "core/util/json_writer.h"
+#include "studies/analysis/condition_outcomes.h"
 #include "studies/protocol/protocol.h"
 #include "studies/simulate/simulated_study.h"
 
@@ -116,18 +117,12 @@ int run_simulate(const std::vector<std::string>& argv) {
           .field("simulated_seconds", report.simulated_seconds)
           .key("conditions")
           .begin_array();
-      for (const studies::ConditionOutcome& c : report.conditions)
-        w.begin_object()
-            .field("condition", c.condition)
-            .field("trials", c.planned)
-            .field("completed", c.completed)
-            .field("timeouts", c.timeouts)
-            .field("skipped", c.skipped)
-            .field("success_rate", c.planned ? double(c.completed) / c.planned : 0.0)
-            .field("mean_time_s", c.mean_time_s)
-            .field("grasps", c.grasps)
-            .field("drops", c.drops)
-            .end_object();
+      // The shared keys, and `trials` (the scheduled trials: simulate's name for planned).
+      for (const studies::ConditionOutcome& c : report.conditions) {
+        w.begin_object();
+        studies::write_condition_outcome_fields(w, c);
+        w.field("trials", c.planned).end_object();
+      }
       w.end_array().key("simulator").begin_array();
       for (const auto& [label, t] : report.simulator)
         w.begin_object()
