@@ -1,5 +1,6 @@
 #include "studies/analysis/condition_outcomes.h"
 
+#include <limits>
 #include <stdexcept>
 
 namespace handlab::studies {
@@ -66,7 +67,9 @@ void write_condition_outcome_fields(util::JsonWriter& json, const ConditionOutco
       .field("timeouts", c.timeouts)
       .field("skipped", c.skipped)
       .field("not_run", c.not_run)
-      .field("success_rate", c.planned > 0 ? double(c.completed) / c.planned : 0.0)
+      // No rate of nothing scheduled: null.
+      .field("success_rate", c.planned > 0 ? double(c.completed) / c.planned
+                                           : std::numeric_limits<double>::quiet_NaN())
       .field("mean_time_s", c.mean_time_s)
       .field("grasps", c.grasps)
       .field("drops", c.drops);

@@ -26,9 +26,9 @@ std::vector<ConditionOutcome> condition_outcomes(store::StudyStore& store,
                                                  const Protocol& protocol);
 
 // One object: condition, planned, completed, timeouts, skipped, not_run, success_rate
-// (completed of planned), mean_time_s, grasps, drops (`analyze --db`'s data_quality,
-// `replications`); the fields alone into an object the caller has begun (`simulate`, which
-// adds its own keys).
+// (completed of planned; null when none was), mean_time_s, grasps, drops (`analyze --db`'s
+// data_quality, `replications`); the fields alone into an object the caller has begun (`simulate`,
+// which adds its own keys).
 void write_condition_outcome(util::JsonWriter& json, const ConditionOutcome& outcome);
 void write_condition_outcome_fields(util::JsonWriter& json, const ConditionOutcome& outcome);
 
