@@ -180,6 +180,10 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
     if (options.published)
       for (const PublishedTest& p : options.published->tests)
         if (p.name == name) s.published = p;
+    if (s.published && std::isfinite(s.published->value)) {
+      s.below_published = 0;
+      for (double v : s.value) s.below_published += v < s.published->value ? 1 : 0;
+    }
     series.tests.push_back(std::move(s));
   }
   if (options.published && options.only.empty())
@@ -233,7 +237,9 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
     extra.push_back("published (N = " + std::to_string(s.published->participants) + ")");
   std::ostringstream alpha;
   alpha << "p < " << s.alpha;
-  header("test", extra, {"median", "range", "p median", alpha.str()});
+  std::vector<std::string> tail = {"median", "range", "p median", alpha.str()};
+  if (published) tail.push_back("below published");
+  header("test", extra, tail);
   for (const SeriesTest& t : s.tests) {
     out << "| " << t.name << " | " << t.statistic;
     if (published) {
@@ -251,7 +257,13 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
                   : std::string("–"));
     out << " | " << statistic_text(t.statistic, t.median) << " | "
         << statistic_text(t.statistic, t.min) << " to " << statistic_text(t.statistic, t.max)
-        << " | " << p_text(t.p_median) << " | " << t.rejected << " of " << t.studies << " |\n";
+        << " | " << p_text(t.p_median) << " | " << t.rejected << " of " << t.studies;
+    if (published)
+      out << " | "
+          << (t.below_published >= 0
+                  ? std::to_string(t.below_published) + " of " + std::to_string(t.studies)
+                  : std::string());
+    out << " |\n";
   }
   if (published) {
     out << "\nPublished: " << s.published->source << "\n";
@@ -286,6 +298,11 @@ void write_series_json(const StudySeries& s, std::ostream& out) {
     json.field("studies", t.studies).field("rejected", t.rejected);
     json.field("median", t.median).field("min", t.min).field("max", t.max);
     json.field("p_median", t.p_median);
+    json.key("below_published");
+    if (t.below_published >= 0)
+      json.value(t.below_published);
+    else
+      json.null();
     json.key("published");
     if (t.published) {
       const PublishedTest& p = *t.published;

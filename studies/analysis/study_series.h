@@ -50,6 +50,9 @@ struct SeriesTest {
   double median = 0.0, min = 0.0, max = 0.0;  // of the statistic over the studies with it
   double p_median = 0.0;
   std::optional<PublishedTest> published;
+  // Where the published statistic falls in the series: the studies whose statistic is below
+  // it (-1 when no value was published).
+  int below_published = -1;
 };
 
 struct StudySeries {
@@ -75,7 +78,8 @@ struct SeriesOptions {
 StudySeries summarize_series(const std::vector<std::string>& paths, const SeriesOptions& options);
 
 // Markdown tables: the studies, the share of trials completed per condition, and the tests
-// (statistic and p per study, median, range, rejections, the published value).
+// (statistic and p per study, median, range, rejections, the published value and how many
+// studies fall below it).
 void write_series_markdown(const StudySeries& series, std::ostream& out);
 void write_series_json(const StudySeries& series, std::ostream& out);
 

@@ -185,7 +185,7 @@ TEST(CliReplications, SetsStudiesSideBySideBesideThePublishedValues) {
   Result r = cli("replications " + db + " " + copy + " --published " + published);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("| strategy:manipulation | F | 8.78 (.008) | 8.74 (.008) | 8.74 (.008) | "
-                       "8.74 | 8.74 to 8.74 | .008 | 2 of 2 |"),
+                       "8.74 | 8.74 to 8.74 | .008 | 2 of 2 | 2 of 2 |"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("| ours-fine | 98 % | 98 % | 98.0 % | 98–98 % |"), std::string::npos)
@@ -202,6 +202,7 @@ TEST(CliReplications, SetsStudiesSideBySideBesideThePublishedValues) {
   EXPECT_EQ(doc["tests"][1]["test"].as_string(), "precision (Friedman)");
   EXPECT_EQ(doc["tests"][1]["statistic"].as_string(), "chi2");
   EXPECT_EQ(doc["tests"][0]["published"]["value"].as_number(), 8.78);
+  EXPECT_EQ(doc["tests"][0]["below_published"].as_number(), 1);  // 8.74 of the one study
   EXPECT_EQ(doc["tests"][0]["rejected"].as_number(), 1);
   one_line_error(cli("replications"), "give one or more study databases");
   one_line_error(cli("replications " + db + " " + db), "given twice");

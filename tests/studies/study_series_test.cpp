@@ -195,6 +195,13 @@ TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
   EXPECT_NEAR(test("precision (Friedman)").value[0], 10.24, 0.005);
   EXPECT_EQ(test("strategy:manipulation").published->value, 8.78);
   EXPECT_TRUE(test("repetition").published->p_below);
+  // Where the paper's statistic falls: this study's interaction (8.74) is below its 8.78, its
+  // Manipulation effect (43.71) above 15.21; the gross comparison was published as p only.
+  EXPECT_EQ(test("strategy:manipulation").below_published, 1);
+  EXPECT_EQ(test("manipulation").below_published, 0);
+  EXPECT_EQ(test("repetition").below_published, 1);
+  EXPECT_EQ(test("strategy:manipulation: naive gross - ours gross").below_published, -1);
+  EXPECT_EQ(test("strategy").below_published, -1);  // not published at all
 }
 
 TEST(StudySeries, DescribesEachTestOverTheStudies) {
