@@ -232,6 +232,23 @@ TEST(StudySeries, DescribesEachTestOverTheStudies) {
     differ += t.value[0] != t.value[1] ? 1 : 0;
   }
   EXPECT_GT(differ, 30);  // two studies, not one twice
+
+  // Where the paper falls between two different studies: its interaction F (8.78) and fine t
+  // (3.52) between theirs (8.74 and 48.76; 3.34 and 7.99), its Repetition F (10.01) above
+  // both (1.77, 1.61), its Manipulation F (15.21) below both (43.71, 80.38).
+  SeriesOptions options;
+  options.published = read_published_study(kPublished);
+  const StudySeries beside = summarize_series(dbs, options);
+  const auto below = [&](const std::string& name) {
+    for (const SeriesTest& t : beside.tests)
+      if (t.name == name) return t.below_published;
+    ADD_FAILURE() << name;
+    return -2;
+  };
+  EXPECT_EQ(below("strategy:manipulation"), 1);
+  EXPECT_EQ(below("strategy:manipulation: naive fine - ours fine"), 1);
+  EXPECT_EQ(below("repetition"), 2);
+  EXPECT_EQ(below("manipulation"), 0);
 }
 
 TEST(StudySeries, RefusesStudiesOfAnotherProtocolAndTestsNoStudyMade) {
