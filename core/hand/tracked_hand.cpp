@@ -10,6 +10,10 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr const char* kJointNames[5] = {"_carp", "_mcp", "_pip", "_dip", "_tip"};
+// A fit ends when its step would move no parameter by more than kStepTolerance (rad, or m at
+// the root), or when an accepted step lowered the cost by less than kDropTolerance of it.
+constexpr double kStepTolerance = 1e-9;
+constexpr double kDropTolerance = 1e-8;
 
 }  // namespace
 
@@ -156,51 +160,84 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
     }
   const int n = tracked.parameter_count();
   const int m = 3 * int(targets.size());
-  double lambda = 1e-3;
-  auto cost_of = [&](const HandPose& p, Eigen::VectorXd* r, Eigen::MatrixXd* j) {
-    const BoneFrames frames = forward_kinematics(tracked, p);
-    r->resize(m);
-    if (j) j->resize(m, n);
-    for (std::size_t t = 0; t < targets.size(); ++t) {
-      const Eigen::Vector3d pos = marker_position(tracked, frames, targets[t].first);
-      r->segment<3>(Eigen::Index(3 * t)) = pos - targets[t].second;
-      if (j)
-        j->middleRows<3>(Eigen::Index(3 * t)) = point_jacobian(
-            tracked, frames, p, tracked.markers[std::size_t(targets[t].first)].bone, pos);
-    }
-    return 0.5 * r->squaredNorm();
+  // Rows weighted by the square root of each joint's weight: the cost is the weighted sum.
+  auto residual_of = [&](const BoneFrames& frames, Eigen::VectorXd& r) {
+    r.resize(m);
+    for (std::size_t t = 0; t < targets.size(); ++t)
+      r.segment<3>(Eigen::Index(3 * t)) =
+          sqrt_weights[t] * (marker_position(tracked, frames, targets[t].first) - targets[t].second);
+    return 0.5 * r.squaredNorm();
   };
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j;
-  double cost = cost_of(pose, &r, &j);
+  auto jacobian_of = [&](const HandPose& p, const BoneFrames& frames, Eigen::MatrixXd& j) {
+    j.resize(m, n);
+    for (std::size_t t = 0; t < targets.size(); ++t) {
+      const int marker = targets[t].first;
+      j.middleRows<3>(Eigen::Index(3 * t)) =
+          sqrt_weights[t] * point_jacobian(tracked, frames, p,
+                                           tracked.markers[std::size_t(marker)].bone,
+                                           marker_position(tracked, frames, marker));
+    }
+  };
+  double lambda = 1e-3;
+  Eigen::VectorXd r, trial_r;
+  Eigen::MatrixXd j, jtj, a;
+  Eigen::VectorXd g;
+  BoneFrames frames = forward_kinematics(tracked, pose);
+  double cost = residual_of(frames, r);
+  jacobian_of(pose, frames, j);
   result.iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
     result.iterations = it + 1;
-    const Eigen::MatrixXd jtj = j.transpose() * j;
-    const Eigen::VectorXd g = j.transpose() * r;
+    jtj.noalias() = j.transpose() * j;
+    g.noalias() = j.transpose() * r;
+    // Joints held at a limit the descent pushes them through leave the system: the step moves
+    // the others, where clamping after a step into the limit would turn it off the descent
+    // direction and the fit would crawl along the limit for all its iterations.
+    for (std::size_t k = 0; k < tracked.dofs.size(); ++k) {
+      const Eigen::Index i = 6 + Eigen::Index(k);
+      const double angle = pose.angles(Eigen::Index(k));
+      if ((angle <= tracked.dofs[k].lower && g(i) > 0) ||
+          (angle >= tracked.dofs[k].upper && g(i) < 0)) {
+        jtj.row(i).setZero();
+        jtj.col(i).setZero();
+        jtj(i, i) = 1.0;
+        g(i) = 0.0;
+      }
+    }
     if (g.norm() < 1e-14) break;
-    bool improved = false;
+    bool improved = false, converged = false;
     for (int tries = 0; tries < 10 && !improved; ++tries) {
-      Eigen::MatrixXd a = jtj;
+      a = jtj;
       a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
       const Eigen::VectorXd step = -a.ldlt().solve(g);
+      // Converged when the step would move no joint by more than kStepTolerance (rad, or m
+      // at the root): far below what a tracker resolves, and where the cost's changes are
+      // rounding, which would otherwise spend the remaining iterations and tries.
+      if (step.lpNorm<Eigen::Infinity>() < kStepTolerance) {
+        converged = true;
+        break;
+      }
       HandPose trial = pose;
       trial.apply(step);
       trial.clamp_to_limits(tracked);
-      Eigen::VectorXd r2;
-      const double c2 = cost_of(trial, &r2, nullptr);
+      const BoneFrames trial_frames = forward_kinematics(tracked, trial);
+      const double c2 = residual_of(trial_frames, trial_r);
       if (c2 < cost) {
+        // Converged when the cost's relative drop is below kDropTolerance (the joints then
+        // move by nanometres); the Jacobian is needed only for a next iteration.
+        converged = cost - c2 < kDropTolerance * cost;
         pose = trial;
+        frames = trial_frames;
+        r.swap(trial_r);
+        cost = c2;
         improved = true;
         lambda = std::max(lambda * 0.3, 1e-9);
-        const double drop = cost - c2;
-        cost = cost_of(pose, &r, &j);
-        if (drop < 1e-18) it = max_iterations;
+        if (!converged) jacobian_of(pose, frames, j);
       } else {
         lambda *= 10.0;
       }
     }
-    if (!improved) break;
+    if (!improved || converged) break;
   }
   // Residuals reported unweighted, over the joints that took part.
   double sum = 0.0;

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -202,6 +204,77 @@ TEST(TrackedHand, PoseWrittenAsAFrameFitsBack) {
       EXPECT_LT(fit.max_residual, 1e-4);
     }
   }
+}
+
+// A frame whose joints bend past the skeleton's limits (a tracker's hand is not bound by
+// ours), fitted from the previous frame's pose as the session does: the fit holds those
+// joints at their limits and fits the rest, and gets there in a few iterations rather than
+// crawling along the limits for all of them (12 or 13 here, where all 30 were taken before).
+TEST(TrackedHand, FrameBeyondTheJointLimitsFitsAtTheLimitsInAFewIterations) {
+  std::mt19937 rng(5);
+  const Skeleton s = build_tracked_hand(HandShape::with_length(0.18));
+  for (int trial = 0; trial < 6; ++trial) {
+    HandPose beyond = random_pose(s, rng);
+    for (std::size_t k = 0; k < s.dofs.size(); ++k) {
+      const double middle = 0.5 * (s.dofs[k].lower + s.dofs[k].upper);
+      beyond.angles(Eigen::Index(k)) = middle + 0.6 * (beyond.angles(Eigen::Index(k)) - middle);
+    }
+    for (std::size_t k = std::size_t(trial % 3); k < s.dofs.size(); k += 3)
+      beyond.angles(Eigen::Index(k)) =
+          (k / 3) % 2 == 1 ? s.dofs[k].upper + 0.15 : s.dofs[k].lower - 0.15;
+    const LeapJoints frame = to_leap_joints(s, beyond);
+    HandPose clamped = beyond;
+    clamped.clamp_to_limits(s);
+    // The previous frame: every joint 0.1 rad inside its range from there, the root 2 mm off.
+    HandPose previous = clamped;
+    for (std::size_t k = 0; k < s.dofs.size(); ++k) {
+      const double middle = 0.5 * (s.dofs[k].lower + s.dofs[k].upper);
+      double& angle = previous.angles(Eigen::Index(k));
+      angle += std::clamp(middle - angle, -0.1, 0.1);
+    }
+    previous.root_position += Eigen::Vector3d(0.002, -0.001, 0.001);
+    FitOptions options;
+    options.initial = &previous;
+    const FitResult fit = fit_leap_joints(s, frame, options);
+    EXPECT_LE(fit.iterations, 15) << "trial " << trial;  // 30, the limit, without the active set
+    // At least as close as the pose clamped to the limits, since that one is allowed.
+    const LeapJoints at_limits = to_leap_joints(s, clamped);
+    double clamped_sum = 0.0;
+    for (int f = 0; f < kFingerCount; ++f)
+      for (int k = 0; k < 5; ++k)
+        clamped_sum += (at_limits.joints[std::size_t(f)][std::size_t(k)] -
+                        frame.joints[std::size_t(f)][std::size_t(k)])
+                           .squaredNorm();
+    EXPECT_LE(fit.rms_residual, std::sqrt(clamped_sum / 25.0) + 1e-9) << "trial " << trial;
+    for (std::size_t k = 0; k < s.dofs.size(); ++k) {
+      EXPECT_GE(fit.pose.angles(Eigen::Index(k)), s.dofs[k].lower);
+      EXPECT_LE(fit.pose.angles(Eigen::Index(k)), s.dofs[k].upper);
+    }
+  }
+}
+
+// A joint's weight pulls the fit towards it: with the index tip moved 5 mm off the hand and
+// weighted 25 times the others, the fitted index tip lies nearer to it than with equal
+// weights, and the other joints a little further.
+TEST(TrackedHand, AJointsWeightPullsTheFitTowardsIt) {
+  std::mt19937 rng(17);
+  const Skeleton s = build_tracked_hand(HandShape::with_length(0.18));
+  HandPose pose = random_pose(s, rng);
+  for (std::size_t k = 0; k < s.dofs.size(); ++k)
+    pose.angles(Eigen::Index(k)) = 0.5 * (s.dofs[k].lower + s.dofs[k].upper);
+  LeapJoints frame = to_leap_joints(s, pose);
+  frame.joints[1][4] += Eigen::Vector3d(0.0, 0.005, 0.0);
+  FitOptions weighted;
+  weighted.weights[1 * 5 + 4] = 25.0;
+  const FitResult equal_fit = fit_leap_joints(s, frame, FitOptions{});
+  const FitResult weighted_fit = fit_leap_joints(s, frame, weighted);
+  auto tip_error = [&](const FitResult& fit) {
+    return (to_leap_joints(s, fit.pose).joints[1][4] - frame.joints[1][4]).norm();
+  };
+  EXPECT_GT(tip_error(equal_fit), 1e-4);
+  EXPECT_LT(tip_error(weighted_fit), 0.5 * tip_error(equal_fit));
+  // Residuals are reported unweighted: the others pay for the tip.
+  EXPECT_GT(weighted_fit.rms_residual, equal_fit.rms_residual);
 }
 
 }  // namespace
