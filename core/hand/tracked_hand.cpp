@@ -165,7 +165,8 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
     r.resize(m);
     for (std::size_t t = 0; t < targets.size(); ++t)
       r.segment<3>(Eigen::Index(3 * t)) =
-          sqrt_weights[t] * (marker_position(tracked, frames, targets[t].first) - targets[t].second);
+          sqrt_weights[t] *
+          (marker_position(tracked, frames, targets[t].first) - targets[t].second);
     return 0.5 * r.squaredNorm();
   };
   auto jacobian_of = [&](const HandPose& p, const BoneFrames& frames, Eigen::MatrixXd& j) {
