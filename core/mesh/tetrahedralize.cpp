@@ -3,6 +3,7 @@
 #include <tetgen.h>
 
 #include <cstdio>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -49,6 +50,11 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
   std::string switches = tetgen_switches(options) + "Q";
   std::vector<char> buffer(switches.begin(), switches.end());
   buffer.push_back('\0');
+  // One TetGen run at a time: its exact predicates keep their error bounds in globals that
+  // every run recomputes (exactinit), halving them in a loop, so a run on another thread reads
+  // passing values and can decide an orientation differently: another mesh, another study.
+  static std::mutex tetgen;
+  const std::lock_guard lock(tetgen);
   try {
     ::tetrahedralize(buffer.data(), &in, &out);
   } catch (int code) {
