@@ -50,9 +50,10 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
   std::string switches = tetgen_switches(options) + "Q";
   std::vector<char> buffer(switches.begin(), switches.end());
   buffer.push_back('\0');
-  // One TetGen run at a time: its exact predicates keep their error bounds in globals that
-  // every run recomputes (exactinit), halving them in a loop, so a run on another thread reads
-  // passing values and can decide an orientation differently: another mesh, another study.
+  // One TetGen run at a time: its exact predicates keep their error bounds and splitter in
+  // globals that every run recomputes (exactinit), so a run on another thread reads passing
+  // values and decides orientations differently: another mesh (a study's two jobs each build a
+  // soft hand at its start), or a failed assertion (tests/core/tetrahedralize_test.cpp).
   static std::mutex tetgen;
   const std::lock_guard lock(tetgen);
   try {
