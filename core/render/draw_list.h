@@ -23,6 +23,10 @@ struct DrawItem {
   // Drawn after the others and over them (no depth test): markers that must stay visible,
   // such as contact points inside the flesh.
   bool overlay = false;
+  // Lies on the ground, the plane y = 0 (the floor and what is painted on it). The renderer
+  // keeps the ground's picture while the camera and these items stay as they are, and draws
+  // the rest clipped to y >= 0 over it; ground items come first in the list.
+  bool ground = false;
 };
 
 struct DrawList {

@@ -20,6 +20,7 @@ namespace handlab::render {
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
   X(PFNGLGETERRORPROC, GetError)                                             \
   X(PFNGLGETSTRINGPROC, GetString)                                           \
+  X(PFNGLGETINTEGERVPROC, GetIntegerv)                                       \
   X(PFNGLFINISHPROC, Finish)                                                 \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \

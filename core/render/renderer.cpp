@@ -1,7 +1,9 @@
 #include "core/render/renderer.h"
 
 #include <map>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -17,48 +19,58 @@ layout(location = 1) in vec3 a_normal;
 uniform mat4 u_model;
 uniform mat4 u_view_projection;
 uniform mat3 u_normal_matrix;
+uniform vec4 u_clip_plane;  // keeps dot(plane, world) >= 0; (0, 0, 0, 1) keeps everything
 out vec3 v_world;
 out vec3 v_normal;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   v_world = world.xyz;
   v_normal = u_normal_matrix * a_normal;
+  gl_ClipDistance[0] = dot(u_clip_plane, world);
   gl_Position = u_view_projection * world;
 }
 )";
 
-// Blinn-Phong with a key light, a fill light and ambient; the floor gets a 5 cm checker
-// that fades with distance so orbiting reads as motion.
-constexpr const char* kFragmentShader = R"(#version 330 core
+// Blinn-Phong with a key light, a fill light and ambient; the floor gets a 5 cm checker so
+// orbiting reads as motion. One program per shading style (SHADING is defined before the
+// source), so that no pixel runs another style's code: a software renderer (llvmpipe) runs
+// both sides of a branch, even on a uniform.
+constexpr const char* kFragmentShader = R"(
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec4 u_color;
 uniform vec3 u_eye;
-uniform float u_shading;  // 0 lit, 1 checker floor, 2 unlit
 out vec4 frag_color;
 void main() {
+#if SHADING == 2
+  frag_color = u_color;
+#else
   vec3 base = u_color.rgb;
-  if (u_shading > 1.5) { frag_color = u_color; return; }
-  if (u_shading > 0.5) {
-    vec2 cell = floor(v_world.xz / 0.05);
-    float checker = mod(cell.x + cell.y, 2.0);
-    base *= mix(0.88, 1.0, checker);
-  }
+#if SHADING == 1
+  vec2 cell = floor(v_world.xz / 0.05);
+  float checker = mod(cell.x + cell.y, 2.0);
+  base *= mix(0.88, 1.0, checker);
+#endif
   vec3 n = normalize(v_normal);
   vec3 view = normalize(u_eye - v_world);
   if (dot(n, view) < 0.0) n = -n;
   vec3 key = normalize(vec3(0.35, 1.0, 0.55));
   vec3 fill = normalize(vec3(-0.6, 0.4, -0.3));
   float diffuse = 0.75 * max(dot(n, key), 0.0) + 0.2 * max(dot(n, fill), 0.0);
-  float specular = pow(max(dot(n, normalize(key + view)), 0.0), 48.0) * 0.18;
+  // x^48 as x^32 x^16: a software renderer's pow is an exp2 of a log2, many times dearer.
+  float h = max(dot(n, normalize(key + view)), 0.0);
+  float h2 = h * h, h4 = h2 * h2, h8 = h4 * h4, h16 = h8 * h8;
+  float specular = h16 * h16 * h16 * 0.18;
   vec3 color = base * (0.28 + diffuse) + vec3(specular);
   frag_color = vec4(min(color, vec3(1.0)), u_color.a);
+#endif
 }
 )";
 
-GLuint compile(const GlFunctions& gl, GLenum type, const char* source) {
+GLuint compile(const GlFunctions& gl, GLenum type, const char* prefix, const char* source) {
   const GLuint shader = gl.CreateShader(type);
-  gl.ShaderSource(shader, 1, &source, nullptr);
+  const char* parts[] = {prefix, source};
+  gl.ShaderSource(shader, 2, parts, nullptr);
   gl.CompileShader(shader);
   GLint ok = 0;
   gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -81,39 +93,83 @@ struct GpuMesh {
 }  // namespace
 
 struct Renderer::Impl {
+  struct Program {
+    GLuint id = 0;
+    GLint u_model = -1, u_view_projection = -1, u_normal_matrix = -1, u_color = -1, u_eye = -1,
+          u_clip_plane = -1;
+  };
+
+  // What the ground's picture was drawn from: it is drawn again when any of it changes.
+  struct GroundKey {
+    int width = 0, height = 0;
+    Eigen::Matrix4f view_projection = Eigen::Matrix4f::Zero();
+    Eigen::Vector3f eye = Eigen::Vector3f::Zero(), background = Eigen::Vector3f::Zero();
+    std::vector<DrawItem> items;  // holding the meshes keeps their addresses from reuse
+
+    bool operator==(const GroundKey& other) const {
+      if (width != other.width || height != other.height ||
+          view_projection != other.view_projection || eye != other.eye ||
+          background != other.background || items.size() != other.items.size())
+        return false;
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const DrawItem &a = items[i], &b = other.items[i];
+        if (a.mesh != b.mesh || a.dynamic || a.model != b.model || a.color != b.color ||
+            a.shading != b.shading)
+          return false;
+      }
+      return true;
+    }
+  };
+
+  // The ground's picture, in a framebuffer of its own.
+  struct GroundCache {
+    GLuint framebuffer = 0, color = 0, depth = 0;
+    int width = 0, height = 0;
+    std::optional<GroundKey> drawn;
+  };
+
   GlFunctions gl;
-  GLuint program = 0;
-  GLint u_model = -1, u_view_projection = -1, u_normal_matrix = -1, u_color = -1, u_eye = -1,
-        u_shading = -1;
+  Program programs[3];  // by Shading
   std::map<const RenderMesh*, GpuMesh> meshes;
+  GroundCache ground;
 
   explicit Impl(const GlLoader& loader) : gl(loader) {
-    const GLuint vs = compile(gl, GL_VERTEX_SHADER, kVertexShader);
-    const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, kFragmentShader);
-    program = gl.CreateProgram();
-    gl.AttachShader(program, vs);
-    gl.AttachShader(program, fs);
-    gl.LinkProgram(program);
+    for (int shading = 0; shading < 3; ++shading) programs[shading] = link(shading);
+  }
+
+  Program link(int shading) {
+    const std::string defines =
+        "#version 330 core\n#define SHADING " + std::to_string(shading) + "\n";
+    const GLuint vs = compile(gl, GL_VERTEX_SHADER, "", kVertexShader);
+    const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, defines.c_str(), kFragmentShader);
+    Program program;
+    program.id = gl.CreateProgram();
+    gl.AttachShader(program.id, vs);
+    gl.AttachShader(program.id, fs);
+    gl.LinkProgram(program.id);
     gl.DeleteShader(vs);
     gl.DeleteShader(fs);
     GLint ok = 0;
-    gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    gl.GetProgramiv(program.id, GL_LINK_STATUS, &ok);
     if (!ok) {
       char log[2048] = {};
-      gl.GetProgramInfoLog(program, sizeof log, nullptr, log);
+      gl.GetProgramInfoLog(program.id, sizeof log, nullptr, log);
+      gl.DeleteProgram(program.id);
       throw std::runtime_error(std::string("shader link failed: ") + log);
     }
-    u_model = gl.GetUniformLocation(program, "u_model");
-    u_view_projection = gl.GetUniformLocation(program, "u_view_projection");
-    u_normal_matrix = gl.GetUniformLocation(program, "u_normal_matrix");
-    u_color = gl.GetUniformLocation(program, "u_color");
-    u_eye = gl.GetUniformLocation(program, "u_eye");
-    u_shading = gl.GetUniformLocation(program, "u_shading");
+    program.u_model = gl.GetUniformLocation(program.id, "u_model");
+    program.u_view_projection = gl.GetUniformLocation(program.id, "u_view_projection");
+    program.u_normal_matrix = gl.GetUniformLocation(program.id, "u_normal_matrix");
+    program.u_color = gl.GetUniformLocation(program.id, "u_color");
+    program.u_eye = gl.GetUniformLocation(program.id, "u_eye");
+    program.u_clip_plane = gl.GetUniformLocation(program.id, "u_clip_plane");
+    return program;
   }
 
   ~Impl() {
     for (auto& [key, mesh] : meshes) release(mesh);
-    gl.DeleteProgram(program);
+    for (const Program& program : programs) gl.DeleteProgram(program.id);
+    release_ground();
   }
 
   void release(GpuMesh& mesh) {
@@ -155,6 +211,43 @@ struct Renderer::Impl {
     return it->second;
   }
 
+  void release_ground() {
+    gl.DeleteFramebuffers(1, &ground.framebuffer);
+    gl.DeleteRenderbuffers(1, &ground.color);
+    gl.DeleteRenderbuffers(1, &ground.depth);
+    ground = {};
+  }
+
+  // Binds the ground's framebuffer at the given size (made or remade as needed); false when
+  // the implementation refuses it.
+  bool bind_ground(int width, int height) {
+    if (ground.framebuffer == 0 || ground.width != width || ground.height != height) {
+      release_ground();
+      gl.GenFramebuffers(1, &ground.framebuffer);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, ground.framebuffer);
+      gl.GenRenderbuffers(1, &ground.color);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, ground.color);
+      gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_RGBA8, width, height);
+      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                 ground.color);
+      gl.GenRenderbuffers(1, &ground.depth);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, ground.depth);
+      gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_DEPTH_COMPONENT24, width, height);
+      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                 ground.depth);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
+      ground.width = width;
+      ground.height = height;
+      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        release_ground();
+        return false;
+      }
+      return true;
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, ground.framebuffer);
+    return true;
+  }
+
   // Meshes nobody holds any more are freed before lookups, so a new mesh at a reused address
   // is never mistaken for the old one.
   void evict_expired() {
@@ -175,29 +268,45 @@ Renderer::~Renderer() = default;
 void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width, int height) {
   auto& gl = impl_->gl;
   impl_->evict_expired();
-  gl.Viewport(0, 0, width, height);
-  gl.ClearColor(list.background.x(), list.background.y(), list.background.z(), 1.0f);
-  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const float aspect = height > 0 ? float(width) / float(height) : 1.0f;
+  const Eigen::Matrix4f view_projection = camera.projection(aspect) * camera.view();
+  const Eigen::Vector3f eye = camera.eye();
+  // Clipping stays enabled and is switched by its plane: drivers differ in whether a
+  // distance the shader writes clips while GL_CLIP_DISTANCE0 is disabled.
+  const Eigen::Vector4f above_ground(0.0f, 1.0f, 0.0f, 0.0f), nowhere(0.0f, 0.0f, 0.0f, 1.0f);
+  const Impl::Program* current = nullptr;  // the program in use
+  auto clip_to = [&](const Eigen::Vector4f& plane) {
+    current = nullptr;
+    for (const Impl::Program& program : impl_->programs) {
+      gl.UseProgram(program.id);
+      gl.Uniform4fv(program.u_clip_plane, 1, plane.data());
+    }
+  };
+  for (const Impl::Program& program : impl_->programs) {
+    gl.UseProgram(program.id);
+    gl.UniformMatrix4fv(program.u_view_projection, 1, GL_FALSE, view_projection.data());
+    // Programs without a use for a uniform have its location at -1, which GL ignores.
+    gl.Uniform3fv(program.u_eye, 1, eye.data());
+  }
+  clip_to(nowhere);
+  gl.Enable(GL_CLIP_DISTANCE0);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LEQUAL);
   gl.Disable(GL_CULL_FACE);
   gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
 
-  const float aspect = height > 0 ? float(width) / float(height) : 1.0f;
-  const Eigen::Matrix4f view_projection = camera.projection(aspect) * camera.view();
-  const Eigen::Vector3f eye = camera.eye();
-  gl.UseProgram(impl_->program);
-  gl.UniformMatrix4fv(impl_->u_view_projection, 1, GL_FALSE, view_projection.data());
-  gl.Uniform3fv(impl_->u_eye, 1, eye.data());
-
   auto draw = [&](const DrawItem& item) {
     if (!item.mesh || item.mesh->indices.empty()) return;
     GpuMesh& gpu = impl_->prepare(item);
+    const Impl::Program& program = impl_->programs[static_cast<int>(item.shading)];
+    if (&program != current) {
+      gl.UseProgram(program.id);
+      current = &program;
+    }
     const Eigen::Matrix3f normal_matrix = item.model.block<3, 3>(0, 0).inverse().transpose();
-    gl.UniformMatrix4fv(impl_->u_model, 1, GL_FALSE, item.model.data());
-    gl.UniformMatrix3fv(impl_->u_normal_matrix, 1, GL_FALSE, normal_matrix.data());
-    gl.Uniform4fv(impl_->u_color, 1, item.color.data());
-    gl.Uniform1f(impl_->u_shading, static_cast<float>(item.shading));
+    gl.UniformMatrix4fv(program.u_model, 1, GL_FALSE, item.model.data());
+    gl.UniformMatrix3fv(program.u_normal_matrix, 1, GL_FALSE, normal_matrix.data());
+    gl.Uniform4fv(program.u_color, 1, item.color.data());
     // Blending only where it shows: an opaque item blended still reads every pixel it covers
     // back, which a software renderer pays for per pixel.
     if (item.color.w() < 1.0f)
@@ -207,8 +316,59 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
     gl.BindVertexArray(gpu.vao);
     gl.DrawElements(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr);
   };
+
+  // The ground (the floor and what lies on it) is most of the picture's pixels and changes
+  // only with the camera: its picture is kept and copied in, and the rest is drawn over it
+  // clipped to y >= 0, which hides what is below the ground as its depth would. Only seen from
+  // above, and only into a single-sampled target (a copy cannot go into a multisampled one;
+  // hardware that multisamples has no need of the saving).
+  Impl::GroundKey key;
   for (const DrawItem& item : list.items)
-    if (!item.overlay) draw(item);
+    if (item.ground && !item.overlay) key.items.push_back(item);
+  GLint samples = 0;
+  gl.GetIntegerv(GL_SAMPLE_BUFFERS, &samples);
+  bool ground_copied = false;
+  if (!key.items.empty() && eye.y() > 0.0f && samples == 0) {
+    GLint draw_target = 0, read_target = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_target);
+    gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_target);
+    key.width = width;
+    key.height = height;
+    key.view_projection = view_projection;
+    key.eye = eye;
+    key.background = list.background;
+    Impl::GroundCache& ground = impl_->ground;
+    if (ground.drawn && *ground.drawn == key) {
+      ground_copied = true;
+    } else if (impl_->bind_ground(width, height)) {
+      gl.Viewport(0, 0, width, height);
+      gl.ClearColor(list.background.x(), list.background.y(), list.background.z(), 1.0f);
+      gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      for (const DrawItem& item : key.items) draw(item);
+      ground.drawn = std::move(key);
+      ground_copied = true;
+    }
+    if (ground_copied) {
+      gl.BindFramebuffer(GL_READ_FRAMEBUFFER, ground.framebuffer);
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_target));
+      gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_target));
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_target));
+  }
+
+  gl.Viewport(0, 0, width, height);
+  if (ground_copied) {
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    clip_to(above_ground);
+  } else {
+    gl.ClearColor(list.background.x(), list.background.y(), list.background.z(), 1.0f);
+    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+  for (const DrawItem& item : list.items)
+    if (!item.overlay && !(ground_copied && item.ground)) draw(item);
+  if (ground_copied) clip_to(nowhere);
+  gl.Disable(GL_CLIP_DISTANCE0);
   gl.Disable(GL_DEPTH_TEST);
   for (const DrawItem& item : list.items)
     if (item.overlay) draw(item);

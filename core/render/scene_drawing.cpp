@@ -13,6 +13,30 @@ Eigen::Matrix4f translation(const Eigen::Vector3d& t) {
   return m;
 }
 
+// The zones' meshes for a zone size, shared between frames like the static ones: the
+// renderer uploads them once and keeps the ground's picture while nothing on it changes.
+struct ZoneMeshes {
+  double size = -1;
+  std::shared_ptr<const RenderMesh> frame, fill;
+};
+
+const ZoneMeshes& zone_meshes(double size) {
+  thread_local ZoneMeshes meshes;
+  if (meshes.size != size) {
+    meshes.size = size;
+    meshes.frame = std::make_shared<const RenderMesh>(
+        make_square_frame_mesh(static_cast<float>(size), kZoneLineWidth));
+    meshes.fill = std::make_shared<const RenderMesh>(
+        make_quad_mesh(static_cast<float>(size), static_cast<float>(size)));
+  }
+  return meshes;
+}
+
+DrawItem on_ground(DrawItem item) {
+  item.ground = true;
+  return item;
+}
+
 }  // namespace
 
 DrawList draw_task_scene(const task::SceneLayout& layout, const Eigen::Isometry3d& cube_pose,
@@ -23,21 +47,21 @@ DrawList draw_task_scene(const task::SceneLayout& layout, const Eigen::Isometry3
   static const auto unit_box = std::make_shared<const RenderMesh>(make_box_mesh({1, 1, 1}));
 
   DrawList list;
-  list.items.push_back({floor, Eigen::Matrix4f::Identity(), palette.floor, Shading::kCheckerFloor});
+  list.items.push_back(
+      on_ground({floor, Eigen::Matrix4f::Identity(), palette.floor, Shading::kCheckerFloor}));
 
-  const auto zone_frame = std::make_shared<const RenderMesh>(
-      make_square_frame_mesh(static_cast<float>(layout.zone_size), kZoneLineWidth));
-  const auto zone_fill = std::make_shared<const RenderMesh>(
-      make_quad_mesh(static_cast<float>(layout.zone_size), static_cast<float>(layout.zone_size)));
+  const ZoneMeshes& zone = zone_meshes(layout.zone_size);
   const Eigen::Vector3d lift(0.0, kZoneLift, 0.0);
   const Eigen::Vector4f dim(0.55f, 0.55f, 0.55f, 1.0f);
   for (const auto& [centre, colour] :
        {std::pair{layout.zone_a, palette.zone_a}, std::pair{layout.zone_b, palette.zone_b}}) {
     // A pale fill with a saturated outline reads as a marked area on the floor.
     const Eigen::Vector4f fill = colour.cwiseProduct(dim) + 0.35f * palette.floor;
-    list.items.push_back({zone_fill, translation(centre + 0.5 * lift),
-                          Eigen::Vector4f(fill.x(), fill.y(), fill.z(), 1.0f), Shading::kLit});
-    list.items.push_back({zone_frame, translation(centre + lift), colour, Shading::kLit});
+    list.items.push_back(
+        on_ground({zone.fill, translation(centre + 0.5 * lift),
+                   Eigen::Vector4f(fill.x(), fill.y(), fill.z(), 1.0f), Shading::kLit}));
+    list.items.push_back(
+        on_ground({zone.frame, translation(centre + lift), colour, Shading::kLit}));
   }
 
   Eigen::Matrix4f cube = (cube_pose.matrix()).cast<float>();

@@ -1,11 +1,14 @@
 // OSMesa draws the task scene; pixels at the projections of known points have the colours
 // of what stands there.
+#include <cstdlib>
 #include <filesystem>
+#include <memory>
 
 #include <gtest/gtest.h>
 
 #include "core/render/image.h"
 #include "core/render/offscreen_context.h"
+#include "core/render/render_mesh.h"
 #include "core/render/scene_drawing.h"
 #include "core/render/sim_drawing.h"
 #include "core/sim/pinch_scene.h"
@@ -126,6 +129,75 @@ TEST(OffscreenSimState, DrawsTheCubeTheSkinAndTheContactPoints) {
       renderer.render(draw_sim_state(layout, scene.flesh, scene.model, state, style), camera);
   const auto px = hand.pixel(kWidth / 2, kHeight / 2);
   EXPECT_GT(px[0], px[2] + 40) << "skin colour at the hand's middle";
+}
+
+// The ground (the floor and the zones on it) is drawn once and kept while the camera stays
+// put; the rest is drawn over it clipped to the floor. Each frame must look as if drawn whole.
+class KeptGround : public ::testing::Test {
+ protected:
+  // The task scene with the cube at `cube` and a red 4 cm box sunk halfway into zone B (as a
+  // hand's fingers go through the floor: hand-floor contact is off).
+  DrawList frame(const Eigen::Vector3d& cube) const {
+    DrawList list = draw_task_scene(layout_, Eigen::Isometry3d(Eigen::Translation3d(cube)));
+    static const auto box = std::make_shared<const RenderMesh>(make_box_mesh({1, 1, 1}));
+    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+    model.block<3, 3>(0, 0) *= 0.04f;
+    model.block<3, 1>(0, 3) = layout_.zone_b.cast<float>();
+    list.items.push_back({box, model, {0.9f, 0.1f, 0.1f, 1.0f}, Shading::kLit});
+    return list;
+  }
+  static DrawList whole(DrawList list) {
+    for (DrawItem& item : list.items) item.ground = false;
+    return list;
+  }
+  static int differing_pixels(const Image& a, const Image& b) {
+    int count = 0;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          if (std::abs(int(a.pixel(x, y)[c]) - int(b.pixel(x, y)[c])) > 2) {
+            ++count;
+            break;
+          }
+    return count;
+  }
+
+  task::SceneLayout layout_;
+  // Single-sampled: the ground is kept only where its picture can be copied in.
+  OffscreenRenderer kept_{kWidth, kHeight, 1}, drawn_whole_{kWidth, kHeight, 1};
+};
+
+TEST_F(KeptGround, FramesLookAsIfDrawnWhole) {
+  const Eigen::Vector3d at_a = task::cube_start_pose(layout_).translation();
+  OrbitCamera camera;
+  // Frames in a row: the ground's picture is drawn for the first, kept for the second (the
+  // cube lifted and carried), drawn again when the camera turns, and not kept at all from
+  // below the floor.
+  struct Shot {
+    Eigen::Vector3d cube;
+    float yaw, pitch;
+  };
+  for (const Shot& shot :
+       {Shot{at_a, 0.6f, 0.55f}, Shot{at_a + Eigen::Vector3d(0.1, 0.08, 0), 0.6f, 0.55f},
+        Shot{at_a, 1.4f, 0.9f}, Shot{at_a, 1.4f, -0.3f}, Shot{at_a, 0.6f, 0.55f}}) {
+    camera.yaw = shot.yaw;
+    camera.pitch = shot.pitch;
+    const DrawList list = frame(shot.cube);
+    const Image kept = kept_.render(list, camera);
+    const Image whole_picture = drawn_whole_.render(whole(list), camera);
+    // Where the cube stands on zone A's paint (0.25 mm up), and where the red box meets the
+    // floor, a pixel may fall the other way: clipped at the floor instead of hidden by it.
+    EXPECT_LE(differing_pixels(kept, whole_picture), 20)
+        << "yaw " << shot.yaw << ", pitch " << shot.pitch;
+    if (shot.pitch < 0) continue;
+    // The box's half under the floor stays hidden: its front face 1 cm down shows the floor.
+    const Rgb under =
+        at(kept, camera, layout_.zone_b.cast<float>() + Eigen::Vector3f(0.0f, -0.01f, 0.0201f));
+    EXPECT_LT(under.r, under.g + 40) << "the sunk half shows through the floor";
+    const Rgb over =
+        at(kept, camera, layout_.zone_b.cast<float>() + Eigen::Vector3f(0.0f, 0.021f, 0.0f));
+    EXPECT_GT(over.r, over.g + 80) << "the half above the floor is drawn";
+  }
 }
 
 TEST(OffscreenRenderer, RejectsAbsurdSizes) {
