@@ -287,8 +287,8 @@ void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width
     gl.UniformMatrix4fv(program.u_view_projection, 1, GL_FALSE, view_projection.data());
     // Programs without a use for a uniform have its location at -1, which GL ignores.
     gl.Uniform3fv(program.u_eye, 1, eye.data());
+    gl.Uniform4fv(program.u_clip_plane, 1, nowhere.data());
   }
-  clip_to(nowhere);
   gl.Enable(GL_CLIP_DISTANCE0);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LEQUAL);
