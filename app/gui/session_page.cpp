@@ -526,8 +526,11 @@ void SessionPage::refresh_picture() {
   }
   task::SceneLayout layout = protocol_->scene;
   layout.cube_size = snap.cube_size;
+  // On the soft hand the participant sees its skin, as the simulator deforms it.
   auto list = std::make_shared<const render::DrawList>(
-      render::draw_stored_frame(layout, hand_meshes_, snap.frame));
+      snap.skin ? render::draw_soft_hand_frame(layout, snap.skin->surface, snap.skin->tets,
+                                               snap.flesh_nodes, snap.frame)
+                : render::draw_stored_frame(layout, hand_meshes_, snap.frame));
   if (view_->layout().cube_size != layout.cube_size) view_->set_layout(layout);
   view_->set_frame(list);
   if (participant_window_) {

@@ -70,15 +70,32 @@ void SessionWorker::run() {
       snapshot_.simulated_hand = setup.condition.simulated_hand;
       snapshot_.step = {};
       snapshot_.frame = {};
+      snapshot_.skin.reset();
+      snapshot_.flesh_nodes.clear();
     }
     emit trial_started(setup.planned.position);
   };
   control_.stepped = [this](const studies::TrialStep& step) {
+    const bool soft = step.flesh && step.flesh_nodes;
+    if (soft && step.flesh != skin_of_) {
+      skin_of_ = step.flesh;
+      skin_ =
+          std::make_shared<const SoftHandSkin>(SoftHandSkin{step.flesh->render, step.flesh->tets});
+    }
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       snapshot_.step = step;
       snapshot_.step.frame = nullptr;
+      snapshot_.step.flesh = nullptr;
+      snapshot_.step.flesh_nodes = nullptr;
       snapshot_.frame = *step.frame;
+      if (soft) {
+        snapshot_.skin = skin_;
+        snapshot_.flesh_nodes = *step.flesh_nodes;
+      } else {
+        snapshot_.skin.reset();
+        snapshot_.flesh_nodes.clear();
+      }
       ++snapshot_.steps;
       snapshot_.stepped_at = std::chrono::steady_clock::now();
       if (options_.frame_arrival) snapshot_.frame_arrival_ns = options_.frame_arrival();

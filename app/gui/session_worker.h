@@ -16,6 +16,7 @@
 #include <QObject>
 #include <QString>
 
+#include "core/hand/flesh.h"
 #include "core/store/frame_record.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/session_control.h"
@@ -37,6 +38,13 @@ struct SessionOptions {
   std::function<long long()> frame_arrival;
 };
 
+// The soft hand's skin as the views draw it: the flesh's render surface and tets (no state:
+// copied once per simulated hand and cube).
+struct SoftHandSkin {
+  hand::EmbeddedSurface surface;
+  mesh::TetMesh tets;
+};
+
 // What the view and the trial panel show of the session at one moment.
 struct SessionSnapshot {
   bool in_trial = false;
@@ -45,9 +53,12 @@ struct SessionSnapshot {
   std::string condition;
   double cube_size = 0.06;
   hand::HandShape simulated_hand;
-  studies::TrialStep step;   // step.frame is null here; the record is `frame`
+  studies::TrialStep step;   // step's pointers are null here; the record is `frame`
   store::FrameRecord frame;  // the newest step's
-  long steps = 0;            // counted over the session
+  // On the soft hand, its skin and the flesh's nodes after the newest step (else empty).
+  std::shared_ptr<const SoftHandSkin> skin;
+  std::vector<Eigen::Vector3d> flesh_nodes;
+  long steps = 0;  // counted over the session
   std::chrono::steady_clock::time_point stepped_at;
   long long frame_arrival_ns = 0;  // with a live tracker
   // While calibrating.
@@ -89,6 +100,8 @@ class SessionWorker : public QObject {
   studies::SessionControl control_;
   mutable std::mutex mutex_;
   SessionSnapshot snapshot_;
+  const hand::HandFlesh* skin_of_ = nullptr;  // the flesh `skin_` was copied from
+  std::shared_ptr<const SoftHandSkin> skin_;  // session thread only
   std::mutex answer_mutex_;
   std::optional<std::promise<std::vector<int>>> pending_answer_;
   std::atomic<bool> finished_{false}, closing_{false};

@@ -1,8 +1,12 @@
 // What a trial looks like at one step, from the record the frame log keeps of it: the task
-// scene with the cube where it was and the simulated hand's bones where they were. The
-// app's live view, its participant window and replays of stored trials draw this.
+// scene with the cube where it was and the simulated hand's bones where they were, or, on
+// the soft hand while it runs, its skin where the flesh was. The app's live view, its
+// participant window and replays of stored trials draw this.
 #pragma once
 
+#include <vector>
+
+#include "core/hand/flesh.h"
 #include "core/render/draw_list.h"
 #include "core/render/hand_drawing.h"
 #include "core/store/frame_record.h"
@@ -14,5 +18,12 @@ namespace handlab::render {
 // bone meshes (make_bone_meshes).
 DrawList draw_stored_frame(const task::SceneLayout& layout, const BoneMeshes& hand,
                            const store::FrameRecord& frame);
+
+// The soft hand as its skin: `flesh`'s render surface placed by its nodes at `flesh_nodes`
+// (the state of the step `frame` records; the frame itself places the cube).
+DrawList draw_soft_hand_frame(const task::SceneLayout& layout, const hand::EmbeddedSurface& skin,
+                              const mesh::TetMesh& tets,
+                              const std::vector<Eigen::Vector3d>& flesh_nodes,
+                              const store::FrameRecord& frame);
 
 }  // namespace handlab::render

@@ -12,10 +12,16 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/store/frame_record.h"
 #include "core/task/cube_task.h"
 #include "core/tracking/tracked_frame.h"
 #include "studies/session/open_palm_calibration.h"
+
+namespace handlab::hand {
+struct HandFlesh;
+}
 
 namespace handlab::studies {
 
@@ -28,6 +34,11 @@ struct TrialStep {
   task::TaskPhase phase = task::TaskPhase::kReady;
   int grasps = 0, drops = 0;
   const store::FrameRecord* frame = nullptr;  // what the frame log stores of this step
+  // On the soft hand, its flesh and where the flesh's nodes are after this step, for a front
+  // end to draw the skin the participant sees (the frame log keeps only the bones); null on
+  // the grasp proxy and before the hand appears. Like `frame`, valid during the call only.
+  const hand::HandFlesh* flesh = nullptr;
+  const std::vector<Eigen::Vector3d>* flesh_nodes = nullptr;
 };
 
 // An experimenter's decision about a trial, with the reason kept in the record.

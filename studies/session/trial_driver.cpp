@@ -260,6 +260,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   const Eigen::Vector3d cube_start = task::cube_start_pose(layout).translation();
   std::unique_ptr<task::HandCubeWorld> physics;
   const task::SoftHandWorld* soft = nullptr;
+  const hand::HandFlesh* soft_flesh = nullptr;
   if (world_ == WorldKind::kSoftHand) {
     const hand::HandShape& shape = setup.condition.simulated_hand;
     auto same = [&](const std::unique_ptr<SoftHand>& h) {
@@ -285,6 +286,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
     auto world = std::make_unique<task::SoftHandWorld>((*found)->model, (*found)->skeleton,
                                                        cube_start, options);
     soft = world.get();
+    soft_flesh = &(*found)->flesh;
     physics = std::move(world);
   } else {
     task::GraspProxySettings world_settings;
@@ -364,8 +366,11 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
     task.update(o);
     fill_record(record, t, frame ? &*frame : nullptr, pose ? &*pose : nullptr, world, task.phase());
     sink(record);
-    if (control_ && control_->stepped)
-      control_->stepped({t, task.phase(), task.grasps(), task.drops(), &record});
+    if (control_ && control_->stepped) {
+      const sim::HandSimState* state = soft ? soft->state() : nullptr;
+      control_->stepped({t, task.phase(), task.grasps(), task.drops(), &record,
+                         state ? soft_flesh : nullptr, state ? &state->node_position : nullptr});
+    }
     if (participant) shown = display_observation(world, layout, t);
     ++run.frames;
     // With the tracker gone and the cube at rest waiting for a grasp, nothing can happen

@@ -35,9 +35,11 @@
 #include "app/gui/participant_form.h"
 #include "app/gui/participants_page.h"
 #include "app/gui/questionnaire_dialog.h"
+#include "app/gui/scene_view.h"
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
 #include "app/gui/study_home.h"
+#include "core/render/draw_list.h"
 #include "core/store/study_store.h"
 #include "core/util/csv.h"
 #include "studies/protocol/protocol.h"
@@ -126,8 +128,17 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   QTest::mouseClick(page->start_button(), Qt::LeftButton);
   ASSERT_TRUE(page->session_running()) << page->log()->count();
   // With `page` as the context the slot runs on the window's thread, as a click would.
+  // What the view showed of the first trial: the soft hand as its skin (one mesh that
+  // deforms, not the bones' capsules).
+  std::size_t skin_triangles = 0, skins = 0;
   QObject::connect(page->worker(), &SessionWorker::trial_ended, page,
                    [&](int position, bool, double, bool) {
+                     if (position == 0 && page->view()->frame())
+                       for (const render::DrawItem& item : page->view()->frame()->items)
+                         if (item.dynamic) {
+                           ++skins;
+                           skin_triangles = item.mesh->indices.size() / 3;
+                         }
                      if (position == 2 && !redo_asked) {
                        redo_asked = true;
                        EXPECT_EQ(page->redo_trial(1, "participant looked away"), QString());
@@ -138,6 +149,8 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
       << ended.front().front().toString().toStdString();
   EXPECT_TRUE(page->calibration_label()->text().startsWith("Calibrated: scale"));
   EXPECT_EQ(questionnaires, 4);
+  EXPECT_EQ(skins, 1u);
+  EXPECT_GT(skin_triangles, 5000u);
   EXPECT_EQ(window.participants()->table()->item(0, 8)->text(), "complete");
 
   // The study file, reopened, holds what was done.

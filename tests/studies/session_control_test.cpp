@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
+#include "core/render/frame_drawing.h"
 #include "core/store/study_store.h"
 #include "core/tracking/recording_io.h"
 #include "studies/session/open_palm_calibration.h"
@@ -119,6 +121,63 @@ TEST(SessionControl, StopAbortsTheRunningTrialWhichRunsAgainOnResume) {
   EXPECT_EQ(trials[3].position, 2);
   EXPECT_EQ(trials[3].attempt, 2);
   EXPECT_EQ(trials[3].status, store::TrialStatus::kAborted);
+}
+
+// What a front end draws of a step on the soft hand: the flesh and its nodes after the step
+// (the frame log keeps only the bones), from which the skin is drawn around the bones as they
+// move; on the grasp proxy there is no flesh, and the bones are drawn.
+TEST(SessionControl, OnTheSoftHandEachStepHasTheFleshTheSkinIsDrawnFrom) {
+  const Protocol protocol = read_protocol(kStudy);
+  for (const WorldKind world : {WorldKind::kSoftHand, WorldKind::kGraspProxy}) {
+    const bool soft = world == WorldKind::kSoftHand;
+    store::StudyStore db(enrolled_study(soft ? "control_soft.db" : "control_proxy.db", protocol));
+    PipelineTrialDriver driver(TrackerKind::scripted(), 120.0, world, 1);
+    SessionRunner runner(db, driver, fixed_responder());
+    SessionControl control;
+    long steps = 0, with_flesh = 0, skins_checked = 0;
+    std::vector<Eigen::Vector3d> first_nodes;
+    double moved = 0.0;  // the largest node displacement since the first step with flesh
+    control.stepped = [&](const TrialStep& step) {
+      ++steps;
+      if (step.time > 1.5) control.request_stop();
+      EXPECT_EQ(step.flesh == nullptr, step.flesh_nodes == nullptr);
+      if (!step.flesh) return;
+      ++with_flesh;
+      const hand::HandFlesh& flesh = *step.flesh;
+      ASSERT_EQ(step.flesh_nodes->size(), flesh.tets.nodes.size());
+      if (first_nodes.empty()) first_nodes = *step.flesh_nodes;
+      for (std::size_t n = 0; n < first_nodes.size(); ++n)
+        moved = std::max(moved, ((*step.flesh_nodes)[n] - first_nodes[n]).norm());
+      if (steps % 30 != 0) return;
+      // The skin drawn from them wraps the bones of the same step: its box holds every bone's
+      // origin, and it is a hand's size.
+      const render::DrawList list = render::draw_soft_hand_frame(
+          protocol.scene, flesh.render, flesh.tets, *step.flesh_nodes, *step.frame);
+      const auto skin = std::find_if(list.items.begin(), list.items.end(),
+                                     [](const render::DrawItem& item) { return item.dynamic; });
+      ASSERT_NE(skin, list.items.end());
+      ASSERT_EQ(skin->mesh->positions.size(), flesh.render.tet.size());
+      ASSERT_EQ(skin->mesh->indices.size(), 3 * flesh.render.triangles.size());
+      Eigen::AlignedBox3f box;
+      for (const Eigen::Vector3f& p : skin->mesh->positions) box.extend(p);
+      ASSERT_FALSE(step.frame->bone_positions.empty());
+      for (const Eigen::Vector3f& bone : step.frame->bone_positions)
+        EXPECT_TRUE(box.contains(bone)) << "a bone outside the skin at " << step.time << " s";
+      EXPECT_GT(box.sizes().maxCoeff(), 0.12f);
+      EXPECT_LT(box.sizes().maxCoeff(), 0.30f);
+      ++skins_checked;
+    };
+    runner.attach(&control);
+    EXPECT_TRUE(runner.run("P01", "scripted", false).stopped);
+    EXPECT_GT(steps, 150);
+    if (soft) {
+      EXPECT_GT(with_flesh, steps - 5) << "the flesh from the hand's first step on";
+      EXPECT_GT(skins_checked, 4);
+      EXPECT_GT(moved, 0.02) << "the flesh moves with the hand";
+    } else {
+      EXPECT_EQ(with_flesh, 0);
+    }
+  }
 }
 
 // Paused before a trial, the experimenter redoes the last trial and skips the one after it;
