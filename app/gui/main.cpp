@@ -75,6 +75,10 @@ struct Options {
       "6 with --start), or 'questionnaire' (when the first questionnaire opens; the dialog "
       "is drawn over the window where it stands).",
       "WHEN"};
+  QCommandLineOption replay{"replay",
+                            "With --participant: play their trial N (1-based, as the schedule "
+                            "shows it) back from the study's frame log.",
+                            "N"};
   QCommandLineOption no_real_time{"no-real-time",
                                   "With --start and a scripted or simulated participant or a "
                                   "recording: run as fast as the pipeline goes."};
@@ -89,7 +93,7 @@ struct Options {
     for (const auto* o :
          {&study, &screenshot, &tab, &pinch, &pinch_until, &contacts, &participant, &tracker,
           &world, &start, &participant_window, &leap_address, &measure_latency, &latency_json,
-          &serve_recording, &port, &screenshot_at, &no_real_time})
+          &serve_recording, &port, &screenshot_at, &no_real_time, &replay})
       parser.addOption(*o);
   }
 };
@@ -192,6 +196,21 @@ int main(int argc, char** argv) {
   if (parser.isSet(options.participant) && !parser.isSet(options.start))
     window.participants()->select(parser.value(options.participant));
   if (parser.isSet(options.participant_window)) window.show_participant_window(-1);
+  if (parser.isSet(options.replay)) {
+    bool ok = false;
+    const int trial = parser.value(options.replay).toInt(&ok);
+    if (!ok || trial < 1 || !parser.isSet(options.participant)) {
+      std::fprintf(stderr, "handlab: --replay takes a trial number from 1 and --participant\n");
+      return 2;
+    }
+    const QString error =
+        window.session()->replay_trial(parser.value(options.participant), trial - 1);
+    if (!error.isEmpty()) {
+      std::fprintf(stderr, "handlab: %s\n", qPrintable(error));
+      return 1;
+    }
+    window.tabs()->setCurrentWidget(window.session());
+  }
   if (parser.isSet(options.start)) {
     handlab::gui::SessionPage* page = window.session();
     page->participant_box()->setCurrentText(parser.value(options.participant));

@@ -71,6 +71,15 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
           [this](const QStringList& ids, const QString& selected) {
             session_->set_participants(ids, selected);
           });
+  connect(participants_, &ParticipantsPage::replay_requested, this,
+          [this](const QString& id, int position) {
+            const QString error = session_->replay_trial(id, position);
+            if (!error.isEmpty()) {
+              statusBar()->showMessage(tr("Replay: %1").arg(error), 8000);
+              return;
+            }
+            tabs_->setCurrentWidget(session_);
+          });
   connect(session_, &SessionPage::study_changed, this, &MainWindow::refresh_study);
   connect(session_, &SessionPage::session_started, this,
           [this] { participants_->set_in_session(session_->participant_box()->currentText()); });

@@ -12,6 +12,7 @@
 #include <QVBoxLayout>
 
 #include "app/gui/participant_form.h"
+#include "app/gui/trial_status_text.h"
 #include "core/store/study_store.h"
 #include "core/util/csv.h"
 #include "studies/export/study_export.h"
@@ -25,24 +26,6 @@ QTableWidgetItem* cell(const QString& text) {
   auto* item = new QTableWidgetItem(text);
   item->setFlags(item->flags() & ~Qt::ItemIsEditable);
   return item;
-}
-
-QString status_name(store::TrialStatus s) {
-  switch (s) {
-    case store::TrialStatus::kRunning:
-      return QObject::tr("running");
-    case store::TrialStatus::kCompleted:
-      return QObject::tr("done");
-    case store::TrialStatus::kTimeout:
-      return QObject::tr("timed out");
-    case store::TrialStatus::kAborted:
-      return QObject::tr("aborted");
-    case store::TrialStatus::kSkipped:
-      return QObject::tr("skipped");
-    case store::TrialStatus::kRedone:
-      return QObject::tr("redone");
-  }
-  return {};
 }
 
 }  // namespace
@@ -78,7 +61,13 @@ ParticipantsPage::ParticipantsPage(QWidget* parent) : QWidget(parent) {
   auto* lower_layout = new QVBoxLayout(lower);
   lower_layout->setContentsMargins(0, 0, 0, 0);
   schedule_title_ = new QLabel(tr("Select a participant to see their schedule."));
-  lower_layout->addWidget(schedule_title_);
+  auto* schedule_head = new QHBoxLayout;
+  schedule_head->addWidget(schedule_title_, 1);
+  replay_ = new QPushButton(tr("Replay Trial"));
+  replay_->setToolTip(tr("Play the selected trial back from its frame log (or double-click it)"));
+  replay_->setEnabled(false);
+  schedule_head->addWidget(replay_);
+  lower_layout->addLayout(schedule_head);
   schedule_ = new QTableWidget(0, 8);
   schedule_->setObjectName("schedule");
   schedule_->setHorizontalHeaderLabels({tr("Trial"), tr("Block"), tr("Order"), tr("Condition"),
@@ -86,7 +75,23 @@ ParticipantsPage::ParticipantsPage(QWidget* parent) : QWidget(parent) {
                                         tr("Result")});
   schedule_->verticalHeader()->hide();
   schedule_->horizontalHeader()->setStretchLastSection(true);
+  schedule_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  schedule_->setSelectionMode(QAbstractItemView::SingleSelection);
+  schedule_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   lower_layout->addWidget(schedule_);
+  // A trial that ran (its status is not "planned") can be played back.
+  auto ran = [this](int row) {
+    return row >= 0 && schedule_->item(row, 6) && schedule_->item(row, 6)->text() != tr("planned");
+  };
+  connect(schedule_, &QTableWidget::itemSelectionChanged, this,
+          [this, ran] { replay_->setEnabled(ran(schedule_->currentRow())); });
+  auto request = [this, ran](int row) {
+    if (ran(row)) emit replay_requested(selected(), schedule_->item(row, 0)->text().toInt() - 1);
+  };
+  connect(replay_, &QPushButton::clicked, this,
+          [this, request] { request(schedule_->currentRow()); });
+  connect(schedule_, &QTableWidget::cellDoubleClicked, this,
+          [request](int row, int) { request(row); });
   split->addWidget(lower);
   layout->addWidget(split);
   set_study({});
@@ -161,6 +166,7 @@ void ParticipantsPage::refresh(const QString& select_id) {
 
 void ParticipantsPage::show_schedule() {
   schedule_->setRowCount(0);
+  replay_->setEnabled(false);
   const QString id = selected();
   if (database_.isEmpty() || id.isEmpty()) {
     schedule_title_->setText(tr("Select a participant to see their schedule."));
@@ -187,7 +193,7 @@ void ParticipantsPage::show_schedule() {
     QString status = tr("planned"), result;
     if (found != last.end()) {
       const store::TrialRow& t = found->second;
-      status = status_name(t.status);
+      status = trial_status_text(t.status);
       if (t.attempt > 1) status += tr(" (attempt %1)").arg(t.attempt);
       if (t.status == store::TrialStatus::kCompleted || t.status == store::TrialStatus::kTimeout)
         result = tr("%1 s, %2 %3, %4 %5")

@@ -35,9 +35,12 @@ class ParticipantsPage : public QWidget {
   QTableWidget* table() const { return table_; }
   QTableWidget* schedule() const { return schedule_; }
   QPushButton* add_button() const { return add_; }
+  QPushButton* replay_button() const { return replay_; }
 
  signals:
   void participants_changed(QStringList ids, QString selected);
+  // Replay Trial, or a double-click on a trial that ran (`position` 0-based).
+  void replay_requested(QString participant, int position);
 
  private:
   void show_schedule();
@@ -46,7 +49,7 @@ class ParticipantsPage : public QWidget {
   QTableWidget* table_ = nullptr;
   QTableWidget* schedule_ = nullptr;
   QLabel* schedule_title_ = nullptr;
-  QPushButton *add_ = nullptr, *edit_ = nullptr;
+  QPushButton *add_ = nullptr, *edit_ = nullptr, *replay_ = nullptr;
 };
 
 }  // namespace handlab::gui

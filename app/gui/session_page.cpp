@@ -22,6 +22,7 @@
 #include "app/gui/questionnaire_dialog.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/session_worker.h"
+#include "app/gui/trial_replay_bar.h"
 #include "app/live/leap_websocket_client.h"
 #include "app/live/live_frames.h"
 #include "core/hand/simulated_hand.h"
@@ -76,8 +77,19 @@ QString phase_text(task::TaskPhase phase) {
 
 SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   auto* layout = new QHBoxLayout(this);
+  auto* left = new QVBoxLayout;
   view_ = new SceneView;
-  layout->addWidget(view_, 3);
+  left->addWidget(view_, 1);
+  replay_ = new TrialReplayBar;
+  replay_->hide();
+  left->addWidget(replay_);
+  layout->addLayout(left, 3);
+  connect(replay_, &TrialReplayBar::moment, this,
+          [this](std::shared_ptr<const render::DrawList> picture, const store::FrameRecord& frame) {
+            view_->set_frame(std::move(picture));
+            state_->setText(phase_text(task::TaskPhase(frame.task_phase)));
+            clock_->setText(tr("%1 s").arg(frame.time, 0, 'f', 1));
+          });
 
   auto* side = new QVBoxLayout;
   layout->addLayout(side, 1);
@@ -308,10 +320,33 @@ void SessionPage::set_leap_address(const QString& address) {
   update_tracker_fields();
 }
 
+QString SessionPage::replay_trial(const QString& participant, int position, int attempt) {
+  if (database_.isEmpty()) return tr("no study is open");
+  if (session_running()) return tr("a session is running: replay its trials after it");
+  try {
+    store::StudyStore store(database_.toStdString());
+    replay_->load(studies::load_trial_replay(store, participant.toStdString(), position, attempt));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  if (view_->layout().cube_size != replay_->replay()->layout.cube_size)
+    view_->set_layout(replay_->replay()->layout);
+  participant_->setCurrentText(participant);
+  const studies::TrialReplay& r = *replay_->replay();
+  trial_->setText(
+      tr("%1, %2 (replay)").arg(r.position + 1).arg(QString::fromStdString(r.condition)));
+  counts_->setText(QStringLiteral("–"));
+  replay_->show();
+  return {};
+}
+
 QString SessionPage::start_session() {
   if (database_.isEmpty()) return tr("no study is open");
   if (session_running()) return tr("a session is running");
   if (participant_->currentText().isEmpty()) return tr("choose a participant");
+  // A replay gives the view back to the session.
+  replay_->set_playing(false);
+  replay_->hide();
   SessionOptions options;
   options.database = database_;
   options.participant = participant_->currentText().toStdString();

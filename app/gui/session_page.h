@@ -36,6 +36,7 @@ class ParticipantWindow;
 class QuestionnaireDialog;
 class SceneView;
 class SessionWorker;
+class TrialReplayBar;
 
 class SessionPage : public QWidget {
   Q_OBJECT
@@ -61,6 +62,9 @@ class SessionPage : public QWidget {
   void stop_session();
   QString redo_trial(int position, const QString& reason);
   QString skip_trial(int position, const QString& reason);
+  // Plays a stored trial back in the view from its frame log (`position` 0-based; attempt 0:
+  // the latest with frames); not while a session runs.
+  QString replay_trial(const QString& participant, int position, int attempt = 0);
 
   // The widgets, by role (for tests and screenshots).
   QComboBox* participant_box() const { return participant_; }
@@ -80,6 +84,7 @@ class SessionPage : public QWidget {
   QLabel* state_label() const { return state_; }
   QListWidget* log() const { return log_; }
   QuestionnaireDialog* questionnaire() const { return questionnaire_; }
+  TrialReplayBar* replay_bar() const { return replay_; }
 
   // The display's figures, for docs/performance.md. Latency: per live frame, from its
   // arrival to the swap of the first picture of a state simulated from it (other trackers:
@@ -116,6 +121,7 @@ class SessionPage : public QWidget {
   QString database_;
   std::optional<studies::Protocol> protocol_;
   SceneView* view_ = nullptr;
+  TrialReplayBar* replay_ = nullptr;
   QComboBox *participant_ = nullptr, *tracker_ = nullptr, *world_ = nullptr;
   QLineEdit *address_ = nullptr, *recording_ = nullptr;
   QSpinBox* seed_ = nullptr;

@@ -19,8 +19,8 @@ namespace handlab::render {
 DrawList draw_stored_frame(const task::SceneLayout& layout, const BoneMeshes& hand,
                            const store::FrameRecord& frame);
 
-// The soft hand as its skin: `flesh`'s render surface placed by its nodes at `flesh_nodes`
-// (the state of the step `frame` records; the frame itself places the cube).
+// The soft hand as its skin: `skin`, the flesh's render surface embedded in its `tets`, placed
+// by the flesh's nodes at `flesh_nodes` (the step `frame` records; the frame places the cube).
 DrawList draw_soft_hand_frame(const task::SceneLayout& layout, const hand::EmbeddedSurface& skin,
                               const mesh::TetMesh& tets,
                               const std::vector<Eigen::Vector3d>& flesh_nodes,

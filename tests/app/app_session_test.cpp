@@ -16,6 +16,7 @@
 #include <QProcess>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QSpinBox>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -39,6 +40,7 @@
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
 #include "app/gui/study_home.h"
+#include "app/gui/trial_replay_bar.h"
 #include "core/render/draw_list.h"
 #include "core/store/study_store.h"
 #include "core/util/csv.h"
@@ -211,6 +213,38 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   const QString shown = analysis->tables()->toPlainText();
   EXPECT_TRUE(shown.contains("Data quality")) << shown.toStdString();
   EXPECT_TRUE(shown.contains("fewer than two participants")) << shown.toStdString();
+
+  // A trial played back from the Participants view: Replay Trial on the first trial shows it
+  // in the session view from its first moment, playing; the slider at its end shows the cube
+  // where the log has it last and the task's state then.
+  ParticipantsPage* people = window.participants();
+  people->select("P01");
+  EXPECT_FALSE(people->replay_button()->isEnabled()) << "no trial chosen yet";
+  people->schedule()->selectRow(0);
+  ASSERT_TRUE(people->replay_button()->isEnabled());
+  QTest::mouseClick(people->replay_button(), Qt::LeftButton);
+  EXPECT_EQ(window.tabs()->currentWidget(), page);
+  TrialReplayBar* bar = page->replay_bar();
+  ASSERT_TRUE(bar->isVisible());
+  ASSERT_NE(bar->replay(), nullptr);
+  EXPECT_EQ(bar->replay()->position, 0);
+  EXPECT_TRUE(bar->playing());
+  EXPECT_EQ(int(bar->replay()->frames.size()), trials[0].frames);
+  bar->slider()->setValue(bar->slider()->maximum());
+  EXPECT_FALSE(bar->playing()) << "moving the slider holds the playback";
+  EXPECT_NEAR(bar->time(), bar->replay()->duration(), 1e-3);
+  const store::FrameRecord& last = bar->replay()->frames.back();
+  bool cube_drawn = false;
+  for (const render::DrawItem& item : page->view()->frame()->items)
+    cube_drawn |= (item.model.block<3, 1>(0, 3) - last.cube_position).norm() < 1e-6f;
+  EXPECT_TRUE(cube_drawn) << "the cube where the last frame has it";
+  EXPECT_EQ(page->state_label()->text(),
+            trials[0].status == store::TrialStatus::kCompleted ? "done" : "timed out");
+  // Every trial of the finished session can be played back; one outside the schedule is
+  // refused with the reason.
+  people->schedule()->selectRow(23);
+  EXPECT_TRUE(people->replay_button()->isEnabled()) << "every trial ran";
+  EXPECT_NE(page->replay_trial("P01", 30), QString());
 }
 
 // The trials of a participant, read while another process may be writing (a busy database

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/render/image.h"
 #include "core/store/sqlite_database.h"
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
@@ -132,6 +133,27 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   EXPECT_EQ(check.query_text("SELECT group_concat(status || ':' || reason) FROM trial WHERE reason "
                              "IS NOT NULL"),
             "redone:tracking lost,skipped:participant tired");
+
+  // A moment of a stored trial, drawn from the frame log: P02's trial 7, redone then skipped,
+  // keeps the frames of its first attempt.
+  const std::string png = out + "/moment.png";
+  r = cli("render --db " + db + " --participant P02 --trial 7 --time 1.504 --width 320 --height " +
+          "200 --out " + png);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("P02 trial 7 (attempt 1, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(") at 1.50 s of "), std::string::npos) << r.out;
+  int width = 0, height = 0;
+  ASSERT_TRUE(handlab::render::read_png_size(png, &width, &height));
+  EXPECT_EQ(width, 320);
+  EXPECT_EQ(height, 200);
+  for (const auto& [args, error] :
+       {std::pair{"--participant P02 --trial 99", "P02 has no trial 99 (the schedule has 24)"},
+        std::pair{"--participant P02 --trial 7 --attempt 3", "trial 7 of P02 has no attempt 3"},
+        std::pair{"--participant P02", "--db needs --participant and --trial"}}) {
+    r = cli("render --db " + db + " " + args + " --out " + png);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.out.find(error), std::string::npos) << r.out;
+  }
 }
 
 // A simulated study from the command line (one block, on the grasp proxy: quick): the

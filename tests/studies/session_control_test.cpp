@@ -19,28 +19,18 @@
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 #include "tests/support/test_files.h"
+#include "tests/support/test_participant.h"
 
 namespace handlab::studies {
 namespace {
 
 const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
 
-store::Participant person(const std::string& id) {
-  store::Participant p;
-  p.id = id;
-  p.age = 31;
-  p.sex = "F";
-  p.handedness = "right";
-  p.hand_length = 0.18;
-  p.vr_experience = "some";
-  return p;
-}
-
 std::string enrolled_study(const std::string& name, const Protocol& protocol) {
   const std::string path = test::fresh_path(name);
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
-  db.add_participant(person("P01"), planned_rows(protocol, "P01", 0));
+  db.add_participant(test::participant("P01"), planned_rows(protocol, "P01", 0));
   return path;
 }
 
@@ -282,7 +272,7 @@ TEST(SessionControl, LiveTrackerCalibratesFromTheHeldPalmAndRunsInRealTime) {
   });
   retarget::Calibration c;
   try {
-    c = driver.calibrate(protocol, person("P01"));
+    c = driver.calibrate(protocol, test::participant("P01"));
   } catch (const SessionStopped&) {
     ADD_FAILURE() << "no calibration in 10 s";
   }
@@ -298,7 +288,7 @@ TEST(SessionControl, LiveTrackerCalibratesFromTheHeldPalmAndRunsInRealTime) {
   TrialSetup setup;
   setup.protocol = &protocol;
   setup.condition = protocol.conditions().front();
-  setup.participant = person("P01");
+  setup.participant = test::participant("P01");
   setup.calibration = c;
   int steps = 0;
   trial_control.stepped = [&](const TrialStep&) {

@@ -11,22 +11,12 @@
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 #include "tests/support/test_files.h"
+#include "tests/support/test_participant.h"
 
 namespace handlab::studies {
 namespace {
 
 const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
-
-store::Participant person(const std::string& id, double hand_length) {
-  store::Participant p;
-  p.id = id;
-  p.age = 30;
-  p.sex = "X";
-  p.handedness = "right";
-  p.hand_length = hand_length;
-  p.vr_experience = "some";
-  return p;
-}
 
 // Every condition, for a small and a large hand: the scripted pinch lifts the cube 10 cm
 // (it only moves when held), carries it and puts it down inside B.
@@ -34,7 +24,7 @@ TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
   const Protocol protocol = read_protocol(kStudy);
   PipelineTrialDriver driver(TrackerKind::scripted());
   for (double length : {0.165, 0.205}) {
-    const store::Participant p = person("S", length);
+    const store::Participant p = test::participant("S", length);
     const retarget::Calibration calibration = driver.calibrate(protocol, p);
     // The open-palm boxes of the two morphologies differ a little: ~6 % above the length ratio.
     EXPECT_NEAR(calibration.scale, 0.214 / length, 0.08 * 0.214 / length);
@@ -79,7 +69,7 @@ TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
 TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
   const Protocol protocol = read_protocol(kStudy);
   PipelineTrialDriver driver(TrackerKind::scripted(), 120.0, WorldKind::kSoftHand);
-  const store::Participant p = person("S", 0.18);
+  const store::Participant p = test::participant("S", 0.18);
   TrialSetup setup;
   setup.protocol = &protocol;
   setup.condition = protocol.conditions().front();
@@ -117,7 +107,7 @@ TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) 
   const Protocol protocol = read_protocol(kStudy);
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
-  db.add_participant(person("P01", 0.18), planned_rows(protocol, "P01", 0));
+  db.add_participant(test::participant("P01", 0.18), planned_rows(protocol, "P01", 0));
   PipelineTrialDriver driver(TrackerKind::scripted());
   SessionRunner runner(db, driver, fixed_responder());
   std::vector<std::string> lines;
@@ -199,7 +189,7 @@ TEST(SessionRunner, HandSizeFactorRescalesTheCalibrationPerCondition) {
   const std::string path = test::fresh_path("hand_sizes.db");
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
-  db.add_participant(person("H1", 0.19), planned_rows(protocol, "H1", 0));
+  db.add_participant(test::participant("H1", 0.19), planned_rows(protocol, "H1", 0));
   // The real pipeline, watched: which calibration each condition's trial received.
   struct Watching : TrialDriver {
     PipelineTrialDriver real{TrackerKind::scripted()};
