@@ -20,6 +20,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QScopeGuard>
 #include <QScreen>
 #include <QSettings>
 #include <QStatusBar>
@@ -115,9 +116,12 @@ void MainWindow::build_menus() {
       });
   });
   file->addSeparator();
-  file->addAction(tr("Export &Trials (trials.csv)…"), this, [this] { export_dialog(false); });
+  file->addAction(tr("Export &Trials (trials.csv)…"), this,
+                  [this] { export_dialog(Table::kTrials); });
   file->addAction(tr("Export &Questionnaire (questionnaire.csv)…"), this,
-                  [this] { export_dialog(true); });
+                  [this] { export_dialog(Table::kQuestionnaire); });
+  file->addAction(tr("Export &Frames (frames.csv)…"), this,
+                  [this] { export_dialog(Table::kFrames); });
   file->addAction(tr("Export &Report (HTML and PDF)…"), this, &MainWindow::export_report_dialog);
   file->addAction(tr("Open &Data Table (CSV)…"), this, &MainWindow::open_data_table_dialog);
   file->addAction(tr("Save View as &Image…"), this, &MainWindow::save_view_image);
@@ -305,16 +309,33 @@ void MainWindow::open_study_dialog() {
   if (!error.isEmpty()) show_error(tr("Open Study"), error);
 }
 
-QString MainWindow::export_table(const QString& path, bool questionnaire) {
+QString MainWindow::export_table(const QString& path, Table table) {
   if (study_.isEmpty()) return tr("No study is open.");
+  // The frame log of a whole study is millions of rows: seconds, not a moment.
+  const bool long_job = table == Table::kFrames;
+  if (long_job) {
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    statusBar()->showMessage(tr("Writing %1…").arg(path));
+    QApplication::processEvents();
+  }
+  const auto restore = qScopeGuard([long_job] {
+    if (long_job) QApplication::restoreOverrideCursor();
+  });
   try {
     store::StudyStore store(study_.toStdString());
     std::ofstream out(path.toStdString(), std::ios::binary);
     if (!out) return tr("Cannot write %1.").arg(path);
-    if (questionnaire)
-      studies::write_questionnaire_csv(store, out);
-    else
-      studies::write_trials_csv(store, out);
+    switch (table) {
+      case Table::kTrials:
+        studies::write_trials_csv(store, out);
+        break;
+      case Table::kQuestionnaire:
+        studies::write_questionnaire_csv(store, out);
+        break;
+      case Table::kFrames:
+        studies::write_frames_csv(store, out);
+        break;
+    }
     if (!out) return tr("Cannot write %1.").arg(path);
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
@@ -323,12 +344,16 @@ QString MainWindow::export_table(const QString& path, bool questionnaire) {
   return {};
 }
 
-void MainWindow::export_dialog(bool questionnaire) {
-  const QString path = QFileDialog::getSaveFileName(
-      this, questionnaire ? tr("Export Questionnaire") : tr("Export Trials"),
-      questionnaire ? "questionnaire.csv" : "trials.csv", tr("CSV files (*.csv)"));
+void MainWindow::export_dialog(Table table) {
+  const QString title = table == Table::kTrials          ? tr("Export Trials")
+                        : table == Table::kQuestionnaire ? tr("Export Questionnaire")
+                                                         : tr("Export Frames");
+  const QString name = table == Table::kTrials          ? "trials.csv"
+                       : table == Table::kQuestionnaire ? "questionnaire.csv"
+                                                        : "frames.csv";
+  const QString path = QFileDialog::getSaveFileName(this, title, name, tr("CSV files (*.csv)"));
   if (path.isEmpty()) return;
-  const QString error = export_table(path, questionnaire);
+  const QString error = export_table(path, table);
   if (!error.isEmpty()) show_error(tr("Export"), error);
 }
 

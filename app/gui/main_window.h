@@ -34,8 +34,10 @@ class MainWindow : public QMainWindow {
   QString show_study(const QString& path);
   QString study_path() const { return study_; }
 
-  // Writes trials.csv / questionnaire.csv of the open study; returns the error text.
-  QString export_table(const QString& path, bool questionnaire);
+  enum class Table { kTrials, kQuestionnaire, kFrames };
+  // Writes trials.csv, questionnaire.csv or frames.csv of the open study (studies::write_*_csv,
+  // as `handlab-cli export`); returns the error text.
+  QString export_table(const QString& path, Table table);
   // report.html and report.pdf of the open study into `folder` (as `handlab-cli report`);
   // returns an error message, empty on success.
   QString export_report(const QString& folder);
@@ -66,7 +68,7 @@ class MainWindow : public QMainWindow {
   void build_menus();
   void new_study_dialog();
   void open_study_dialog();
-  void export_dialog(bool questionnaire);
+  void export_dialog(Table table);
   void export_report_dialog();
   void open_data_table_dialog();
   void save_view_image();

@@ -1,11 +1,18 @@
 #include "studies/export/study_export.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 
+#include "core/hand/simulated_hand.h"
+#include "core/store/frame_record.h"
+#include "core/task/cube_task.h"
 #include "core/util/csv.h"
+#include "studies/protocol/protocol.h"
+#include "studies/session/session_runner.h"
 
 namespace handlab::studies {
 namespace {
@@ -14,6 +21,18 @@ using util::csv_field;
 
 std::string number(double x) {
   return util::format_number(x);
+}
+
+// Lengths and times of the frame log to the micrometre and microsecond: the float32 record
+// holds no finer detail at the scene's size, and the file stays readable.
+std::string micro(double x) {
+  if (!std::isfinite(x)) return util::format_number(x);
+  char text[48];
+  std::snprintf(text, sizeof text, "%.6f", x);
+  std::string out(text);
+  out.erase(out.find_last_not_of('0') + 1);  // 0.150000 -> 0.15, 2.000000 -> 2.
+  if (out.back() == '.') out.pop_back();
+  return out == "-0" ? "0" : out;
 }
 
 struct ResultRow {
@@ -115,6 +134,75 @@ void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
         out << v->second;
     }
     out << '\n';
+  }
+}
+
+void write_frames_csv(store::StudyStore& store, std::ostream& out) {
+  const store::StudyInfo info = store.study();
+  const auto people = participants_by_id(store);
+  const std::vector<Condition> conditions = stored_protocol(store).conditions();
+  // Per condition: the simulated hand's thumb and index distal bones and their lengths.
+  struct Tips {
+    int thumb = -1, index = -1;
+    double thumb_length = 0.0, index_length = 0.0;
+  };
+  std::map<int, Tips> tips;
+  auto tips_of = [&](int condition) -> const Tips& {
+    auto found = tips.find(condition);
+    if (found != tips.end()) return found->second;
+    const hand::Skeleton hand =
+        hand::build_simulated_hand(conditions.at(std::size_t(condition)).simulated_hand);
+    Tips t{hand.bone_index("thumb3"), hand.bone_index("index3"), 0.0, 0.0};
+    t.thumb_length = hand.bones.at(std::size_t(t.thumb)).length;
+    t.index_length = hand.bones.at(std::size_t(t.index)).length;
+    return tips.emplace(condition, t).first->second;
+  };
+  out << kCovariateHeader << ",block,order";
+  for (const std::string& f : info.factors) out << ',' << csv_field(f);
+  out << ",repetition,attempt,outcome,t,phase,cube_x,cube_y,cube_z,thumb_contact,index_contact,"
+         "thumb_tip_x,thumb_tip_y,thumb_tip_z,index_tip_x,index_tip_y,index_tip_z,aperture,"
+         "tracked_aperture\n";
+  store::Statement frames =
+      store.database().prepare("SELECT data FROM frame WHERE trial_id = ? ORDER BY seq");
+  auto point = [&](const Eigen::Vector3d& p) {
+    out << ',' << micro(p.x()) << ',' << micro(p.y()) << ',' << micro(p.z());
+  };
+  for (const ResultRow& r : results(store)) {
+    if (r.status == "skipped") continue;
+    // The columns every row of this trial shares.
+    std::ostringstream head;
+    write_covariates(head, people.at(r.participant));
+    write_design(head, info, r);
+    head << ',' << r.attempt << ',' << (r.status == "completed" ? "success" : "timeout");
+    const std::string prefix = head.str();
+    const Tips& t = tips_of(r.condition);
+    frames.reset();
+    frames.bind(1, r.trial_id);
+    while (frames.step()) {
+      const store::FrameRecord f = store::decode_frame(frames.column_blob(0));
+      out << prefix << ',' << micro(f.time) << ','
+          << task::phase_name(task::TaskPhase(f.task_phase));
+      point(f.cube_position.cast<double>());
+      out << ',' << int(f.thumb_contact) << ',' << int(f.index_contact);
+      auto tip = [&](int bone, double length) {
+        return Eigen::Vector3d(
+            (f.bone_positions.at(std::size_t(bone)) +
+             f.bone_rotations.at(std::size_t(bone)) * Eigen::Vector3f(0.0f, float(length), 0.0f))
+                .cast<double>());
+      };
+      if (f.bone_positions.empty()) {
+        out << ",NA,NA,NA,NA,NA,NA,NA";
+      } else {
+        const Eigen::Vector3d thumb = tip(t.thumb, t.thumb_length);
+        const Eigen::Vector3d index = tip(t.index, t.index_length);
+        point(thumb);
+        point(index);
+        out << ',' << micro((thumb - index).norm());
+      }
+      const tracking::TrackedHand* hand = f.tracked.hand(tracking::Side::kRight);
+      out << ',' << (hand ? micro(tracking::thumb_index_distance(*hand)) : std::string("NA"))
+          << '\n';
+    }
   }
 }
 

@@ -19,6 +19,14 @@ void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_
 // questionnaire.csv: participant, covariates, block, order, factors, repetition, then one
 // column per questionnaire item.
 void write_questionnaire_csv(store::StudyStore& store, std::ostream& out);
+// frames.csv: the frame log of the same trials (completed or timed out; the attempt that
+// gave the result), one row per logged step: participant, covariates, block, order, factors,
+// repetition, attempt, outcome, t (s), phase (ready | started | grasped | released | done |
+// failed), the cube's centre, the thumb's and index's flesh on the cube (0/1), the simulated
+// thumb and index tips (the ends of their distal bones) and their distance, aperture, all in
+// metres in the scene frame (floor y = 0), and tracked_aperture, the tracked hand's thumb-index
+// tip distance (NA without a hand). Trials run without frames have no rows.
+void write_frames_csv(store::StudyStore& store, std::ostream& out);
 
 struct ParticipantStatus {
   std::string id;

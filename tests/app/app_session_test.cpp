@@ -190,13 +190,24 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
 
   // Exports read back through the data table (RFC 4180: the quoted notes stay one cell).
   const QString csv = QString::fromStdString(test::fresh_path("app_trials.csv"));
-  ASSERT_EQ(window.export_table(csv, false), QString());
+  ASSERT_EQ(window.export_table(csv, MainWindow::Table::kTrials), QString());
   const auto rows = util::parse_csv(test::file_bytes(csv.toStdString()));
   EXPECT_EQ(rows.size(), 1u + 20u) << "header and the 20 block trials";
   ASSERT_EQ(window.open_data_table(csv), QString());
   auto* table = window.findChild<QTableWidget*>("data_table");
   ASSERT_NE(table, nullptr);
   EXPECT_EQ(table->rowCount(), 20);
+  // File > Export Frames: a row for every logged step of those 20 trials.
+  const QString frames_csv = QString::fromStdString(test::fresh_path("app_frames.csv"));
+  ASSERT_EQ(window.export_table(frames_csv, MainWindow::Table::kFrames), QString());
+  std::size_t steps = 0;
+  const auto plan = store.plan("P01");
+  for (const auto& t : trials)
+    if (!plan[std::size_t(t.position)].practice &&
+        (t.status == store::TrialStatus::kCompleted || t.status == store::TrialStatus::kTimeout))
+      steps += std::size_t(t.frames);
+  EXPECT_GT(steps, 20u * 120u);
+  EXPECT_EQ(util::parse_csv(test::file_bytes(frames_csv.toStdString())).size(), 1 + steps);
 
   // File > Export Report... writes what `handlab-cli report` writes; the Analysis view shows
   // the same text and tables (one participant: the ANOVA says why it was not computed).

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -19,6 +20,7 @@
 
 #include "core/render/image.h"
 #include "core/store/sqlite_database.h"
+#include "core/util/csv.h"
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/test_files.h"
@@ -109,6 +111,42 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   std::ifstream questionnaire(out + "/questionnaire.csv");
   std::getline(questionnaire, header);
   EXPECT_NE(header.find("repetition,precision,ease,naturalness"), std::string::npos) << header;
+
+  // The frame log of the same trials: one row a logged step, the trial's columns on each.
+  r = cli("export --db " + db + " --out " + out + " --frames");
+  ASSERT_EQ(r.status, 0) << r.out;
+  {
+    const auto rows = handlab::util::parse_csv(handlab::test::file_bytes(out + "/frames.csv"));
+    ASSERT_FALSE(rows.empty());
+    const std::vector<std::string>& head = rows.front();
+    auto column = [&](const std::string& name) {
+      return std::size_t(std::find(head.begin(), head.end(), name) - head.begin());
+    };
+    ASSERT_EQ(head.size(), 28u);
+    ASSERT_EQ(head.back(), "tracked_aperture");
+    Database logged(db, Database::Mode::kReadOnly);
+    EXPECT_EQ(std::to_string(rows.size() - 1),
+              logged.query_text("SELECT count(*) FROM frame f JOIN trial t ON t.id = f.trial_id "
+                                "JOIN planned_trial p ON p.id = t.planned_id WHERE p.practice = 0 "
+                                "AND t.status IN ('completed', 'timeout')"));
+    // P01's first exported trial, a success: its last step has the cube resting in B, the
+    // task done; every step has its fingertips and the tracked hand's aperture.
+    std::size_t last = 1;
+    while (last + 1 < rows.size() && rows[last + 1][column("order")] == rows[1][column("order")] &&
+           rows[last + 1][column("block")] == rows[1][column("block")])
+      ++last;
+    EXPECT_EQ(rows[1][column("participant")], "P01");
+    if (rows[last][column("outcome")] == "success") {
+      EXPECT_EQ(rows[last][column("phase")], "done");
+      EXPECT_NEAR(std::stod(rows[last][column("cube_x")]), 0.15, 0.05) << "in zone B";
+    }
+    for (std::size_t k = 1; k <= last; ++k) {
+      const double aperture = std::stod(rows[k][column("aperture")]);
+      EXPECT_GT(aperture, 0.005);
+      EXPECT_LT(aperture, 0.25);
+      EXPECT_NE(rows[k][column("tracked_aperture")], "NA");
+    }
+  }
 
   r = cli("analyze --db " + db + " --json " + out + "/analysis.json");
   ASSERT_EQ(r.status, 0) << r.out;

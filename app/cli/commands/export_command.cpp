@@ -14,13 +14,18 @@ int run_export(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"db", "DB", "the study database"},
       {"out", "DIR", "directory for trials.csv and questionnaire.csv (created if needed)"},
+      {"frames", "",
+       "also frames.csv: every logged step of those trials (cube, fingertips, aperture)"},
   };
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli export --db DB --out DIR\n\nWrites trials.csv (one row per "
-                 "trial with a result: participant, covariates, block, order, factors, "
+    std::cout << "Usage: handlab-cli export --db DB --out DIR [--frames]\n\nWrites trials.csv (one "
+                 "row per trial with a result: participant, covariates, block, order, factors, "
                  "repetition, completion_time_s, outcome, grasps, drops) and questionnaire.csv "
-                 "(one column per item). Practice trials are left out.\n\nOptions:\n"
+                 "(one column per item); with --frames, frames.csv (one row per logged step of "
+                 "those trials: time, task phase, the cube's centre, the contacts, the "
+                 "simulated thumb and index tips, their aperture, the tracked aperture; "
+                 "docs/study.md). Practice trials are left out.\n\nOptions:\n"
               << format_options_help(specs);
     return 0;
   }
@@ -33,7 +38,13 @@ int run_export(const std::vector<std::string>& argv) {
   write_output((dir / "questionnaire.csv").string(),
                [&](std::ostream& out) { studies::write_questionnaire_csv(store, out); });
   std::cout << "wrote " << (dir / "trials.csv").string() << " and "
-            << (dir / "questionnaire.csv").string() << "\n";
+            << (dir / "questionnaire.csv").string();
+  if (args.flag("frames")) {
+    write_output((dir / "frames.csv").string(),
+                 [&](std::ostream& out) { studies::write_frames_csv(store, out); });
+    std::cout << " and " << (dir / "frames.csv").string();
+  }
+  std::cout << "\n";
   return 0;
 }
 
