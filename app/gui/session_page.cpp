@@ -90,6 +90,10 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
             state_->setText(phase_text(task::TaskPhase(frame.task_phase)));
             clock_->setText(tr("%1 s").arg(frame.time, 0, 'f', 1));
           });
+  connect(replay_, &TrialReplayBar::closed, this, [this] {
+    view_->set_frame(nullptr);  // the idle scene again
+    for (QLabel* label : {trial_, state_, clock_, counts_}) label->setText(QStringLiteral("–"));
+  });
 
   auto* side = new QVBoxLayout;
   layout->addLayout(side, 1);
@@ -233,6 +237,8 @@ SessionPage::~SessionPage() {
 
 void SessionPage::set_study(const QString& database) {
   worker_.reset();
+  replay_->set_playing(false);
+  replay_->hide();
   database_ = database;
   protocol_.reset();
   if (!database.isEmpty()) {

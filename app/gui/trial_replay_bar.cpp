@@ -1,5 +1,7 @@
 #include "app/gui/trial_replay_bar.h"
 
+#include <algorithm>
+
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
@@ -12,6 +14,7 @@
 #include "core/render/frame_drawing.h"
 
 namespace handlab::gui {
+
 TrialReplayBar::TrialReplayBar(QWidget* parent) : QWidget(parent) {
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);

@@ -38,6 +38,7 @@ class TrialReplayBar : public QWidget {
   QSlider* slider() const { return slider_; }
   QPushButton* play_button() const { return play_; }
   QLabel* label() const { return label_; }
+  QPushButton* close_button() const { return close_; }
 
  signals:
   // A moment to show: its picture and the record it was drawn from.

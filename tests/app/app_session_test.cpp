@@ -256,6 +256,11 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   people->schedule()->selectRow(23);
   EXPECT_TRUE(people->replay_button()->isEnabled()) << "every trial ran";
   EXPECT_NE(page->replay_trial("P01", 30), QString());
+  // Closed, the replay gives the view its idle scene back.
+  QTest::mouseClick(bar->close_button(), Qt::LeftButton);
+  EXPECT_FALSE(bar->isVisible());
+  EXPECT_EQ(page->view()->frame(), nullptr);
+  EXPECT_EQ(page->state_label()->text(), "–");
 }
 
 // The trials of a participant, read while another process may be writing (a busy database
