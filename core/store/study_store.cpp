@@ -353,6 +353,21 @@ std::int64_t StudyStore::frame_count() {
   return s.column_int64(0);
 }
 
+std::int64_t StudyStore::frame_count(std::int64_t trial_id) {
+  Statement s = db_.prepare("SELECT count(*) FROM frame WHERE trial_id = ?");
+  s.bind(1, trial_id);
+  s.step();
+  return s.column_int64(0);
+}
+
+std::vector<FrameRecord> StudyStore::frames(std::int64_t trial_id) {
+  std::vector<FrameRecord> out;
+  Statement s = db_.prepare("SELECT data FROM frame WHERE trial_id = ? ORDER BY seq");
+  s.bind(1, trial_id);
+  while (s.step()) out.push_back(decode_frame(s.column_blob(0)));
+  return out;
+}
+
 std::vector<Participant> StudyStore::participants() {
   std::vector<Participant> out;
   Statement s = db_.prepare(std::string("SELECT ") + kParticipantColumns +

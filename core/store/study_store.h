@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/store/frame_record.h"
 #include "core/store/sqlite_database.h"
 
 namespace handlab::store {
@@ -89,6 +90,8 @@ class StudyStore {
   void update_participant(const Participant& participant);
   int participant_count();
   std::int64_t frame_count();  // frames stored, over every trial
+  std::int64_t frame_count(std::int64_t trial_id);
+  std::vector<FrameRecord> frames(std::int64_t trial_id);  // one trial's, in logged order
   std::optional<Participant> participant(const std::string& id);
   std::vector<Participant> participants();
   std::vector<PlannedTrialRow> plan(const std::string& participant_id);

@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "core/hand/simulated_hand.h"
-#include "core/store/frame_record.h"
 #include "core/task/cube_task.h"
 #include "core/util/csv.h"
 #include "studies/protocol/protocol.h"
@@ -162,8 +161,6 @@ void write_frames_csv(store::StudyStore& store, std::ostream& out) {
   out << ",repetition,attempt,outcome,t,phase,cube_x,cube_y,cube_z,thumb_contact,index_contact,"
          "thumb_tip_x,thumb_tip_y,thumb_tip_z,index_tip_x,index_tip_y,index_tip_z,aperture,"
          "tracked_aperture\n";
-  store::Statement frames =
-      store.database().prepare("SELECT data FROM frame WHERE trial_id = ? ORDER BY seq");
   auto point = [&](const Eigen::Vector3d& p) {
     out << ',' << micro(p.x()) << ',' << micro(p.y()) << ',' << micro(p.z());
   };
@@ -176,10 +173,7 @@ void write_frames_csv(store::StudyStore& store, std::ostream& out) {
     head << ',' << r.attempt << ',' << (r.status == "completed" ? "success" : "timeout");
     const std::string prefix = head.str();
     const Tips& t = tips_of(r.condition);
-    frames.reset();
-    frames.bind(1, r.trial_id);
-    while (frames.step()) {
-      const store::FrameRecord f = store::decode_frame(frames.column_blob(0));
+    for (const store::FrameRecord& f : store.frames(r.trial_id)) {
       out << prefix << ',' << micro(f.time) << ','
           << task::phase_name(task::TaskPhase(f.task_phase));
       point(f.cube_position.cast<double>());

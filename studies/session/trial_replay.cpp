@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "core/store/sqlite_database.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/session_runner.h"
 
@@ -29,17 +28,11 @@ TrialReplay load_trial_replay(store::StudyStore& store, const std::string& parti
                              " (the schedule has " + std::to_string(plan.size()) + ")");
   // The attempt asked for, or the latest one with frames (counted in the log itself: an
   // attempt cut short by a crash has frames and no count in its row).
-  auto logged = [&](std::int64_t trial_id) {
-    store::Statement s = store.database().prepare("SELECT count(*) FROM frame WHERE trial_id = ?");
-    s.bind(1, trial_id);
-    s.step();
-    return s.column_int64(0);
-  };
   const auto trials = store.trials(participant);
   const store::TrialRow* chosen = nullptr;
   for (const store::TrialRow& t : trials) {
     if (t.position != position) continue;
-    if (attempt > 0 ? t.attempt == attempt : logged(t.id) > 0) chosen = &t;
+    if (attempt > 0 ? t.attempt == attempt : store.frame_count(t.id) > 0) chosen = &t;
   }
   const std::string which = "trial " + std::to_string(position + 1) + " of " + participant;
   if (!chosen)
@@ -61,13 +54,7 @@ TrialReplay load_trial_replay(store::StudyStore& store, const std::string& parti
   replay.layout = protocol.scene;
   replay.layout.cube_size = condition.cube_size;
   replay.simulated_hand = condition.simulated_hand;
-  store::Statement s =
-      store.database().prepare("SELECT data FROM frame WHERE trial_id = ? ORDER BY seq");
-  s.bind(1, chosen->id);
-  while (s.step()) {
-    const std::vector<std::uint8_t> blob = s.column_blob(0);
-    replay.frames.push_back(store::decode_frame(blob));
-  }
+  replay.frames = store.frames(chosen->id);
   if (replay.frames.empty())
     throw std::runtime_error(which + ", attempt " + std::to_string(chosen->attempt) +
                              ", has no logged frames");

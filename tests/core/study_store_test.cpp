@@ -323,6 +323,12 @@ TEST(FrameLogger, CommitsEveryFrameOffTheCallersThread) {
   EXPECT_EQ(count.column_int64(0), n + 10);
   EXPECT_EQ(count.column_int64(1), 0);
   EXPECT_EQ(count.column_int64(2), n + 9);
+  // Read back as logged, in order.
+  EXPECT_EQ(db.frame_count(trial), n + 10);
+  EXPECT_EQ(db.frame_count(trial + 1), 0);
+  const std::vector<FrameRecord> back = db.frames(trial);
+  ASSERT_EQ(back.size(), std::size_t(n + 10));
+  for (int k : {0, 1, n / 2, n + 9}) EXPECT_DOUBLE_EQ(back[std::size_t(k)].time, k / 120.0);
   // A duplicate frame is a writer error that reaches the caller.
   FrameLogger logger(path, 1);
   logger.log(trial, 3, sample_frame(0));
