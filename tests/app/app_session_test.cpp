@@ -129,10 +129,10 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   QSignalSpy ended(page, &SessionPage::session_ended);
   QTest::mouseClick(page->start_button(), Qt::LeftButton);
   ASSERT_TRUE(page->session_running()) << page->log()->count();
-  // With `page` as the context the slot runs on the window's thread, as a click would.
   // What the view showed of the first trial: the soft hand as its skin (one mesh that
   // deforms, not the bones' capsules).
   std::size_t skin_triangles = 0, skins = 0;
+  // With `page` as the context the slot runs on the window's thread, as a click would.
   QObject::connect(page->worker(), &SessionWorker::trial_ended, page,
                    [&](int position, bool, double, bool) {
                      if (position == 0 && page->view()->frame())
