@@ -132,8 +132,7 @@ void SessionWorker::run() {
     if (options_.simulated_answers) {
       responder = studies::simulated_responder(options_.tracker.seed());
     } else {
-      responder = [this](const studies::Protocol&, const studies::TrialSetup& setup,
-                         const studies::TrialRun&) {
+      responder = [this](const studies::SeenQuestionnaire& asked, const studies::TrialRun&) {
         std::future<std::vector<int>> answers;
         {
           const std::lock_guard<std::mutex> lock(answer_mutex_);
@@ -141,8 +140,13 @@ void SessionWorker::run() {
           pending_answer_.emplace();
           answers = pending_answer_->get_future();
         }
-        emit questionnaire_requested(setup.planned.position,
-                                     QString::fromStdString(setup.condition.label));
+        // The experimenter's dialog names the trial's condition (the one running).
+        QString label;
+        {
+          const std::lock_guard<std::mutex> lock(mutex_);
+          label = QString::fromStdString(snapshot_.condition);
+        }
+        emit questionnaire_requested(asked.position, label);
         return answers.get();
       };
     }

@@ -117,6 +117,21 @@ CREATE INDEX trial_by_planned ON trial(planned_id);
 ALTER TABLE participant ADD COLUMN simulated INTEGER NOT NULL DEFAULT 0
   CHECK (simulated IN (0, 1));
 )sql",
+    // 3 -> 4: simulated participants' model and parameters, and the memory each carries
+    // from one trial to the next (so that a resumed session goes on with what it learnt).
+    R"sql(
+CREATE TABLE simulated_person (
+  participant_id TEXT PRIMARY KEY REFERENCES participant(id),
+  model TEXT NOT NULL,
+  model_sha256 TEXT NOT NULL,
+  seed INTEGER NOT NULL,
+  parameters TEXT NOT NULL
+);
+CREATE TABLE simulated_memory (
+  trial_id INTEGER PRIMARY KEY REFERENCES trial(id),
+  memory TEXT NOT NULL
+);
+)sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 
@@ -545,7 +560,44 @@ void StudyStore::finish_trial(std::int64_t trial_id, const TrialOutcome& o) {
   Statement answer = db_.prepare("INSERT INTO answer (trial_id, item, value) VALUES (?, ?, ?)");
   for (const auto& [item, value] : o.answers)
     answer.bind(1, trial_id).bind(2, item).bind(3, std::int64_t(value)).run();
+  if (!o.participant_memory.empty())
+    db_.prepare("INSERT INTO simulated_memory (trial_id, memory) VALUES (?, ?)")
+        .bind(1, trial_id)
+        .bind(2, o.participant_memory)
+        .run();
   t.commit();
+}
+
+void StudyStore::add_simulated_person(const SimulatedPersonRow& row) {
+  db_.prepare(
+         "INSERT INTO simulated_person (participant_id, model, model_sha256, seed, parameters) "
+         "VALUES (?, ?, ?, ?, ?)")
+      .bind(1, row.participant_id)
+      .bind(2, row.model)
+      .bind(3, row.model_sha256)
+      .bind(4, std::int64_t(row.seed))
+      .bind(5, row.parameters)
+      .run();
+}
+
+std::optional<SimulatedPersonRow> StudyStore::simulated_person(const std::string& participant_id) {
+  Statement s = db_.prepare(
+      "SELECT model, model_sha256, seed, parameters FROM simulated_person "
+      "WHERE participant_id = ?");
+  s.bind(1, participant_id);
+  if (!s.step()) return std::nullopt;
+  return SimulatedPersonRow{participant_id, s.column_text(0), s.column_text(1), s.column_text(3),
+                            std::uint64_t(s.column_int64(2))};
+}
+
+std::optional<std::string> StudyStore::participant_memory(const std::string& participant_id) {
+  Statement s = db_.prepare(
+      "SELECT m.memory FROM simulated_memory m JOIN trial t ON t.id = m.trial_id "
+      "JOIN planned_trial p ON p.id = t.planned_id WHERE p.participant_id = ? "
+      "AND t.status IN ('completed', 'timeout', 'redone') ORDER BY t.id DESC LIMIT 1");
+  s.bind(1, participant_id);
+  if (!s.step()) return std::nullopt;
+  return s.column_text(0);
 }
 
 void StudyStore::skip_trial(const std::string& participant_id, int position,
@@ -657,6 +709,14 @@ void StudyStore::import_sessions(const std::string& path) {
       .bind(1, frame)
       .bind(2, trial)
       .run();
+  // (A database of an older schema has none.)
+  if (db_.query_text("SELECT count(*) FROM other.sqlite_master WHERE name = 'simulated_memory'") ==
+      "1")
+    db_.prepare(
+           "INSERT INTO main.simulated_memory (trial_id, memory) "
+           "SELECT trial_id + ?, memory FROM other.simulated_memory ORDER BY trial_id")
+        .bind(1, trial)
+        .run();
   t.commit();
 }
 

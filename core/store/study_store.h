@@ -18,7 +18,7 @@
 
 namespace handlab::store {
 
-constexpr int kSchemaVersion = 3;
+constexpr int kSchemaVersion = 4;
 
 struct StudyDefinition {
   std::string name;
@@ -72,6 +72,15 @@ struct TrialOutcome {
   int grasps = 0, drops = 0, frames = 0;
   std::vector<std::pair<double, std::string>> events;  // (time s, kind)
   std::vector<std::pair<std::string, int>> answers;    // (item id, value)
+  // A simulated participant's memory after the trial (its own JSON); empty for people.
+  std::string participant_memory;
+};
+
+// The participant model a simulated participant was drawn from: its version, the hash of its
+// frozen parameters, the population seed and the person's drawn parameters (JSON).
+struct SimulatedPersonRow {
+  std::string participant_id, model, model_sha256, parameters;
+  std::uint64_t seed = 0;
 };
 
 class StudyStore {
@@ -116,11 +125,18 @@ class StudyStore {
                   const std::string& reason);
   void redo_trial(const std::string& participant_id, int position, const std::string& reason);
 
+  // A simulated participant's model and parameters, stored at enrolment.
+  void add_simulated_person(const SimulatedPersonRow& row);
+  std::optional<SimulatedPersonRow> simulated_person(const std::string& participant_id);
+  // The memory a simulated participant carried out of its last trial with a result (completed
+  // or timed out), for the next; none before its first.
+  std::optional<std::string> participant_memory(const std::string& participant_id);
+
   // Copies every session of another database of the same study (the same protocol hash),
-  // with its trials, events, answers and frames, new ids following this store's. Its
-  // participants must be enrolled here with the same schedule; their trials are matched by
-  // position. (Sessions run elsewhere: a second lab machine, or simulated participants run
-  // side by side, each in a database of its own.)
+  // with its trials, events, answers, frames and simulated memories, new ids following this
+  // store's. Its participants must be enrolled here with the same schedule; their trials are
+  // matched by position. (Sessions run elsewhere: a second lab machine, or simulated participants
+  // run side by side, each in a database of its own.)
   void import_sessions(const std::string& path);
 
   Database& database() { return db_; }

@@ -16,6 +16,10 @@ double fitts_time(double a, double b, double distance, double width) {
   return a + b * std::max(id, 1.0);
 }
 
+double practice_factor(int repetition, double rate, double floor) {
+  return floor + (1.0 - floor) * std::exp(-rate * double(std::max(repetition, 1) - 1));
+}
+
 double MotorRandom::normal() {
   return random_.normal();
 }

@@ -1,6 +1,6 @@
 // The timing and noise of human movement the simulated participant is built from: minimum-
-// jerk profiles, Fitts' law, the ex-Gaussian reaction time, normal draws, and the power law
-// of practice. Sources in docs/simulated-participants.md.
+// jerk profiles, Fitts' law, the ex-Gaussian reaction time, normal draws, and the law of
+// practice. Sources in docs/simulated-participants.md.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +16,12 @@ double minimum_jerk(double u);
 
 // Fitts' movement time a + b log2(2 D / W) (s); an index of difficulty under 1 bit counts 1.
 double fitts_time(double a, double b, double distance, double width);
+
+// The exponential law of practice of one person (Heathcote, Brown & Mewhort 2000: it fits
+// individual learning series better than the power law, which averaging over people makes):
+// a duration's factor at its `repetition`-th time, floor + (1 - floor) exp(-rate (n - 1)),
+// 1 the first time and falling towards `floor`.
+double practice_factor(int repetition, double rate, double floor);
 
 // Draws from one seeded stream.
 class MotorRandom {

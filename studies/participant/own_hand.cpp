@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "core/hand/tracked_hand.h"
-#include "core/retarget/fingertip_solver.h"
 #include "core/tracking/hand_fitting.h"
+#include "studies/participant/pinch_ik.h"
 
 namespace handlab::studies {
 namespace {
@@ -43,72 +43,62 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
   // deeper, aimed along the grasp axis so that the pads face each other. Tip pinch: the
   // fingertips, and points on the bones' bases, aimed from above so that the distal
   // phalanges come down on the object at `kTipTilt` from the vertical.
-  hand::Skeleton ik = skeleton_;
-  const int first = int(ik.markers.size());
-  for (const char* name : {"thumb_distal", "index_distal"}) {
-    const int bone = ik.bone_index(name);
-    const hand::Bone& b = ik.bones[std::size_t(bone)];
-    if (tip) {
-      ik.markers.push_back({"tip", bone, Eigen::Vector3d(0, b.length, 0)});
-      ik.markers.push_back({"base", bone, Eigen::Vector3d(0, 0.3 * b.length, 0)});
-    } else {
-      ik.markers.push_back({"pad", bone, Eigen::Vector3d(0, 0.55 * b.length, b.radius)});
-      ik.markers.push_back({"pad_in", bone, Eigen::Vector3d(0, 0.55 * b.length, b.radius - 0.012)});
-    }
-  }
-  const std::vector<retarget::Feature> features = {
-      {first, -1, 1.0}, {first + 2, -1, 1.0}, {first + 1, -1, 0.3}, {first + 3, -1, 0.3}};
-  hand::HandPose pose = hand::HandPose::rest(ik);
+  const int thumb = skeleton_.bone_index("thumb_distal");
+  const int index = skeleton_.bone_index("index_distal");
+  auto contact = [&](int bone) {
+    const hand::Bone& b = skeleton_.bones[std::size_t(bone)];
+    return tip ? Eigen::Vector3d(0, b.length, 0) : Eigen::Vector3d(0, 0.55 * b.length, b.radius);
+  };
+  auto aiming = [&](int bone) {
+    const hand::Bone& b = skeleton_.bones[std::size_t(bone)];
+    return tip ? Eigen::Vector3d(0, 0.3 * b.length, 0)
+               : Eigen::Vector3d(0, 0.55 * b.length, b.radius - 0.012);
+  };
+  hand::HandPose pose = hand::HandPose::rest(skeleton_);
   pose.root_rotation = rotation;
-  for (std::size_t k = 0; k < ik.dofs.size(); ++k) {
-    const hand::Dof& dof = ik.dofs[k];
+  for (std::size_t k = 0; k < skeleton_.dofs.size(); ++k) {
+    const hand::Dof& dof = skeleton_.dofs[k];
     const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
                        dof.name.rfind("pinky", 0) == 0;
     if (other && dof.name.find("flexion") != std::string::npos)
       pose.angles(Eigen::Index(k)) = kOtherFingersCurl * dof.upper;
   }
+  auto point = [&](const hand::BoneFrames& f, int bone, const Eigen::Vector3d& local) {
+    return hand::bone_point(f, bone, local);
+  };
   // The grasp axis: across the A-B line (z), the thumb on its own side.
-  const hand::BoneFrames start = hand::forward_kinematics(ik, pose);
+  const hand::BoneFrames start = hand::forward_kinematics(skeleton_, pose);
   const Eigen::Vector3d axis(
       0, 0,
-      (hand::marker_position(ik, start, first) - hand::marker_position(ik, start, first + 2)).z() >
-              0
-          ? 1.0
-          : -1.0);
+      (point(start, thumb, contact(thumb)) - point(start, index, contact(index))).z() > 0 ? 1.0
+                                                                                          : -1.0);
   const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-  retarget::SolverOptions options;
-  options.root_translation_weight = 1e-3;
-  options.max_iterations = options.cold_start_iterations = 200;
-  options.relative_decrease_tolerance = 0.0;
-  retarget::FingertipSolver solver(ik, features, options);
-  const double thumb_reach = 0.7 * ik.bones[std::size_t(ik.bone_index("thumb_distal"))].length;
-  const double index_reach = 0.7 * ik.bones[std::size_t(ik.bone_index("index_distal"))].length;
+  const double thumb_reach = 0.7 * skeleton_.bones[std::size_t(thumb)].length;
+  const double index_reach = 0.7 * skeleton_.bones[std::size_t(index)].length;
   Table table{rotation, {}};
-  bool cold = true;
   for (double gap = 0.14; gap > -1e-9; gap -= 0.005) {
-    const hand::BoneFrames frames = hand::forward_kinematics(ik, pose);
-    const Eigen::Vector3d centre = 0.5 * (hand::marker_position(ik, frames, first) +
-                                          hand::marker_position(ik, frames, first + 2));
+    const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose);
+    const Eigen::Vector3d centre =
+        0.5 * (point(frames, thumb, contact(thumb)) + point(frames, index, contact(index)));
     const double half = 0.5 * gap;
-    std::vector<Eigen::Vector3d> goals = {centre + axis * half, centre - axis * half};
-    if (tip) {
-      goals.push_back(goals[0] +
-                      thumb_reach * (std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up));
-      goals.push_back(goals[1] +
-                      index_reach * (-std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up));
-    } else {
-      goals.push_back(centre + axis * (half + 0.012));
-      goals.push_back(centre - axis * (half + 0.012));
-    }
-    const retarget::SolverResult r = solver.solve(pose, goals, cold);
-    cold = false;
-    pose.angles = r.angles;
-    pose.root_position += r.root_shift;
-    const hand::BoneFrames solved = hand::forward_kinematics(ik, pose);
-    const Eigen::Vector3d thumb = hand::marker_position(ik, solved, first);
-    const Eigen::Vector3d index = hand::marker_position(ik, solved, first + 2);
-    table.postures.push_back(
-        {(thumb - index).norm(), pose.angles, 0.5 * (thumb + index) - pose.root_position});
+    const Eigen::Vector3d thumb_at = centre + axis * half, index_at = centre - axis * half;
+    const Eigen::Vector3d thumb_aim =
+        tip ? Eigen::Vector3d(thumb_at +
+                              thumb_reach * (std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up))
+            : Eigen::Vector3d(centre + axis * (half + 0.012));
+    const Eigen::Vector3d index_aim =
+        tip ? Eigen::Vector3d(index_at +
+                              index_reach * (-std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up))
+            : Eigen::Vector3d(centre - axis * (half + 0.012));
+    const std::vector<PointGoal> goals = {{thumb, contact(thumb), thumb_at, 1.0},
+                                          {index, contact(index), index_at, 1.0},
+                                          {thumb, aiming(thumb), thumb_aim, 0.3},
+                                          {index, aiming(index), index_aim, 0.3}};
+    solve_pinch_ik(skeleton_, pose, goals);
+    const hand::BoneFrames solved = hand::forward_kinematics(skeleton_, pose);
+    const Eigen::Vector3d t = point(solved, thumb, contact(thumb));
+    const Eigen::Vector3d i = point(solved, index, contact(index));
+    table.postures.push_back({(t - i).norm(), pose.angles, 0.5 * (t + i) - pose.root_position});
   }
   std::sort(table.postures.begin(), table.postures.end(),
             [](const Posture& a, const Posture& b) { return a.aperture < b.aperture; });

@@ -1,12 +1,15 @@
-// A simulated person: covariates stored like a real participant's, and the motor
-// parameters of the model, drawn once from stated population distributions (every default
-// and its source: docs/simulated-participants.md).
+// A simulated person: covariates stored like a real participant's, and the motor parameters of
+// the model, drawn once from stated population distributions (every distribution and its
+// source: docs/simulated-participants.md). The model is frozen by its version and the hash of
+// its parameters (model_sha256), stored with every simulated participant.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/store/study_store.h"
+#include "studies/participant/two_rate_adaptation.h"
 
 namespace handlab::studies {
 
@@ -22,9 +25,12 @@ struct MotorParameters {
   double closing_time = 0.50;                     // s
   double tremor_hz = 10.0, tremor_rms = 0.00005;  // physiological tremor at the hand
   double tracker_jitter = 0.000063;               // m per axis and joint (measured, data/leap)
-  double practice_exponent = 0.20;                // durations x n^-alpha
-  double confirm_dwell = 0.15;                    // s seeing both pads on the cube before lifting
+  double practice_rate = 0.35;     // per repetition: durations' exponential law of practice
+  double practice_floor = 0.60;    // the share of a duration practice leaves
+  double confirm_dwell = 0.15;     // s seeing both pads on the cube before lifting
   double regrasp_squeeze = 0.003;  // m more closing past the faces after each failed grasp
+  // Trial-by-trial adaptation of where it expects its pads to meet the cube.
+  TwoRateRates contact_rates{0.59, 0.21, 0.992, 0.02};
 };
 
 struct SimulatedPerson {
@@ -42,6 +48,23 @@ struct Population {
   double vr_experience_fraction = 0.5;
 };
 
+// A per-person parameter's distribution: normal, redrawn inside [low, high].
+struct ParameterDistribution {
+  const char* name;
+  double mean, sd, low, high;
+};
+
+// The motor parameters drawn per person, in drawing order (a new one goes last, so that
+// adding it never moves the others' draws).
+const std::vector<ParameterDistribution>& motor_distributions();
+
+// The model's version, and the SHA-256 of everything that decides what its people do: the
+// population, the per-person distributions, the fixed motor parameters and the behaviour's
+// constants (model_parameters_json). Printed by `simulate`, stored with each participant.
+extern const char* const kParticipantModelVersion;
+std::string model_parameters_json();
+std::string model_sha256();
+
 // Person `index` (0-based) of the population under `seed`: covariates and motor parameters.
 // The id is "S01", "S02", ...; the notes mark the participant as simulated.
 SimulatedPerson draw_person(const Population& population, std::uint64_t seed, int index);
@@ -49,6 +72,12 @@ SimulatedPerson draw_person(const Population& population, std::uint64_t seed, in
 // The motor parameters of a participant with a given id (e.g. one enrolled by hand and run
 // with `session run --tracker simulated`): drawn from the population under `seed` and the id.
 MotorParameters draw_motor_parameters(std::uint64_t seed, const std::string& id);
+
+// A person from its stored covariates, with the motor parameters of its id under `seed`.
+SimulatedPerson simulated_person(const store::Participant& participant, std::uint64_t seed);
+
+// What the study database keeps of a simulated person (store::SimulatedPersonRow).
+store::SimulatedPersonRow simulated_person_row(const SimulatedPerson& person, std::uint64_t seed);
 
 // The seed of a person's own stream from the population seed and the id.
 std::uint64_t person_seed(std::uint64_t seed, const std::string& id);

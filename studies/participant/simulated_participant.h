@@ -12,28 +12,26 @@
 #include "studies/participant/motor_primitives.h"
 #include "studies/participant/observation.h"
 #include "studies/participant/own_hand.h"
+#include "studies/participant/participant_memory.h"
 #include "studies/participant/participant_model.h"
+#include "studies/participant/seen_trial.h"
 #include "studies/participant/trial_experience.h"
 
 namespace handlab::studies {
 
-// What it knows of a trial before it starts, besides its own parameters.
-struct TrialContext {
-  int position = 0;    // the trial's place in its schedule (its random draws)
-  int repetition = 1;  // trials done with this cube size (the one it sees), this one included
-  double rate_hz = 120.0;
-  SeenHandGeometry hand;  // how the simulated hand looks
-};
-
 class SimulatedParticipant {
  public:
-  // `hand` (its own hand at its size) must outlive the participant.
-  SimulatedParticipant(const SimulatedPerson& person, const OwnHand& hand, TrialContext context);
+  // Who it is, its own hand at its size (must outlive the participant), what it knows of the
+  // trial and what it carries from its earlier trials.
+  SimulatedParticipant(const SimulatedPerson& person, const OwnHand& hand, const SeenTrial& trial,
+                       ParticipantMemory memory);
 
   // The frame it sends for the next tick, given what the display showed at the last one.
   tracking::TrackedFrame act(const Observation& shown);
 
   const TrialExperience& experience() const { return experience_; }
+  // What it carries out of the trial (so far): its memory with this trial's experience.
+  ParticipantMemory memory_after() const;
   const char* phase_name() const;
   // For traces: the pads' gaps to the cube in the newest observation it has taken in.
   double last_gap(bool thumb) const { return thumb ? last_seen_.thumb_gap : last_seen_.index_gap; }
@@ -78,20 +76,47 @@ class SimulatedParticipant {
   Seen see(const Observation& o) const;
   OwnState own_at(double time) const;
   Eigen::Vector3d grasp_point(const Observation& o) const;
-  double practice() const;
   double clearance(const Seen& s, const Observation& o) const;
   // Whether it has seen the cube stay put for a while (it watches on from each call).
   bool cube_at_rest(const Seen& s);
   static bool in_zone_b(const Seen& s, const Observation& o);
+  double aperture_now() const;
+  // Its first sight of the scene: the pinch for the cube, practice, what it expects.
+  void start(const Observation& first);
+  // A movement's duration with practice (trials with the cube it sees).
+  double practised(double duration) const { return duration * practised_movement_; }
+  double peak_aperture(double cube_size) const;
+  double fitts(double distance, double width) const;
   void move_grip(const Eigen::Vector3d& target, double duration, bool noisy);
   void move_aperture(double target, double duration);
   void plan_reach(const Observation& o, const Seen& s);
   void start_regrasp();
   void update(const Observation* o);
+  // What it sees beyond the phase it is in.
+  void learn_gain(const Observation& o, const Seen& s);
+  void servo(const Observation& o, const Seen& s);
+  bool watch_for_caught_cube(const Observation* o, const Seen& s);
+  bool loss_seen(const Observation* o, const Seen& s) const;
+  // One function per phase; each may move to the next.
+  void check_reach(const Observation& o, const Seen& s);
+  void check_descent(const Observation& o, const Seen& s);
+  void close(const Observation* o, const Seen& s);
+  void confirm(const Observation* o, const Seen& s);
+  void check_lift(const Observation& o, const Seen& s);
+  void aim_transport(const Observation& o, const Seen& s, bool first);
+  void lower(const Observation* o, const Seen& s);
+  void wait_rest(const Observation& o, const Seen& s);
+  void withdraw(const Observation* o, const Seen& s);
+  void free_cube(const Observation& o, const Seen& s, bool caught);
 
   SimulatedPerson person_;
   const OwnHand& hand_;
-  TrialContext context_;
+  SeenTrial trial_;
+  ParticipantMemory memory_;
+  double practised_movement_ = 1.0, practised_general_ = 1.0;
+  double contact_correction_ = 0.0;  // m: learnt, added to where it expects contact
+  double expected_contact_ = 0.0;    // m: own aperture where it expects the pads to meet the cube
+  double held_squeeze_ = 0.0;        // m: the squeeze of the grasp it lifted with
   MotorRandom random_;
   double dt_;
   double time_ = 0.0;
@@ -111,6 +136,7 @@ class SimulatedParticipant {
   int gain_samples_ = 0;
   double extra_squeeze_ = 0.0;
   double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
+  bool caught_ = false;            // the cube seen caught on the hand
   int wipes_ = 0;                  // of a caught cube on the floor, since it was seen caught
   double touching_since_ = -1.0;
   double resting_since_ = -1.0;  // since when the cube has stayed near resting_at_

@@ -1,5 +1,6 @@
-// What a simulated participant went through in a trial: its questionnaire answers come from
-// this, never from the condition.
+// What a simulated participant went through in a trial, as it saw it: its questionnaire
+// answers and what it carries to its next trial (participant_memory.h) come from this, never
+// from the condition.
 #pragma once
 
 namespace handlab::studies {
@@ -9,6 +10,14 @@ struct TrialExperience {
   int corrections = 0;         // corrective submovements
   int losses = 0;              // slips, drops and misplacements it saw
   double expected_time = 0.0;  // s: its own plan's nominal duration
+  double cube_size = 0.0;      // m: the cube it saw
+  // Where it first saw both pads on the cube: its own aperture there minus where it expected
+  // them to meet the cube (m; > 0: sooner than expected). Only when it saw contact.
+  bool contact_seen = false;
+  double contact_error = 0.0;
+  bool held = false;       // it set the cube down in B with the grasp it lifted it with
+  double squeeze = 0.0;    // m: that grasp's closing past contact (when held)
+  double seen_gain = 0.0;  // its last estimate of seen per own aperture (0: none made)
 };
 
 }  // namespace handlab::studies

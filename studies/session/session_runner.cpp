@@ -11,22 +11,19 @@
 namespace handlab::studies {
 
 QuestionnaireResponder fixed_responder() {
-  return [](const Protocol& p, const TrialSetup&, const TrialRun&) {
-    return std::vector<int>(p.items.size(), (p.scale_points + 1) / 2);
+  return [](const SeenQuestionnaire& q, const TrialRun&) {
+    return std::vector<int>(q.item_ids.size(), (q.scale_points + 1) / 2);
   };
 }
 
 QuestionnaireResponder simulated_responder(std::uint64_t seed) {
-  return [seed](const Protocol& p, const TrialSetup& setup, const TrialRun& run) {
-    if (!run.experience) return std::vector<int>(p.items.size(), (p.scale_points + 1) / 2);
-    std::vector<std::string> ids;
-    for (const QuestionnaireItem& item : p.items) ids.push_back(item.id);
-    // The person's stream and the trial's place: nothing of the condition.
-    const std::uint64_t stream =
-        person_seed(seed, setup.participant.id) ^
-        (0x94D049BB133111EBull * std::uint64_t(setup.planned.position + 1));
-    return simulated_answers(ids, p.scale_points, *run.experience,
-                             run.success ? run.completion_time_s : p.timeout_s, stream);
+  return [seed](const SeenQuestionnaire& q, const TrialRun& run) {
+    if (!run.experience) return std::vector<int>(q.item_ids.size(), (q.scale_points + 1) / 2);
+    // The person's stream and the trial's place.
+    const std::uint64_t stream = person_seed(seed, q.participant_id) ^
+                                 (0x94D049BB133111EBull * std::uint64_t(q.position + 1));
+    return simulated_answers(q.item_ids, q.scale_points, *run.experience,
+                             run.success ? run.completion_time_s : q.timeout_s, stream);
   };
 }
 
@@ -137,6 +134,7 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
     // Calibrated for the first condition's hand; the box ratio scales with the hand's length.
     setup.calibration.scale *=
         setup.condition.simulated_hand_length / conditions.front().simulated_hand_length;
+    setup.participant_memory = store_.participant_memory(participant_id).value_or("");
 
     const std::int64_t trial = store_.begin_trial(next->id, session);
     if (control_ && control_->trial_started) control_->trial_started(setup, planned);
@@ -159,8 +157,12 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
     outcome.drops = run.drops;
     outcome.frames = int(seq);  // the frames stored
     outcome.events = run.events;
+    outcome.participant_memory = run.participant_memory;
     if (next->questionnaire && !protocol.items.empty()) {
-      const std::vector<int> values = responder_(protocol, setup, run);
+      SeenQuestionnaire asked{
+          participant_id, next->position, protocol.timeout_s, {}, protocol.scale_points};
+      for (const QuestionnaireItem& item : protocol.items) asked.item_ids.push_back(item.id);
+      const std::vector<int> values = responder_(asked, run);
       if (values.size() != protocol.items.size())
         throw std::runtime_error("the questionnaire needs one answer per item");
       for (std::size_t i = 0; i < values.size(); ++i) {

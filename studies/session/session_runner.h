@@ -16,9 +16,20 @@
 
 namespace handlab::studies {
 
-// Answers for the questionnaire after a trial: one value per protocol item, 1..scale.
+// What a questionnaire's responder is told of the trial it answers for: who answers, the
+// trial's place, its time limit and the items. Nothing of the condition, the strategy or the
+// labels (a person's answers come from what it went through: the TrialRun).
+struct SeenQuestionnaire {
+  std::string participant_id;
+  int position = 0;
+  double timeout_s = 0.0;
+  std::vector<std::string> item_ids;
+  int scale_points = 5;
+};
+
+// Answers for the questionnaire after a trial: one value per item, 1..scale.
 using QuestionnaireResponder =
-    std::function<std::vector<int>(const Protocol&, const TrialSetup&, const TrialRun&)>;
+    std::function<std::vector<int>(const SeenQuestionnaire&, const TrialRun&)>;
 
 // The scripted participant's answers: the middle of the scale for every item.
 QuestionnaireResponder fixed_responder();

@@ -109,28 +109,23 @@ std::string TrackerKind::name() const {
   return path_;
 }
 
-std::unique_ptr<SimulatedParticipant> participant_for_trial(const TrialSetup& setup,
-                                                            std::uint64_t seed,
-                                                            const OwnHand& own_hand,
-                                                            double rate_hz) {
-  SimulatedPerson person;
-  person.participant = setup.participant;
-  person.motor = draw_motor_parameters(seed, setup.participant.id);
-  person.seed = person_seed(seed, setup.participant.id);
-  TrialContext context;
-  context.position = setup.planned.position;
-  context.rate_hz = rate_hz;
-  // Trials done with the cube it sees: the sizes of the schedule's earlier trials.
-  const std::vector<Condition> conditions = setup.protocol->conditions();
-  const double cube = setup.condition.cube_size;
-  context.repetition = 1;
-  for (const PlannedTrial& t :
-       plan_schedule(*setup.protocol, setup.participant.id, setup.participant.enrolment))
-    if (t.position < setup.planned.position &&
-        conditions[std::size_t(t.condition)].cube_size == cube)
-      ++context.repetition;
-  context.hand = seen_geometry(hand::build_simulated_hand(setup.condition.simulated_hand));
-  return std::make_unique<SimulatedParticipant>(person, own_hand, std::move(context));
+SeenTrial seen_trial_of(const TrialSetup& setup, double rate_hz) {
+  SeenTrial seen;
+  seen.position = setup.planned.position;
+  seen.rate_hz = rate_hz;
+  seen.hand = seen_geometry(hand::build_simulated_hand(setup.condition.simulated_hand));
+  return seen;
+}
+
+std::unique_ptr<SimulatedParticipant> PipelineTrialDriver::simulated_participant(
+    const store::Participant& person, const SeenTrial& trial, const std::string& memory) {
+  if (!own_hand_ || own_hand_length_ != person.hand_length) {
+    own_hand_ = std::make_unique<OwnHand>(person.hand_length);
+    own_hand_length_ = person.hand_length;
+  }
+  return std::make_unique<SimulatedParticipant>(
+      simulated_person(person, tracker_.seed()), *own_hand_, trial,
+      memory.empty() ? ParticipantMemory{} : memory_from_json(memory));
 }
 
 struct PipelineTrialDriver::SoftHand {
@@ -307,12 +302,8 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   tracking::LiveFrameSource* live = nullptr;  // the tracker, when live
   std::unique_ptr<SimulatedParticipant> participant;
   if (tracker_.is_simulated()) {
-    if (!own_hand_ || own_hand_->skeleton().bones.empty() ||
-        own_hand_length_ != setup.participant.hand_length) {
-      own_hand_ = std::make_unique<OwnHand>(setup.participant.hand_length);
-      own_hand_length_ = setup.participant.hand_length;
-    }
-    participant = participant_for_trial(setup, tracker_.seed(), *own_hand_, rate_hz_);
+    participant = simulated_participant(setup.participant, seen_trial_of(setup, rate_hz_),
+                                        setup.participant_memory);
   } else if (tracker_.is_live()) {
     auto source = tracker_.open_live();
     live = source.get();
@@ -390,7 +381,10 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   run.grasps = task.grasps();
   run.drops = task.drops();
   for (const task::TaskEvent& e : task.events()) run.events.emplace_back(e.time, e.kind);
-  if (participant) run.experience = participant->experience();
+  if (participant) {
+    run.experience = participant->experience();
+    run.participant_memory = memory_to_json(participant->memory_after());
+  }
   return run;
 }
 

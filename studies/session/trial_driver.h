@@ -19,6 +19,7 @@
 #include "core/task/scene_layout.h"
 #include "core/tracking/frame_source.h"
 #include "studies/participant/observation.h"
+#include "studies/participant/seen_trial.h"
 #include "studies/participant/trial_experience.h"
 #include "studies/protocol/protocol.h"
 
@@ -32,6 +33,8 @@ struct TrialSetup {
   store::Participant participant;
   store::PlannedTrialRow planned;
   retarget::Calibration calibration;
+  // A simulated participant's memory from its earlier trials (JSON; empty before its first).
+  std::string participant_memory;
 };
 
 struct TrialRun {
@@ -40,8 +43,10 @@ struct TrialRun {
   int grasps = 0, drops = 0;
   long frames = 0;
   std::vector<std::pair<double, std::string>> events;
-  // A simulated participant's account of the trial (its questionnaire answers come from it).
+  // A simulated participant's account of the trial (its questionnaire answers come from it),
+  // and what it carries to its next trial (JSON).
   std::optional<TrialExperience> experience;
+  std::string participant_memory;
   // Stopped by the experimenter before its end (SessionControl::request_stop): no result.
   bool aborted = false;
   // What the soft hand's simulator steps cost in the trial (none on the grasp proxy).
@@ -124,14 +129,10 @@ class SimulatedParticipant;
 Observation display_observation(const task::HandCubeWorld& world, const task::SceneLayout& layout,
                                 double time);
 
-// The simulated participant of a trial, built from what a person can know of it: its own
-// parameters (from the tracker's seed and the participant's id), the trial's place, how many
-// trials it has done with the cube it sees, and how the simulated hand looks. Nothing of
-// the condition but its cube size reaches it (SimulatedParticipantBlinding tests this).
-std::unique_ptr<SimulatedParticipant> participant_for_trial(const TrialSetup& setup,
-                                                            std::uint64_t seed,
-                                                            const OwnHand& own_hand,
-                                                            double rate_hz);
+// What a person can know of a trial before it starts: its place in the schedule and how the
+// simulated hand looks. The one place where a trial's condition is reduced to what is seen;
+// the simulated participant is built from this alone (SimulatedParticipantBlinding).
+SeenTrial seen_trial_of(const TrialSetup& setup, double rate_hz);
 
 class PipelineTrialDriver : public TrialDriver {
  public:
@@ -151,6 +152,11 @@ class PipelineTrialDriver : public TrialDriver {
   }
 
  private:
+  // The simulated participant of a trial: from who it is, what it sees of the trial and what
+  // it remembers; nothing of the condition is in scope here.
+  std::unique_ptr<SimulatedParticipant> simulated_participant(const store::Participant& person,
+                                                              const SeenTrial& trial,
+                                                              const std::string& memory);
   // `simulated` is the condition's simulated hand (the scripted pinch closes on its tips).
   std::unique_ptr<tracking::FrameSource> open_tracker(const TrialSetup& setup,
                                                       const hand::Skeleton& simulated) const;

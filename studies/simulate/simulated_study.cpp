@@ -50,6 +50,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
     const SimulatedPerson person = draw_person(options.population, options.seed, i);
     plans.push_back(planned_rows(protocol, person.participant.id, i));
     study.add_participant(person.participant, plans.back());
+    study.add_simulated_person(simulated_person_row(person, options.seed));
     people.push_back(person.participant);
     planned_total += int(plans.back().size());
   }

@@ -176,7 +176,8 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
     // Back to schema 1 as a file of the first release looked.
     db.database().exec(
         "DROP INDEX event_by_trial; DROP INDEX trial_by_planned; ALTER TABLE trial DROP COLUMN "
-        "frames; ALTER TABLE participant DROP COLUMN simulated; PRAGMA user_version = 1");
+        "frames; ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
+        "DROP TABLE simulated_memory; PRAGMA user_version = 1");
   }
   StudyStore db(path);
   EXPECT_EQ(db.study().schema_version, kSchemaVersion);
@@ -191,8 +192,15 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
   const std::int64_t t = db.begin_trial(db.next_trial("P01")->id, s);
   TrialOutcome o;
   o.frames = 12;
+  o.participant_memory = "{\"trials\":1}";
   db.finish_trial(t, o);
   EXPECT_EQ(db.trials("P01")[0].frames, 12);
+  // Schema 4: a simulated participant's model and the memory it carries.
+  EXPECT_EQ(db.participant_memory("P01"), "{\"trials\":1}");
+  EXPECT_FALSE(db.simulated_person("S01"));
+  db.add_simulated_person({"S01", "model 2", "abc", "{}", 7});
+  EXPECT_EQ(db.simulated_person("S01")->seed, 7u);
+  EXPECT_EQ(db.simulated_person("S01")->model_sha256, "abc");
 }
 
 TEST(StudyStore, RefusesBadFilesWithoutChangingThem) {

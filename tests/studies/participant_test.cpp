@@ -26,6 +26,15 @@ namespace {
 
 const std::string kSource = HANDLAB_SOURCE_DIR;
 
+// The participant of a trial as the driver builds it: from who it is, what it sees of the trial
+// (seen_trial_of, the one reduction of a condition) and what it remembers.
+std::unique_ptr<SimulatedParticipant> participant_for(const TrialSetup& setup, std::uint64_t seed,
+                                                      const OwnHand& own,
+                                                      const ParticipantMemory& memory = {}) {
+  return std::make_unique<SimulatedParticipant>(simulated_person(setup.participant, seed), own,
+                                                seen_trial_of(setup, 120.0), memory);
+}
+
 TEST(MotorPrimitives, MinimumJerkAndFitts) {
   EXPECT_EQ(minimum_jerk(0.0), 0.0);
   EXPECT_EQ(minimum_jerk(1.0), 1.0);
@@ -171,7 +180,7 @@ ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& 
 // The blinding test: participants built for the same person and trial place in conditions
 // that differ only in the strategy (its label and its flag), fed the same observations, send
 // the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
-// the participant but the cube it sees (participant_for_trial's inputs and TrialContext).
+// the participant but what seen_trial_of gives (SeenTrial).
 TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy) {
   const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
   PipelineTrialDriver driver(TrackerKind::simulated(5));
@@ -193,11 +202,11 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
     ASSERT_EQ(setups.size(), 2u);
     ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
     ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
-    auto first = participant_for_trial(setups[0], 5, own, 120.0);
+    auto first = participant_for(setups[0], 5, own);
     const ClosedLoop loop = run_closed_loop(*first, setups[0]);
     EXPECT_TRUE(loop.success) << cube;
     EXPECT_GT(first->experience().grasp_attempts, 0);
-    auto second = participant_for_trial(setups[1], 5, own, 120.0);
+    auto second = participant_for(setups[1], 5, own);
     ASSERT_GT(loop.sent.size(), 120u);
     for (std::size_t k = 0; k < loop.sent.size(); ++k) {
       const tracking::TrackedFrame f = second->act(loop.shown[k]);
@@ -211,7 +220,7 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
     EXPECT_EQ(second->experience().grasp_attempts, first->experience().grasp_attempts);
     EXPECT_EQ(second->experience().corrections, first->experience().corrections);
     // And the observations matter: a cube seen elsewhere changes what it sends.
-    auto third = participant_for_trial(setups[1], 5, own, 120.0);
+    auto third = participant_for(setups[1], 5, own);
     bool differs = false;
     for (std::size_t k = 0; k < loop.sent.size() && !differs; ++k) {
       Observation o = loop.shown[k];
@@ -305,8 +314,8 @@ TEST(SimulatedParticipantCare, WipesOffACubeCaughtOnItsThumb) {
   layout.cube_size = 0.01;
   CaughtCubeWorld world(sim, layout);
   retarget::Retargeter retargeter(retarget::Strategy::kOurs, sim, setup.calibration);
-  auto participant = participant_for_trial(setup, 5, own, 120.0);
-  auto blind = participant_for_trial(swapped, 5, own, 120.0);
+  auto participant = participant_for(setup, 5, own);
+  auto blind = participant_for(swapped, 5, own);
   Observation shown = display_observation(world, layout, 0.0);
   bool same_frames = true;
   double freed_at = -1.0, nearest_after = INFINITY;

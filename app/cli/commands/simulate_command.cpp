@@ -71,7 +71,9 @@ int run_simulate(const std::vector<std::string>& argv) {
     std::cout << report.participants << " simulated participants, " << report.trials << " trials ("
               << report.completed << " completed, " << report.timeouts << " timed out) in "
               << std::fixed << std::setprecision(1) << report.seconds << " s for "
-              << report.simulated_seconds << " s of trials; " << args.text("db") << "\n\n";
+              << report.simulated_seconds << " s of trials; " << args.text("db") << "\n"
+              << studies::kParticipantModelVersion << ", parameters sha256 "
+              << studies::model_sha256() << "\n\n";
     std::cout << std::left << std::setw(16) << "condition" << std::right << std::setw(8) << "trials"
               << std::setw(11) << "completed" << std::setw(9) << "success" << std::setw(9)
               << "timeout" << std::setw(12) << "mean time" << std::setw(8) << "drops\n";
@@ -110,6 +112,8 @@ int run_simulate(const std::vector<std::string>& argv) {
           .field("seed", static_cast<long long>(options.seed))
           .field("jobs", options.jobs)
           .field("world", world)
+          .field("model", studies::kParticipantModelVersion)
+          .field("model_sha256", studies::model_sha256())
           .field("trials", report.trials)
           .field("completed", report.completed)
           .field("timeouts", report.timeouts)

@@ -1,0 +1,80 @@
+#include "studies/participant/participant_memory.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/util/json_value.h"
+#include "core/util/json_writer.h"
+
+namespace handlab::studies {
+namespace {
+
+bool same_size(double a, double b) {
+  return std::abs(a - b) < 0.0005;
+}
+
+}  // namespace
+
+const CubeMemory* ParticipantMemory::cube(double size) const {
+  for (const CubeMemory& c : cubes)
+    if (same_size(c.cube_size, size)) return &c;
+  return nullptr;
+}
+
+ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
+                           const TwoRateRates& contact_rates) {
+  ParticipantMemory next = memory;
+  ++next.trials;
+  CubeMemory* cube = nullptr;
+  for (CubeMemory& c : next.cubes)
+    if (same_size(c.cube_size, trial.cube_size)) cube = &c;
+  if (!cube) {
+    next.cubes.emplace_back();
+    next.cubes.back().cube_size = trial.cube_size;
+    cube = &next.cubes.back();
+  }
+  ++cube->trials;
+  cube->contact = trial.contact_seen ? adapt(cube->contact, contact_rates, trial.contact_error)
+                                     : forget(cube->contact, contact_rates);
+  // The grip of the last lift that held is the next one's (Johansson & Westling 1988).
+  if (trial.held) cube->squeeze = trial.squeeze;
+  if (trial.seen_gain > 0) cube->seen_gain = trial.seen_gain;
+  return next;
+}
+
+std::string memory_to_json(const ParticipantMemory& m) {
+  std::ostringstream out;
+  util::JsonWriter w(out, 0);
+  w.begin_object().field("trials", m.trials).key("cubes").begin_array();
+  for (const CubeMemory& c : m.cubes)
+    w.begin_object()
+        .field("cube_size", c.cube_size)
+        .field("trials", c.trials)
+        .field("contact_fast", c.contact.fast)
+        .field("contact_slow", c.contact.slow)
+        .field("squeeze", c.squeeze)
+        .field("seen_gain", c.seen_gain)
+        .end_object();
+  w.end_array().end_object();
+  return out.str();
+}
+
+ParticipantMemory memory_from_json(const std::string& text) {
+  try {
+    const util::JsonValue v = util::JsonValue::parse(text);
+    ParticipantMemory m;
+    m.trials = int(v["trials"].as_number());
+    for (const util::JsonValue& c : v["cubes"].as_array())
+      m.cubes.push_back({c["cube_size"].as_number(),
+                         int(c["trials"].as_number()),
+                         {c["contact_fast"].as_number(), c["contact_slow"].as_number()},
+                         c["squeeze"].as_number(),
+                         c["seen_gain"].as_number()});
+    return m;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("not a simulated participant's memory: ") + e.what());
+  }
+}
+
+}  // namespace handlab::studies

@@ -1,0 +1,43 @@
+// What a simulated person carries from one trial to the next, built only from what it saw and
+// did (its TrialExperience): how many trials it has done, and per cube size it has seen (the
+// one cue that tells its trials apart: it never knows the strategy) how often it has handled
+// that cube, where it learnt to expect its fingers to meet it, how far past contact it closes,
+// and how the seen fingers' opening follows its own. Stored as JSON with each trial's result,
+// so that a resumed session goes on with what it learnt.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "studies/participant/trial_experience.h"
+#include "studies/participant/two_rate_adaptation.h"
+
+namespace handlab::studies {
+
+struct CubeMemory {
+  double cube_size = 0.0;  // m, as seen
+  int trials = 0;          // trials done with it
+  TwoRateState contact;    // m: learnt correction of where its aperture meets the cube
+  double squeeze = 0.0;    // m: the last grasp's closing past contact
+  double seen_gain = 0.0;  // seen per own aperture, its last estimate (0: none yet)
+};
+
+struct ParticipantMemory {
+  int trials = 0;  // trials done
+  std::vector<CubeMemory> cubes;
+
+  // What it remembers of a cube of this size (to the millimetre, as it can tell sizes apart);
+  // null before it has seen one.
+  const CubeMemory* cube(double size) const;
+};
+
+// The memory after a trial: its counts advanced, the closing's correction adapted by the
+// contact error it saw (or only forgetting, without one), the squeeze and gain of its end.
+ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
+                           const TwoRateRates& contact_rates);
+
+std::string memory_to_json(const ParticipantMemory& memory);
+// Throws std::runtime_error on text that is not a memory.
+ParticipantMemory memory_from_json(const std::string& text);
+
+}  // namespace handlab::studies

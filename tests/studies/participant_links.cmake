@@ -1,0 +1,30 @@
+# The simulated participant shares no code with any retargeting strategy: no file of
+# studies/participant includes core/retarget, and the participant's library uses no symbol of
+# handlab::retarget (its undefined symbols, as the linker would resolve them).
+#   cmake -DSOURCE_DIR=... -DLIBRARY=libhandlab_participant.a -DNM=nm -P participant_links.cmake
+file(GLOB sources "${SOURCE_DIR}/studies/participant/*.h" "${SOURCE_DIR}/studies/participant/*.cpp")
+list(LENGTH sources count)
+if(count LESS 10)
+  message(FATAL_ERROR "found only ${count} files of studies/participant under ${SOURCE_DIR}")
+endif()
+foreach(source IN LISTS sources)
+  file(STRINGS "${source}" includes REGEX "^#include \"core/retarget/")
+  if(includes)
+    message(FATAL_ERROR "${source} includes a retargeting header: ${includes}")
+  endif()
+endforeach()
+execute_process(COMMAND "${NM}" -C --undefined-only "${LIBRARY}" OUTPUT_VARIABLE symbols
+                RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${NM} could not read ${LIBRARY}")
+endif()
+string(REGEX MATCHALL "handlab::hand::[A-Za-z_]+" hand_symbols "${symbols}")
+if(NOT hand_symbols)
+  message(FATAL_ERROR "no handlab::hand symbol used by ${LIBRARY}: nm read nothing useful")
+endif()
+string(REGEX MATCHALL "handlab::retarget::[A-Za-z_:]+" used "${symbols}")
+if(used)
+  list(REMOVE_DUPLICATES used)
+  message(FATAL_ERROR "the participant uses retargeting code: ${used}")
+endif()
+message(STATUS "${count} files, no retargeting included or linked")
