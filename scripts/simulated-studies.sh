@@ -3,7 +3,7 @@
 # FIRST, FIRST+1, ...) and sets them side by side with the paper's results (`handlab-cli
 # replications`: per condition the trials completed; per test the statistic and p of each
 # study, their median and range, and how many studies found it). A study already in OUT is
-# not rerun. docs/simulated-participants.md, "Simulated studies of one binary".
+# not rerun. docs/simulated-participants.md, "A simulated study" and "Studies side by side".
 #   scripts/simulated-studies.sh [K=10] [N=20] [FIRST=1] [OUT=build/simulated-studies]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,6 +1,7 @@
 // The fixed constants of a simulated participant's behaviour, the same for every person (the
 // per-person parameters are MotorParameters): heights, margins, the looks it takes. Each with
-// its reason or source in docs/simulated-participants.md; part of the model's hash.
+// its reason or source in docs/simulated-participants.md; part of the model's hash (so the
+// struct holds doubles only).
 #pragma once
 
 namespace handlab::studies {
@@ -15,7 +16,7 @@ struct Behaviour {
   double release_opening = 0.03;  // m the aperture opens to let go
   double slow_closing = 0.02;     // m/s when the planned closing did not reach the cube
   double servo_gain = 3.0;        // 1/s, continuous visual correction
-  int max_corrections = 3;        // corrective submovements per aimed movement
+  double max_corrections = 3;     // corrective submovements per aimed movement
   // The cube looks at rest when it stays within rest_travel of where it was for rest_look: a
   // person sees whether it still slides or tumbles, not a fingertip's tremor nudging it.
   double rest_travel = 0.002;           // m
@@ -48,6 +49,9 @@ struct Behaviour {
   double at_rest_over_floor = 0.01;  // m: a cube this high after letting go is still on the hand
   double home_height = 0.15, home_back = 0.12;  // m: where the hand rests before a trial
   double rest_aperture = 0.04;                  // m: the loosely open fingers at rest
+  // m: the hand length at which the peak aperture's margin is the drawn intercept (the
+  // study sample's mean); a person's margin scales with its hand.
+  double reference_hand_length = 0.188;
 };
 
 inline constexpr Behaviour kBehaviour{};

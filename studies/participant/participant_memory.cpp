@@ -39,7 +39,6 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
                                      : forget(cube->contact, contact_rates);
   // The grip of the last lift that held is the next one's (Johansson & Westling 1988).
   if (trial.held) cube->squeeze = trial.squeeze;
-  if (trial.seen_gain > 0) cube->seen_gain = trial.seen_gain;
   return next;
 }
 
@@ -54,7 +53,6 @@ std::string memory_to_json(const ParticipantMemory& m) {
         .field("contact_fast", c.contact.fast)
         .field("contact_slow", c.contact.slow)
         .field("squeeze", c.squeeze)
-        .field("seen_gain", c.seen_gain)
         .end_object();
   w.end_array().end_object();
   return out.str();
@@ -69,8 +67,7 @@ ParticipantMemory memory_from_json(const std::string& text) {
       m.cubes.push_back({c["cube_size"].as_number(),
                          int(c["trials"].as_number()),
                          {c["contact_fast"].as_number(), c["contact_slow"].as_number()},
-                         c["squeeze"].as_number(),
-                         c["seen_gain"].as_number()});
+                         c["squeeze"].as_number()});
     return m;
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("not a simulated participant's memory: ") + e.what());

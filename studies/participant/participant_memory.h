@@ -1,8 +1,8 @@
 // What a simulated person carries from one trial to the next, built only from what it saw and
 // did (its TrialExperience): how many trials it has done, and per cube size it has seen (the
 // one cue that tells its trials apart: it never knows the strategy) how often it has handled
-// that cube, where it learnt to expect its fingers to meet it, how far past contact it closes,
-// and how the seen fingers' opening follows its own. Stored as JSON with each trial's result,
+// that cube, where it learnt to expect its fingers to meet it, and how far past contact it
+// closes. Stored as JSON with each trial's result,
 // so that a resumed session goes on with what it learnt.
 #pragma once
 
@@ -18,8 +18,7 @@ struct CubeMemory {
   double cube_size = 0.0;  // m, as seen
   int trials = 0;          // trials done with it
   TwoRateState contact;    // m: learnt correction of where its aperture meets the cube
-  double squeeze = 0.0;    // m: the last grasp's closing past contact
-  double seen_gain = 0.0;  // seen per own aperture, its last estimate (0: none yet)
+  double squeeze = 0.0;    // m: the closing past contact of the last grasp that held
 };
 
 struct ParticipantMemory {
@@ -32,7 +31,7 @@ struct ParticipantMemory {
 };
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by the
-// contact error it saw (or only forgetting, without one), the squeeze and gain of its end.
+// contact error it saw (or only forgetting, without one), the grip of a lift that held.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
                            const TwoRateRates& contact_rates);
 

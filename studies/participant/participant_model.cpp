@@ -1,5 +1,7 @@
 #include "studies/participant/participant_model.h"
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -74,41 +76,12 @@ void write_motor(util::JsonWriter& w, const MotorParameters& m) {
       .end_object();
 }
 
+// Every constant of the behaviour, in declaration order: the struct holds doubles only, so
+// none can be left out of the hash.
 void write_behaviour(util::JsonWriter& w, const Behaviour& b) {
-  const double values[] = {b.approach_height,
-                           b.lift_height,
-                           b.withdraw_height,
-                           b.place_depth,
-                           b.release_opening,
-                           b.slow_closing,
-                           b.servo_gain,
-                           double(b.max_corrections),
-                           b.rest_travel,
-                           b.rest_look,
-                           b.pre_contact_margin,
-                           b.closing_past_contact,
-                           b.grip_loading,
-                           b.tip_pinch_below,
-                           b.pad_on_face,
-                           b.caught_height,
-                           b.caught_look,
-                           b.wipe_depth,
-                           b.reopen_time,
-                           b.reopen_rise_time,
-                           b.gain_min_aperture,
-                           b.gain_smoothing,
-                           b.min_gain,
-                           b.min_tolerance,
-                           b.reach_tolerance_share,
-                           b.centring_tolerance_share,
-                           b.min_clearance,
-                           b.loss_distance,
-                           b.placement_tolerance,
-                           b.placement_margin,
-                           b.at_rest_over_floor,
-                           b.home_height,
-                           b.home_back,
-                           b.rest_aperture};
+  constexpr std::size_t n = sizeof(Behaviour) / sizeof(double);
+  static_assert(sizeof(Behaviour) == n * sizeof(double), "Behaviour holds doubles only");
+  const auto values = std::bit_cast<std::array<double, n>>(b);
   w.begin_array();
   for (double v : values) w.value(v);
   w.end_array();

@@ -16,11 +16,12 @@ namespace handlab::studies {
 struct MotorParameters {
   double reaction_mu = 0.25, reaction_sigma = 0.03, reaction_tau = 0.10;  // s, ex-Gaussian
   double visual_delay = 0.12;                                             // s
-  double fitts_a = 0.50, fitts_b = 0.40;                                  // s, s/bit
-  double noise_constant = 0.0005;     // m: endpoint SD per axis, constant part
-  double noise_proportional = 0.02;   // endpoint SD per metre moved
-  double aperture_intercept = 0.075;  // m: peak aperture = this + slope * cube size
-  double aperture_slope = 0.14;
+  double fitts_a = 0.55, fitts_b = 0.41;                                  // s, s/bit
+  double noise_constant = 0.0005;    // m: endpoint SD per axis, constant part
+  double noise_proportional = 0.02;  // endpoint SD per metre moved
+  // m: peak aperture = this (scaled by hand length) + slope * object size
+  double aperture_intercept = 0.050;
+  double aperture_slope = 0.54;
   double peak_aperture_at = 0.65;                 // fraction of the reach
   double closing_time = 0.50;                     // s
   double tremor_hz = 10.0, tremor_rms = 0.00005;  // physiological tremor at the hand

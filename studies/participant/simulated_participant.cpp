@@ -137,12 +137,22 @@ double SimulatedParticipant::aperture_now() const {
   return aperture_from_ + minimum_jerk(u) * (aperture_to_ - aperture_from_);
 }
 
+// Its own hand's opening: the margin over the object scales with the hand (body-scaled
+// prehension), the object's share with the object.
 double SimulatedParticipant::peak_aperture(double cube_size) const {
-  return person_.motor.aperture_intercept + person_.motor.aperture_slope * cube_size;
+  const MotorParameters& m = person_.motor;
+  return m.aperture_intercept * person_.participant.hand_length / kB.reference_hand_length +
+         m.aperture_slope * cube_size;
 }
 
 double SimulatedParticipant::fitts(double distance, double width) const {
   return practised(fitts_time(person_.motor.fitts_a, person_.motor.fitts_b, distance, width));
+}
+
+// A corrective submovement continues the movement under way: it pays Fitts' slope for its
+// own amplitude and tolerance, not the intercept of starting a movement.
+double SimulatedParticipant::correction(double distance, double width) const {
+  return practised(fitts_time(0.0, person_.motor.fitts_b, distance, width));
 }
 
 void SimulatedParticipant::move_grip(const Eigen::Vector3d& target, double duration, bool noisy) {
@@ -168,7 +178,11 @@ void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
   const Eigen::Vector3d offset =
       s.hand ? Eigen::Vector3d(s.grip - own_at(o.time).grip) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d target = target_seen - offset;
-  const double duration = fitts((target - (grip_.at(time_) + servo_)).norm(), o.cube_size);
+  // The hand must end with the open pads either side of the cube: the clearance they leave
+  // is the reach's tolerance.
+  const double duration =
+      fitts((target - (grip_.at(time_) + servo_)).norm(),
+            std::max(peak_aperture(o.cube_size) - o.cube_size, kB.min_clearance));
   move_grip(target, duration, true);
   move_aperture(peak_aperture(o.cube_size), person_.motor.peak_aperture_at * duration);
   corrections_this_move_ = 0;
@@ -239,7 +253,7 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
   if (s.hand && error.norm() > tolerance && corrections_this_move_ < kB.max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
-    move_grip(grip_.at(time_) + servo_ + error, fitts(error.norm(), 2 * tolerance), true);
+    move_grip(grip_.at(time_) + servo_ + error, correction(error.norm(), 2 * tolerance), true);
     phase_ = Phase::kReach;
     return;
   }
@@ -264,7 +278,7 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   if (s.hand && error.norm() > tolerance && corrections_this_move_ < kB.max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
-    move_grip(grip_.at(time_) + servo_ + error, fitts(error.norm(), 2 * tolerance), true);
+    move_grip(grip_.at(time_) + servo_ + error, correction(error.norm(), 2 * tolerance), true);
     phase_ = Phase::kDescend;
     return;
   }
@@ -341,12 +355,15 @@ void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bo
       ++corrections_this_move_;
       ++experience_.corrections;
     }
-    move_grip(own_now + error, fitts(error.norm(), first ? o.zone_size : 2 * tolerance), true);
+    move_grip(own_now + error,
+              first ? fitts(error.norm(), o.zone_size) : correction(error.norm(), 2 * tolerance),
+              true);
     phase_ = Phase::kTransport;
     return;
   }
   const double drop = cube_now.y() - (0.5 * o.cube_size - kB.place_depth);
-  move_grip(own_now - up(drop), fitts(std::abs(drop), o.cube_size), false);
+  // Down onto the floor, which stops the cube: no endpoint to hit (one bit, as the lift).
+  move_grip(own_now - up(drop), fitts(std::abs(drop), std::abs(drop)), false);
   phase_ = Phase::kLower;
 }
 
@@ -503,28 +520,26 @@ void SimulatedParticipant::start(const Observation& first) {
   grip_ = MinimumJerkMove{home, home, 0.0, dt_};
   aperture_from_ = aperture_to_ = kB.rest_aperture;
   experience_.cube_size = first.cube_size;
-  // What it remembers of this cube: practice with it, where its pads met it, the grip that
-  // held it, how the seen fingers followed its own.
+  // What it remembers of this cube: practice with it, where its pads met it (an offset, which
+  // people carry over; a changed gain between seen and felt size they do not: Safstrom & Edin
+  // 2005), the grip that last held it.
   const CubeMemory* cube = memory_.cube(first.cube_size);
   practised_movement_ =
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
   if (cube) {
     contact_correction_ = cube->contact.correction();
     extra_squeeze_ = held_squeeze_ = cube->squeeze;
-    if (cube->seen_gain > 0) {
-      gain_estimate_ = cube->seen_gain;
-      gain_samples_ = 1;
-    }
   }
   // What it expects the trial to take: its own plan without errors.
   const double cube_size = first.cube_size;
-  experience_.expected_time = practised_general_ * (m.reaction_mu + m.reaction_tau) +
-                              fitts((first.zone_a - home).norm(), cube_size) +
-                              fitts(kB.approach_height, peak_aperture(cube_size) - cube_size) +
-                              practised(m.closing_time) + practised_general_ * m.confirm_dwell +
-                              fitts(kB.lift_height, kB.lift_height) +
-                              fitts((first.zone_b - first.zone_a).norm(), first.zone_size) +
-                              fitts(kB.lift_height, cube_size);
+  experience_.expected_time =
+      practised_general_ * (m.reaction_mu + m.reaction_tau) +
+      fitts((first.zone_a - home).norm(),
+            std::max(peak_aperture(cube_size) - cube_size, kB.min_clearance)) +
+      fitts(kB.approach_height, peak_aperture(cube_size) - cube_size) + practised(m.closing_time) +
+      practised_general_ * m.confirm_dwell + fitts(kB.lift_height, kB.lift_height) +
+      fitts((first.zone_b - first.zone_a).norm(), first.zone_size) +
+      fitts(kB.lift_height, kB.lift_height);
 }
 
 tracking::TrackedFrame SimulatedParticipant::act(const Observation& shown) {
@@ -543,7 +558,6 @@ tracking::TrackedFrame SimulatedParticipant::act(const Observation& shown) {
   while (history_.size() > 2 && history_[1].time <= time_ - m.visual_delay - 2 * dt_)
     history_.pop_front();
 
-  experience_.seen_gain = gain_samples_ > 0 ? gain_estimate_ : 0.0;
   Eigen::Vector3d tremor;
   for (int i = 0; i < 3; ++i)
     tremor[i] = std::sqrt(2.0) * m.tremor_rms *

@@ -87,6 +87,7 @@ class SimulatedParticipant {
   double practised(double duration) const { return duration * practised_movement_; }
   double peak_aperture(double cube_size) const;
   double fitts(double distance, double width) const;
+  double correction(double distance, double width) const;
   void move_grip(const Eigen::Vector3d& target, double duration, bool noisy);
   void move_aperture(double target, double duration);
   void plan_reach(const Observation& o, const Seen& s);

@@ -15,9 +15,8 @@ struct TrialExperience {
   // them to meet the cube (m; > 0: sooner than expected). Only when it saw contact.
   bool contact_seen = false;
   double contact_error = 0.0;
-  bool held = false;       // it set the cube down in B with the grasp it lifted it with
-  double squeeze = 0.0;    // m: that grasp's closing past contact (when held)
-  double seen_gain = 0.0;  // its last estimate of seen per own aperture (0: none made)
+  bool held = false;     // it set the cube down in B with the grasp it lifted it with
+  double squeeze = 0.0;  // m: that grasp's closing past contact (when held)
 };
 
 }  // namespace handlab::studies

@@ -56,10 +56,8 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   fine.contact_error = 0.004;
   fine.held = true;
   fine.squeeze = 0.006;
-  fine.seen_gain = 1.2;
   TrialExperience gross;
   gross.cube_size = 0.06;  // no contact seen, not held: only forgetting, nothing taken
-  gross.seen_gain = 0.0;
   ParticipantMemory m = remember({}, fine, r);
   m = remember(m, gross, r);
   m = remember(m, fine, r);
@@ -70,12 +68,10 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   EXPECT_EQ(f->trials, 2);
   EXPECT_DOUBLE_EQ(f->contact.fast, adapt(adapt({}, r, 0.004), r, 0.004).fast);
   EXPECT_DOUBLE_EQ(f->squeeze, 0.006);
-  EXPECT_DOUBLE_EQ(f->seen_gain, 1.2);
   const CubeMemory* g = m.cube(0.06);
   ASSERT_NE(g, nullptr);
   EXPECT_EQ(g->trials, 1);
   EXPECT_EQ(g->contact.correction(), 0.0);
-  EXPECT_EQ(g->seen_gain, 0.0);
   EXPECT_EQ(m.cube(0.03), nullptr);
   const std::string json = memory_to_json(m);
   EXPECT_EQ(memory_to_json(memory_from_json(json)), json);
