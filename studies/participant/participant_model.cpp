@@ -21,9 +21,9 @@ const std::vector<ParameterDistribution>& motor_distributions() {
   static const std::vector<ParameterDistribution> d = {
       {"reaction_mu", 0.25, 0.03, 0.15, 0.40},
       {"visual_delay", 0.12, 0.02, 0.08, 0.18},
-      {"fitts_a", 0.50, 0.10, 0.30, 0.90},
-      {"fitts_b", 0.40, 0.05, 0.25, 0.60},
-      {"aperture_intercept", 0.075, 0.008, 0.055, 0.095},
+      {"fitts_a", 0.55, 0.10, 0.30, 0.90},
+      {"fitts_b", 0.41, 0.05, 0.25, 0.60},
+      {"aperture_intercept", 0.050, 0.008, 0.030, 0.070},
       {"closing_time", 0.50, 0.08, 0.30, 0.80},
       {"tremor_hz", 10.0, 0.0, 8.0, 12.0},
       {"practice_rate", 0.35, 0.10, 0.10, 0.70},

@@ -33,6 +33,12 @@ class SimulatedParticipant {
   // What it carries out of the trial (so far): its memory with this trial's experience.
   ParticipantMemory memory_after() const;
   const char* phase_name() const;
+  // For traces and kinematics: its own hand's aperture between the pads (m) and grip point,
+  // as sent with the last frame.
+  double own_aperture() const { return history_.empty() ? 0.0 : history_.back().aperture; }
+  Eigen::Vector3d own_grip() const {
+    return history_.empty() ? Eigen::Vector3d::Zero() : history_.back().grip;
+  }
   // For traces: the pads' gaps to the cube in the newest observation it has taken in.
   double last_gap(bool thumb) const { return thumb ? last_seen_.thumb_gap : last_seen_.index_gap; }
 

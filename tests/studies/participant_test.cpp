@@ -147,6 +147,8 @@ TEST(QuestionnaireModel, AnswersFollowTheExperience) {
 struct ClosedLoop {
   std::vector<Observation> shown;
   std::vector<tracking::TrackedFrame> sent;
+  std::vector<double> own_aperture;       // per frame sent
+  std::vector<Eigen::Vector3d> own_grip;  // per frame sent
   bool success = false;
 };
 
@@ -168,6 +170,8 @@ ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& 
   for (long step = 1; !task.finished(); ++step) {
     const double t = double(step) / 120.0;
     loop.sent.push_back(participant.act(loop.shown.back()));
+    loop.own_aperture.push_back(participant.own_aperture());
+    loop.own_grip.push_back(participant.own_grip());
     const hand::HandPose pose = retargeter.retarget(loop.sent.back().hands.at(0)).pose;
     world.step(&pose, 1.0 / 120.0);
     task.update(task::observe_task(world, t));
@@ -229,6 +233,98 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
     }
     EXPECT_TRUE(differs);
   }
+}
+
+// The simulated people's reach-to-grasp beside published human kinematics (the table in
+// docs/simulated-participants.md, "Kinematics"): over cubes of 2 to 6 cm (the pad pinch) on
+// the grasp proxy, each person's first reach, measured from its own hand's trajectory:
+// - the peak grip aperture against the object's size: slope within 0.54 +- 2 x 0.04 (real
+//   objects, Cuijpers et al. 2006);
+// - the time of peak aperture within 55-80 % of the reach (two-thirds: Hu et al. 2005;
+//   closing with the low-velocity phase at about 75 %: Jeannerod 1984);
+// - the reach's movement time against its index of difficulty: slope and intercept within the
+//   range of the VR regressions (b 0.25-0.65 s/bit, a 0.2-1.15 s: Fig. 6a of "Metrics for 3D
+//   Object Pointing and Manipulation in Virtual Reality", IEEE RAM 2022).
+TEST(SimulatedParticipantKinematics, ReachAndGraspWithinPublishedRanges) {
+  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
+  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  Condition base;
+  for (const Condition& c : protocol.conditions())
+    if (!c.naive_strategy && c.cube_size == 0.06) base = c;
+  auto fit = [](const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = double(x.size());
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
+    }
+    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    return std::pair{slope, (sy - slope * sx) / n};
+  };
+  std::vector<double> slopes, intercepts;  // each person's reach time against ID
+  for (int who : {0, 2, 4, 6, 8, 10}) {
+    const SimulatedPerson person = draw_person(Population{}, 5, who);
+    const OwnHand own(person.participant.hand_length);
+    TrialSetup setup;
+    setup.protocol = &protocol;
+    setup.participant = person.participant;
+    setup.calibration = driver.calibrate(protocol, person.participant);
+    std::vector<double> sizes, peaks, ids, times;
+    for (double size : {0.02, 0.03, 0.04, 0.05, 0.06}) {
+      setup.condition = base;
+      setup.condition.cube_size = size;
+      auto participant = participant_for(setup, 5, own);
+      const ClosedLoop loop = run_closed_loop(*participant, setup);
+      // The reach, as kinematic studies mark it: from the hand's speed first exceeding 5 % of
+      // the reach's peak speed to its falling below that again.
+      std::vector<double> speed(loop.own_grip.size(), 0.0);
+      for (std::size_t k = 1; k < speed.size(); ++k)
+        speed[k] = (loop.own_grip[k] - loop.own_grip[k - 1]).norm() * 120.0;
+      // (The reach is the fastest movement of the trial's first 2.5 s.)
+      const double peak_speed = *std::max_element(speed.begin(), speed.begin() + 300);
+      std::size_t start = 0, end = 0;
+      for (std::size_t k = 1; k < speed.size(); ++k) {
+        if (start == 0 && speed[k] > 0.05 * peak_speed) start = k - 1;
+        if (start > 0 && k > start + 12 && speed[k] < 0.05 * peak_speed) {
+          end = k;
+          break;
+        }
+      }
+      ASSERT_GT(end, start) << size;
+      std::size_t at_peak = start;
+      for (std::size_t k = start; k <= end; ++k)
+        if (loop.own_aperture[k] > loop.own_aperture[at_peak] + 1e-6) at_peak = k;
+      const double share = double(at_peak - start) / double(end - start);
+      EXPECT_GT(share, 0.55) << who << " " << size;
+      EXPECT_LT(share, 0.80) << who << " " << size;
+      const double distance = (loop.own_grip[end] - loop.own_grip[start]).norm();
+      const double width = loop.own_aperture[at_peak] - size;  // the pads' clearance
+      sizes.push_back(size);
+      peaks.push_back(loop.own_aperture[at_peak]);
+      ids.push_back(std::log2(2 * distance / width));
+      times.push_back(double(end - start) / 120.0);
+    }
+    const auto [aperture_slope, aperture_intercept] = fit(sizes, peaks);
+    EXPECT_GT(aperture_slope, 0.46) << who;
+    EXPECT_LT(aperture_slope, 0.62) << who;
+    EXPECT_GT(aperture_intercept, 0.02) << who;
+    EXPECT_LT(aperture_intercept, 0.08) << who;
+    std::cout << person.participant.id << ": peak aperture " << aperture_intercept << " + "
+              << aperture_slope << " size\n";
+    const auto [b, a] = fit(ids, times);
+    slopes.push_back(b);
+    intercepts.push_back(a);
+  }
+  // The people's median (one person's fit over an ID range of about a bit is noisy).
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+  };
+  const double b = median(slopes), a = median(intercepts);
+  std::cout << "reach time " << a << " + " << b << " ID (medians over people)\n";
+  EXPECT_GT(b, 0.25);
+  EXPECT_LT(b, 0.65);
+  EXPECT_GT(a, 0.2);
+  EXPECT_LT(a, 1.15);
 }
 
 // A world whose cube sticks to the virtual thumb's tip when the tip comes up from it (as a
