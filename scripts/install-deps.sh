@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   # toolchain
-  build-essential cmake ninja-build pkg-config clang-format
+  build-essential cmake ninja-build pkg-config clang-format ccache
   # Qt 6: widgets, OpenGL widgets, SVG, WebSockets (+ test module in qt6-base-dev)
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-svg-dev qt6-websockets-dev
   qt6-qpa-plugins libgl-dev

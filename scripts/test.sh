@@ -7,11 +7,11 @@ jobs=$(nproc)
 
 scripts/install-deps.sh
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHANDLAB_WERROR=ON
+# The Release tree is scripts/run.sh's (the same preset): after run.sh nothing is rebuilt.
+cmake --preset release
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHANDLAB_WERROR=ON \
-  -DHANDLAB_SANITIZE=ON -DHANDLAB_BUILD_APP=OFF -DHANDLAB_BUILD_BENCHMARKS=OFF
+cmake --preset sanitize
 cmake --build build-sanitize -j "$jobs"
 ctest --test-dir build-sanitize --output-on-failure -j "$jobs"

@@ -71,6 +71,22 @@ std::vector<std::pair<std::string, std::string>> named(const std::vector<std::st
   return cell;
 }
 
+bool on_first_repetition(const std::vector<std::pair<std::string, std::string>>& cell) {
+  return std::any_of(cell.begin(), cell.end(),
+                     [](const auto& c) { return c.first == "repetition" && c.second == "1"; });
+}
+
+// Whether an effect ("hand_length:manipulation") has the term `variable` among its factors.
+bool involves(const std::string& effect, const std::string& variable) {
+  std::size_t from = 0;
+  while (from <= effect.size()) {
+    const std::size_t to = std::min(effect.find(':', from), effect.size());
+    if (effect.compare(from, to - from, variable) == 0 && to - from == variable.size()) return true;
+    from = to + 1;
+  }
+  return false;
+}
+
 }  // namespace
 
 StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrection correction,
@@ -104,6 +120,40 @@ StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrecti
                           true}});
       }
     append_sorted(pairs, out.tests);
+    // Each factor's levels on their first trial ("strategy:repetition: naive 1 - ours 1"): how
+    // they compare before any practice, Tukey over the factor-by-repetition cells.
+    std::vector<Ordered> first_trials;
+    for (const stats::PosthocResult& r : t.posthoc)
+      for (const stats::PairwiseContrast& c : r.contrasts) {
+        if (!c.by.empty() || c.first.size() != 2 || !on_first_repetition(c.first) ||
+            !on_first_repetition(c.second))
+          continue;
+        const Pair pair = in_order(protocol, c.first, c.second);
+        first_trials.push_back({pair.key,
+                                {c.effect + ": " + pair.label,
+                                 "t",
+                                 pair.swapped ? -c.t : c.t,
+                                 {c.df},
+                                 c.p_tukey,
+                                 true}});
+      }
+    append_sorted(first_trials, out.tests);
+    // The follow-up ANOVAs with one participant variable each (a covariate or a between
+    // factor): the effects that involve the variable, "hand_length:manipulation (covariate)".
+    for (const ParticipantVariableAnalysis& v : a.participant_variables) {
+      if (!v.result) continue;
+      const std::string kind = v.between ? " (between)" : " (covariate)";
+      for (const stats::AnovaEffect& e : v.result->anova.effects) {
+        if (!involves(e.effect, v.variable)) continue;
+        const power::JudgedP j = power::judged(e, correction, alpha);
+        out.tests.push_back({e.effect + kind,
+                             "F",
+                             e.f,
+                             {j.df_scale * e.df_num, j.df_scale * e.df_den},
+                             j.p,
+                             false});
+      }
+    }
     if (!t.dropped_subjects.empty())
       out.warning = std::to_string(t.dropped_subjects.size()) +
                     " participant(s) left out, lacking a result in some cell";

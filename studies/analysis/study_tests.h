@@ -3,7 +3,10 @@
 // `analyze` names them ("strategy:manipulation"), the cells of the protocol's factors compared
 // pairwise ("strategy:manipulation: naive fine - ours fine", Tukey), and per questionnaire
 // item Friedman's test ("precision (Friedman)") and the pairwise Wilcoxon tests
-// ("precision: naive fine - ours fine (Wilcoxon)", Bonferroni). A pair of cells is always
+// ("precision: naive fine - ours fine (Wilcoxon)", Bonferroni); each factor's levels on the
+// first repetition ("strategy:repetition: naive 1 - ours 1", Tukey); and the effects that involve a
+// participant variable in its follow-up ANOVA ("hand_length:manipulation (covariate)",
+// "vr_experience:strategy (between)"). A pair of cells is always
 // written in the protocol's order of levels (the first factor's first), whichever way the
 // data happened to order them, and its statistic's sign follows: t is the first cell's mean
 // minus the second's.

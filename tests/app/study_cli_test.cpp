@@ -572,14 +572,18 @@ TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
   EXPECT_TRUE(doc["pipeline"].as_bool());
   EXPECT_EQ(doc["sims"].as_number(), 1);
   ASSERT_EQ(doc["n"].size(), 1u);
-  EXPECT_EQ(doc["effects"].as_object().size(), 7u + 3u);  // the 2x2x2 ANOVA's, the items'
+  // The 2x2x2 ANOVA's, the three participant variables' four each, the items'.
+  EXPECT_EQ(doc["effects"].as_object().size(), 7u + 3u * 4u + 3u);
+  EXPECT_NO_THROW(doc["effects"]["hand_length:manipulation (covariate)"]);
   for (const auto& [name, power] : doc["effects"].as_object()) {
     ASSERT_EQ(power.size(), 1u) << name;
     const double p = power[0].as_number();
     EXPECT_TRUE(p == 0.0 || p == 1.0) << name << " " << p;  // one study: found or not
   }
   EXPECT_NO_THROW(doc["effects"]["strategy:manipulation:repetition"]);
-  EXPECT_EQ(doc["contrasts"].as_object().size(), 6u + 3 * 6u);  // Tukey pairs, items' pairs
+  // Tukey pairs, the first repetition's two, items' pairs.
+  EXPECT_EQ(doc["contrasts"].as_object().size(), 6u + 2u + 3 * 6u);
+  EXPECT_NO_THROW(doc["contrasts"]["strategy:repetition: naive 1 - ours 1"]);
   EXPECT_EQ(doc["seconds_per_n"].size(), 1u);
   EXPECT_GT(doc["seconds_per_n"][0].as_number(), 0.0);
   one_line_error(cli("power --protocol " + two_blocks + " --pipeline --model " + two_blocks),

@@ -4,14 +4,19 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <set>
 
 #include <gtest/gtest.h>
 
+#include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/retargeter.h"
+#include "core/sim/hand_sim_model.h"
 #include "core/task/cube_task.h"
 #include "core/task/grasp_proxy.h"
+#include "core/task/soft_hand_world.h"
+#include "core/tracking/hand_fitting.h"
 #include "core/tracking/recording_io.h"
 #include "studies/participant/motor_primitives.h"
 #include "studies/participant/own_hand.h"
@@ -19,6 +24,7 @@
 #include "studies/participant/questionnaire_model.h"
 #include "studies/participant/simulated_participant.h"
 #include "studies/participant/tracking_jitter.h"
+#include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 
 namespace handlab::studies {
@@ -152,17 +158,23 @@ struct ClosedLoop {
   bool success = false;
 };
 
-ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& setup) {
+// Drives `world` with the participant's frames (retargeted by `strategy`) until the task ends
+// or `limit` seconds pass (a trial's timeout), recording what it saw, sent and which phases it
+// went through.
+ClosedLoop drive(SimulatedParticipant& participant, task::HandCubeWorld& world,
+                 const TrialSetup& setup, retarget::Strategy strategy, double limit,
+                 std::set<std::string>* phases = nullptr, double rest_time = 0.5) {
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
   task::SceneLayout layout = setup.protocol->scene;
   layout.cube_size = setup.condition.cube_size;
-  task::GraspProxySettings settings;
-  settings.cube_size = layout.cube_size;
-  task::GraspProxyWorld world(sim, settings, task::cube_start_pose(layout).translation());
-  retarget::Retargeter retargeter(retarget::Strategy::kOurs, sim, setup.calibration);
+  std::optional<tracking::TrackedHandFitter> fitter;
+  if (strategy == retarget::Strategy::kNaive)
+    fitter.emplace(setup.participant.hand_length, tracking::Side::kRight);
+  retarget::Retargeter retargeter(strategy, sim, setup.calibration, fitter);
   task::TaskSettings task_settings;
   task_settings.layout = layout;
-  task_settings.timeout = setup.protocol->timeout_s;
+  task_settings.timeout = limit;
+  task_settings.rest_time = rest_time;
   task::CubeTask task(task_settings);
   task.start(0.0);
   ClosedLoop loop;
@@ -170,6 +182,7 @@ ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& 
   for (long step = 1; !task.finished(); ++step) {
     const double t = double(step) / 120.0;
     loop.sent.push_back(participant.act(loop.shown.back()));
+    if (phases) phases->insert(participant.phase_name());
     loop.own_aperture.push_back(participant.own_aperture());
     loop.own_grip.push_back(participant.own_grip());
     const hand::HandPose pose = retargeter.retarget(loop.sent.back().hands.at(0)).pose;
@@ -179,6 +192,16 @@ ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& 
   }
   loop.success = task.phase() == task::TaskPhase::kDone;
   return loop;
+}
+
+ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& setup) {
+  const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
+  task::SceneLayout layout = setup.protocol->scene;
+  layout.cube_size = setup.condition.cube_size;
+  task::GraspProxySettings settings;
+  settings.cube_size = layout.cube_size;
+  task::GraspProxyWorld world(sim, settings, task::cube_start_pose(layout).translation());
+  return drive(participant, world, setup, retarget::Strategy::kOurs, setup.protocol->timeout_s);
 }
 
 // The blinding test: participants built for the same person and trial place in conditions
@@ -261,6 +284,7 @@ TEST(SimulatedParticipantKinematics, ReachAndGraspWithinPublishedRanges) {
     return std::pair{slope, (sy - slope * sx) / n};
   };
   std::vector<double> slopes, intercepts;  // each person's reach time against ID
+  double least_share = 1.0, most_share = 0.0;
   for (int who : {0, 2, 4, 6, 8, 10}) {
     const SimulatedPerson person = draw_person(Population{}, 5, who);
     const OwnHand own(person.participant.hand_length);
@@ -294,6 +318,8 @@ TEST(SimulatedParticipantKinematics, ReachAndGraspWithinPublishedRanges) {
       for (std::size_t k = start; k <= end; ++k)
         if (loop.own_aperture[k] > loop.own_aperture[at_peak] + 1e-6) at_peak = k;
       const double share = double(at_peak - start) / double(end - start);
+      least_share = std::min(least_share, share);
+      most_share = std::max(most_share, share);
       EXPECT_GT(share, 0.55) << who << " " << size;
       EXPECT_LT(share, 0.80) << who << " " << size;
       const double distance = (loop.own_grip[end] - loop.own_grip[start]).norm();
@@ -320,7 +346,8 @@ TEST(SimulatedParticipantKinematics, ReachAndGraspWithinPublishedRanges) {
     return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
   };
   const double b = median(slopes), a = median(intercepts);
-  std::cout << "reach time " << a << " + " << b << " ID (medians over people)\n";
+  std::cout << "reach time " << a << " + " << b << " ID (medians over people); peak aperture at "
+            << least_share << " to " << most_share << " of the reach\n";
   EXPECT_GT(b, 0.25);
   EXPECT_LT(b, 0.65);
   EXPECT_GT(a, 0.2);
@@ -381,6 +408,172 @@ class CaughtCubeWorld : public task::HandCubeWorld {
   Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
   task::CubeState cube_;
 };
+
+// The grasp proxy with what the participant sees changed, to force the model's every path:
+// contact hidden until the closing is over (a slow close, then a re-grasp), or the cube shown
+// dropping out of the hand once it is first lifted 4 cm (a lost cube, re-grasps, the trial
+// cut by its time limit).
+class SeenOtherwiseWorld : public task::HandCubeWorld {
+ public:
+  enum class Twist { kHideContact, kDropOnce };
+  SeenOtherwiseWorld(const hand::Skeleton& sim, const task::SceneLayout& layout, Twist twist)
+      : proxy_(sim, settings(layout.cube_size), task::cube_start_pose(layout).translation()),
+        twist_(twist),
+        half_(0.5 * layout.cube_size) {}
+  void step(const hand::HandPose* target, double dt) override {
+    proxy_.step(target, dt);
+    time_ += dt;
+    cube_ = proxy_.cube();
+    const bool touching = proxy_.thumb_contact() && proxy_.index_contact();
+    if (twist_ == Twist::kHideContact) {
+      if (touching && touching_since_ < 0) touching_since_ = time_;
+      hidden_ = touching && time_ - touching_since_ < 1.5;
+    } else {
+      if (!dropped_at_ && cube_.position.y() > half_ + 0.04) dropped_at_ = cube_.position;
+      if (dropped_at_) {
+        cube_.position = Eigen::Vector3d(dropped_at_->x(), half_, dropped_at_->z());
+        hidden_ = true;
+      }
+    }
+  }
+  const task::CubeState& cube() const override { return cube_; }
+  bool thumb_contact() const override { return !hidden_ && proxy_.thumb_contact(); }
+  bool index_contact() const override { return !hidden_ && proxy_.index_contact(); }
+  const std::vector<Eigen::Isometry3d>& bones() const override { return proxy_.bones(); }
+
+ private:
+  static task::GraspProxySettings settings(double cube_size) {
+    task::GraspProxySettings s;
+    s.cube_size = cube_size;
+    return s;
+  }
+  task::GraspProxyWorld proxy_;
+  Twist twist_;
+  double half_, time_ = 0.0, touching_since_ = -1.0;
+  bool hidden_ = false;
+  std::optional<Eigen::Vector3d> dropped_at_;
+  task::CubeState cube_;
+};
+
+// The blinding test through every phase: people at several places of their schedule, each
+// cube, both strategies' setups; on the grasp proxy, on worlds that force a slow close, a
+// re-grasp, a lost cube and a trial cut by its time limit, on a world whose cube is caught on
+// the hand (the wipe), and on the soft hand. The participant built from the other strategy's
+// setup (seen_trial_of gives the same SeenTrial), with the same memory, fed what the first saw,
+// sends the same frames bit for bit, ends with the same experience and memory, and its
+// questionnaire answers are the same. Every phase of the state machine is gone through.
+TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAndAnswers) {
+  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
+  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  const QuestionnaireResponder answer = simulated_responder(5);
+  std::set<std::string> phases;
+  int runs = 0;
+  auto same_seen = [](const SeenTrial& a, const SeenTrial& b) {
+    return a.position == b.position && a.rate_hz == b.rate_hz &&
+           a.hand.bone_length == b.hand.bone_length && a.hand.bone_radius == b.hand.bone_radius &&
+           a.hand.thumb_distal == b.hand.thumb_distal && a.hand.index_distal == b.hand.index_distal;
+  };
+  enum class World { kProxy, kHideContact, kDropOnce, kCaught, kSoft };
+  for (int who : {1, 6}) {
+    const SimulatedPerson person = draw_person(Population{}, 5, who);
+    const OwnHand own(person.participant.hand_length);
+    const retarget::Calibration calibration = driver.calibrate(protocol, person.participant);
+    ParticipantMemory memory;  // grows over this person's runs
+    for (World world_kind :
+         {World::kProxy, World::kHideContact, World::kDropOnce, World::kCaught, World::kSoft}) {
+      for (double cube : {0.06, 0.01}) {
+        if (world_kind == World::kSoft && (who != 1 || cube != 0.01)) continue;  // one, slow
+        std::vector<TrialSetup> setups;
+        for (const Condition& c : protocol.conditions())
+          if (c.cube_size == cube) {
+            TrialSetup t;
+            t.protocol = &protocol;
+            t.condition = c;
+            t.participant = person.participant;
+            t.planned.position = 3 + 5 * runs % 19;
+            t.calibration = calibration;
+            setups.push_back(t);
+          }
+        ASSERT_EQ(setups.size(), 2u);
+        ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
+        ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
+        ASSERT_TRUE(same_seen(seen_trial_of(setups[0], 120.0), seen_trial_of(setups[1], 120.0)));
+        const hand::Skeleton sim = hand::build_simulated_hand(setups[0].condition.simulated_hand);
+        task::SceneLayout layout = protocol.scene;
+        layout.cube_size = cube;
+        std::unique_ptr<task::HandCubeWorld> world;
+        std::optional<hand::HandFlesh> flesh;
+        std::optional<sim::HandSimModel> model;
+        double limit = 30.0, rest_time = 0.5;
+        switch (world_kind) {
+          case World::kProxy: {
+            task::GraspProxySettings g;
+            g.cube_size = cube;
+            world = std::make_unique<task::GraspProxyWorld>(
+                sim, g, task::cube_start_pose(layout).translation());
+            rest_time = 3.0;  // a task that waits longer for the cube to rest: it withdraws, idles
+            break;
+          }
+          case World::kHideContact:
+            world = std::make_unique<SeenOtherwiseWorld>(sim, layout,
+                                                         SeenOtherwiseWorld::Twist::kHideContact);
+            break;
+          case World::kDropOnce:
+            world = std::make_unique<SeenOtherwiseWorld>(sim, layout,
+                                                         SeenOtherwiseWorld::Twist::kDropOnce);
+            limit = 12.0;  // cut by its time limit
+            break;
+          case World::kCaught:
+            world = std::make_unique<CaughtCubeWorld>(sim, layout);
+            limit = 20.0;
+            break;
+          case World::kSoft: {
+            flesh = hand::build_flesh(sim, setups[0].condition.simulated_hand);
+            sim::SimParameters parameters;
+            parameters.cube_size = cube;
+            model = sim::make_hand_sim_model(sim, *flesh, parameters);
+            world = std::make_unique<task::SoftHandWorld>(
+                *model, sim, task::cube_start_pose(layout).translation(), sim::SimOptions{});
+            limit = 5.0;
+            break;
+          }
+        }
+        auto first = participant_for(setups[0], 5, own, memory);
+        auto second = participant_for(setups[1], 5, own, memory);
+        const retarget::Strategy strategy = setups[0].condition.naive_strategy
+                                                ? retarget::Strategy::kNaive
+                                                : retarget::Strategy::kOurs;
+        const ClosedLoop loop =
+            drive(*first, *world, setups[0], strategy, limit, &phases, rest_time);
+        for (std::size_t k = 0; k < loop.sent.size(); ++k)
+          ASSERT_EQ(second->act(loop.shown[k]).hands.at(0).joints, loop.sent[k].hands.at(0).joints)
+              << person.participant.id << " world " << int(world_kind) << " cube " << cube
+              << " frame " << k;
+        EXPECT_EQ(memory_to_json(second->memory_after()), memory_to_json(first->memory_after()));
+        TrialRun a, b;
+        a.experience = first->experience();
+        b.experience = second->experience();
+        a.success = b.success = loop.success;
+        a.completion_time_s = b.completion_time_s = double(loop.sent.size()) / 120.0;
+        const SeenQuestionnaire asked{person.participant.id,
+                                      setups[0].planned.position,
+                                      limit,
+                                      {"precision", "ease", "naturalness"},
+                                      5};
+        EXPECT_EQ(answer(asked, a), answer(asked, b));
+        memory = first->memory_after();
+        ++runs;
+      }
+    }
+  }
+  const std::set<std::string> all = {
+      "react",     "reach",           "check reach", "descend", "check descent",
+      "close",     "slow close",      "confirm",     "lift",    "check lift",
+      "transport", "check transport", "lower",       "release", "wait rest",
+      "withdraw",  "reopen",          "free cube",   "idle"};
+  for (const std::string& phase : all) EXPECT_TRUE(phases.count(phase)) << "never in " << phase;
+  EXPECT_EQ(runs, 17);
+}
 
 // A cube stuck to the virtual thumb does not make it chase the cube upwards (each reach for
 // a cube it carries lifts the cube with it): it opens the hand, then wipes the cube off on the

@@ -87,8 +87,24 @@ TEST(StudyTests, NamePairsOfCellsInTheProtocolsOrderWithTheirSigns) {
       analyze_study_database(synthetic_study("series_synthetic.db", protocol));
   const StudyTests tests = study_tests(a, power::SphericityCorrection::kAuto, 0.05);
   EXPECT_EQ(tests.warning, "");
-  // The ANOVA's seven effects, the six pairs of cells, and per item Friedman and six pairs.
-  ASSERT_EQ(tests.tests.size(), 7u + 6u + 3u * 7u);
+  // The ANOVA's seven effects, the six pairs of cells, the two factors' levels on the first
+  // repetition, the participant variables' effects (each of its follow-up ANOVAs that could
+  // be made: four effects involve the variable), and per item Friedman and six pairs.
+  int variables = 0;
+  for (const ParticipantVariableAnalysis& v : a.participant_variables)
+    variables += v.result ? 1 : 0;
+  EXPECT_GE(variables, 2);
+  ASSERT_EQ(tests.tests.size(), 7u + 6u + 2u + 4u * std::size_t(variables) + 3u * 7u);
+  const StudyTest* first_trial = find_test(tests, "strategy:repetition: naive 1 - ours 1");
+  ASSERT_TRUE(first_trial);
+  EXPECT_EQ(first_trial->statistic, "t");
+  EXPECT_TRUE(find_test(tests, "manipulation:repetition: gross 1 - fine 1"));
+  const StudyTest* hand = find_test(tests, "hand_length:manipulation (covariate)");
+  ASSERT_TRUE(hand);
+  EXPECT_EQ(hand->statistic, "F");
+  ASSERT_EQ(hand->df.size(), 2u);
+  EXPECT_EQ(hand->df[0], 1.0);  // one covariate: n - 2 error df
+  EXPECT_FALSE(find_test(tests, "manipulation (covariate)")) << "only the variable's effects";
   const StudyTest* fine = find_test(tests, "strategy:manipulation: naive fine - ours fine");
   ASSERT_TRUE(fine);
   EXPECT_EQ(fine->statistic, "t");
@@ -175,7 +191,7 @@ TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
     EXPECT_EQ(t.rejected, t.p[0] < 0.05 ? 1 : 0) << t.name;
     published += t.published ? 1 : 0;
   }
-  EXPECT_EQ(published, 21);
+  EXPECT_EQ(published, 23);
   const auto test = [&](const std::string& name) -> const SeriesTest& {
     for (const SeriesTest& t : s.tests)
       if (t.name == name) return t;
@@ -277,7 +293,7 @@ TEST(StudySeries, RefusesStudiesOfAnotherProtocolAndTestsNoStudyMade) {
 TEST(PublishedStudy, RefusesAFileThatIsNotOne) {
   const PublishedStudy paper = read_published_study(kPublished);
   EXPECT_EQ(paper.participants, 20);
-  EXPECT_EQ(paper.tests.size(), 21u);
+  EXPECT_EQ(paper.tests.size(), 23u);
   const auto refused = [](const std::string& text) {
     const std::string path = test::fresh_path("published.json");
     std::ofstream(path) << text;
