@@ -204,6 +204,25 @@ ClosedLoop run_closed_loop(SimulatedParticipant& participant, const TrialSetup& 
   return drive(participant, world, setup, retarget::Strategy::kOurs, setup.protocol->timeout_s);
 }
 
+// A person's trial at `position` in each of the conditions of one cube size (the strategies'),
+// as the session runner sets them up.
+std::vector<TrialSetup> setups_of_cube(const Protocol& protocol, const SimulatedPerson& person,
+                                       double cube, int position,
+                                       const retarget::Calibration& calibration) {
+  std::vector<TrialSetup> setups;
+  for (const Condition& c : protocol.conditions())
+    if (c.cube_size == cube) {
+      TrialSetup s;
+      s.protocol = &protocol;
+      s.condition = c;
+      s.participant = person.participant;
+      s.planned.position = position;
+      s.calibration = calibration;
+      setups.push_back(s);
+    }
+  return setups;
+}
+
 // The blinding test: participants built for the same person and trial place in conditions
 // that differ only in the strategy (its label and its flag), fed the same observations, send
 // the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
@@ -215,17 +234,7 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
   const OwnHand own(person.participant.hand_length);
   const retarget::Calibration calibration = driver.calibrate(protocol, person.participant);
   for (double cube : {0.06, 0.01}) {
-    std::vector<TrialSetup> setups;
-    for (const Condition& c : protocol.conditions())
-      if (c.cube_size == cube) {
-        TrialSetup s;
-        s.protocol = &protocol;
-        s.condition = c;
-        s.participant = person.participant;
-        s.planned.position = 7;
-        s.calibration = calibration;
-        setups.push_back(s);
-      }
+    const std::vector<TrialSetup> setups = setups_of_cube(protocol, person, cube, 7, calibration);
     ASSERT_EQ(setups.size(), 2u);
     ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
     ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
@@ -483,17 +492,8 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
          {World::kProxy, World::kHideContact, World::kDropOnce, World::kCaught, World::kSoft}) {
       for (double cube : {0.06, 0.01}) {
         if (world_kind == World::kSoft && (who != 1 || cube != 0.01)) continue;  // one, slow
-        std::vector<TrialSetup> setups;
-        for (const Condition& c : protocol.conditions())
-          if (c.cube_size == cube) {
-            TrialSetup t;
-            t.protocol = &protocol;
-            t.condition = c;
-            t.participant = person.participant;
-            t.planned.position = 3 + 5 * runs % 19;
-            t.calibration = calibration;
-            setups.push_back(t);
-          }
+        const std::vector<TrialSetup> setups =
+            setups_of_cube(protocol, person, cube, 3 + 5 * runs % 19, calibration);
         ASSERT_EQ(setups.size(), 2u);
         ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
         ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
