@@ -1,4 +1,5 @@
 // handlab-cli: every handlab job, headless.
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -14,11 +15,11 @@ void print_usage() {
   std::cout << "Usage: handlab-cli COMMAND [options]\n\n"
                "handlab runs and analyses user studies of fine virtual manipulation with\n"
                "tracked hands. Commands:\n\n";
-  for (const auto& c : handlab::cli::all_commands()) {
-    std::string name = "  " + c.name;
-    name.resize(14, ' ');
-    std::cout << name << c.summary << "\n";
-  }
+  // The summaries in one column, two spaces past the longest name.
+  std::size_t width = 0;
+  for (const auto& c : handlab::cli::all_commands()) width = std::max(width, c.name.size());
+  for (const auto& c : handlab::cli::all_commands())
+    std::cout << "  " << c.name << std::string(width + 2 - c.name.size(), ' ') << c.summary << "\n";
   std::cout
       << "\n'handlab-cli COMMAND --help' describes a command. --version prints the version.\n";
 }

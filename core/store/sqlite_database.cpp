@@ -89,14 +89,44 @@ std::vector<std::uint8_t> Statement::column_blob(int column) const {
               : std::vector<std::uint8_t>();
 }
 
+namespace {
+
+sqlite3* open_connection(const std::string& path, const std::string& shown, int flags) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
+    const std::string message = db ? sqlite3_errmsg(db) : "out of memory";
+    sqlite3_close(db);
+    throw StoreError("cannot open " + shown + ": " + message);
+  }
+  return db;
+}
+
+// The whole of the file at `path` into `memory`, read through a read-only connection.
+void copy_into(sqlite3* memory, const std::string& path) {
+  sqlite3* source = open_connection(path, path, SQLITE_OPEN_READONLY);
+  sqlite3_backup* backup = sqlite3_backup_init(memory, "main", source, "main");
+  const int done = backup ? sqlite3_backup_step(backup, -1) : sqlite3_errcode(memory);
+  sqlite3_backup_finish(backup);
+  const std::string message = sqlite3_errstr(done);
+  sqlite3_close(source);
+  if (done != SQLITE_DONE) throw StoreError("cannot read " + path + ": " + message);
+}
+
+}  // namespace
+
 Database::Database(const std::string& path, Mode mode) : path_(path) {
   int flags = SQLITE_OPEN_READONLY;
   if (mode == Mode::kReadWrite || mode == Mode::kInspect) flags = SQLITE_OPEN_READWRITE;
-  if (mode == Mode::kReadWriteCreate) flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
-    const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
-    sqlite3_close(db_);
-    throw StoreError("cannot open " + path + ": " + message);
+  if (mode == Mode::kReadWriteCreate || mode == Mode::kMemoryCopy)
+    flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  db_ = open_connection(mode == Mode::kMemoryCopy ? ":memory:" : path, path, flags);
+  if (mode == Mode::kMemoryCopy) {
+    try {
+      copy_into(db_, path);
+    } catch (...) {
+      sqlite3_close(db_);
+      throw;
+    }
   }
   sqlite3_extended_result_codes(db_, 1);
   sqlite3_busy_timeout(db_, 2000);

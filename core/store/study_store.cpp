@@ -140,8 +140,9 @@ std::int64_t pragma_int(Database& db, const char* pragma) {
   return s.step() ? s.column_int64(0) : 0;
 }
 
-// Inspects the file through a read-only connection before anything may write to it.
-std::string checked_study_file(const std::string& path) {
+// Inspects the file through a read-only connection before anything may write to it; its
+// schema version.
+std::int64_t checked_study_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
     throw StoreError("no study database at " + path +
@@ -169,7 +170,7 @@ std::string checked_study_file(const std::string& path) {
                      "; this build reads up to " + std::to_string(kSchemaVersion) +
                      "): update handlab; the file was not changed");
   if (version < 1) throw StoreError(path + " is an incomplete study database (schema 0)");
-  return path;
+  return version;
 }
 
 TrialStatus parse_status(const std::string& s) {
@@ -281,11 +282,20 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
   for (const char* side : {"-wal", "-shm"}) std::filesystem::remove(partial.string() + side, ec);
 }
 
-StudyStore::StudyStore(const std::string& path)
-    : db_(checked_study_file(path), Database::Mode::kReadWrite) {
-  // A trial's result is the record of a person's time: survive power loss, not just a crash.
-  db_.exec("PRAGMA synchronous = FULL");
-  migrate();
+StudyStore::Opening StudyStore::opening(const std::string& path, Access access) {
+  const bool current = checked_study_file(path) == kSchemaVersion;
+  if (access == Access::kReadWrite) return {path, Database::Mode::kReadWrite, true};
+  return {path, current ? Database::Mode::kReadOnly : Database::Mode::kMemoryCopy, !current};
+}
+
+StudyStore::StudyStore(const std::string& path, Access access)
+    : StudyStore(opening(path, access)) {}
+
+StudyStore::StudyStore(const Opening& opening) : db_(opening.path, opening.mode) {
+  if (opening.mode == Database::Mode::kReadWrite)
+    // A trial's result is the record of a person's time: survive power loss, not just a crash.
+    db_.exec("PRAGMA synchronous = FULL");
+  if (opening.migrate) migrate();
 }
 
 void StudyStore::migrate() {

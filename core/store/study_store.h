@@ -87,8 +87,11 @@ class StudyStore {
  public:
   // Creates a new study file; refuses a path that exists.
   static void create(const std::string& path, const StudyDefinition& definition);
+  // kReadOnly: the file is never written, nor are files made beside it when its journal is a
+  // rollback one (an older schema is migrated in a copy in memory); for analyses and exports.
+  enum class Access { kReadWrite, kReadOnly };
   // Opens an existing study file, migrating an older schema forward.
-  explicit StudyStore(const std::string& path);
+  explicit StudyStore(const std::string& path, Access access = Access::kReadWrite);
 
   StudyInfo study();
   // Enrols a participant with the planned schedule, in one transaction. Throws StoreError
@@ -143,6 +146,13 @@ class StudyStore {
   const std::string& path() const { return db_.path(); }
 
  private:
+  struct Opening {
+    std::string path;
+    Database::Mode mode;
+    bool migrate;
+  };
+  static Opening opening(const std::string& path, Access access);
+  explicit StudyStore(const Opening& opening);
   void migrate();
   Database db_;
 };

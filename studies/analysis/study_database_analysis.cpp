@@ -265,7 +265,7 @@ void write_summary(util::JsonWriter& json, const CellSummary& c,
 }  // namespace
 
 StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
-  store::StudyStore store(path);
+  store::StudyStore store(path, store::StudyStore::Access::kReadOnly);
   StudyDatabaseAnalysis result;
   result.study = store.study();
   result.protocol = stored_protocol(store);
@@ -286,8 +286,12 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
   std::vector<std::string> left_out;
   if (!has_rows(trial_text)) {
     result.completion_time_not_computed = "no scheduled trial has a completion time yet";
+    result.time_without_timeouts.not_computed = result.completion_time_not_computed;
+    result.success.not_computed = result.completion_time_not_computed;
   } else {
     const analysis::LongTable trial_table = analysis::LongTable::parse_csv(trial_text, "trials");
+    result.time_without_timeouts = time_without_timeouts(trial_table, info.factors);
+    result.success = success_rates(trial_table, info.factors);
     analysis::AnalysisRequest times;
     times.design.subject = "participant";
     times.design.dv = "completion_time_s";
@@ -412,6 +416,15 @@ void write_study_analysis_text(const StudyDatabaseAnalysis& a, const std::string
     analysis::write_text(*a.completion_time, out);
   else
     out << "Not computed: " << a.completion_time_not_computed << "\n";
+  for (const auto& [title, way] :
+       {std::pair{"Completion time, the timed-out trials left out", &a.time_without_timeouts},
+        std::pair{"Success (completed of the trials that ended) per condition", &a.success}}) {
+    out << "\n" << title << "\n\n";
+    if (way->result)
+      analysis::write_text(*way->result, out);
+    else
+      out << "Not computed: " << way->not_computed << "\n";
+  }
   for (const ParticipantVariableAnalysis& v : a.participant_variables) {
     out << "\nWith " << v.variable << " as a "
         << (v.between ? "between-participants factor" : "covariate")
@@ -436,7 +449,8 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
     json.field("protocol_sha256", a.study.protocol_sha256).field("created_at", a.study.created_at);
     json.key("factors").string_array(a.study.factors);
     json.field("blocks", a.protocol.blocks)
-        .field("practice_per_condition", a.protocol.practice_per_condition);
+        .field("practice_per_condition", a.protocol.practice_per_condition)
+        .field("timeout_s", a.protocol.timeout_s);
     json.end_object();
   }
   out << ",\n\"participants\": ";
@@ -481,6 +495,17 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
     out << "null";
   out << ",\n\"completion_time_not_computed\": ";
   util::JsonWriter(out).value(a.completion_time_not_computed);
+  for (const auto& [key, way] :
+       {std::pair{"completion_time_without_timeouts", &a.time_without_timeouts},
+        std::pair{"success", &a.success}}) {
+    out << ",\n\"" << key << "\": ";
+    if (way->result)
+      analysis::write_json(*way->result, out);
+    else
+      out << "null";
+    out << ",\n\"" << key << "_not_computed\": ";
+    util::JsonWriter(out).value(way->not_computed);
+  }
   out << ",\n\"condition_descriptives\": ";
   {
     util::JsonWriter json(out);

@@ -14,6 +14,7 @@
 #include "analysis/report/study_analysis.h"
 #include "core/store/study_store.h"
 #include "studies/analysis/condition_outcomes.h"
+#include "studies/analysis/timeout_analyses.h"
 #include "studies/protocol/protocol.h"
 
 namespace handlab::studies {
@@ -73,6 +74,10 @@ struct StudyDatabaseAnalysis {
   // Empty when no participant finished a trial; `not_computed` says why.
   std::optional<analysis::AnalysisReport> completion_time;
   std::string completion_time_not_computed;
+  // The completion time the two other ways (timeout_analyses.h): the timed-out trials left
+  // out, and success as its own outcome. `completion_time` keeps them at the trial's limit.
+  OutcomeAnalysis time_without_timeouts;
+  OutcomeAnalysis success;
   std::vector<ParticipantVariableAnalysis> participant_variables;
   std::optional<analysis::AnalysisReport> questionnaire;
   std::string questionnaire_not_computed;
@@ -92,8 +97,9 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path);
 void write_study_analysis_text(const StudyDatabaseAnalysis& analysis, const std::string& path,
                                std::ostream& out);
 // Keys: study, participants, data_quality, completion_time (null with
-// completion_time_not_computed), condition_descriptives, participant_variables,
-// questionnaire (null with questionnaire_not_computed).
+// completion_time_not_computed), completion_time_without_timeouts and success (each null with
+// its *_not_computed), condition_descriptives, participant_variables, questionnaire (null with
+// questionnaire_not_computed).
 void write_study_analysis_json(const StudyDatabaseAnalysis& analysis, std::ostream& out);
 
 }  // namespace handlab::studies

@@ -64,6 +64,38 @@ std::string percent(int part, int whole) {
   return whole > 0 ? fixed(100.0 * part / whole, 0) + " %" : "–";
 }
 
+std::string capitalised(std::string text) {
+  if (!text.empty() && text[0] >= 'a' && text[0] <= 'z') text[0] = char(text[0] - 'a' + 'A');
+  return text;
+}
+
+// One test's row: the published value, the statistic (p) per study, and the series' summary.
+void write_test_row(const SeriesTest& t, bool published, std::size_t n, std::ostream& out) {
+  out << "| " << t.name << " | " << t.statistic;
+  if (published) {
+    out << " | ";
+    if (t.published) {
+      const PublishedTest& p = *t.published;
+      if (std::isfinite(p.value)) out << statistic_text(p.statistic, p.value) << " ";
+      if (std::isfinite(p.p)) out << "(" << (p.p_below ? "<" : "") << p_text(p.p) << ")";
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    out << " | "
+        << (std::isfinite(t.p[k]) || std::isfinite(t.value[k])
+                ? statistic_text(t.statistic, t.value[k]) + " (" + p_text(t.p[k]) + ")"
+                : std::string("–"));
+  out << " | " << statistic_text(t.statistic, t.median) << " | "
+      << statistic_text(t.statistic, t.min) << " to " << statistic_text(t.statistic, t.max) << " | "
+      << p_text(t.p_median) << " | " << t.rejected << " of " << t.studies;
+  if (published)
+    out << " | "
+        << (t.below_published >= 0
+                ? std::to_string(t.below_published) + " of " + std::to_string(t.studies)
+                : std::string());
+  out << " |\n";
+}
+
 }  // namespace
 
 PublishedStudy read_published_study(const std::string& path) {
@@ -169,6 +201,7 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
       for (const StudyTest& t : found[k].tests) {
         if (t.name != name) continue;
         s.statistic = t.statistic;
+        s.group = t.group;
         s.value[k] = t.value;
         s.p[k] = t.p;
         ++s.studies;
@@ -230,7 +263,10 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
 
   out << "\nTests: the statistic (p) per study; p as judged (Greenhouse-Geisser where Mauchly's "
          "test rejects sphericity; Tukey for the cells of "
-      << "the factors, Bonferroni for Wilcoxon's)\n\n";
+      << "the factors, Bonferroni for Wilcoxon's). The completion time three ways: a timed-out "
+         "trial counted at the trial's limit; the timed-out trials left out (a participant "
+         "without a completed trial in some cell left out); and each participant's share of "
+         "completed trials per condition, compared as the questionnaire's items are\n";
   const bool published = s.published.has_value();
   std::vector<std::string> extra = {"statistic"};
   if (published)
@@ -239,31 +275,14 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
   alpha << "p < " << s.alpha;
   std::vector<std::string> tail = {"median", "range", "p median", alpha.str()};
   if (published) tail.push_back("below published");
-  header("test", extra, tail);
-  for (const SeriesTest& t : s.tests) {
-    out << "| " << t.name << " | " << t.statistic;
-    if (published) {
-      out << " | ";
-      if (t.published) {
-        const PublishedTest& p = *t.published;
-        if (std::isfinite(p.value)) out << statistic_text(p.statistic, p.value) << " ";
-        if (std::isfinite(p.p)) out << "(" << (p.p_below ? "<" : "") << p_text(p.p) << ")";
-      }
-    }
-    for (std::size_t k = 0; k < n; ++k)
-      out << " | "
-          << (std::isfinite(t.p[k]) || std::isfinite(t.value[k])
-                  ? statistic_text(t.statistic, t.value[k]) + " (" + p_text(t.p[k]) + ")"
-                  : std::string("–"));
-    out << " | " << statistic_text(t.statistic, t.median) << " | "
-        << statistic_text(t.statistic, t.min) << " to " << statistic_text(t.statistic, t.max)
-        << " | " << p_text(t.p_median) << " | " << t.rejected << " of " << t.studies;
-    if (published)
-      out << " | "
-          << (t.below_published >= 0
-                  ? std::to_string(t.below_published) + " of " + std::to_string(t.studies)
-                  : std::string());
-    out << " |\n";
+  std::vector<std::string> groups;
+  for (const SeriesTest& t : s.tests)
+    if (std::find(groups.begin(), groups.end(), t.group) == groups.end()) groups.push_back(t.group);
+  for (const std::string& group : groups) {
+    out << "\n" << capitalised(group) << "\n\n";
+    header("test", extra, tail);
+    for (const SeriesTest& t : s.tests)
+      if (t.group == group) write_test_row(t, published, n, out);
   }
   if (published) {
     out << "\nPublished: " << s.published->source << "\n";
@@ -290,6 +309,7 @@ void write_series_json(const StudySeries& s, std::ostream& out) {
   json.key("tests").begin_array();
   for (const SeriesTest& t : s.tests) {
     json.begin_object().field("test", t.name).field("statistic", t.statistic);
+    json.field("group", t.group);
     json.key("values").begin_array();
     for (double v : t.value) json.value(v);
     json.end_array().key("p").begin_array();

@@ -44,6 +44,7 @@ struct SeriesStudy {
 
 struct SeriesTest {
   std::string name, statistic;
+  std::string group;                          // StudyTest::group
   std::vector<double> value, p;               // per study; NaN where a study lacks the test
   int studies = 0;                            // that have it
   int rejected = 0;                           // of those, with p < alpha
@@ -77,9 +78,9 @@ struct SeriesOptions {
 // published study is of another protocol, or when `only` names a test no study made.
 StudySeries summarize_series(const std::vector<std::string>& paths, const SeriesOptions& options);
 
-// Markdown tables: the studies, the share of trials completed per condition, and the tests
-// (statistic and p per study, median, range, rejections, the published value and how many
-// studies fall below it).
+// Markdown tables: the studies, the share of trials completed per condition, and the tests,
+// one table for each analysis they come from (statistic and p per study, median, range,
+// rejections, the published value and how many studies fall below it).
 void write_series_markdown(const StudySeries& series, std::ostream& out);
 void write_series_json(const StudySeries& series, std::ostream& out);
 

@@ -87,57 +87,99 @@ bool involves(const std::string& effect, const std::string& variable) {
   return false;
 }
 
+// The effects of a completion-time ANOVA, its pairs of the protocol's cells and each factor's
+// levels on the first trial, each name followed by `suffix`.
+void time_tests(const analysis::AnalysisReport& t, const Protocol& protocol,
+                power::SphericityCorrection correction, double alpha, const std::string& suffix,
+                const std::string& group, std::vector<StudyTest>& tests) {
+  std::string planned;
+  for (const Factor& f : protocol.factors) planned += (planned.empty() ? "" : ":") + f.name;
+  for (const stats::AnovaEffect& e : t.anova.effects) {
+    const power::JudgedP j = power::judged(e, correction, alpha);
+    tests.push_back({e.effect + suffix,
+                     "F",
+                     e.f,
+                     {j.df_scale * e.df_num, j.df_scale * e.df_den},
+                     j.p,
+                     false,
+                     group});
+  }
+  std::vector<Ordered> pairs;
+  for (const stats::PosthocResult& r : t.posthoc)
+    for (const stats::PairwiseContrast& c : r.contrasts) {
+      if (c.effect != planned || !c.by.empty()) continue;
+      const Pair pair = in_order(protocol, c.first, c.second);
+      stats::PairwiseContrast oriented = c;
+      oriented.contrast = pair.label;
+      pairs.push_back({pair.key,
+                       {power::contrast_name(oriented) + suffix,
+                        "t",
+                        pair.swapped ? -c.t : c.t,
+                        {c.df},
+                        c.p_tukey,
+                        true,
+                        group}});
+    }
+  append_sorted(pairs, tests);
+  // Each factor's levels on their first trial ("strategy:repetition: naive 1 - ours 1"): how
+  // they compare before any practice, Tukey over the factor-by-repetition cells.
+  std::vector<Ordered> first_trials;
+  for (const stats::PosthocResult& r : t.posthoc)
+    for (const stats::PairwiseContrast& c : r.contrasts) {
+      if (!c.by.empty() || c.first.size() != 2 || !on_first_repetition(c.first) ||
+          !on_first_repetition(c.second))
+        continue;
+      const Pair pair = in_order(protocol, c.first, c.second);
+      first_trials.push_back({pair.key,
+                              {c.effect + ": " + pair.label + suffix,
+                               "t",
+                               pair.swapped ? -c.t : c.t,
+                               {c.df},
+                               c.p_tukey,
+                               true,
+                               group}});
+    }
+  append_sorted(first_trials, tests);
+}
+
+// Friedman's test of one item of a nonparametric analysis and its pairwise Wilcoxon tests.
+void item_tests(const analysis::AnalysisReport& r, const std::string& item,
+                const StudyDatabaseAnalysis& a, const std::string& group,
+                std::vector<StudyTest>& tests) {
+  for (const analysis::FriedmanItem& f : r.friedman)
+    if (f.dv == item)
+      tests.push_back(
+          {f.dv + " (Friedman)", "chi2", f.result.chisq, {f.result.df}, f.result.p, false, group});
+  std::vector<Ordered> pairs;
+  for (const analysis::WilcoxonPair& w : r.wilcoxon) {
+    if (w.dv != item) continue;
+    const Pair pair =
+        in_order(a.protocol, named(a.study.factors, w.first), named(a.study.factors, w.second));
+    // V sums the ranks of the positive differences: the other way round, of the negative.
+    const double all_ranks = 0.5 * w.result.n * (w.result.n + 1.0);
+    pairs.push_back({pair.key,
+                     {w.dv + ": " + pair.label + " (Wilcoxon)",
+                      "V",
+                      pair.swapped ? all_ranks - w.result.v : w.result.v,
+                      {},
+                      w.p_bonferroni,
+                      true,
+                      group}});
+  }
+  append_sorted(pairs, tests);
+}
+
 }  // namespace
 
 StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrection correction,
                        double alpha) {
   StudyTests out;
   const Protocol& protocol = a.protocol;
-  std::string planned;
-  for (const Factor& f : protocol.factors) planned += (planned.empty() ? "" : ":") + f.name;
   if (!a.completion_time) {
     out.warning = "completion time not analysed: " + a.completion_time_not_computed;
   } else {
     const analysis::AnalysisReport& t = *a.completion_time;
-    for (const stats::AnovaEffect& e : t.anova.effects) {
-      const power::JudgedP j = power::judged(e, correction, alpha);
-      out.tests.push_back(
-          {e.effect, "F", e.f, {j.df_scale * e.df_num, j.df_scale * e.df_den}, j.p, false});
-    }
-    std::vector<Ordered> pairs;
-    for (const stats::PosthocResult& r : t.posthoc)
-      for (const stats::PairwiseContrast& c : r.contrasts) {
-        if (c.effect != planned || !c.by.empty()) continue;
-        const Pair pair = in_order(protocol, c.first, c.second);
-        stats::PairwiseContrast oriented = c;
-        oriented.contrast = pair.label;
-        pairs.push_back({pair.key,
-                         {power::contrast_name(oriented),
-                          "t",
-                          pair.swapped ? -c.t : c.t,
-                          {c.df},
-                          c.p_tukey,
-                          true}});
-      }
-    append_sorted(pairs, out.tests);
-    // Each factor's levels on their first trial ("strategy:repetition: naive 1 - ours 1"): how
-    // they compare before any practice, Tukey over the factor-by-repetition cells.
-    std::vector<Ordered> first_trials;
-    for (const stats::PosthocResult& r : t.posthoc)
-      for (const stats::PairwiseContrast& c : r.contrasts) {
-        if (!c.by.empty() || c.first.size() != 2 || !on_first_repetition(c.first) ||
-            !on_first_repetition(c.second))
-          continue;
-        const Pair pair = in_order(protocol, c.first, c.second);
-        first_trials.push_back({pair.key,
-                                {c.effect + ": " + pair.label,
-                                 "t",
-                                 pair.swapped ? -c.t : c.t,
-                                 {c.df},
-                                 c.p_tukey,
-                                 true}});
-      }
-    append_sorted(first_trials, out.tests);
+    time_tests(t, protocol, correction, alpha, "", kTestsTimeoutsAtLimit, out.tests);
     // The follow-up ANOVAs with one participant variable each (a covariate or a between
     // factor): the effects that involve the variable, "hand_length:manipulation (covariate)".
     for (const ParticipantVariableAnalysis& v : a.participant_variables) {
@@ -151,36 +193,21 @@ StudyTests study_tests(const StudyDatabaseAnalysis& a, power::SphericityCorrecti
                              e.f,
                              {j.df_scale * e.df_num, j.df_scale * e.df_den},
                              j.p,
-                             false});
+                             false,
+                             kTestsTimeoutsAtLimit});
       }
     }
     if (!t.dropped_subjects.empty())
       out.warning = std::to_string(t.dropped_subjects.size()) +
                     " participant(s) left out, lacking a result in some cell";
   }
+  if (a.time_without_timeouts.result)
+    time_tests(*a.time_without_timeouts.result, protocol, correction, alpha, " (timeouts left out)",
+               kTestsTimeoutsLeftOut, out.tests);
+  if (a.success.result) item_tests(*a.success.result, "success_rate", a, kTestsSuccess, out.tests);
   if (a.questionnaire) {
-    for (const QuestionnaireItem& item : protocol.items) {
-      for (const analysis::FriedmanItem& f : a.questionnaire->friedman)
-        if (f.dv == item.id)
-          out.tests.push_back(
-              {f.dv + " (Friedman)", "chi2", f.result.chisq, {f.result.df}, f.result.p, false});
-      std::vector<Ordered> pairs;
-      for (const analysis::WilcoxonPair& w : a.questionnaire->wilcoxon) {
-        if (w.dv != item.id) continue;
-        const Pair pair =
-            in_order(protocol, named(a.study.factors, w.first), named(a.study.factors, w.second));
-        // V sums the ranks of the positive differences: the other way round, of the negative.
-        const double all_ranks = 0.5 * w.result.n * (w.result.n + 1.0);
-        pairs.push_back({pair.key,
-                         {w.dv + ": " + pair.label + " (Wilcoxon)",
-                          "V",
-                          pair.swapped ? all_ranks - w.result.v : w.result.v,
-                          {},
-                          w.p_bonferroni,
-                          true}});
-      }
-      append_sorted(pairs, out.tests);
-    }
+    for (const QuestionnaireItem& item : protocol.items)
+      item_tests(*a.questionnaire, item.id, a, kTestsQuestionnaire, out.tests);
   } else if (out.warning.empty() && !protocol.items.empty()) {
     out.warning = "questionnaire not analysed: " + a.questionnaire_not_computed;
   }

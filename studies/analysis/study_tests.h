@@ -4,9 +4,11 @@
 // pairwise ("strategy:manipulation: naive fine - ours fine", Tukey), and per questionnaire
 // item Friedman's test ("precision (Friedman)") and the pairwise Wilcoxon tests
 // ("precision: naive fine - ours fine (Wilcoxon)", Bonferroni); each factor's levels on the
-// first repetition ("strategy:repetition: naive 1 - ours 1", Tukey); and the effects that involve a
+// first repetition ("strategy:repetition: naive 1 - ours 1", Tukey); the effects that involve a
 // participant variable in its follow-up ANOVA ("hand_length:manipulation (covariate)",
-// "vr_experience:strategy (between)"). A pair of cells is always
+// "vr_experience:strategy (between)"); the completion time's effects and contrasts again with
+// the timed-out trials left out ("manipulation (timeouts left out)"); and the success rates'
+// Friedman and Wilcoxon tests ("success_rate (Friedman)"). A pair of cells is always
 // written in the protocol's order of levels (the first factor's first), whichever way the
 // data happened to order them, and its statistic's sign follows: t is the first cell's mean
 // minus the second's.
@@ -27,7 +29,14 @@ struct StudyTest {
   std::vector<double> df;  // F: numerator and denominator (corrected when p is); t, chi2: one
   double p = 0.0;          // as judged: the sphericity correction, Tukey, Bonferroni
   bool contrast = false;   // a comparison of two cells (t, V), not an omnibus test
+  std::string group;       // the analysis it belongs to: one of the kTests* names below
 };
+
+// The analyses the tests come from, in the order they are listed.
+inline constexpr const char* kTestsTimeoutsAtLimit = "completion time, timeouts at the limit";
+inline constexpr const char* kTestsTimeoutsLeftOut = "completion time, timeouts left out";
+inline constexpr const char* kTestsSuccess = "success";
+inline constexpr const char* kTestsQuestionnaire = "questionnaire";
 
 struct StudyTests {
   std::vector<StudyTest> tests;  // effects, contrasts, then items

@@ -50,7 +50,7 @@ Eigen::MatrixXd in_design_order(const stats::RmData& from, const power::PowerDes
 
 power::PowerModel estimate_from_pilot(const std::string& db_path, const Protocol& protocol) {
   const power::PowerDesign design = power_design(protocol);
-  store::StudyStore store(db_path);
+  store::StudyStore store(db_path, store::StudyStore::Access::kReadOnly);
   const Protocol pilot = stored_protocol(store);
   if (power_design(pilot).within().size() != design.within().size() ||
       power_design(pilot).cells() != design.cells())

@@ -5,93 +5,13 @@
 #include <cstdio>
 
 #include "analysis/report/analysis_output.h"
+#include "studies/report/report_tables.h"
+#include "studies/report/report_text.h"
 
 namespace handlab::studies {
 namespace {
 
-constexpr double kAlpha = 0.05;
-
-std::string fixed(double v, int decimals) {
-  if (!std::isfinite(v)) return "NA";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-  std::string s = buffer;
-  if (s.find_first_not_of("-0.") == std::string::npos && s.front() == '-') s.erase(0, 1);
-  return s;
-}
-
-ReportText words(std::string text) {
-  return {std::move(text), {}, '='};
-}
-ReportText number(double v, int decimals, std::string source) {
-  return {fixed(v, decimals), std::move(source), '='};
-}
-// APA: no leading zero for values that cannot exceed 1 (p, eta squared, epsilon, W).
-ReportText bounded(double v, int decimals, std::string source) {
-  return {analysis::apa_unit(v, decimals), std::move(source), '='};
-}
-ReportText count(long long n, std::string source) {
-  return {std::to_string(n), std::move(source), '='};
-}
-// "p = .008", "p < .001": the relation word and the bound number.
-ReportLine p_line(double p, const std::string& source, const std::string& name = "p") {
-  if (!std::isfinite(p)) return {words(name + " = NA")};
-  if (p < 0.001) return {words(name + " < "), {".001", source, '<'}};
-  const std::string s = fixed(p, 3);
-  if (s == "1.000") return {words(name + " > "), {".999", source, '>'}};
-  return {words(name + " = "), {s.substr(s.find('.')), source, '='}};
-}
-// The same in a table cell: "< .001", ".008".
-ReportLine p_cell(double p, const std::string& source) {
-  ReportLine line = p_line(p, source);
-  line.front().text = line.front().text.substr(2);  // drop "p "
-  if (line.front().text == "= ") line.erase(line.begin());
-  return line;
-}
-void append(ReportLine& to, const ReportLine& more) {
-  to.insert(to.end(), more.begin(), more.end());
-}
-
-std::string display(const std::string& name) {
-  if (name == "vr_experience") return "VR experience";
-  std::string s = name;
-  for (char& c : s)
-    if (c == '_') c = ' ';
-  if (!s.empty() && s[0] >= 'a' && s[0] <= 'z') s[0] = char(s[0] - 'a' + 'A');
-  return s;
-}
-std::string effect_name(const std::string& effect) {
-  std::string out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t colon = effect.find(':', start);
-    out += (out.empty() ? "" : " × ") + display(effect.substr(start, colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
-  return out;
-}
-std::string levels_name(const std::vector<std::string>& levels) {
-  std::string out;
-  for (const std::string& l : levels) out += (out.empty() ? "" : " ") + display(l);
-  return out;
-}
-std::string pair_levels(const std::vector<std::pair<std::string, std::string>>& at) {
-  std::vector<std::string> levels;
-  for (const auto& [f, l] : at) levels.push_back(l);
-  return levels_name(levels);
-}
-std::string join(const std::vector<std::string>& items, const std::string& last = " and ") {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == items.size() ? last : ", ") + items[i];
-  return out;
-}
-std::string join_all(const std::vector<std::string>& items, const std::string& separator) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? separator : "") + items[i];
-  return out;
-}
+using namespace report_text;
 
 class Builder {
  public:
@@ -104,6 +24,7 @@ class Builder {
     participants();
     data_quality();
     completion_time();
+    timeouts();
     participant_variables();
     questionnaire();
     return std::move(doc_);
@@ -317,49 +238,78 @@ class Builder {
 
     // The ANOVA, APA style.
     heading("Repeated-measures ANOVA", 2);
-    ReportTable t;
+    ReportTable t = anova_table(r, "/completion_time");
     t.caption = "Repeated-measures ANOVA of completion time (type III sums of squares), N = " +
                 std::to_string(r.n_subjects) + ".";
-    t.header = {"Effect", "df", "F", "p", "η²G", "ε (GG)", "Mauchly's W", "p (Mauchly)"};
-    for (std::size_t i = 0; i < r.anova.effects.size(); ++i) {
-      const stats::AnovaEffect& e = r.anova.effects[i];
-      const std::string key = "/completion_time/anova/" + std::to_string(i) + "/";
-      const bool tested = std::isfinite(e.mauchly_p);
-      const bool corrected = tested && e.mauchly_p < kAlpha;
-      ReportLine df;
-      if (corrected)
-        df = {number(e.df_num * e.eps_gg, 2, key + "df_num*" + key + "eps_gg"), words(", "),
-              number(e.df_den * e.eps_gg, 2, key + "df_den*" + key + "eps_gg")};
-      else
-        df = {number(e.df_num, 0, key + "df_num"), words(", "),
-              number(e.df_den, 0, key + "df_den")};
-      t.rows.push_back(
-          {{words(effect_name(e.effect))},
-           df,
-           {number(e.f, 2, key + "F")},
-           corrected ? p_cell(e.p_gg, key + "p_gg") : p_cell(e.p, key + "p"),
-           {bounded(e.ges, 3, key + "ges")},
-           tested ? ReportLine{bounded(e.eps_gg, 3, key + "eps_gg")} : ReportLine{words("–")},
-           tested ? ReportLine{bounded(e.mauchly_w, 3, key + "mauchly_W")} : ReportLine{words("–")},
-           tested ? p_cell(e.mauchly_p, key + "mauchly_p") : ReportLine{words("–")}});
-    }
-    t.note =
-        "Where Mauchly's test rejects sphericity (p < .05) the df and p are Greenhouse–Geisser "
-        "corrected (df × ε). η²G: generalised eta squared. Effects with one numerator df have no "
-        "sphericity to test (–).";
     table(std::move(t));
-    for (std::size_t i = 0; i < r.anova.effects.size(); ++i) {
-      const stats::AnovaEffect& e = r.anova.effects[i];
-      const bool corrected = std::isfinite(e.mauchly_p) && e.mauchly_p < kAlpha;
-      const double p = corrected ? e.p_gg : e.p;
-      if (!(p < kAlpha)) continue;
-      paragraph(anova_sentence("/completion_time/anova/" + std::to_string(i) + "/", e, corrected,
-                               "completion time"));
-    }
+    for (std::size_t i = 0; i < r.anova.effects.size(); ++i)
+      if (const stats::AnovaEffect& e = r.anova.effects[i]; anova_significant(e))
+        paragraph(anova_sentence("/completion_time/anova/" + std::to_string(i) + "/", e,
+                                 sphericity_corrected(e), "completion time"));
     figure(FigureKind::kTimeByRepetition, "time-by-repetition",
            "Mean (± " + error_bars() + ") time to complete the task per repetition, by " +
                join(factor_names(), " (left) and by ") + " (right).");
     posthoc(r);
+  }
+
+  // The completion time the two other ways: the timed-out trials left out, and success as an
+  // outcome of its own (timeout_analyses.h).
+  void timeouts() {
+    if (!a_.completion_time) return;
+    heading("Timed-out trials", 2);
+    const DataQuality& q = a_.quality;
+    paragraph(
+        {words("A trial not done within the protocol's limit of "),
+         number(a_.protocol.timeout_s, 0, "/study/timeout_s"), words(" s ends as a timeout ("),
+         count(q.timeouts, "/data_quality/timeouts"), words(" of "),
+         count(q.planned, "/data_quality/planned"),
+         words(" scheduled trials). The analysis above counts a timed-out trial at that limit, "
+               "a time censored there; below, the timed-out trials are left out, and success "
+               "is analysed as an outcome of its own. Where no trial times out the three "
+               "agree.")});
+    const OutcomeAnalysis& without = a_.time_without_timeouts;
+    if (without.result) {
+      ReportTable t = anova_table(*without.result, "/completion_time_without_timeouts");
+      t.caption =
+          "Repeated-measures ANOVA of completion time, the timed-out trials left out, N = " +
+          std::to_string(without.result->n_subjects) +
+          " (the participants with a completed trial in every condition and repetition).";
+      table(std::move(t));
+    } else {
+      paragraph({words("Completion time without the timed-out trials not computed: " +
+                       without.not_computed + ".")});
+    }
+    ReportTable rates;
+    rates.caption = "Success per condition: the scheduled trials completed.";
+    rates.header = {"Condition", "Completed", "Timed out", "Share completed"};
+    for (std::size_t i = 0; i < q.by_condition.size(); ++i) {
+      const ConditionOutcome& c = q.by_condition[i];
+      const std::string key = "/data_quality/by_condition/" + std::to_string(i) + "/";
+      std::string label = display(c.condition);
+      std::replace(label.begin(), label.end(), '-', ' ');
+      rates.rows.push_back(
+          {{words(label)},
+           {count(c.completed, key + "completed")},
+           {count(c.timeouts, key + "timeouts")},
+           {bounded(double(c.completed) / std::max(1, c.planned), 2, key + "success_rate")}});
+    }
+    table(std::move(rates));
+    if (!a_.success.result) {
+      paragraph({words("Success rates not compared: " + a_.success.not_computed + ".")});
+      return;
+    }
+    const analysis::AnalysisReport& s = *a_.success.result;
+    ReportTable f = friedman_table(s, "/success");
+    f.caption = "Friedman test of each participant's share of completed trials over the " +
+                std::to_string(a_.protocol.conditions().size()) + " conditions.";
+    table(std::move(f));
+    for (std::size_t i = 0; i < s.friedman.size(); ++i)
+      paragraph(friedman_sentence(s, i, "/success", "the shares of completed trials"));
+    ReportTable w = wilcoxon_table(s, "/success");
+    w.caption =
+        "Wilcoxon signed-rank tests of the shares of completed trials between every pair "
+        "of conditions.";
+    table(std::move(w));
   }
 
   void planned_comparisons(const analysis::AnalysisReport& r) {
@@ -383,29 +333,6 @@ class Builder {
     }
   }
 
-  ReportLine anova_sentence(const std::string& key, const stats::AnovaEffect& e, bool corrected,
-                            const std::string& dv) {
-    const bool interaction = e.effect.find(':') != std::string::npos;
-    ReportLine line = {words(std::string("There was a significant ") +
-                             (interaction ? "interaction " + effect_name(e.effect)
-                                          : "main effect of " + effect_name(e.effect)) +
-                             " on " + dv + ", F(")};
-    if (corrected)
-      append(line, {number(e.df_num * e.eps_gg, 2, key + "df_num*" + key + "eps_gg"), words(", "),
-                    number(e.df_den * e.eps_gg, 2, key + "df_den*" + key + "eps_gg")});
-    else
-      append(line, {number(e.df_num, 0, key + "df_num"), words(", "),
-                    number(e.df_den, 0, key + "df_den")});
-    append(line, {words(") = "), number(e.f, 2, key + "F"), words(", ")});
-    append(line, corrected ? p_line(e.p_gg, key + "p_gg") : p_line(e.p, key + "p"));
-    append(line, {words(", η²G = "), bounded(e.ges, 3, key + "ges")});
-    if (corrected)
-      append(line, {words(" (Greenhouse–Geisser ε = "), bounded(e.eps_gg, 3, key + "eps_gg"),
-                    words(")")});
-    append(line, {words(".")});
-    return line;
-  }
-
   // Post hoc tables: the protocol's factors' interaction (the paper's four conditions against
   // each other) always, and every other effect the ANOVA found significant.
   void posthoc(const analysis::AnalysisReport& r) {
@@ -421,10 +348,7 @@ class Builder {
       const std::string& effect = ph.contrasts.front().effect;
       bool significant = false;
       for (const stats::AnovaEffect& e : r.anova.effects)
-        if (e.effect == effect) {
-          const bool corrected = std::isfinite(e.mauchly_p) && e.mauchly_p < kAlpha;
-          significant = (corrected ? e.p_gg : e.p) < kAlpha;
-        }
+        if (e.effect == effect) significant = anova_significant(e);
       if (effect != planned_effect && !significant) continue;
       ReportTable t;
       t.caption = "Pairwise comparisons of " + effect_name(effect) +
@@ -528,76 +452,14 @@ class Builder {
       return;
     }
     const analysis::AnalysisReport& q = *a_.questionnaire;
-    ReportTable f;
+    ReportTable f = friedman_table(q, "/questionnaire");
     f.caption = "Friedman tests over the " + std::to_string(a_.protocol.conditions().size()) +
                 " conditions, per item.";
-    f.header = {"Item", "χ²", "df", "p", "Kendall's W", "n"};
-    for (std::size_t i = 0; i < q.friedman.size(); ++i) {
-      const analysis::FriedmanItem& item = q.friedman[i];
-      const std::string key = "/questionnaire/friedman/" + std::to_string(i) + "/";
-      f.rows.push_back({{words(display(item.dv))},
-                        {number(item.result.chisq, 2, key + "chisq")},
-                        {number(item.result.df, 0, key + "df")},
-                        p_cell(item.result.p, key + "p"),
-                        {bounded(item.result.kendall_w, 3, key + "kendall_w")},
-                        {count(item.result.n, key + "n")}});
-    }
     table(std::move(f));
-    for (std::size_t i = 0; i < q.friedman.size(); ++i) {
-      const analysis::FriedmanItem& item = q.friedman[i];
-      const std::string key = "/questionnaire/friedman/" + std::to_string(i) + "/";
-      const bool significant = item.result.p < kAlpha;
-      ReportLine line = {
-          words(display(item.dv) + ": the scores " +
-                (significant ? "differed significantly" : "did not differ significantly") +
-                " across conditions, χ²("),
-          number(item.result.df, 0, key + "df"),
-          words(", N = "),
-          count(item.result.n, key + "n"),
-          words(") = "),
-          number(item.result.chisq, 2, key + "chisq"),
-          words(", ")};
-      append(line, p_line(item.result.p, key + "p"));
-      append(line, {words(".")});
-      if (significant) {
-        std::vector<std::size_t> pairs;
-        for (std::size_t w = 0; w < q.wilcoxon.size(); ++w)
-          if (q.wilcoxon[w].dv == item.dv && q.wilcoxon[w].p_bonferroni < kAlpha)
-            pairs.push_back(w);
-        if (pairs.empty()) {
-          append(
-              line,
-              {words(
-                  " No pairwise Wilcoxon test was significant after the Bonferroni adjustment.")});
-        } else {
-          append(line, {words(" Wilcoxon signed-rank tests (Bonferroni-adjusted): ")});
-          for (std::size_t k = 0; k < pairs.size(); ++k) {
-            const analysis::WilcoxonPair& w = q.wilcoxon[pairs[k]];
-            const std::string wkey = "/questionnaire/wilcoxon/" + std::to_string(pairs[k]) + "/";
-            append(line, {words(std::string(k ? "; " : "") + levels_name(w.first) + " against " +
-                                levels_name(w.second) + ", V = "),
-                          number(w.result.v, 1, wkey + "V"), words(", ")});
-            append(line, p_line(w.p_bonferroni, wkey + "p_bonferroni"));
-          }
-          append(line, {words(".")});
-        }
-      }
-      paragraph(std::move(line));
-    }
-    ReportTable w;
+    for (std::size_t i = 0; i < q.friedman.size(); ++i)
+      paragraph(friedman_sentence(q, i, "/questionnaire", "the scores"));
+    ReportTable w = wilcoxon_table(q, "/questionnaire");
     w.caption = "Wilcoxon signed-rank tests between every pair of conditions, per item.";
-    w.header = {"Item", "Contrast", "V", "n", "p", "p (Bonferroni)"};
-    for (std::size_t i = 0; i < q.wilcoxon.size(); ++i) {
-      const analysis::WilcoxonPair& pair = q.wilcoxon[i];
-      const std::string key = "/questionnaire/wilcoxon/" + std::to_string(i) + "/";
-      w.rows.push_back({{words(display(pair.dv))},
-                        {words(levels_name(pair.first) + " − " + levels_name(pair.second))},
-                        {number(pair.result.v, 1, key + "V")},
-                        {count(pair.result.n, key + "n")},
-                        p_cell(pair.result.p, key + "p_none"),
-                        p_cell(pair.p_bonferroni, key + "p_bonferroni")});
-    }
-    w.note = "n: pairs with a non-zero difference.";
     table(std::move(w));
     figure(FigureKind::kItems, "questionnaire",
            "Median (± range) self-reported scores per item and condition.");

@@ -30,6 +30,9 @@ TEST(Cli, HelpListsCommandsAndEachCommandHasHelp) {
   const Result r = cli("--help");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("render"), std::string::npos);
+  // Every name stands apart from its summary, the longest too.
+  for (const char* name : {"  replications  ", "  participant  ", "  analyze  "})
+    EXPECT_NE(r.out.find(name), std::string::npos) << name;
   const Result h = cli("render --help");
   EXPECT_EQ(h.status, 0);
   EXPECT_NE(h.out.find("--width"), std::string::npos);

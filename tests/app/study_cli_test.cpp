@@ -572,8 +572,11 @@ TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
   EXPECT_TRUE(doc["pipeline"].as_bool());
   EXPECT_EQ(doc["sims"].as_number(), 1);
   ASSERT_EQ(doc["n"].size(), 1u);
-  // The 2x2x2 ANOVA's, the three participant variables' four each, the items'.
-  EXPECT_EQ(doc["effects"].as_object().size(), 7u + 3u * 4u + 3u);
+  // The 2x2x2 ANOVA's (at the limit and with the timed-out trials left out), the three
+  // participant variables' four each, the success rates' Friedman, the items'.
+  EXPECT_EQ(doc["effects"].as_object().size(), 2u * 7u + 3u * 4u + 1u + 3u);
+  EXPECT_NO_THROW(doc["effects"]["strategy:manipulation (timeouts left out)"]);
+  EXPECT_NO_THROW(doc["effects"]["success_rate (Friedman)"]);
   EXPECT_NO_THROW(doc["effects"]["hand_length:manipulation (covariate)"]);
   for (const auto& [name, power] : doc["effects"].as_object()) {
     ASSERT_EQ(power.size(), 1u) << name;
@@ -581,8 +584,9 @@ TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
     EXPECT_TRUE(p == 0.0 || p == 1.0) << name << " " << p;  // one study: found or not
   }
   EXPECT_NO_THROW(doc["effects"]["strategy:manipulation:repetition"]);
-  // Tukey pairs, the first repetition's two, items' pairs.
-  EXPECT_EQ(doc["contrasts"].as_object().size(), 6u + 2u + 3 * 6u);
+  // Tukey pairs and the first repetition's two (both ways), the success rates' and the items'
+  // pairs.
+  EXPECT_EQ(doc["contrasts"].as_object().size(), 2u * (6u + 2u) + 6u + 3 * 6u);
   EXPECT_NO_THROW(doc["contrasts"]["strategy:repetition: naive 1 - ours 1"]);
   EXPECT_EQ(doc["seconds_per_n"].size(), 1u);
   EXPECT_GT(doc["seconds_per_n"][0].as_number(), 0.0);

@@ -203,6 +203,43 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
   EXPECT_EQ(db.simulated_person("S01")->model_sha256, "abc");
 }
 
+// Analyses open a study read-only: a file committed with a rollback journal (as the test
+// studies are) is left byte for byte with nothing beside it, and an older schema is read
+// through a copy migrated in memory.
+TEST(StudyStore, ReadOnlyAccessWritesNothing) {
+  const std::string path = test::fresh_path("store_read_only.db");
+  StudyStore::create(path, definition());
+  {
+    StudyStore db(path);
+    db.add_participant(person("P01"), two_trials());
+    db.database().exec(
+        "ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
+        "DROP TABLE simulated_memory; PRAGMA user_version = 2");
+  }
+  { Database(path, Database::Mode::kInspect).exec("PRAGMA journal_mode = DELETE"); }
+  ASSERT_FALSE(std::filesystem::exists(path + "-wal"));
+  const std::string before = test::file_bytes(path);
+  for (int k = 0; k < 2; ++k) {
+    StudyStore db(path, StudyStore::Access::kReadOnly);
+    EXPECT_EQ(db.study().schema_version, kSchemaVersion);
+    ASSERT_TRUE(db.participant("P01"));
+    EXPECT_FALSE(db.participant("P01")->simulated);
+    EXPECT_EQ(db.plan("P01").size(), 2u);
+  }
+  EXPECT_EQ(test::file_bytes(path), before);
+  { StudyStore upgraded(path); }  // the schema current, still no writes by a reader
+  { Database(path, Database::Mode::kInspect).exec("PRAGMA journal_mode = DELETE"); }
+  const std::string current = test::file_bytes(path);
+  {
+    StudyStore db(path, StudyStore::Access::kReadOnly);
+    EXPECT_EQ(db.plan("P01").size(), 2u);
+    EXPECT_THROW(db.add_participant(person("P02"), two_trials()), StoreError);
+  }
+  EXPECT_EQ(test::file_bytes(path), current);
+  EXPECT_FALSE(std::filesystem::exists(path + "-wal"));
+  EXPECT_FALSE(std::filesystem::exists(path + "-shm"));
+}
+
 TEST(StudyStore, RefusesBadFilesWithoutChangingThem) {
   const std::string newer = test::fresh_path("store_newer.db");
   StudyStore::create(newer, definition());

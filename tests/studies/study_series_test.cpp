@@ -48,8 +48,10 @@ const stats::PairwiseContrast* find_contrast(const analysis::AnalysisReport& r,
 }
 
 // Six participants whose Naive fine trials are slow and whose answers rate Ours above Naive
-// in every condition; `protocol_text` may be another protocol's.
-std::string synthetic_study(const std::string& name, const Protocol& protocol) {
+// in every condition; `protocol_text` may be another protocol's. With `timeouts`, participant
+// p's Naive fine trials of the first p % 3 repetitions time out.
+std::string synthetic_study(const std::string& name, const Protocol& protocol,
+                            bool timeouts = false) {
   const std::string path = test::fresh_path(name);
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore store(path);
@@ -71,6 +73,10 @@ std::string synthetic_study(const std::string& name, const Protocol& protocol) {
       outcome.success = true;
       outcome.completion_time_s = 5.0 + 0.3 * p + (fine ? 3.0 : 0.0) + (naive && fine ? 2.0 : 0.0) +
                                   0.1 * double((p * 7 + t.condition * 3 + t.repetition * 5) % 11);
+      if (timeouts && naive && fine && t.repetition <= p % 3) {
+        outcome.success = false;
+        outcome.completion_time_s = protocol.timeout_s;
+      }
       if (t.questionnaire)
         for (const QuestionnaireItem& item : protocol.items)
           outcome.answers.emplace_back(item.id, naive ? 1 + (p % 2) : 4 + (p % 2));
@@ -94,7 +100,17 @@ TEST(StudyTests, NamePairsOfCellsInTheProtocolsOrderWithTheirSigns) {
   for (const ParticipantVariableAnalysis& v : a.participant_variables)
     variables += v.result ? 1 : 0;
   EXPECT_GE(variables, 2);
-  ASSERT_EQ(tests.tests.size(), 7u + 6u + 2u + 4u * std::size_t(variables) + 3u * 7u);
+  // With no trial timed out the completion time without them is the same analysis again, and
+  // the success rates' Friedman test and six pairs are there (every rate 1: no statistic).
+  ASSERT_EQ(tests.tests.size(), 2u * (7u + 6u + 2u) + 4u * std::size_t(variables) + 7u + 3u * 7u);
+  for (const stats::AnovaEffect& e : a.completion_time->anova.effects) {
+    const StudyTest* left_out = find_test(tests, e.effect + " (timeouts left out)");
+    ASSERT_TRUE(left_out) << e.effect;
+    EXPECT_EQ(left_out->value, e.f) << e.effect;
+    EXPECT_EQ(left_out->group, kTestsTimeoutsLeftOut);
+  }
+  ASSERT_TRUE(find_test(tests, "success_rate (Friedman)"));
+  EXPECT_EQ(find_test(tests, "success_rate (Friedman)")->group, kTestsSuccess);
   const StudyTest* first_trial = find_test(tests, "strategy:repetition: naive 1 - ours 1");
   ASSERT_TRUE(first_trial);
   EXPECT_EQ(first_trial->statistic, "t");
@@ -132,6 +148,36 @@ TEST(StudyTests, NamePairsOfCellsInTheProtocolsOrderWithTheirSigns) {
 
 // An effect judged with a sphericity correction carries that correction's df: each
 // correction's own epsilon, taken from the correction (not guessed from the p it returned).
+// Timed-out trials three ways: at the limit (the main analysis keeps every participant), left
+// out (a participant without a completed trial in some cell is left out, as R's aov leaves
+// them), and success as its own outcome: the rates' Friedman test against its value by hand.
+TEST(StudyTests, TimedOutTrialsAtTheLimitLeftOutAndAsSuccess) {
+  const Protocol protocol = read_protocol(kProtocol);
+  const StudyDatabaseAnalysis a =
+      analyze_study_database(synthetic_study("series_timeouts.db", protocol, true));
+  ASSERT_TRUE(a.completion_time);
+  EXPECT_EQ(a.completion_time->n_subjects, 6);
+  EXPECT_EQ(a.quality.timeouts, 0 + 1 + 2 + 0 + 1 + 2);
+  ASSERT_TRUE(a.time_without_timeouts.result) << a.time_without_timeouts.not_computed;
+  EXPECT_EQ(a.time_without_timeouts.result->n_subjects, 2);  // P0 and P3 had no timeout
+  const StudyTests tests = study_tests(a, power::SphericityCorrection::kAuto, 0.05);
+  const StudyTest* at_limit = find_test(tests, "strategy:manipulation");
+  const StudyTest* left_out = find_test(tests, "strategy:manipulation (timeouts left out)");
+  ASSERT_TRUE(at_limit && left_out);
+  EXPECT_NE(at_limit->value, left_out->value);
+  EXPECT_EQ(left_out->df.back(), 1.0);  // two participants: (2 - 1) error df
+  // Ranks per participant over the four conditions: with a timeout Naive fine 1, the others
+  // tied at 3; without, all tied at 2.5. Column sums 9, 17, 17, 17 against 15; R's tie
+  // correction: chi2 = 12 * 48 / (6 * 4 * 5 - (4 * 24 + 2 * 60) / 3) = 12, df 3.
+  const StudyTest* friedman = find_test(tests, "success_rate (Friedman)");
+  ASSERT_TRUE(friedman);
+  EXPECT_NEAR(friedman->value, 12.0, 1e-12);
+  EXPECT_NEAR(friedman->p, 0.00738316, 1e-7);  // pchisq(12, 3, lower.tail = FALSE)
+  const StudyTest* pair = find_test(tests, "success_rate: naive fine - ours fine (Wilcoxon)");
+  ASSERT_TRUE(pair);
+  EXPECT_EQ(pair->value, 0.0);  // Naive fine never the more successful
+}
+
 TEST(StudyTests, CorrectedEffectsCarryTheirCorrectionsDf) {
   const StudyDatabaseAnalysis a = analyze_study_database(simulated_study(1));
   ASSERT_TRUE(a.completion_time);
@@ -239,7 +285,9 @@ TEST(StudySeries, DescribesEachTestOverTheStudies) {
     EXPECT_EQ(t.studies, 2) << t.name;
     EXPECT_EQ(t.value[0], first.tests[i].value[0]) << t.name;
     EXPECT_EQ(t.value[1], second.tests[i].value[0]) << t.name;
-    EXPECT_EQ(t.p[1], second.tests[i].p[0]) << t.name;
+    if (!std::isnan(t.p[1]) || !std::isnan(second.tests[i].p[0])) {  // NaN: no statistic
+      EXPECT_EQ(t.p[1], second.tests[i].p[0]) << t.name;
+    }
     // Of two values the median is their mean.
     EXPECT_DOUBLE_EQ(t.median, 0.5 * (t.value[0] + t.value[1])) << t.name;
     EXPECT_EQ(t.min, std::min(t.value[0], t.value[1])) << t.name;

@@ -30,7 +30,7 @@ int run_export(const std::vector<std::string>& argv) {
     return 0;
   }
   args.require({"db", "out"});
-  store::StudyStore store(args.text("db"));
+  store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
   const std::filesystem::path dir = args.text("out");
   std::filesystem::create_directories(dir);
   write_output((dir / "trials.csv").string(),

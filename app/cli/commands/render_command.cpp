@@ -59,7 +59,7 @@ int run_render(const std::vector<std::string>& argv) {
     const long attempt = args.has("attempt") ? args.integer("attempt") : 0;
     if (trial < 1) throw UsageError("--trial counts from 1");
     if (args.has("attempt") && attempt < 1) throw UsageError("--attempt counts from 1");
-    store::StudyStore store(args.text("db"));
+    store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
     const studies::TrialReplay replay =
         studies::load_trial_replay(store, args.text("participant"), int(trial - 1), int(attempt));
     const double time = args.has("time") ? args.number("time") : replay.duration();

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
+
+#include <unistd.h>
 #include <thread>
 
 #include "app/cli/arguments.h"
@@ -57,15 +59,21 @@ int run_simulate(const std::vector<std::string>& argv) {
   options.frames = args.flag("frames");
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
+  // On a terminal one line rewritten in place; into a log a line each time a participant is
+  // done.
+  const bool terminal = isatty(fileno(stderr)) == 1;
+  int participants_shown = -1;
 
   const studies::SimulationReport report = studies::simulate_study(
       protocol, args.text("db"), options, [&](const studies::SimulationProgress& p) {
-        if (quiet) return;
-        std::fprintf(stderr, "\rparticipants %d/%d  trials %d/%d  %.0f s ", p.participants_done,
-                     p.participants, p.trials_done, p.trials, p.seconds);
+        if (quiet || (!terminal && p.participants_done == participants_shown)) return;
+        participants_shown = p.participants_done;
+        std::fprintf(stderr, "%sparticipants %d/%d  trials %d/%d  %.0f s%s", terminal ? "\r" : "",
+                     p.participants_done, p.participants, p.trials_done, p.trials, p.seconds,
+                     terminal ? " " : "\n");
         std::fflush(stderr);
       });
-  if (!quiet) std::fprintf(stderr, "\n");
+  if (!quiet && terminal) std::fprintf(stderr, "\n");
 
   if (args.text("json") != "-") {
     std::cout << report.participants << " simulated participants, " << report.trials << " trials ("
