@@ -30,6 +30,9 @@ const std::vector<Command>& all_commands() {
        "several studies of one protocol side by side: each test's distribution, the published "
        "values",
        run_replications},
+      {"sensitivity",
+       "how simulated studies' conclusions hang on the participant model's parameters (Morris)",
+       run_sensitivity},
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
 #ifdef HANDLAB_WITH_REPORT

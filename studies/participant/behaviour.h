@@ -1,7 +1,7 @@
 // The fixed constants of a simulated participant's behaviour, the same for every person (the
 // per-person parameters are MotorParameters): heights, margins, the looks it takes. Each with
-// its reason or source in docs/simulated-participants.md; part of the model's hash (so the
-// struct holds doubles only).
+// its reason or source in docs/simulated-participants.md; part of the model's hash, each by
+// its name (participant_model.cpp; the struct holds doubles only, so none is left out).
 #pragma once
 
 namespace handlab::studies {
@@ -53,7 +53,5 @@ struct Behaviour {
   // study sample's mean); a person's margin scales with its hand.
   double reference_hand_length = 0.188;
 };
-
-inline constexpr Behaviour kBehaviour{};
 
 }  // namespace handlab::studies

@@ -23,7 +23,7 @@ const CubeMemory* ParticipantMemory::cube(double size) const {
 }
 
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
-                           const TwoRateRates& contact_rates) {
+                           const TwoRateRates& rates) {
   ParticipantMemory next = memory;
   ++next.trials;
   CubeMemory* cube = nullptr;
@@ -35,10 +35,12 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
     cube = &next.cubes.back();
   }
   ++cube->trials;
-  cube->contact = trial.contact_seen ? adapt(cube->contact, contact_rates, trial.contact_error)
-                                     : forget(cube->contact, contact_rates);
-  // The grip of the last lift that held is the next one's (Johansson & Westling 1988).
-  if (trial.held) cube->squeeze = trial.squeeze;
+  cube->contact = trial.contact_seen ? adapt(cube->contact, rates, trial.contact_error)
+                                     : forget(cube->contact, rates);
+  // A lift's grip is programmed from the lifts before (Johansson & Westling 1988) and follows a
+  // change of what the object needs both ways within a few lifts (Delhaye et al. 2024): more
+  // after the failures that needed more, less again as lifts hold.
+  cube->grip = adapt(cube->grip, rates, trial.squeeze_added);
   return next;
 }
 
@@ -52,7 +54,8 @@ std::string memory_to_json(const ParticipantMemory& m) {
         .field("trials", c.trials)
         .field("contact_fast", c.contact.fast)
         .field("contact_slow", c.contact.slow)
-        .field("squeeze", c.squeeze)
+        .field("grip_fast", c.grip.fast)
+        .field("grip_slow", c.grip.slow)
         .end_object();
   w.end_array().end_object();
   return out.str();
@@ -67,7 +70,7 @@ ParticipantMemory memory_from_json(const std::string& text) {
       m.cubes.push_back({c["cube_size"].as_number(),
                          int(c["trials"].as_number()),
                          {c["contact_fast"].as_number(), c["contact_slow"].as_number()},
-                         c["squeeze"].as_number()});
+                         {c["grip_fast"].as_number(), c["grip_slow"].as_number()}});
     return m;
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("not a simulated participant's memory: ") + e.what());

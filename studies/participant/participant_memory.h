@@ -18,7 +18,7 @@ struct CubeMemory {
   double cube_size = 0.0;  // m, as seen
   int trials = 0;          // trials done with it
   TwoRateState contact;    // m: learnt correction of where its aperture meets the cube
-  double squeeze = 0.0;    // m: the closing past contact of the last grasp that held
+  TwoRateState grip;       // m: learnt closing past contact beyond the first grasp's aim
 };
 
 struct ParticipantMemory {
@@ -31,9 +31,10 @@ struct ParticipantMemory {
 };
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by the
-// contact error it saw (or only forgetting, without one), the grip of a lift that held.
+// contact error it saw (or only forgetting, without one), the grip margin adapted by what its
+// failed grasps added (a trial whose first grasp held only forgets), both at `rates`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
-                           const TwoRateRates& contact_rates);
+                           const TwoRateRates& rates);
 
 std::string memory_to_json(const ParticipantMemory& memory);
 // Throws std::runtime_error on text that is not a memory.

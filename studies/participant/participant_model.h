@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/store/study_store.h"
+#include "studies/participant/behaviour.h"
 #include "studies/participant/two_rate_adaptation.h"
 
 namespace handlab::studies {
@@ -37,6 +38,7 @@ struct MotorParameters {
 struct SimulatedPerson {
   store::Participant participant;  // id, age, sex, handedness, hand length, VR experience
   MotorParameters motor;
+  Behaviour behaviour;  // the model's, the same for everyone
   std::uint64_t seed = 0;  // the person's own stream (trials draw from it with their place)
 };
 
@@ -55,30 +57,51 @@ struct ParameterDistribution {
   double mean, sd, low, high;
 };
 
-// The motor parameters drawn per person, in drawing order (a new one goes last, so that
-// adding it never moves the others' draws).
-const std::vector<ParameterDistribution>& motor_distributions();
+// The model: the per-person distributions (in drawing order: a new one goes last, so that
+// adding it never moves the others' draws), the motor parameters not drawn, the behaviour.
+struct ParticipantModel {
+  std::vector<ParameterDistribution> distributions;
+  MotorParameters fixed;
+  Behaviour behaviour;
+};
+
+// The model as its version names it (kParticipantModelVersion).
+const ParticipantModel& frozen_participant_model();
+
+// The model with parameters changed by name, for a sensitivity analysis: a per-person
+// parameter's name changes its distribution's mean (kept inside its bounds' span), a fixed
+// motor parameter's or a behaviour constant's its value. Throws std::invalid_argument on a
+// name the model lacks.
+ParticipantModel changed_model(ParticipantModel model,
+                               const std::vector<std::pair<std::string, double>>& changes);
+// Every name changed_model takes, with its value in `model`.
+std::vector<std::pair<std::string, double>> model_parameters(const ParticipantModel& model);
 
 // The model's version, and the SHA-256 of everything that decides what its people do: the
 // population, the per-person distributions, the fixed motor parameters and the behaviour's
 // constants (model_parameters_json). Printed by `simulate`, stored with each participant.
 extern const char* const kParticipantModelVersion;
-std::string model_parameters_json();
-std::string model_sha256();
+std::string model_parameters_json(const ParticipantModel& model = frozen_participant_model());
+std::string model_sha256(const ParticipantModel& model = frozen_participant_model());
 
 // Person `index` (0-based) of the population under `seed`: covariates and motor parameters.
 // The id is "S01", "S02", ...; the notes mark the participant as simulated.
-SimulatedPerson draw_person(const Population& population, std::uint64_t seed, int index);
+SimulatedPerson draw_person(const Population& population, std::uint64_t seed, int index,
+                            const ParticipantModel& model = frozen_participant_model());
 
 // The motor parameters of a participant with a given id (e.g. one enrolled by hand and run
 // with `session run --tracker simulated`): drawn from the population under `seed` and the id.
-MotorParameters draw_motor_parameters(std::uint64_t seed, const std::string& id);
+MotorParameters draw_motor_parameters(std::uint64_t seed, const std::string& id,
+                                      const ParticipantModel& model = frozen_participant_model());
 
 // A person from its stored covariates, with the motor parameters of its id under `seed`.
-SimulatedPerson simulated_person(const store::Participant& participant, std::uint64_t seed);
+SimulatedPerson simulated_person(const store::Participant& participant, std::uint64_t seed,
+                                 const ParticipantModel& model = frozen_participant_model());
 
 // What the study database keeps of a simulated person (store::SimulatedPersonRow).
-store::SimulatedPersonRow simulated_person_row(const SimulatedPerson& person, std::uint64_t seed);
+store::SimulatedPersonRow simulated_person_row(
+    const SimulatedPerson& person, std::uint64_t seed,
+    const ParticipantModel& model = frozen_participant_model());
 
 // The seed of a person's own stream from the population seed and the id.
 std::uint64_t person_seed(std::uint64_t seed, const std::string& id);

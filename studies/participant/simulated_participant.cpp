@@ -9,7 +9,6 @@
 namespace handlab::studies {
 namespace {
 
-constexpr const Behaviour& kB = kBehaviour;
 
 Eigen::Vector3d horizontal(const Eigen::Vector3d& v) {
   return Eigen::Vector3d(v.x(), 0, v.z());
@@ -96,7 +95,7 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
   };
   s.thumb_gap = gap(thumb, g.thumb_distal);
   s.index_gap = gap(index, g.index_distal);
-  s.both_touching = s.both_touching && s.thumb_gap < kB.pad_on_face && s.index_gap < kB.pad_on_face;
+  s.both_touching = s.both_touching && s.thumb_gap < behaviour().pad_on_face && s.index_gap < behaviour().pad_on_face;
   s.hand = true;
   s.grip = 0.5 * (thumb + index);
   s.aperture = (thumb - index).norm() - g.bone_radius[std::size_t(g.thumb_distal)] -
@@ -115,12 +114,12 @@ Eigen::Vector3d SimulatedParticipant::grasp_point(const Observation& o) const {
 }
 
 bool SimulatedParticipant::cube_at_rest(const Seen& s) {
-  if (resting_since_ < 0 || (s.cube - resting_at_).norm() > kB.rest_travel) {
+  if (resting_since_ < 0 || (s.cube - resting_at_).norm() > behaviour().rest_travel) {
     resting_since_ = time_;
     resting_at_ = s.cube;
     return false;
   }
-  return time_ - resting_since_ >= kB.rest_look;
+  return time_ - resting_since_ >= behaviour().rest_look;
 }
 
 bool SimulatedParticipant::in_zone_b(const Seen& s, const Observation& o) {
@@ -129,7 +128,7 @@ bool SimulatedParticipant::in_zone_b(const Seen& s, const Observation& o) {
 }
 
 double SimulatedParticipant::clearance(const Seen& s, const Observation& o) const {
-  return std::max(s.aperture - o.cube_size, kB.min_clearance);
+  return std::max(s.aperture - o.cube_size, behaviour().min_clearance);
 }
 
 double SimulatedParticipant::aperture_now() const {
@@ -141,7 +140,7 @@ double SimulatedParticipant::aperture_now() const {
 // prehension), the object's share with the object.
 double SimulatedParticipant::peak_aperture(double cube_size) const {
   const MotorParameters& m = person_.motor;
-  return m.aperture_intercept * person_.participant.hand_length / kB.reference_hand_length +
+  return m.aperture_intercept * person_.participant.hand_length / behaviour().reference_hand_length +
          m.aperture_slope * cube_size;
 }
 
@@ -174,7 +173,7 @@ void SimulatedParticipant::move_aperture(double target, double duration) {
 }
 
 void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
-  const Eigen::Vector3d target_seen = grasp_point(o) + up(kB.approach_height);
+  const Eigen::Vector3d target_seen = grasp_point(o) + up(behaviour().approach_height);
   const Eigen::Vector3d offset =
       s.hand ? Eigen::Vector3d(s.grip - own_at(o.time).grip) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d target = target_seen - offset;
@@ -182,7 +181,7 @@ void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
   // is the reach's tolerance.
   const double duration =
       fitts((target - (grip_.at(time_) + servo_)).norm(),
-            std::max(peak_aperture(o.cube_size) - o.cube_size, kB.min_clearance));
+            std::max(peak_aperture(o.cube_size) - o.cube_size, behaviour().min_clearance));
   move_grip(target, duration, true);
   move_aperture(peak_aperture(o.cube_size), person_.motor.peak_aperture_at * duration);
   corrections_this_move_ = 0;
@@ -190,12 +189,18 @@ void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
   phase_ = Phase::kReach;
 }
 
-void SimulatedParticipant::start_regrasp() {
-  extra_squeeze_ += person_.motor.regrasp_squeeze;
+void SimulatedParticipant::start_regrasp(bool slipped) {
+  // A cube that slipped from the pads under load is gripped harder the next time (Johansson &
+  // Westling 1984); a closing that missed or a cube that came to rest outside B says nothing
+  // of the grip.
+  if (slipped) {
+    extra_squeeze_ += person_.motor.regrasp_squeeze;
+    experience_.squeeze_added += person_.motor.regrasp_squeeze;
+  }
   servo_on_ = false;
   const double cube = shown_.empty() ? 0.0 : shown_.back().cube_size;
-  move_aperture(peak_aperture(cube), practised(kB.reopen_time));
-  move_grip(grip_.at(time_) + servo_ + up(kB.approach_height), practised(kB.reopen_rise_time),
+  move_aperture(peak_aperture(cube), practised(behaviour().reopen_time));
+  move_grip(grip_.at(time_) + servo_ + up(behaviour().approach_height), practised(behaviour().reopen_rise_time),
             false);
   phase_ = Phase::kReopen;
 }
@@ -204,10 +209,10 @@ void SimulatedParticipant::start_regrasp() {
 void SimulatedParticipant::learn_gain(const Observation& o, const Seen& s) {
   if (!s.hand || o.thumb_touching || o.index_touching) return;
   const OwnState own = own_at(o.time);
-  if (own.aperture <= kB.gain_min_aperture) return;
+  if (own.aperture <= behaviour().gain_min_aperture) return;
   const double g = s.aperture / own.aperture;
   gain_estimate_ =
-      gain_samples_++ == 0 ? g : (1 - kB.gain_smoothing) * gain_estimate_ + kB.gain_smoothing * g;
+      gain_samples_++ == 0 ? g : (1 - behaviour().gain_smoothing) * gain_estimate_ + behaviour().gain_smoothing * g;
 }
 
 // Continuous correction of the grip towards the grasp point it sees (the descent's own plan
@@ -217,19 +222,19 @@ void SimulatedParticipant::servo(const Observation& o, const Seen& s) {
   const Eigen::Vector3d offset = s.grip - own_at(o.time).grip;
   Eigen::Vector3d error = grasp_point(o) - offset - (grip_.to + servo_);
   error.y() = 0;
-  servo_ += kB.servo_gain * dt_ * error;
+  servo_ += behaviour().servo_gain * dt_ * error;
 }
 
 // A cube it sees caught on the hand while it goes for the cube (stuck to a fingertip, in a
 // finger's crease): reaching for it would carry it along. It opens the hand wide for the
 // cube to fall, then looks again (kFreeCube). True when it starts doing so.
 bool SimulatedParticipant::watch_for_caught_cube(const Observation* o, const Seen& s) {
-  if (o && s.hand && !s.both_touching && s.cube.y() - 0.5 * o->cube_size > kB.caught_height) {
+  if (o && s.hand && !s.both_touching && s.cube.y() - 0.5 * o->cube_size > behaviour().caught_height) {
     if (off_floor_since_ < 0) off_floor_since_ = time_;
   } else if (o) {
     off_floor_since_ = -1;
   }
-  caught_ = off_floor_since_ >= 0 && time_ - off_floor_since_ >= kB.caught_look;
+  caught_ = off_floor_since_ >= 0 && time_ - off_floor_since_ >= behaviour().caught_look;
   const bool going_for_cube = phase_ == Phase::kReach || phase_ == Phase::kCheckReach ||
                               phase_ == Phase::kDescend || phase_ == Phase::kCheckDescent ||
                               phase_ == Phase::kReopen;
@@ -238,19 +243,19 @@ bool SimulatedParticipant::watch_for_caught_cube(const Observation* o, const See
   wipes_ = 0;
   servo_on_ = false;
   move_grip(grip_.at(time_) + servo_, dt_, false);  // it stops where it is
-  move_aperture(hand_.max_aperture(pinch_), practised(kB.reopen_time));
+  move_aperture(hand_.max_aperture(pinch_), practised(behaviour().reopen_time));
   phase_ = Phase::kFreeCube;
   return true;
 }
 
 bool SimulatedParticipant::loss_seen(const Observation* o, const Seen& s) const {
-  return o && s.hand && (s.cube - s.grip).norm() > 0.5 * o->cube_size + kB.loss_distance;
+  return o && s.hand && (s.cube - s.grip).norm() > 0.5 * o->cube_size + behaviour().loss_distance;
 }
 
 void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
-  const Eigen::Vector3d error = grasp_point(o) + up(kB.approach_height) - s.grip;
-  const double tolerance = std::max(kB.min_tolerance, kB.reach_tolerance_share * clearance(s, o));
-  if (s.hand && error.norm() > tolerance && corrections_this_move_ < kB.max_corrections) {
+  const Eigen::Vector3d error = grasp_point(o) + up(behaviour().approach_height) - s.grip;
+  const double tolerance = std::max(behaviour().min_tolerance, behaviour().reach_tolerance_share * clearance(s, o));
+  if (s.hand && error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
     move_grip(grip_.at(time_) + servo_ + error, correction(error.norm(), 2 * tolerance), true);
@@ -259,11 +264,11 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
   }
   const Eigen::Vector3d offset =
       s.hand ? Eigen::Vector3d(s.grip - own_at(o.time).grip) : Eigen::Vector3d::Zero();
-  const double descent = fitts(kB.approach_height, clearance(s, o));
+  const double descent = fitts(behaviour().approach_height, clearance(s, o));
   move_grip(grasp_point(o) - offset, descent, true);
   // After its peak the grip closes while the hand comes down, to a little wider than the
   // cube it sees, so that the final closing is short.
-  move_aperture((o.cube_size + 2 * kB.pre_contact_margin) / std::max(gain_estimate_, kB.min_gain),
+  move_aperture((o.cube_size + 2 * behaviour().pre_contact_margin) / std::max(gain_estimate_, behaviour().min_gain),
                 descent);
   servo_on_ = true;
   corrections_this_move_ = 0;
@@ -274,8 +279,8 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   // The fingers straddle the cube: are they centred on it? A corrective submovement if not
   // (the precision the closing needs: a share of the cube's side).
   const Eigen::Vector3d error = grasp_point(o) - s.grip;
-  const double tolerance = std::max(kB.min_tolerance, kB.centring_tolerance_share * o.cube_size);
-  if (s.hand && error.norm() > tolerance && corrections_this_move_ < kB.max_corrections) {
+  const double tolerance = std::max(behaviour().min_tolerance, behaviour().centring_tolerance_share * o.cube_size);
+  if (s.hand && error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
     move_grip(grip_.at(time_) + servo_ + error, correction(error.norm(), 2 * tolerance), true);
@@ -285,8 +290,8 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   ++experience_.grasp_attempts;
   // Where it expects its pads to meet the cube: the seen size through its estimate of how the
   // seen fingers follow its own, with what it learnt in earlier trials; it aims past that.
-  expected_contact_ = o.cube_size / std::max(gain_estimate_, kB.min_gain) + contact_correction_;
-  move_aperture(expected_contact_ - kB.closing_past_contact - extra_squeeze_,
+  expected_contact_ = o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_correction_;
+  move_aperture(expected_contact_ - behaviour().closing_past_contact - extra_squeeze_,
                 practised(person_.motor.closing_time));
   phase_ = Phase::kClose;
 }
@@ -300,7 +305,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
       experience_.contact_error = own_at(o->time).aperture - expected_contact_;
     }
     // Build up the grip (the loading phase) from where the hand is.
-    move_aperture(aperture_now() - kB.grip_loading - extra_squeeze_,
+    move_aperture(aperture_now() - behaviour().grip_loading - extra_squeeze_,
                   practised_general_ * person_.motor.confirm_dwell);
     touching_since_ = time_;
     phase_ = Phase::kConfirm;
@@ -311,10 +316,10 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   if (phase_ != Phase::kSlowClose) return;
   const double now = aperture_to_;
   if (now <= hand_.min_aperture(pinch_) + 1e-4) {
-    start_regrasp();
+    start_regrasp(false);
     return;
   }
-  aperture_from_ = aperture_to_ = std::max(now - kB.slow_closing * dt_, hand_.min_aperture(pinch_));
+  aperture_from_ = aperture_to_ = std::max(now - behaviour().slow_closing * dt_, hand_.min_aperture(pinch_));
   aperture_duration_ = 0.0;
 }
 
@@ -326,16 +331,15 @@ void SimulatedParticipant::confirm(const Observation* o, const Seen& s) {
   }
   if (time_ - touching_since_ < practised_general_ * person_.motor.confirm_dwell) return;
   servo_on_ = false;
-  held_squeeze_ = extra_squeeze_;
-  move_grip(grip_.at(time_) + servo_ + up(kB.lift_height), fitts(kB.lift_height, kB.lift_height),
+  move_grip(grip_.at(time_) + servo_ + up(behaviour().lift_height), fitts(behaviour().lift_height, behaviour().lift_height),
             false);
   phase_ = Phase::kLift;
 }
 
 void SimulatedParticipant::check_lift(const Observation& o, const Seen& s) {
-  if (loss_seen(&o, s) || s.cube.y() - 0.5 * o.cube_size < 0.5 * kB.lift_height) {
+  if (loss_seen(&o, s) || s.cube.y() - 0.5 * o.cube_size < 0.5 * behaviour().lift_height) {
     ++experience_.losses;
-    start_regrasp();
+    start_regrasp(true);
     return;
   }
   aim_transport(o, s, true);
@@ -349,8 +353,8 @@ void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bo
   const Eigen::Vector3d cube_now = s.cube + (own_now - own_at(o.time).grip);
   const Eigen::Vector3d error = horizontal(o.zone_b - cube_now);
   const double tolerance =
-      std::max(kB.placement_tolerance, 0.5 * (o.zone_size - o.cube_size) - kB.placement_margin);
-  if (first || (error.norm() > tolerance && corrections_this_move_ < kB.max_corrections)) {
+      std::max(behaviour().placement_tolerance, 0.5 * (o.zone_size - o.cube_size) - behaviour().placement_margin);
+  if (first || (error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections)) {
     if (!first) {
       ++corrections_this_move_;
       ++experience_.corrections;
@@ -361,7 +365,7 @@ void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bo
     phase_ = Phase::kTransport;
     return;
   }
-  const double drop = cube_now.y() - (0.5 * o.cube_size - kB.place_depth);
+  const double drop = cube_now.y() - (0.5 * o.cube_size - behaviour().place_depth);
   // Down onto the floor, which stops the cube: no endpoint to hit (one bit, as the lift).
   move_grip(own_now - up(drop), fitts(std::abs(drop), std::abs(drop)), false);
   phase_ = Phase::kLower;
@@ -370,39 +374,44 @@ void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bo
 void SimulatedParticipant::lower(const Observation* o, const Seen& s) {
   if (loss_seen(o, s)) {
     ++experience_.losses;
-    start_regrasp();
+    start_regrasp(true);
   } else if (grip_.done(time_)) {
     // Let go: the hand opens at least to its peak aperture, so that no finger stays hooked
     // on a large cube.
     const double cube = shown_.empty() ? 0.0 : shown_.back().cube_size;
-    move_aperture(std::max(aperture_to_ + kB.release_opening, peak_aperture(cube)),
-                  practised(kB.reopen_time));
+    move_aperture(std::max(aperture_to_ + behaviour().release_opening, peak_aperture(cube)),
+                  practised(behaviour().reopen_time));
     phase_ = Phase::kRelease;
   }
 }
 
 void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
   if (in_zone_b(s, o)) {
-    // Set down where it should be: the grip it lifted with held (what it carries to the
-    // next trial with this cube).
-    experience_.squeeze = held_squeeze_;
-    experience_.held = true;
-    move_grip(grip_.at(time_) + servo_ + up(kB.withdraw_height),
-              fitts(kB.withdraw_height, kB.withdraw_height), false);
+    // Set down where it should be: up and away; out sideways, from under the cube, if the
+    // cube came up with the hand before.
+    const Eigen::Vector3d own_now = grip_.at(time_) + servo_;
+    Eigen::Vector3d away = up(behaviour().withdraw_height);
+    if (slide_out_) {
+      const Eigen::Vector3d side = horizontal(own_now - s.cube);
+      away += behaviour().withdraw_height * (side.norm() > 1e-6 ? side.normalized() : Eigen::Vector3d::UnitZ());
+    }
+    move_grip(own_now + away, fitts(away.norm(), behaviour().withdraw_height), false);
     phase_ = Phase::kWithdraw;
   } else {
     ++experience_.losses;  // it came to rest outside B: pick it up again
-    start_regrasp();
+    start_regrasp(false);
   }
 }
 
 void SimulatedParticipant::withdraw(const Observation* o, const Seen& s) {
-  // The cube coming up with the hand: still caught on it; put it down, open wide.
-  if (o && o->time > grip_.start && s.cube.y() - 0.5 * o->cube_size > kB.at_rest_over_floor) {
+  // The cube coming up with the hand: still caught on it; put it down, open wide, and next
+  // time slide the hand out from under it.
+  if (o && o->time > grip_.start && s.cube.y() - 0.5 * o->cube_size > behaviour().at_rest_over_floor) {
     ++experience_.corrections;
+    slide_out_ = true;
     move_grip(grip_.at(time_) + servo_ - up(s.cube.y() - 0.5 * o->cube_size),
-              practised(kB.reopen_time), false);
-    move_aperture(hand_.max_aperture(pinch_), practised(kB.reopen_time));
+              practised(behaviour().reopen_time), false);
+    move_aperture(hand_.max_aperture(pinch_), practised(behaviour().reopen_time));
     phase_ = Phase::kRelease;
   } else if (grip_.done(time_)) {
     resting_since_ = -1;
@@ -419,7 +428,7 @@ void SimulatedParticipant::free_cube(const Observation& o, const Seen& s, bool c
   }
   ++experience_.corrections;
   ++wipes_;
-  const double down = s.cube.y() - 0.5 * o.cube_size + wipes_ * kB.wipe_depth;
+  const double down = s.cube.y() - 0.5 * o.cube_size + wipes_ * behaviour().wipe_depth;
   move_grip(grip_.at(time_) + servo_ - up(down), fitts(down, o.cube_size), false);
 }
 
@@ -463,7 +472,7 @@ void SimulatedParticipant::update(const Observation* o) {
     case Phase::kTransport:
       if (loss_seen(o, s)) {
         ++experience_.losses;
-        start_regrasp();
+        start_regrasp(true);
       } else if (grip_.done(t)) {
         phase_ = phase_ == Phase::kLift ? Phase::kCheckLift : Phase::kCheckTransport;
       }
@@ -475,7 +484,7 @@ void SimulatedParticipant::update(const Observation* o) {
       if (!looked) break;
       if (loss_seen(o, s)) {
         ++experience_.losses;
-        start_regrasp();
+        start_regrasp(true);
       } else {
         aim_transport(*o, s, false);
       }
@@ -506,7 +515,7 @@ void SimulatedParticipant::update(const Observation* o) {
       // The trial goes on, so the cube it left in B has slid out of it: it goes back for it.
       if (o && cube_at_rest(s) && !in_zone_b(s, *o)) {
         ++experience_.losses;
-        start_regrasp();
+        start_regrasp(false);
       }
       break;
   }
@@ -515,10 +524,10 @@ void SimulatedParticipant::update(const Observation* o) {
 void SimulatedParticipant::start(const Observation& first) {
   const MotorParameters& m = person_.motor;
   // At rest before the trial: over the near side of A, the fingers loosely open.
-  const Eigen::Vector3d home = first.zone_a + Eigen::Vector3d(0, kB.home_height, kB.home_back);
-  pinch_ = first.cube_size < kB.tip_pinch_below ? Pinch::kTip : Pinch::kPad;
+  const Eigen::Vector3d home = first.zone_a + Eigen::Vector3d(0, behaviour().home_height, behaviour().home_back);
+  pinch_ = first.cube_size < behaviour().tip_pinch_below ? Pinch::kTip : Pinch::kPad;
   grip_ = MinimumJerkMove{home, home, 0.0, dt_};
-  aperture_from_ = aperture_to_ = kB.rest_aperture;
+  aperture_from_ = aperture_to_ = behaviour().rest_aperture;
   experience_.cube_size = first.cube_size;
   // What it remembers of this cube: practice with it, where its pads met it (an offset, which
   // people carry over; a changed gain between seen and felt size they do not: Safstrom & Edin
@@ -528,18 +537,18 @@ void SimulatedParticipant::start(const Observation& first) {
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
   if (cube) {
     contact_correction_ = cube->contact.correction();
-    extra_squeeze_ = held_squeeze_ = cube->squeeze;
+    extra_squeeze_ = std::max(0.0, cube->grip.correction());
   }
   // What it expects the trial to take: its own plan without errors.
   const double cube_size = first.cube_size;
   experience_.expected_time =
       practised_general_ * (m.reaction_mu + m.reaction_tau) +
       fitts((first.zone_a - home).norm(),
-            std::max(peak_aperture(cube_size) - cube_size, kB.min_clearance)) +
-      fitts(kB.approach_height, peak_aperture(cube_size) - cube_size) + practised(m.closing_time) +
-      practised_general_ * m.confirm_dwell + fitts(kB.lift_height, kB.lift_height) +
+            std::max(peak_aperture(cube_size) - cube_size, behaviour().min_clearance)) +
+      fitts(behaviour().approach_height, peak_aperture(cube_size) - cube_size) + practised(m.closing_time) +
+      practised_general_ * m.confirm_dwell + fitts(behaviour().lift_height, behaviour().lift_height) +
       fitts((first.zone_b - first.zone_a).norm(), first.zone_size) +
-      fitts(kB.lift_height, kB.lift_height);
+      fitts(behaviour().lift_height, behaviour().lift_height);
 }
 
 tracking::TrackedFrame SimulatedParticipant::act(const Observation& shown) {

@@ -97,7 +97,8 @@ class SimulatedParticipant {
   void move_grip(const Eigen::Vector3d& target, double duration, bool noisy);
   void move_aperture(double target, double duration);
   void plan_reach(const Observation& o, const Seen& s);
-  void start_regrasp();
+  // Opens and goes for the cube again; `slipped`: it was lost from the pads under load.
+  void start_regrasp(bool slipped);
   void update(const Observation* o);
   // What it sees beyond the phase it is in.
   void learn_gain(const Observation& o, const Seen& s);
@@ -116,6 +117,8 @@ class SimulatedParticipant {
   void withdraw(const Observation* o, const Seen& s);
   void free_cube(const Observation& o, const Seen& s, bool caught);
 
+  const Behaviour& behaviour() const { return person_.behaviour; }
+
   SimulatedPerson person_;
   const OwnHand& hand_;
   SeenTrial trial_;
@@ -123,7 +126,6 @@ class SimulatedParticipant {
   double practised_movement_ = 1.0, practised_general_ = 1.0;
   double contact_correction_ = 0.0;  // m: learnt, added to where it expects contact
   double expected_contact_ = 0.0;    // m: own aperture where it expects the pads to meet the cube
-  double held_squeeze_ = 0.0;        // m: the squeeze of the grasp it lifted with
   MotorRandom random_;
   double dt_;
   double time_ = 0.0;
@@ -145,6 +147,7 @@ class SimulatedParticipant {
   double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
   bool caught_ = false;            // the cube seen caught on the hand
   int wipes_ = 0;                  // of a caught cube on the floor, since it was seen caught
+  bool slide_out_ = false;         // the cube came up with the withdrawing hand: slide out
   double touching_since_ = -1.0;
   double resting_since_ = -1.0;  // since when the cube has stayed near resting_at_
   Eigen::Vector3d resting_at_ = Eigen::Vector3d::Zero();

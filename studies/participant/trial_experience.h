@@ -15,8 +15,9 @@ struct TrialExperience {
   // them to meet the cube (m; > 0: sooner than expected). Only when it saw contact.
   bool contact_seen = false;
   double contact_error = 0.0;
-  bool held = false;     // it set the cube down in B with the grasp it lifted it with
-  double squeeze = 0.0;  // m: that grasp's closing past contact (when held)
+  // m: how much further past contact its failed grasps made it close in this trial, beyond
+  // the grip margin it started with: what the trial showed it needed.
+  double squeeze_added = 0.0;
 };
 
 }  // namespace handlab::studies

@@ -124,7 +124,7 @@ std::unique_ptr<SimulatedParticipant> PipelineTrialDriver::simulated_participant
     own_hand_length_ = person.hand_length;
   }
   return std::make_unique<SimulatedParticipant>(
-      simulated_person(person, tracker_.seed()), *own_hand_, trial,
+      simulated_person(person, tracker_.seed(), tracker_.participant_model()), *own_hand_, trial,
       memory.empty() ? ParticipantMemory{} : memory_from_json(memory));
 }
 

@@ -19,6 +19,7 @@
 #include "core/task/scene_layout.h"
 #include "core/tracking/frame_source.h"
 #include "studies/participant/observation.h"
+#include "studies/participant/participant_model.h"
 #include "studies/participant/seen_trial.h"
 #include "studies/participant/trial_experience.h"
 #include "studies/protocol/protocol.h"
@@ -96,14 +97,22 @@ class TrackerKind {
   static TrackerKind recording(std::string path) {
     return TrackerKind(Kind::kRecording, std::move(path), 0);
   }
-  static TrackerKind simulated(std::uint64_t seed) {
-    return TrackerKind(Kind::kSimulated, "", seed);
+  // Simulated participants of the population under `seed`, of `model` (the frozen one unless
+  // a sensitivity analysis changes it).
+  static TrackerKind simulated(std::uint64_t seed,
+                               const ParticipantModel& model = frozen_participant_model()) {
+    TrackerKind k(Kind::kSimulated, "", seed);
+    k.model_ = std::make_shared<const ParticipantModel>(model);
+    return k;
   }
   bool is_scripted() const { return kind_ == Kind::kScripted; }
   bool is_simulated() const { return kind_ == Kind::kSimulated; }
   bool is_recording() const { return kind_ == Kind::kRecording; }
   const std::string& path() const { return path_; }
   std::uint64_t seed() const { return seed_; }
+  const ParticipantModel& participant_model() const {
+    return model_ ? *model_ : frozen_participant_model();
+  }
   std::string name() const;
 
  private:
@@ -114,6 +123,7 @@ class TrackerKind {
   std::string path_;
   std::uint64_t seed_;
   LiveOpener open_live_;
+  std::shared_ptr<const ParticipantModel> model_;
 };
 
 // The hand-cube physics a trial runs on: the grasp proxy (the cube attaches to a pinch,

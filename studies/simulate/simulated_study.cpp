@@ -47,10 +47,10 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   std::vector<std::vector<store::PlannedTrialRow>> plans;
   int planned_total = 0;
   for (int i = 0; i < options.participants; ++i) {
-    const SimulatedPerson person = draw_person(options.population, options.seed, i);
+    const SimulatedPerson person = draw_person(options.population, options.seed, i, options.model);
     plans.push_back(planned_rows(protocol, person.participant.id, i));
     study.add_participant(person.participant, plans.back());
-    study.add_simulated_person(simulated_person_row(person, options.seed));
+    study.add_simulated_person(simulated_person_row(person, options.seed, options.model));
     people.push_back(person.participant);
     planned_total += int(plans.back().size());
   }
@@ -62,7 +62,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
     study.database().prepare("VACUUM INTO ?").bind(1, path).run();
   }
   const int n = options.participants;
-  const TrackerKind tracker = TrackerKind::simulated(options.seed);
+  const TrackerKind tracker = TrackerKind::simulated(options.seed, options.model);
   const std::string tracker_name =
       options.world == WorldKind::kSoftHand ? tracker.name() + " (soft hand)" : tracker.name();
   std::mutex mutex;

@@ -24,6 +24,7 @@ struct SimulationOptions {
   WorldKind world = WorldKind::kSoftHand;
   bool frames = false;  // store every trial's frames (about 160 kB a simulated second)
   Population population;
+  ParticipantModel model = frozen_participant_model();
 };
 
 struct SimulationReport {

@@ -54,10 +54,9 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   fine.cube_size = 0.01;
   fine.contact_seen = true;
   fine.contact_error = 0.004;
-  fine.held = true;
-  fine.squeeze = 0.006;
+  fine.squeeze_added = 0.006;  // two failed grasps before one held
   TrialExperience gross;
-  gross.cube_size = 0.06;  // no contact seen, not held: only forgetting, nothing taken
+  gross.cube_size = 0.06;  // no contact seen, first grasp held: only forgetting
   ParticipantMemory m = remember({}, fine, r);
   m = remember(m, gross, r);
   m = remember(m, fine, r);
@@ -67,7 +66,13 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(f->trials, 2);
   EXPECT_DOUBLE_EQ(f->contact.fast, adapt(adapt({}, r, 0.004), r, 0.004).fast);
-  EXPECT_DOUBLE_EQ(f->squeeze, 0.006);
+  EXPECT_DOUBLE_EQ(f->grip.slow, adapt(adapt({}, r, 0.006), r, 0.006).slow);
+  // The grip margin rises with the failures and falls back as lifts hold (Delhaye et al. 2024):
+  // it stays bounded however many trials needed more.
+  ParticipantMemory held = m;
+  for (int k = 0; k < 3; ++k) held = remember(held, TrialExperience{.cube_size = 0.01}, r);
+  EXPECT_LT(held.cube(0.01)->grip.correction(), f->grip.correction());
+  EXPECT_GT(held.cube(0.01)->grip.correction(), 0.0);
   const CubeMemory* g = m.cube(0.06);
   ASSERT_NE(g, nullptr);
   EXPECT_EQ(g->trials, 1);

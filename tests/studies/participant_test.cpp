@@ -575,6 +575,47 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
   EXPECT_EQ(runs, 17);
 }
 
+// The grip margin moves with what the participant saw: a cube that dropped from the lifted
+// pads is gripped 3 mm harder on the next grasp (and that is what the trial teaches its
+// memory); a closing that ended without contact is tried again with the same grip.
+TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) {
+  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
+  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  const SimulatedPerson person = draw_person(Population{}, 5, 2);
+  const OwnHand own(person.participant.hand_length);
+  const retarget::Calibration calibration = driver.calibrate(protocol, person.participant);
+  const TrialSetup setup = setups_of_cube(protocol, person, 0.06, 4, calibration)[0];
+  const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
+  task::SceneLayout layout = protocol.scene;
+  layout.cube_size = 0.06;
+  const retarget::Strategy strategy =
+      setup.condition.naive_strategy ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
+  {
+    SeenOtherwiseWorld dropped(sim, layout, SeenOtherwiseWorld::Twist::kDropOnce);
+    auto participant = participant_for(setup, 5, own, {});
+    drive(*participant, dropped, setup, strategy, 12.0);
+    const TrialExperience e = participant->experience();
+    ASSERT_GE(e.losses, 1);
+    EXPECT_NEAR(e.squeeze_added, e.losses * person.motor.regrasp_squeeze, 1e-12);
+    EXPECT_GT(participant->memory_after().cube(0.06)->grip.correction(), 0.0);
+  }
+  {
+    // The small cube: the slow closing shuts the hand before the hidden contact shows.
+    const TrialSetup fine = setups_of_cube(protocol, person, 0.01, 4, calibration)[0];
+    layout.cube_size = 0.01;
+    SeenOtherwiseWorld hidden(sim, layout, SeenOtherwiseWorld::Twist::kHideContact);
+    auto participant = participant_for(fine, 5, own, {});
+    drive(*participant, hidden, fine,
+          fine.condition.naive_strategy ? retarget::Strategy::kNaive : retarget::Strategy::kOurs,
+          30.0);
+    const TrialExperience e = participant->experience();
+    ASSERT_GE(e.grasp_attempts, 2);  // the closing missed, and it closed again
+    EXPECT_EQ(e.losses, 0);
+    EXPECT_EQ(e.squeeze_added, 0.0);
+    EXPECT_EQ(participant->memory_after().cube(0.01)->grip.correction(), 0.0);
+  }
+}
+
 // A cube stuck to the virtual thumb does not make it chase the cube upwards (each reach for
 // a cube it carries lifts the cube with it): it opens the hand, then wipes the cube off on the
 // floor, and reaches for it where it fell.

@@ -1,6 +1,8 @@
 // handlab-cli simulate: a whole study run by simulated participants, headless.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
 #include <iomanip>
 #include <iostream>
 
@@ -17,6 +19,28 @@
 
 namespace handlab::cli {
 
+namespace {
+
+// The frozen model with `NAME=VALUE` changes (simulate --set).
+studies::ParticipantModel model_with_changes(const std::vector<std::string>& settings) {
+  std::vector<std::pair<std::string, double>> changes;
+  for (const std::string& s : settings) {
+    const std::size_t equals = s.find('=');
+    char* end = nullptr;
+    const double value = equals == std::string::npos ? 0.0 : std::strtod(s.c_str() + equals + 1, &end);
+    if (equals == std::string::npos || end == s.c_str() + equals + 1 || *end != '\0')
+      throw UsageError("--set takes NAME=VALUE (a number), not '" + s + "'");
+    changes.emplace_back(s.substr(0, equals), value);
+  }
+  try {
+    return studies::changed_model(studies::frozen_participant_model(), changes);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--set: ") + e.what());
+  }
+}
+
+}  // namespace
+
 int run_simulate(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"protocol", "FILE", "the study protocol (JSON, docs/study.md)"},
@@ -29,6 +53,12 @@ int run_simulate(const std::vector<std::string>& argv) {
        "proxy (the cube attaches to a pinch)",
        "soft"},
       {"frames", "", "store every trial's frames (about 160 kB a simulated second)"},
+      {"set", "NAME=VALUE",
+       "change a parameter of the participant model, for a sensitivity analysis: a per-person "
+       "parameter's mean, a fixed one's or a behaviour constant's value (SI units; the names "
+       "are the JSON keys of docs/simulated-participants.md's table); the model's hash "
+       "changes with it; repeatable",
+       "", true},
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the outcome per condition as JSON (- for standard output)"},
   };
@@ -57,6 +87,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (world != "soft" && world != "proxy") throw UsageError("--world must be soft or proxy");
   options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
   options.frames = args.flag("frames");
+  options.model = model_with_changes(args.all("set"));
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   // On a terminal one line rewritten in place; into a log a line each time a participant is
@@ -81,7 +112,8 @@ int run_simulate(const std::vector<std::string>& argv) {
               << std::fixed << std::setprecision(1) << report.seconds << " s for "
               << report.simulated_seconds << " s of trials; " << args.text("db") << "\n"
               << studies::kParticipantModelVersion << ", parameters sha256 "
-              << studies::model_sha256() << "\n\n";
+              << studies::model_sha256(options.model)
+              << (args.all("set").empty() ? "" : " (changed by --set)") << "\n\n";
     std::cout << std::left << std::setw(16) << "condition" << std::right << std::setw(8) << "trials"
               << std::setw(11) << "completed" << std::setw(9) << "success" << std::setw(9)
               << "timeout" << std::setw(12) << "mean time" << std::setw(8) << "drops\n";
@@ -121,7 +153,7 @@ int run_simulate(const std::vector<std::string>& argv) {
           .field("jobs", options.jobs)
           .field("world", world)
           .field("model", studies::kParticipantModelVersion)
-          .field("model_sha256", studies::model_sha256())
+          .field("model_sha256", studies::model_sha256(options.model))
           .field("trials", report.trials)
           .field("completed", report.completed)
           .field("timeouts", report.timeouts)

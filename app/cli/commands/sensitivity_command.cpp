@@ -1,0 +1,91 @@
+// handlab-cli sensitivity: the participant model's global sensitivity analysis (Morris's
+// elementary effects) on whole simulated studies.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "app/cli/arguments.h"
+#include "app/cli/commands/commands.h"
+#include "app/cli/output_file.h"
+#include "studies/sensitivity/model_sensitivity.h"
+#ifdef HANDLAB_WITH_REPORT
+#include "app/cli/gui_application.h"
+#include "app/report/sensitivity_figure.h"
+#endif
+
+namespace handlab::cli {
+
+int run_sensitivity(const std::vector<std::string>& argv) {
+  const studies::SensitivityOptions defaults;
+  const std::vector<OptionSpec> specs = {
+      {"protocol", "FILE", "the study protocol (JSON)"},
+      {"work", "DIR", "where each point's study database is written while it is analysed"},
+      {"participants", "N", "participants in each study", "20"},
+      {"seed", "S", "the population seed, the same at every point", "1"},
+      {"trajectories", "R", "Morris trajectories (R (k + 1) studies for k parameters)", "4"},
+      {"levels", "P", "grid levels of each parameter's range (even)", "4"},
+      {"design-seed", "D", "the seed of the trajectories", "1"},
+      {"jobs", "J", "sessions run side by side (threads; default: the machine's cores)", "0"},
+      {"world", "proxy|soft", "the hand-cube physics", "proxy"},
+      {"output", "TEST",
+       "a test whose statistic is analysed, as replications names it; repeatable (default: "
+       "the strategy x manipulation F, the repetition F, the fine Naive - Ours t)",
+       "", true},
+      {"plot", "FILE", "draw mu* against sigma per output (.svg or .png)"},
+      {"json", "OUT", "write every index and every point as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli sensitivity --protocol FILE --work DIR [--trajectories R] "
+                 "[--plot FILE] [--json OUT]\n\n"
+                 "How the simulated studies' conclusions hang on the participant model's "
+                 "parameters: a Morris design over the parameters' ranges "
+                 "(docs/simulated-participants.md), a whole simulated study at each point (the "
+                 "same population seed at every point), and per output test each parameter's "
+                 "mu* and sigma in the statistic's units over the parameter's range. Prints a "
+                 "Markdown table per output.\n\nOptions:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  args.require({"protocol", "work"});
+  studies::SensitivityOptions options;
+  options.work_dir = args.text("work");
+  options.participants = int(args.integer("participants"));
+  if (options.participants < 2) throw UsageError("--participants must be 2 or more");
+  options.seed = std::uint64_t(args.integer("seed"));
+  options.trajectories = int(args.integer("trajectories"));
+  options.levels = int(args.integer("levels"));
+  if (options.trajectories < 2) throw UsageError("--trajectories must be 2 or more");
+  if (options.levels < 2 || options.levels % 2) throw UsageError("--levels must be even");
+  options.design_seed = std::uint64_t(args.integer("design-seed"));
+  options.jobs = int(args.integer("jobs"));
+  if (options.jobs <= 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string world = args.text("world");
+  if (world != "soft" && world != "proxy") throw UsageError("--world must be proxy or soft");
+  options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
+  if (!args.all("output").empty()) options.outputs = args.all("output");
+  const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
+  const bool quiet = args.text("json") == "-";
+  const studies::SensitivityReport report = studies::run_model_sensitivity(
+      protocol, options, [&](const studies::SensitivityProgress& p) {
+        if (!quiet) std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
+      });
+  if (args.text("json") != "-") studies::write_sensitivity_markdown(report, std::cout);
+#ifdef HANDLAB_WITH_REPORT
+  if (args.has("plot")) {
+    ensure_gui_application();
+    report::write_sensitivity_figure(report, "Sensitivity of " + protocol.name + " to the participant model",
+                                     args.text("plot"));
+  }
+#else
+  if (args.has("plot")) throw UsageError("--plot needs the report (built with Qt)");
+#endif
+  if (args.has("json"))
+    write_output(args.text("json"),
+                 [&](std::ostream& out) { studies::write_sensitivity_json(report, out); });
+  return 0;
+}
+
+}  // namespace handlab::cli
