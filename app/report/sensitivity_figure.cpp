@@ -15,7 +15,9 @@ namespace {
 
 constexpr int kNamed = 5;  // parameters labelled per panel, by mu*
 
-double finite_or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
+double finite_or_zero(double v) {
+  return std::isfinite(v) ? v : 0.0;
+}
 
 // A round upper bound for an axis: 1, 2 or 5 times a power of ten.
 double axis_top(double v) {
@@ -62,12 +64,12 @@ void panel(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
                Qt::AlignRight | Qt::AlignVCenter, QString::number(top_y * k / 4, 'g', 3));
   }
   p.drawText(QRectF(plot.left(), plot.bottom() + 1.7 * em, plot.width(), 1.4 * em),
-             Qt::AlignHCenter, "μ* (mean |elementary effect| over the parameter's range)");
+             Qt::AlignHCenter, "μ*: mean |elementary effect|");
   p.save();
   p.translate(area.left() + 0.9 * em, plot.center().y());
   p.rotate(-90);
   p.drawText(QRectF(-plot.height() / 2, -0.8 * em, plot.height(), 1.6 * em), Qt::AlignHCenter,
-             "σ (SD of the elementary effects)");
+             "σ: SD of the elementary effects");
   p.restore();
   std::vector<std::size_t> order(m.size());
   std::iota(order.begin(), order.end(), 0);
@@ -106,9 +108,10 @@ void paint(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
              QString::fromStdString(title));
   const double width = area.width() / double(std::max<std::size_t>(1, r.outputs.size()));
   for (std::size_t o = 0; o < r.outputs.size(); ++o)
-    panel(p, QRectF(area.left() + double(o) * width, area.top() + 2 * em, width,
-                    area.height() - 2 * em),
-          r, o, em);
+    panel(
+        p,
+        QRectF(area.left() + double(o) * width, area.top() + 2 * em, width, area.height() - 2 * em),
+        r, o, em);
 }
 
 }  // namespace

@@ -22,8 +22,8 @@ struct Behaviour {
   double rest_travel = 0.002;           // m
   double rest_look = 0.2;               // s
   double pre_contact_margin = 0.015;    // m each side of the cube before the closing
-  double closing_past_contact = 0.003;  // m the closing aims past the seen size
-  double grip_loading = 0.003;          // m it closes on after seeing contact (loading phase)
+  double closing_past_contact = 0.0015;  // m the closing aims past the seen size
+  double grip_loading = 0.0015;          // m it closes on after seeing contact (loading phase)
   double tip_pinch_below = 0.02;        // m: a cube this small is picked with the tips
   double pad_on_face = 0.007;           // m: a pad's bone this close (surface) is on the cube
   // A cube seen this high for this long without both pads on it is caught on the hand (a

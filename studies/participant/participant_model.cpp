@@ -1,11 +1,11 @@
 #include "studies/participant/participant_model.h"
 
 #include <algorithm>
-#include <iterator>
-#include <stdexcept>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/util/json_writer.h"
 #include "core/util/portable_random.h"
@@ -15,7 +15,7 @@
 
 namespace handlab::studies {
 
-const char* const kParticipantModelVersion = "handlab participant model 2.1";
+const char* const kParticipantModelVersion = "handlab participant model 2.2";
 
 namespace {
 
@@ -203,7 +203,8 @@ MotorParameters draw_motor_parameters(std::uint64_t seed, const std::string& id,
   for (const ParameterDistribution& d : model.distributions) {
     const auto at = std::find_if(std::begin(kMotorFields), std::end(kMotorFields),
                                  [&](const auto& f) { return d.name == std::string(f.first); });
-    if (at == std::end(kMotorFields)) throw std::logic_error(std::string("no motor parameter ") + d.name);
+    if (at == std::end(kMotorFields))
+      throw std::logic_error(std::string("no motor parameter ") + d.name);
     m.*(at->second) = d.sd > 0 ? r.truncated_normal(d.mean, d.sd, d.low, d.high)
                                : d.low + (d.high - d.low) * r.uniform();
   }

@@ -38,7 +38,7 @@ struct MotorParameters {
 struct SimulatedPerson {
   store::Participant participant;  // id, age, sex, handedness, hand length, VR experience
   MotorParameters motor;
-  Behaviour behaviour;  // the model's, the same for everyone
+  Behaviour behaviour;     // the model's, the same for everyone
   std::uint64_t seed = 0;  // the person's own stream (trials draw from it with their place)
 };
 

@@ -9,7 +9,6 @@
 namespace handlab::studies {
 namespace {
 
-
 Eigen::Vector3d horizontal(const Eigen::Vector3d& v) {
   return Eigen::Vector3d(v.x(), 0, v.z());
 }
@@ -95,7 +94,8 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
   };
   s.thumb_gap = gap(thumb, g.thumb_distal);
   s.index_gap = gap(index, g.index_distal);
-  s.both_touching = s.both_touching && s.thumb_gap < behaviour().pad_on_face && s.index_gap < behaviour().pad_on_face;
+  s.both_touching = s.both_touching && s.thumb_gap < behaviour().pad_on_face &&
+                    s.index_gap < behaviour().pad_on_face;
   s.hand = true;
   s.grip = 0.5 * (thumb + index);
   s.aperture = (thumb - index).norm() - g.bone_radius[std::size_t(g.thumb_distal)] -
@@ -140,7 +140,8 @@ double SimulatedParticipant::aperture_now() const {
 // prehension), the object's share with the object.
 double SimulatedParticipant::peak_aperture(double cube_size) const {
   const MotorParameters& m = person_.motor;
-  return m.aperture_intercept * person_.participant.hand_length / behaviour().reference_hand_length +
+  return m.aperture_intercept * person_.participant.hand_length /
+             behaviour().reference_hand_length +
          m.aperture_slope * cube_size;
 }
 
@@ -200,8 +201,8 @@ void SimulatedParticipant::start_regrasp(bool slipped) {
   servo_on_ = false;
   const double cube = shown_.empty() ? 0.0 : shown_.back().cube_size;
   move_aperture(peak_aperture(cube), practised(behaviour().reopen_time));
-  move_grip(grip_.at(time_) + servo_ + up(behaviour().approach_height), practised(behaviour().reopen_rise_time),
-            false);
+  move_grip(grip_.at(time_) + servo_ + up(behaviour().approach_height),
+            practised(behaviour().reopen_rise_time), false);
   phase_ = Phase::kReopen;
 }
 
@@ -211,8 +212,9 @@ void SimulatedParticipant::learn_gain(const Observation& o, const Seen& s) {
   const OwnState own = own_at(o.time);
   if (own.aperture <= behaviour().gain_min_aperture) return;
   const double g = s.aperture / own.aperture;
-  gain_estimate_ =
-      gain_samples_++ == 0 ? g : (1 - behaviour().gain_smoothing) * gain_estimate_ + behaviour().gain_smoothing * g;
+  gain_estimate_ = gain_samples_++ == 0 ? g
+                                        : (1 - behaviour().gain_smoothing) * gain_estimate_ +
+                                              behaviour().gain_smoothing * g;
 }
 
 // Continuous correction of the grip towards the grasp point it sees (the descent's own plan
@@ -229,7 +231,8 @@ void SimulatedParticipant::servo(const Observation& o, const Seen& s) {
 // finger's crease): reaching for it would carry it along. It opens the hand wide for the
 // cube to fall, then looks again (kFreeCube). True when it starts doing so.
 bool SimulatedParticipant::watch_for_caught_cube(const Observation* o, const Seen& s) {
-  if (o && s.hand && !s.both_touching && s.cube.y() - 0.5 * o->cube_size > behaviour().caught_height) {
+  if (o && s.hand && !s.both_touching &&
+      s.cube.y() - 0.5 * o->cube_size > behaviour().caught_height) {
     if (off_floor_since_ < 0) off_floor_since_ = time_;
   } else if (o) {
     off_floor_since_ = -1;
@@ -254,7 +257,8 @@ bool SimulatedParticipant::loss_seen(const Observation* o, const Seen& s) const 
 
 void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
   const Eigen::Vector3d error = grasp_point(o) + up(behaviour().approach_height) - s.grip;
-  const double tolerance = std::max(behaviour().min_tolerance, behaviour().reach_tolerance_share * clearance(s, o));
+  const double tolerance =
+      std::max(behaviour().min_tolerance, behaviour().reach_tolerance_share * clearance(s, o));
   if (s.hand && error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
@@ -268,7 +272,8 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
   move_grip(grasp_point(o) - offset, descent, true);
   // After its peak the grip closes while the hand comes down, to a little wider than the
   // cube it sees, so that the final closing is short.
-  move_aperture((o.cube_size + 2 * behaviour().pre_contact_margin) / std::max(gain_estimate_, behaviour().min_gain),
+  move_aperture((o.cube_size + 2 * behaviour().pre_contact_margin) /
+                    std::max(gain_estimate_, behaviour().min_gain),
                 descent);
   servo_on_ = true;
   corrections_this_move_ = 0;
@@ -279,7 +284,8 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   // The fingers straddle the cube: are they centred on it? A corrective submovement if not
   // (the precision the closing needs: a share of the cube's side).
   const Eigen::Vector3d error = grasp_point(o) - s.grip;
-  const double tolerance = std::max(behaviour().min_tolerance, behaviour().centring_tolerance_share * o.cube_size);
+  const double tolerance =
+      std::max(behaviour().min_tolerance, behaviour().centring_tolerance_share * o.cube_size);
   if (s.hand && error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
@@ -290,7 +296,8 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   ++experience_.grasp_attempts;
   // Where it expects its pads to meet the cube: the seen size through its estimate of how the
   // seen fingers follow its own, with what it learnt in earlier trials; it aims past that.
-  expected_contact_ = o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_correction_;
+  expected_contact_ =
+      o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_correction_;
   move_aperture(expected_contact_ - behaviour().closing_past_contact - extra_squeeze_,
                 practised(person_.motor.closing_time));
   phase_ = Phase::kClose;
@@ -319,7 +326,8 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
     start_regrasp(false);
     return;
   }
-  aperture_from_ = aperture_to_ = std::max(now - behaviour().slow_closing * dt_, hand_.min_aperture(pinch_));
+  aperture_from_ = aperture_to_ =
+      std::max(now - behaviour().slow_closing * dt_, hand_.min_aperture(pinch_));
   aperture_duration_ = 0.0;
 }
 
@@ -331,8 +339,8 @@ void SimulatedParticipant::confirm(const Observation* o, const Seen& s) {
   }
   if (time_ - touching_since_ < practised_general_ * person_.motor.confirm_dwell) return;
   servo_on_ = false;
-  move_grip(grip_.at(time_) + servo_ + up(behaviour().lift_height), fitts(behaviour().lift_height, behaviour().lift_height),
-            false);
+  move_grip(grip_.at(time_) + servo_ + up(behaviour().lift_height),
+            fitts(behaviour().lift_height, behaviour().lift_height), false);
   phase_ = Phase::kLift;
 }
 
@@ -353,7 +361,8 @@ void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bo
   const Eigen::Vector3d cube_now = s.cube + (own_now - own_at(o.time).grip);
   const Eigen::Vector3d error = horizontal(o.zone_b - cube_now);
   const double tolerance =
-      std::max(behaviour().placement_tolerance, 0.5 * (o.zone_size - o.cube_size) - behaviour().placement_margin);
+      std::max(behaviour().placement_tolerance,
+               0.5 * (o.zone_size - o.cube_size) - behaviour().placement_margin);
   if (first || (error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections)) {
     if (!first) {
       ++corrections_this_move_;
@@ -393,7 +402,8 @@ void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
     Eigen::Vector3d away = up(behaviour().withdraw_height);
     if (slide_out_) {
       const Eigen::Vector3d side = horizontal(own_now - s.cube);
-      away += behaviour().withdraw_height * (side.norm() > 1e-6 ? side.normalized() : Eigen::Vector3d::UnitZ());
+      away += behaviour().withdraw_height *
+              (side.norm() > 1e-6 ? side.normalized() : Eigen::Vector3d::UnitZ());
     }
     move_grip(own_now + away, fitts(away.norm(), behaviour().withdraw_height), false);
     phase_ = Phase::kWithdraw;
@@ -406,7 +416,8 @@ void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
 void SimulatedParticipant::withdraw(const Observation* o, const Seen& s) {
   // The cube coming up with the hand: still caught on it; put it down, open wide, and next
   // time slide the hand out from under it.
-  if (o && o->time > grip_.start && s.cube.y() - 0.5 * o->cube_size > behaviour().at_rest_over_floor) {
+  if (o && o->time > grip_.start &&
+      s.cube.y() - 0.5 * o->cube_size > behaviour().at_rest_over_floor) {
     ++experience_.corrections;
     slide_out_ = true;
     move_grip(grip_.at(time_) + servo_ - up(s.cube.y() - 0.5 * o->cube_size),
@@ -524,7 +535,8 @@ void SimulatedParticipant::update(const Observation* o) {
 void SimulatedParticipant::start(const Observation& first) {
   const MotorParameters& m = person_.motor;
   // At rest before the trial: over the near side of A, the fingers loosely open.
-  const Eigen::Vector3d home = first.zone_a + Eigen::Vector3d(0, behaviour().home_height, behaviour().home_back);
+  const Eigen::Vector3d home =
+      first.zone_a + Eigen::Vector3d(0, behaviour().home_height, behaviour().home_back);
   pinch_ = first.cube_size < behaviour().tip_pinch_below ? Pinch::kTip : Pinch::kPad;
   grip_ = MinimumJerkMove{home, home, 0.0, dt_};
   aperture_from_ = aperture_to_ = behaviour().rest_aperture;
@@ -545,8 +557,9 @@ void SimulatedParticipant::start(const Observation& first) {
       practised_general_ * (m.reaction_mu + m.reaction_tau) +
       fitts((first.zone_a - home).norm(),
             std::max(peak_aperture(cube_size) - cube_size, behaviour().min_clearance)) +
-      fitts(behaviour().approach_height, peak_aperture(cube_size) - cube_size) + practised(m.closing_time) +
-      practised_general_ * m.confirm_dwell + fitts(behaviour().lift_height, behaviour().lift_height) +
+      fitts(behaviour().approach_height, peak_aperture(cube_size) - cube_size) +
+      practised(m.closing_time) + practised_general_ * m.confirm_dwell +
+      fitts(behaviour().lift_height, behaviour().lift_height) +
       fitts((first.zone_b - first.zone_a).norm(), first.zone_size) +
       fitts(behaviour().lift_height, behaviour().lift_height);
 }

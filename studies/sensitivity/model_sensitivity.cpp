@@ -61,15 +61,16 @@ SensitivityReport run_model_sensitivity(
   SensitivityReport report;
   report.parameters = participant_sensitivity_parameters();
   report.outputs = options.outputs;
-  report.design = morris_design(int(report.parameters.size()), options.trajectories,
-                                options.levels, options.design_seed);
+  report.design = morris_design(int(report.parameters.size()), options.trajectories, options.levels,
+                                options.design_seed);
   std::filesystem::create_directories(options.work_dir);
   const int points = int(report.design.points.size());
   for (int k = 0; k < points; ++k) {
     std::vector<std::pair<std::string, double>> changes;
     for (std::size_t i = 0; i < report.parameters.size(); ++i) {
       const SensitivityParameter& p = report.parameters[i];
-      changes.emplace_back(p.name, p.low + report.design.points[std::size_t(k)][i] * (p.high - p.low));
+      changes.emplace_back(p.name,
+                           p.low + report.design.points[std::size_t(k)][i] * (p.high - p.low));
     }
     SimulationOptions run;
     run.participants = options.participants;
@@ -82,8 +83,8 @@ SensitivityReport run_model_sensitivity(
             .string();
     remove_database(db);
     simulate_study(protocol, db, run);
-    const StudyTests tests = study_tests(analyze_study_database(db),
-                                         power::SphericityCorrection::kAuto, 0.05);
+    const StudyTests tests =
+        study_tests(analyze_study_database(db), power::SphericityCorrection::kAuto, 0.05);
     remove_database(db);
     std::vector<double> values;
     for (const std::string& name : options.outputs) {
@@ -108,10 +109,11 @@ SensitivityReport run_model_sensitivity(
 void write_sensitivity_markdown(const SensitivityReport& r, std::ostream& out) {
   out << "Morris elementary effects: " << r.design.points.size() << " studies ("
       << r.design.points.size() / (r.parameters.size() + 1) << " trajectories of "
-      << r.parameters.size() << " parameters, " << r.design.levels << " levels) in "
-      << std::fixed << std::setprecision(0) << r.seconds << " s\n";
+      << r.parameters.size() << " parameters, " << r.design.levels << " levels) in " << std::fixed
+      << std::setprecision(0) << r.seconds << " s\n";
   for (std::size_t o = 0; o < r.outputs.size(); ++o) {
-    out << "\n" << r.outputs[o] << ": each parameter's effect over its range, largest first\n\n"
+    out << "\n"
+        << r.outputs[o] << ": each parameter's effect over its range, largest first\n\n"
         << "| parameter | range | mu* | mu | sigma | basis |\n|---|---|---|---|---|---|\n";
     std::vector<std::size_t> order(r.parameters.size());
     std::iota(order.begin(), order.end(), 0);
@@ -122,9 +124,9 @@ void write_sensitivity_markdown(const SensitivityReport& r, std::ostream& out) {
     });
     for (std::size_t i : order) {
       const SensitivityParameter& p = r.parameters[i];
-      out << "| " << p.name << " | " << std::setprecision(4) << std::defaultfloat << p.low
-          << "–" << p.high << " | " << std::fixed << std::setprecision(2) << m[i].mu_star
-          << " | " << m[i].mu << " | " << m[i].sigma << " | " << p.basis << " |\n";
+      out << "| " << p.name << " | " << std::setprecision(4) << std::defaultfloat << p.low << "–"
+          << p.high << " | " << std::fixed << std::setprecision(2) << m[i].mu_star << " | "
+          << m[i].mu << " | " << m[i].sigma << " | " << p.basis << " |\n";
     }
   }
 }
@@ -135,15 +137,24 @@ void write_sensitivity_json(const SensitivityReport& r, std::ostream& out) {
   w.field("trajectories", int(r.design.points.size() / (r.parameters.size() + 1)));
   w.key("parameters").begin_array();
   for (const SensitivityParameter& p : r.parameters)
-    w.begin_object().field("name", p.name).field("low", p.low).field("high", p.high)
-        .field("basis", p.basis).end_object();
+    w.begin_object()
+        .field("name", p.name)
+        .field("low", p.low)
+        .field("high", p.high)
+        .field("basis", p.basis)
+        .end_object();
   w.end_array().key("outputs").begin_array();
   for (std::size_t o = 0; o < r.outputs.size(); ++o) {
     w.begin_object().field("test", r.outputs[o]).key("indices").begin_object();
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
       const MorrisIndex& m = r.indices[o][i];
-      w.key(r.parameters[i].name).begin_object().field("mu_star", m.mu_star).field("mu", m.mu)
-          .field("sigma", m.sigma).field("effects", m.effects).end_object();
+      w.key(r.parameters[i].name)
+          .begin_object()
+          .field("mu_star", m.mu_star)
+          .field("mu", m.mu)
+          .field("sigma", m.sigma)
+          .field("effects", m.effects)
+          .end_object();
     }
     w.end_object().end_object();
   }

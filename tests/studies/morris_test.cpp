@@ -27,7 +27,8 @@ TEST(MorrisDesign, EachTrajectoryStepsEveryParameterOnceOnTheGrid) {
       EXPECT_TRUE(stepped.insert(s.parameter).second) << "parameter stepped twice";
       EXPECT_NEAR(std::abs(s.delta), delta, 1e-12);
       for (int i = 0; i < k; ++i) {
-        const double before = d.points[at - 1][std::size_t(i)], after = d.points[at][std::size_t(i)];
+        const double before = d.points[at - 1][std::size_t(i)],
+                     after = d.points[at][std::size_t(i)];
         EXPECT_NEAR(after - before, i == s.parameter ? s.delta : 0.0, 1e-12);
         EXPECT_NEAR(after * (p - 1), std::round(after * (p - 1)), 1e-9) << "on the grid";
         EXPECT_GE(after, 0.0);
@@ -38,7 +39,8 @@ TEST(MorrisDesign, EachTrajectoryStepsEveryParameterOnceOnTheGrid) {
   }
   // Both directions occur, and the same seed gives the same design.
   int up = 0, down = 0;
-  for (const MorrisStep& s : d.steps) (s.delta > 0 ? up : s.delta < 0 ? down : up) += s.parameter >= 0;
+  for (const MorrisStep& s : d.steps)
+    (s.delta > 0 ? up : s.delta < 0 ? down : up) += s.parameter >= 0;
   EXPECT_GT(up, 0);
   EXPECT_GT(down, 0);
   EXPECT_EQ(morris_design(k, r, p, 3).points, d.points);

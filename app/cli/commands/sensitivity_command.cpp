@@ -68,16 +68,17 @@ int run_sensitivity(const std::vector<std::string>& argv) {
   if (!args.all("output").empty()) options.outputs = args.all("output");
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const bool quiet = args.text("json") == "-";
-  const studies::SensitivityReport report = studies::run_model_sensitivity(
-      protocol, options, [&](const studies::SensitivityProgress& p) {
-        if (!quiet) std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
+  const studies::SensitivityReport report =
+      studies::run_model_sensitivity(protocol, options, [&](const studies::SensitivityProgress& p) {
+        if (!quiet)
+          std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
       });
   if (args.text("json") != "-") studies::write_sensitivity_markdown(report, std::cout);
 #ifdef HANDLAB_WITH_REPORT
   if (args.has("plot")) {
     ensure_gui_application();
-    report::write_sensitivity_figure(report, "Sensitivity of " + protocol.name + " to the participant model",
-                                     args.text("plot"));
+    report::write_sensitivity_figure(
+        report, "Sensitivity of " + protocol.name + " to the participant model", args.text("plot"));
   }
 #else
   if (args.has("plot")) throw UsageError("--plot needs the report (built with Qt)");

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
 #include <iomanip>
 #include <iostream>
+#include <stdexcept>
 
 #include <unistd.h>
 #include <thread>
@@ -27,7 +27,8 @@ studies::ParticipantModel model_with_changes(const std::vector<std::string>& set
   for (const std::string& s : settings) {
     const std::size_t equals = s.find('=');
     char* end = nullptr;
-    const double value = equals == std::string::npos ? 0.0 : std::strtod(s.c_str() + equals + 1, &end);
+    const double value =
+        equals == std::string::npos ? 0.0 : std::strtod(s.c_str() + equals + 1, &end);
     if (equals == std::string::npos || end == s.c_str() + equals + 1 || *end != '\0')
       throw UsageError("--set takes NAME=VALUE (a number), not '" + s + "'");
     changes.emplace_back(s.substr(0, equals), value);
