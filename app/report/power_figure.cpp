@@ -1,14 +1,14 @@
 #include "app/report/power_figure.h"
 
+#include "app/report/figure_file.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include <QFont>
-#include <QImage>
 #include <QPainter>
 #include <QPainterPath>
-#include <QSvgGenerator>
 
 namespace handlab::report {
 namespace {
@@ -135,26 +135,9 @@ void paint(QPainter& p, const QRectF& area, const power::PowerReport& r,
 void write_power_figure(const power::PowerReport& report, const std::vector<std::string>& names,
                         double target, const std::string& title, const std::string& path) {
   for (const std::string& n : names) named(report, n);  // every name known before a file is made
-  const QString file = QString::fromStdString(path);
-  const QSize size(900, int(560 + 27 * names.size()));
-  if (file.endsWith(".svg", Qt::CaseInsensitive)) {
-    QSvgGenerator svg;
-    svg.setFileName(file);
-    svg.setSize(size);
-    svg.setViewBox(QRect(QPoint(0, 0), size));
-    svg.setTitle(QString::fromStdString(title));
-    QPainter p(&svg);
-    paint(p, QRectF(QPointF(0, 0), QSizeF(size)), report, names, target, title);
-  } else if (file.endsWith(".png", Qt::CaseInsensitive)) {
-    QImage image(size, QImage::Format_ARGB32);
-    {
-      QPainter p(&image);
-      paint(p, QRectF(QPointF(0, 0), QSizeF(size)), report, names, target, title);
-    }
-    if (!image.save(file)) throw std::runtime_error(path + ": cannot write");
-  } else {
-    throw std::runtime_error(path + ": the plot is written as .svg or .png");
-  }
+  write_figure_file(
+      path, QSize(900, int(560 + 27 * names.size())), title,
+      [&](QPainter& p, const QRectF& area) { paint(p, area, report, names, target, title); });
 }
 
 }  // namespace handlab::report

@@ -1,14 +1,14 @@
 #include "app/report/sensitivity_figure.h"
 
+#include "app/report/figure_file.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
 
 #include <QFont>
-#include <QImage>
 #include <QPainter>
-#include <QSvgGenerator>
 
 namespace handlab::report {
 namespace {
@@ -118,26 +118,8 @@ void paint(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
 
 void write_sensitivity_figure(const studies::SensitivityReport& report, const std::string& title,
                               const std::string& path) {
-  const QString file = QString::fromStdString(path);
-  const QSize size(int(560 * std::max<std::size_t>(1, report.outputs.size())), 560);
-  if (file.endsWith(".svg", Qt::CaseInsensitive)) {
-    QSvgGenerator svg;
-    svg.setFileName(file);
-    svg.setSize(size);
-    svg.setViewBox(QRect(QPoint(0, 0), size));
-    svg.setTitle(QString::fromStdString(title));
-    QPainter p(&svg);
-    paint(p, QRectF(QPointF(0, 0), QSizeF(size)), report, title);
-  } else if (file.endsWith(".png", Qt::CaseInsensitive)) {
-    QImage image(size, QImage::Format_ARGB32);
-    {
-      QPainter p(&image);
-      paint(p, QRectF(QPointF(0, 0), QSizeF(size)), report, title);
-    }
-    if (!image.save(file)) throw std::runtime_error(path + ": cannot write");
-  } else {
-    throw std::runtime_error(path + ": the figure is written as .svg or .png");
-  }
+  write_figure_file(path, QSize(int(560 * std::max<std::size_t>(1, report.outputs.size())), 560),
+                    title, [&](QPainter& p, const QRectF& area) { paint(p, area, report, title); });
 }
 
 }  // namespace handlab::report

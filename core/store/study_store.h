@@ -66,6 +66,23 @@ struct TrialRow {
   int grasps = 0, drops = 0, frames = 0;
 };
 
+// A scheduled trial's result (its attempt that completed, timed out or was skipped), practice
+// excluded: what the analyses and exports read.
+struct TrialResultRow {
+  std::string participant;
+  std::int64_t trial_id = 0;
+  int block = 0, order = 0, condition = 0, repetition = 0, attempt = 0, grasps = 0, drops = 0;
+  TrialStatus status = TrialStatus::kCompleted;
+  double completion_time_s = 0.0;
+};
+
+// A questionnaire answer given after a trial.
+struct AnswerRow {
+  std::int64_t trial_id = 0;
+  std::string item;
+  int value = 0;
+};
+
 struct TrialOutcome {
   bool success = false;  // false: timed out
   double completion_time_s = 0.0;
@@ -134,6 +151,13 @@ class StudyStore {
   // The memory a simulated participant carried out of its last trial with a result (completed
   // or timed out), for the next; none before its first.
   std::optional<std::string> participant_memory(const std::string& participant_id);
+
+  // Every scheduled trial's result, participants in enrolment order, each in schedule order.
+  std::vector<TrialResultRow> results();
+  // Every questionnaire answer, in the order they were given.
+  std::vector<AnswerRow> answers();
+  // A compact copy of the whole study into a new file (SQLite's VACUUM INTO).
+  void copy_to(const std::string& path);
 
   // Copies every session of another database of the same study (the same protocol hash),
   // with its trials, events, answers, frames and simulated memories, new ids following this

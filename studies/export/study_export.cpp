@@ -34,31 +34,6 @@ std::string micro(double x) {
   return out == "-0" ? "0" : out;
 }
 
-struct ResultRow {
-  std::string participant;
-  std::int64_t trial_id;
-  int block, order, condition, repetition, attempt, grasps, drops;
-  std::string status;
-  double completion_time_s;
-};
-
-// Final results (completed, timeout or skipped) of non-practice trials, in running order.
-std::vector<ResultRow> results(store::StudyStore& store) {
-  std::vector<ResultRow> rows;
-  store::Statement s = store.database().prepare(
-      "SELECT p.participant_id, t.id, p.block, p.order_in_block, p.condition_id, p.repetition, "
-      "t.attempt, coalesce(t.grasps, 0), coalesce(t.drops, 0), t.status, "
-      "coalesce(t.completion_time_s, 0) FROM trial t JOIN planned_trial p ON p.id = t.planned_id "
-      "JOIN participant q ON q.id = p.participant_id WHERE p.practice = 0 AND t.status IN "
-      "('completed', 'timeout', 'skipped') ORDER BY q.enrolment, p.position");
-  while (s.step())
-    rows.push_back({s.column_text(0), s.column_int64(1), int(s.column_int64(2)),
-                    int(s.column_int64(3)), int(s.column_int64(4)), int(s.column_int64(5)),
-                    int(s.column_int64(6)), int(s.column_int64(7)), int(s.column_int64(8)),
-                    s.column_text(9), s.column_double(10)});
-  return rows;
-}
-
 std::map<std::string, store::Participant> participants_by_id(store::StudyStore& store) {
   std::map<std::string, store::Participant> m;
   for (auto& p : store.participants()) m[p.id] = p;
@@ -71,7 +46,7 @@ void write_covariates(std::ostream& out, const store::Participant& p) {
       << csv_field(p.vr_experience);
 }
 
-void write_design(std::ostream& out, const store::StudyInfo& info, const ResultRow& r) {
+void write_design(std::ostream& out, const store::StudyInfo& info, const store::TrialResultRow& r) {
   out << ',' << r.block << ',' << r.order;
   for (const std::string& level : info.conditions.at(std::size_t(r.condition)).second)
     out << ',' << csv_field(level);
@@ -88,16 +63,16 @@ void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_
   out << kCovariateHeader << ",block,order";
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
   out << ",repetition,completion_time_s,outcome,grasps,drops,attempt\n";
-  for (const ResultRow& r : results(store)) {
-    if (r.status == "skipped" && !include_skipped) continue;
+  for (const store::TrialResultRow& r : store.results()) {
+    if (r.status == store::TrialStatus::kSkipped && !include_skipped) continue;
     write_covariates(out, people.at(r.participant));
     write_design(out, info, r);
-    if (r.status == "skipped")
+    if (r.status == store::TrialStatus::kSkipped)
       out << ",NA,skipped,NA,NA," << r.attempt << '\n';
     else
       out << ',' << number(r.completion_time_s) << ','
-          << (r.status == "completed" ? "success" : "timeout") << ',' << r.grasps << ',' << r.drops
-          << ',' << r.attempt << '\n';
+          << (r.status == store::TrialStatus::kCompleted ? "success" : "timeout") << ',' << r.grasps
+          << ',' << r.drops << ',' << r.attempt << '\n';
   }
 }
 
@@ -107,19 +82,16 @@ void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
   // Item ids in their first-asked order.
   std::vector<std::string> items;
   std::map<std::int64_t, std::map<std::string, int>> answers;
-  store::Statement s =
-      store.database().prepare("SELECT trial_id, item, value FROM answer ORDER BY rowid");
-  while (s.step()) {
-    const std::string item = s.column_text(1);
-    if (std::find(items.begin(), items.end(), item) == items.end()) items.push_back(item);
-    answers[s.column_int64(0)][item] = int(s.column_int64(2));
+  for (const store::AnswerRow& a : store.answers()) {
+    if (std::find(items.begin(), items.end(), a.item) == items.end()) items.push_back(a.item);
+    answers[a.trial_id][a.item] = a.value;
   }
   out << kCovariateHeader << ",block,order";
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
   out << ",repetition";
   for (const std::string& item : items) out << ',' << csv_field(item);
   out << '\n';
-  for (const ResultRow& r : results(store)) {
+  for (const store::TrialResultRow& r : store.results()) {
     const auto found = answers.find(r.trial_id);
     if (found == answers.end()) continue;
     write_covariates(out, people.at(r.participant));
@@ -164,13 +136,14 @@ void write_frames_csv(store::StudyStore& store, std::ostream& out) {
   auto point = [&](const Eigen::Vector3d& p) {
     out << ',' << micro(p.x()) << ',' << micro(p.y()) << ',' << micro(p.z());
   };
-  for (const ResultRow& r : results(store)) {
-    if (r.status == "skipped") continue;
+  for (const store::TrialResultRow& r : store.results()) {
+    if (r.status == store::TrialStatus::kSkipped) continue;
     // The columns every row of this trial shares.
     std::ostringstream head;
     write_covariates(head, people.at(r.participant));
     write_design(head, info, r);
-    head << ',' << r.attempt << ',' << (r.status == "completed" ? "success" : "timeout");
+    head << ',' << r.attempt << ','
+         << (r.status == store::TrialStatus::kCompleted ? "success" : "timeout");
     const std::string prefix = head.str();
     const Tips& t = tips_of(r.condition);
     for (const store::FrameRecord& f : store.frames(r.trial_id)) {

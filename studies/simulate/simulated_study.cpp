@@ -59,7 +59,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   for (const store::Participant& p : people) {
     const std::string path = part_path(db_path, p.id);
     remove_database(path);
-    study.database().prepare("VACUUM INTO ?").bind(1, path).run();
+    study.copy_to(path);
   }
   const int n = options.participants;
   const TrackerKind tracker = TrackerKind::simulated(options.seed, options.model);

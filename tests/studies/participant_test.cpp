@@ -223,16 +223,31 @@ std::vector<TrialSetup> setups_of_cube(const Protocol& protocol, const Simulated
   return setups;
 }
 
+// Person `who` of population seed 5 in the study's protocol: their own hand and calibration.
+struct StudyPerson {
+  explicit StudyPerson(int who)
+      : protocol(read_protocol(kSource + "/studies/fine-manipulation-2021.json")),
+        driver(TrackerKind::simulated(5)),
+        person(draw_person(Population{}, 5, who)),
+        own(person.participant.hand_length),
+        calibration(driver.calibrate(protocol, person.participant)) {}
+  const Protocol protocol;
+  PipelineTrialDriver driver;
+  const SimulatedPerson person;
+  const OwnHand own;
+  const retarget::Calibration calibration;
+};
+
 // The blinding test: participants built for the same person and trial place in conditions
 // that differ only in the strategy (its label and its flag), fed the same observations, send
 // the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
 // the participant but what seen_trial_of gives (SeenTrial).
 TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy) {
-  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
-  PipelineTrialDriver driver(TrackerKind::simulated(5));
-  const SimulatedPerson person = draw_person(Population{}, 5, 3);
-  const OwnHand own(person.participant.hand_length);
-  const retarget::Calibration calibration = driver.calibrate(protocol, person.participant);
+  const StudyPerson p(3);
+  const Protocol& protocol = p.protocol;
+  const SimulatedPerson& person = p.person;
+  const OwnHand& own = p.own;
+  const retarget::Calibration& calibration = p.calibration;
   for (double cube : {0.06, 0.01}) {
     const std::vector<TrialSetup> setups = setups_of_cube(protocol, person, cube, 7, calibration);
     ASSERT_EQ(setups.size(), 2u);
@@ -579,11 +594,11 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
 // pads is gripped 3 mm harder on the next grasp (and that is what the trial teaches its
 // memory); a closing that ended without contact is tried again with the same grip.
 TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) {
-  const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
-  PipelineTrialDriver driver(TrackerKind::simulated(5));
-  const SimulatedPerson person = draw_person(Population{}, 5, 2);
-  const OwnHand own(person.participant.hand_length);
-  const retarget::Calibration calibration = driver.calibrate(protocol, person.participant);
+  const StudyPerson p(2);
+  const Protocol& protocol = p.protocol;
+  const SimulatedPerson& person = p.person;
+  const OwnHand& own = p.own;
+  const retarget::Calibration& calibration = p.calibration;
   const TrialSetup setup = setups_of_cube(protocol, person, 0.06, 4, calibration)[0];
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
   task::SceneLayout layout = protocol.scene;
