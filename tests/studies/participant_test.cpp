@@ -244,20 +244,17 @@ struct StudyPerson {
 // the participant but what seen_trial_of gives (SeenTrial).
 TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy) {
   const StudyPerson p(3);
-  const Protocol& protocol = p.protocol;
-  const SimulatedPerson& person = p.person;
-  const OwnHand& own = p.own;
-  const retarget::Calibration& calibration = p.calibration;
   for (double cube : {0.06, 0.01}) {
-    const std::vector<TrialSetup> setups = setups_of_cube(protocol, person, cube, 7, calibration);
+    const std::vector<TrialSetup> setups =
+        setups_of_cube(p.protocol, p.person, cube, 7, p.calibration);
     ASSERT_EQ(setups.size(), 2u);
     ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
     ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
-    auto first = participant_for(setups[0], 5, own);
+    auto first = participant_for(setups[0], 5, p.own);
     const ClosedLoop loop = run_closed_loop(*first, setups[0]);
     EXPECT_TRUE(loop.success) << cube;
     EXPECT_GT(first->experience().grasp_attempts, 0);
-    auto second = participant_for(setups[1], 5, own);
+    auto second = participant_for(setups[1], 5, p.own);
     ASSERT_GT(loop.sent.size(), 120u);
     for (std::size_t k = 0; k < loop.sent.size(); ++k) {
       const tracking::TrackedFrame f = second->act(loop.shown[k]);
@@ -271,7 +268,7 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
     EXPECT_EQ(second->experience().grasp_attempts, first->experience().grasp_attempts);
     EXPECT_EQ(second->experience().corrections, first->experience().corrections);
     // And the observations matter: a cube seen elsewhere changes what it sends.
-    auto third = participant_for(setups[1], 5, own);
+    auto third = participant_for(setups[1], 5, p.own);
     bool differs = false;
     for (std::size_t k = 0; k < loop.sent.size() && !differs; ++k) {
       Observation o = loop.shown[k];
@@ -595,31 +592,27 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
 // memory); a closing that ended without contact is tried again with the same grip.
 TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) {
   const StudyPerson p(2);
-  const Protocol& protocol = p.protocol;
-  const SimulatedPerson& person = p.person;
-  const OwnHand& own = p.own;
-  const retarget::Calibration& calibration = p.calibration;
-  const TrialSetup setup = setups_of_cube(protocol, person, 0.06, 4, calibration)[0];
+  const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.06, 4, p.calibration)[0];
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
-  task::SceneLayout layout = protocol.scene;
+  task::SceneLayout layout = p.protocol.scene;
   layout.cube_size = 0.06;
   const retarget::Strategy strategy =
       setup.condition.naive_strategy ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
   {
     SeenOtherwiseWorld dropped(sim, layout, SeenOtherwiseWorld::Twist::kDropOnce);
-    auto participant = participant_for(setup, 5, own, {});
+    auto participant = participant_for(setup, 5, p.own, {});
     drive(*participant, dropped, setup, strategy, 12.0);
     const TrialExperience e = participant->experience();
     ASSERT_GE(e.losses, 1);
-    EXPECT_NEAR(e.squeeze_added, e.losses * person.motor.regrasp_squeeze, 1e-12);
+    EXPECT_NEAR(e.squeeze_added, e.losses * p.person.motor.regrasp_squeeze, 1e-12);
     EXPECT_GT(participant->memory_after().cube(0.06)->grip.correction(), 0.0);
   }
   {
     // The small cube: the slow closing shuts the hand before the hidden contact shows.
-    const TrialSetup fine = setups_of_cube(protocol, person, 0.01, 4, calibration)[0];
+    const TrialSetup fine = setups_of_cube(p.protocol, p.person, 0.01, 4, p.calibration)[0];
     layout.cube_size = 0.01;
     SeenOtherwiseWorld hidden(sim, layout, SeenOtherwiseWorld::Twist::kHideContact);
-    auto participant = participant_for(fine, 5, own, {});
+    auto participant = participant_for(fine, 5, p.own, {});
     drive(*participant, hidden, fine,
           fine.condition.naive_strategy ? retarget::Strategy::kNaive : retarget::Strategy::kOurs,
           30.0);
