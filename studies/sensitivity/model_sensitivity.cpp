@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <ostream>
+#include <stdexcept>
 
 #include "core/util/json_writer.h"
 #include "studies/analysis/study_database_analysis.h"
@@ -59,7 +60,14 @@ SensitivityReport run_model_sensitivity(
     const std::function<void(const SensitivityProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   SensitivityReport report;
-  report.parameters = participant_sensitivity_parameters();
+  for (const SensitivityParameter& p : participant_sensitivity_parameters())
+    if (options.only.empty() ||
+        std::find(options.only.begin(), options.only.end(), p.name) != options.only.end())
+      report.parameters.push_back(p);
+  for (const std::string& name : options.only)
+    if (std::none_of(report.parameters.begin(), report.parameters.end(),
+                     [&](const SensitivityParameter& p) { return p.name == name; }))
+      throw std::invalid_argument("the sensitivity analysis has no parameter " + name);
   report.outputs = options.outputs;
   report.design = morris_design(int(report.parameters.size()), options.trajectories, options.levels,
                                 options.design_seed);

@@ -37,6 +37,8 @@ struct SensitivityOptions {
   std::string work_dir;  // where each point's study database is written (and removed)
   std::vector<std::string> outputs = {"strategy:manipulation", "repetition",
                                       "strategy:manipulation: naive fine - ours fine"};
+  // Only these of participant_sensitivity_parameters() (by name); empty: all of them.
+  std::vector<std::string> only;
 };
 
 struct SensitivityReport {
@@ -54,6 +56,7 @@ struct SensitivityProgress {
   double seconds = 0.0;
 };
 
+// Throws std::invalid_argument when `only` names a parameter the analysis lacks.
 SensitivityReport run_model_sensitivity(
     const Protocol& protocol, const SensitivityOptions& options,
     const std::function<void(const SensitivityProgress&)>& progress = {});

@@ -593,3 +593,36 @@ TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
   one_line_error(cli("power --protocol " + two_blocks + " --pipeline --model " + two_blocks),
                  "takes no --model");
 }
+
+// The model's sensitivity on whole simulated studies (two parameters, two trajectories of
+// three studies each, two people on the grasp proxy: quick): every point a study, each
+// output's indices per parameter, the same again with the same seeds, a usage error for a
+// parameter the analysis lacks.
+TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
+  const std::string two_blocks = two_block_protocol("cli_sensitivity.json");
+  const std::string work = handlab::test::fresh_path("cli_sensitivity_work");
+  const std::string command = "sensitivity --protocol " + two_blocks + " --work " + work +
+                              " --participants 2 --trajectories 2 --parameter fitts_a "
+                              "--parameter practice_rate --jobs 2 --json -";
+  const Result r = cli(command);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = handlab::util::JsonValue::parse(r.out);
+  ASSERT_EQ(doc["parameters"].size(), 2u);
+  EXPECT_EQ(doc["parameters"][0]["name"].as_string(), "fitts_a");
+  EXPECT_EQ(doc["points"].size(), 2u * 3u);
+  ASSERT_EQ(doc["outputs"].size(), 3u);
+  EXPECT_EQ(doc["outputs"][1]["test"].as_string(), "repetition");
+  for (const auto& output : doc["outputs"].as_array())
+    for (const char* name : {"fitts_a", "practice_rate"}) {
+      EXPECT_EQ(output["indices"][name]["effects"].as_number(), 2) << name;
+      EXPECT_GE(output["indices"][name]["mu_star"].as_number(), 0.0) << name;
+    }
+  // Faster movements or faster learning change the repetition F of the same people.
+  EXPECT_GT(doc["outputs"][1]["indices"]["practice_rate"]["mu_star"].as_number(), 0.0);
+  // The same seeds, the same numbers (all but the wall-clock seconds on the first line).
+  const auto numbers = [](const std::string& json) { return json.substr(json.find("\"levels\"")); };
+  EXPECT_EQ(numbers(cli(command).out), numbers(r.out));
+  one_line_error(cli("sensitivity --protocol " + two_blocks + " --work " + work +
+                     " --parameter no_such_thing"),
+                 "no parameter no_such_thing");
+}

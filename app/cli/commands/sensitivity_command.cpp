@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 #include <thread>
 
 #include "app/cli/arguments.h"
@@ -32,6 +33,10 @@ int run_sensitivity(const std::vector<std::string>& argv) {
       {"output", "TEST",
        "a test whose statistic is analysed, as replications names it; repeatable (default: "
        "the strategy x manipulation F, the repetition F, the fine Naive - Ours t)",
+       "", true},
+      {"parameter", "NAME",
+       "vary only this parameter (the others stay at the model's values); repeatable "
+       "(default: every parameter of docs/simulated-participants.md's sensitivity table)",
        "", true},
       {"plot", "FILE", "draw mu* against sigma per output (.svg or .png)"},
       {"json", "OUT", "write every index and every point as JSON (- for standard output)"},
@@ -66,13 +71,19 @@ int run_sensitivity(const std::vector<std::string>& argv) {
   if (world != "soft" && world != "proxy") throw UsageError("--world must be proxy or soft");
   options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
   if (!args.all("output").empty()) options.outputs = args.all("output");
+  options.only = args.all("parameter");
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const bool quiet = args.text("json") == "-";
-  const studies::SensitivityReport report =
-      studies::run_model_sensitivity(protocol, options, [&](const studies::SensitivityProgress& p) {
-        if (!quiet)
-          std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
-      });
+  studies::SensitivityReport report;
+  try {
+    report = studies::run_model_sensitivity(
+        protocol, options, [&](const studies::SensitivityProgress& p) {
+          if (!quiet)
+            std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
+        });
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   if (args.text("json") != "-") studies::write_sensitivity_markdown(report, std::cout);
 #ifdef HANDLAB_WITH_REPORT
   if (args.has("plot")) {
