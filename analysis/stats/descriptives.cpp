@@ -14,6 +14,12 @@ double quantile_type7(const std::vector<double>& sorted, double probability) {
   return sorted[lo] + (h - double(lo)) * (sorted[hi] - sorted[lo]);
 }
 
+double timing_quantile(std::vector<double> values, double probability) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return quantile_type7(values, probability);
+}
+
 Descriptives describe(std::vector<double> values) {
   Descriptives d;
   const double nan = std::numeric_limits<double>::quiet_NaN();

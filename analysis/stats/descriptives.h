@@ -14,5 +14,7 @@ Descriptives describe(std::vector<double> values);
 
 // R's quantile(type = 7) of sorted values.
 double quantile_type7(const std::vector<double>& sorted, double probability);
+// The same of values in any order; 0 for none (a timing summary with nothing timed).
+double timing_quantile(std::vector<double> values, double probability);
 
 }  // namespace handlab::stats

@@ -49,8 +49,7 @@ void LiveMeasurement::finish() {
   SessionPage::DisplayStats s = page_->display_stats();
   // Quantiles of arrival to screen, and of its part until the simulated state was there.
   auto summary = [](util::JsonWriter& json, const char* name, std::vector<double> ms) {
-    std::sort(ms.begin(), ms.end());
-    auto q = [&](double p) { return ms.empty() ? 0.0 : stats::quantile_type7(ms, p); };
+    auto q = [&](double p) { return stats::timing_quantile(ms, p); };
     json.key(name)
         .begin_object()
         .field("n", ms.size())

@@ -219,6 +219,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
                           "\"step_ms\"",
                           "\"median\"",
                           "\"p95\"",
+                          "\"p99\"",
                           "\"newton_iterations\"",
                           "\"linear_iterations\"",
                           "\"factorizations\"",

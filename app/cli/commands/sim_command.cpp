@@ -30,12 +30,7 @@
 namespace handlab::cli {
 namespace {
 
-// R's type-7 quantile (stats::quantile_type7) of unsorted values; 0 for none.
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return stats::quantile_type7(values, q);
-}
+using stats::timing_quantile;
 
 template <typename T>
 double mean(const std::vector<T>& values) {
@@ -114,9 +109,10 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
       .field("time_step_s", setup.model.parameters.time_step);
   json.key("step_ms")
       .begin_object()
-      .field("median", quantile(r.step_ms, 0.5))
-      .field("p95", quantile(r.step_ms, 0.95))
-      .field("max", quantile(r.step_ms, 1.0))
+      .field("median", timing_quantile(r.step_ms, 0.5))
+      .field("p95", timing_quantile(r.step_ms, 0.95))
+      .field("p99", timing_quantile(r.step_ms, 0.99))
+      .field("max", timing_quantile(r.step_ms, 1.0))
       .field("mean", mean(r.step_ms))
       .end_object();
   json.key("newton_iterations")
@@ -139,8 +135,8 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
         .field("from_s", p.from)
         .field("to_s", p.to)
         .field("steps", p.ms.size())
-        .field("median_ms", quantile(p.ms, 0.5))
-        .field("p95_ms", quantile(p.ms, 0.95))
+        .field("median_ms", timing_quantile(p.ms, 0.5))
+        .field("p95_ms", timing_quantile(p.ms, 0.95))
         .field("newton_iterations_mean", p.passes)
         .field("linear_iterations_mean", p.linear)
         .field("factorizations", p.factorizations)
@@ -152,15 +148,16 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
   std::cout << std::fixed << std::setprecision(2) << setup.model.tets.size() << " tets, "
             << setup.model.node_count() << " nodes, " << setup.model.bone_count() << " bones, "
             << setup.model.dof_count() << " DOFs; " << r.step_ms.size() << " steps: median "
-            << quantile(r.step_ms, 0.5) << " ms, p95 " << quantile(r.step_ms, 0.95) << " ms, max "
-            << quantile(r.step_ms, 1.0) << " ms; Newton " << mean(r.newton_iterations) << ", CG "
-            << mean(r.linear_iterations) << " a step, "
+            << timing_quantile(r.step_ms, 0.5) << " ms, p95 " << timing_quantile(r.step_ms, 0.95)
+            << " ms, p99 " << timing_quantile(r.step_ms, 0.99) << " ms, max "
+            << timing_quantile(r.step_ms, 1.0) << " ms; Newton " << mean(r.newton_iterations)
+            << ", CG " << mean(r.linear_iterations) << " a step, "
             << std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0)
             << " factorisations\n";
   for (const Phase& p : phases(setup, r))
     std::cout << "  " << std::left << std::setw(9) << p.name << std::right << std::setw(4)
-              << p.ms.size() << " steps: median " << quantile(p.ms, 0.5) << " ms, p95 "
-              << quantile(p.ms, 0.95) << " ms; Newton " << p.passes << ", CG " << p.linear
+              << p.ms.size() << " steps: median " << timing_quantile(p.ms, 0.5) << " ms, p95 "
+              << timing_quantile(p.ms, 0.95) << " ms; Newton " << p.passes << ", CG " << p.linear
               << " a step, " << p.factorizations << " factorisations\n";
 }
 

@@ -25,12 +25,7 @@
 namespace handlab::cli {
 namespace {
 
-// R's type-7 quantile (stats::quantile_type7) of unsorted values; 0 for none.
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return stats::quantile_type7(values, q);
-}
+using stats::timing_quantile;
 
 }  // namespace
 
@@ -134,7 +129,7 @@ int sim_replay(const std::vector<std::string>& argv) {
       for (const Eigen::Vector3d& v : state.node_velocity)
         fastest_at_end = std::max(fastest_at_end, v.norm());
   }
-  const double median = quantile(step_ms, 0.5), p95 = quantile(step_ms, 0.95);
+  const double median = timing_quantile(step_ms, 0.5), p95 = timing_quantile(step_ms, 0.95);
   const std::string json_out = args.text("json");
   if (json_out != "-") {
     std::cout << std::fixed << std::setprecision(2) << recording.source << " (" << strategy_name
