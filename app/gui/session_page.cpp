@@ -381,8 +381,7 @@ QString SessionPage::start_session() {
   }
   {
     store::StudyStore store(database_.toStdString());
-    options.resume = store.has_running_session(options.participant) ||
-                     !store.trials(options.participant).empty();
+    options.resume = store.has_started(options.participant);
     if (!store.next_trial(options.participant) && !store.has_running_session(options.participant))
       return tr("%1 has done every planned trial").arg(participant_->currentText());
   }

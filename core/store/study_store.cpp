@@ -314,6 +314,10 @@ bool StudyStore::has_running_session(const std::string& participant_id) {
   return s.column_int64(0) > 0;
 }
 
+bool StudyStore::has_started(const std::string& participant_id) {
+  return has_running_session(participant_id) || !trials(participant_id).empty();
+}
+
 void StudyStore::update_participant(const Participant& p) {
   db_.prepare(
          "UPDATE participant SET age = ?, sex = ?, handedness = ?, hand_length = ?, "

@@ -134,6 +134,9 @@ class StudyStore {
   // their sessions "interrupted". Returns how many trials were aborted.
   int abort_interrupted(const std::string& participant_id);
   bool has_running_session(const std::string& participant_id);
+  // Whether the participant's schedule has started (a session still running, or an attempt
+  // at a trial): a session then goes on only as a resumption.
+  bool has_started(const std::string& participant_id);
 
   std::int64_t begin_trial(std::int64_t planned_id, std::int64_t session_id);
   void finish_trial(std::int64_t trial_id, const TrialOutcome& outcome);

@@ -90,9 +90,7 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
   const std::vector<Condition> conditions = protocol.conditions();
 
   SessionReport report;
-  const bool started =
-      store_.has_running_session(participant_id) || !store_.trials(participant_id).empty();
-  if (started && !resume)
+  if (store_.has_started(participant_id) && !resume)
     throw std::runtime_error(participant_id +
                              " has already started the schedule; continue it with --resume");
   report.aborted_before = store_.abort_interrupted(participant_id);

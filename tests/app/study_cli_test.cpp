@@ -279,7 +279,7 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);
   ASSERT_EQ(cli(enrol(db, "P01", 0.18)).status, 0);
   const std::string before = handlab::test::file_bytes(db);
-  one_line_error(cli(enrol(db, "P01", 0.18)), "already exists");
+  one_line_error(cli(enrol(db, "P01", 0.18)), "already enrolled");
   one_line_error(cli("study create --protocol " + kProtocol + " --db " + db), "already exists");
   one_line_error(cli("participant add --db " + db +
                      " --id P09 --age 27 --sex M --handedness right "

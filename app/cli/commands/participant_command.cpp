@@ -1,4 +1,5 @@
 // handlab-cli participant: enrol a participant (their schedule is fixed at enrolment).
+#include <algorithm>
 #include <iostream>
 
 #include "app/cli/arguments.h"
@@ -33,22 +34,22 @@ int participant_add(const std::vector<std::string>& argv) {
   store::Participant p;
   p.id = args.text("id");
   const long age = args.integer("age");
-  if (age < 5 || age > 120) throw UsageError("--age must be between 5 and 120");
-  p.age = int(age);
+  p.age = int(std::clamp(age, -1L, 1000L));
   p.sex = args.text("sex");
-  if (p.sex != "F" && p.sex != "M" && p.sex != "X") throw UsageError("--sex is F, M or X");
   p.handedness = args.text("handedness");
-  if (p.handedness != "right" && p.handedness != "left" && p.handedness != "ambidextrous")
-    throw UsageError("--handedness is right, left or ambidextrous");
   p.hand_length = args.number("hand-length");
-  if (!(p.hand_length >= 0.10 && p.hand_length <= 0.30))
-    throw UsageError("--hand-length is in metres, between 0.10 and 0.30 (e.g. 0.188)");
   p.vr_experience = args.text("vr-experience");
   p.notes = args.text("notes");
+  // The enrolment's own checks (the app's form uses them too), named by the option.
+  const auto problems = studies::participant_problems(p, {});
+  if (!problems.empty()) {
+    std::string option = problems.front().field;
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw UsageError("--" + option + ": " + problems.front().message +
+                     (option == "hand-length" ? " Give it in metres (e.g. 0.188)." : ""));
+  }
 
   store::StudyStore store(args.text("db"));
-  if (store.participant(p.id))
-    throw std::runtime_error("participant " + p.id + " already exists in " + args.text("db"));
   const int enrolment = store.participant_count();
   const int planned = studies::enrol_participant(store, p);
   std::cout << "enrolled " << p.id << " (participant " << enrolment + 1 << "): " << planned
