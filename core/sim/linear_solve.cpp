@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "core/sim/hand_simulator.h"
+#include "core/sim/sim_options.h"
 
 namespace handlab::sim {
 

@@ -3,7 +3,7 @@
 // time. Counting only: where a simulated study's time goes (docs/performance.md).
 #pragma once
 
-#include "core/sim/hand_simulator.h"
+#include "core/sim/sim_options.h"
 
 namespace handlab::sim {
 
