@@ -5,7 +5,7 @@
 
 #include "core/render/sim_drawing.h"
 #include "core/sim/hand_simulator.h"
-#include "core/sim/pinch_scene.h"
+#include "core/task/pinch_scene.h"
 
 namespace handlab::gui {
 

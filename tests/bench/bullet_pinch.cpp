@@ -36,8 +36,8 @@
 
 #include "core/sim/box_distance.h"
 #include "core/sim/hand_simulator.h"
-#include "core/sim/pinch_scene.h"
-#include "core/sim/pinch_script.h"
+#include "core/task/pinch_scene.h"
+#include "core/task/pinch_script.h"
 
 namespace {
 

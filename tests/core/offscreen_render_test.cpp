@@ -11,7 +11,7 @@
 #include "core/render/render_mesh.h"
 #include "core/render/scene_drawing.h"
 #include "core/render/sim_drawing.h"
-#include "core/sim/pinch_scene.h"
+#include "core/task/pinch_scene.h"
 
 namespace handlab::render {
 namespace {

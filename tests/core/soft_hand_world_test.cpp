@@ -4,7 +4,7 @@
 // holds it, and lets it go when it opens.
 #include <gtest/gtest.h>
 
-#include "core/sim/pinch_scene.h"
+#include "core/task/pinch_scene.h"
 #include "core/task/cube_task.h"
 #include "core/task/soft_hand_world.h"
 

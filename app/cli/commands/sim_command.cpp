@@ -24,7 +24,7 @@
 #include "core/render/hand_drawing.h"
 #include "core/render/offscreen_context.h"
 #include "core/render/sim_drawing.h"
-#include "core/sim/pinch_scene.h"
+#include "core/task/pinch_scene.h"
 #include "core/util/json_writer.h"
 
 namespace handlab::cli {

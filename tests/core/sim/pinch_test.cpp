@@ -1,5 +1,5 @@
 // The study hand pinches each of the study's cubes between thumb and index on the scripted
-// pinch-and-lift (core/sim/pinch_script.h): it lifts it 10 cm and holds it 5 s without letting
+// pinch-and-lift (core/task/pinch_script.h): it lifts it 10 cm and holds it 5 s without letting
 // it slip or sink into the flesh, and opening the fingers lets it fall back to the floor.
 #include <array>
 #include <initializer_list>
@@ -10,7 +10,7 @@
 
 #include "core/hand/hand_shape.h"
 #include "core/sim/box_distance.h"
-#include "core/sim/pinch_scene.h"
+#include "core/task/pinch_scene.h"
 
 namespace handlab::sim {
 namespace {

@@ -18,8 +18,8 @@
 #include "core/sim/increment.h"
 #include "core/sim/newton_matrix.h"
 #include "core/sim/newton_terms.h"
-#include "core/sim/pinch_scene.h"
-#include "core/sim/pinch_script.h"
+#include "core/task/pinch_scene.h"
+#include "core/task/pinch_script.h"
 
 namespace handlab::sim::test {
 

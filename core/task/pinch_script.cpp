@@ -1,4 +1,4 @@
-#include "core/sim/pinch_script.h"
+#include "core/task/pinch_script.h"
 
 #include <algorithm>
 #include <chrono>

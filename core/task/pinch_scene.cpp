@@ -1,4 +1,4 @@
-#include "core/sim/pinch_scene.h"
+#include "core/task/pinch_scene.h"
 
 #include "core/hand/simulated_hand.h"
 

@@ -3,6 +3,7 @@
 // (target poses from inverse kinematics on the finger pads), lifts it 10 cm, holds it 5 s and
 // opens. run_pinch steps the simulator through it and reports whether the cube was held, how
 // far it slipped between the fingers, how deep the flesh went into it, and the step times.
+// A client of the simulator (in its namespace), kept out of its stages in core/sim.
 #pragma once
 
 #include <functional>

@@ -8,7 +8,7 @@
 #include "core/hand/skeleton.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/sim/hand_sim_state.h"
-#include "core/sim/pinch_script.h"
+#include "core/task/pinch_script.h"
 
 namespace handlab::sim {
 
