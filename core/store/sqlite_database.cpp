@@ -103,9 +103,15 @@ sqlite3* open_connection(const std::string& path, const std::string& shown, int 
 
 // The whole of the file at `path` into `memory`, read through a read-only connection.
 void copy_into(sqlite3* memory, const std::string& path) {
-  sqlite3* source = open_connection(path, path, SQLITE_OPEN_READONLY);
+  sqlite3* source = open_connection(path, path, SQLITE_OPEN_READWRITE);
+  sqlite3_busy_timeout(source, 2000);
+  sqlite3_exec(source, "PRAGMA query_only = ON", nullptr, nullptr, nullptr);
   sqlite3_backup* backup = sqlite3_backup_init(memory, "main", source, "main");
-  const int done = backup ? sqlite3_backup_step(backup, -1) : sqlite3_errcode(memory);
+  int done = backup ? sqlite3_backup_step(backup, -1) : sqlite3_errcode(memory);
+  for (int tries = 0; (done == SQLITE_BUSY || done == SQLITE_LOCKED) && tries < 20; ++tries) {
+    sqlite3_sleep(100);  // a writer holds the file: the backup starts again when it is done
+    done = sqlite3_backup_step(backup, -1);
+  }
   sqlite3_backup_finish(backup);
   const std::string message = sqlite3_errstr(done);
   sqlite3_close(source);
@@ -116,7 +122,8 @@ void copy_into(sqlite3* memory, const std::string& path) {
 
 Database::Database(const std::string& path, Mode mode) : path_(path) {
   int flags = SQLITE_OPEN_READONLY;
-  if (mode == Mode::kReadWrite || mode == Mode::kInspect) flags = SQLITE_OPEN_READWRITE;
+  if (mode == Mode::kReadWrite || mode == Mode::kInspect || mode == Mode::kQueryOnly)
+    flags = SQLITE_OPEN_READWRITE;
   if (mode == Mode::kReadWriteCreate || mode == Mode::kMemoryCopy)
     flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   db_ = open_connection(mode == Mode::kMemoryCopy ? ":memory:" : path, path, flags);
@@ -132,6 +139,7 @@ Database::Database(const std::string& path, Mode mode) : path_(path) {
   sqlite3_busy_timeout(db_, 2000);
   try {
     exec("PRAGMA foreign_keys = ON");
+    if (mode == Mode::kQueryOnly) exec("PRAGMA query_only = ON");
     if (mode == Mode::kReadWrite || mode == Mode::kReadWriteCreate) {
       const auto journal = query_text("PRAGMA journal_mode = WAL");
       if (!journal || *journal != "wal") throw StoreError("cannot switch " + path + " to WAL mode");

@@ -57,9 +57,11 @@ class Database {
   // kInspect: read-write but nothing set (the journal mode left as the file has it), to look
   // at a file before claiming it. SQLite's read-only connections to a WAL database that
   // other processes are writing can fail with I/O errors; a read-write one reads safely.
-  // kMemoryCopy: a writable database in memory holding a copy of the file (SQLite's backup),
-  // to read a file as if changed (an older schema migrated) without writing to it.
-  enum class Mode { kReadWriteCreate, kReadWrite, kReadOnly, kInspect, kMemoryCopy };
+  // kQueryOnly: as kInspect, with every change refused (PRAGMA query_only): a reader that
+  // cannot write, safe beside writers as kReadOnly is not. kMemoryCopy: a writable database
+  // in memory holding a copy of the file (SQLite's backup, read through a query-only
+  // connection), to read a file as if changed (an older schema migrated) without writing it.
+  enum class Mode { kReadWriteCreate, kReadWrite, kReadOnly, kInspect, kQueryOnly, kMemoryCopy };
 
   // Opens with foreign keys on and, for kReadWrite(Create), write-ahead logging.
   explicit Database(const std::string& path, Mode mode = Mode::kReadWriteCreate);

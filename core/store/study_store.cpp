@@ -114,7 +114,7 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
 StudyStore::Opening StudyStore::opening(const std::string& path, Access access) {
   const bool current = checked_study_file(path) == kSchemaVersion;
   if (access == Access::kReadWrite) return {path, Database::Mode::kReadWrite, true};
-  return {path, current ? Database::Mode::kReadOnly : Database::Mode::kMemoryCopy, !current};
+  return {path, current ? Database::Mode::kQueryOnly : Database::Mode::kMemoryCopy, !current};
 }
 
 StudyStore::StudyStore(const std::string& path, Access access)

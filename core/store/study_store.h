@@ -104,8 +104,9 @@ class StudyStore {
  public:
   // Creates a new study file; refuses a path that exists.
   static void create(const std::string& path, const StudyDefinition& definition);
-  // kReadOnly: the file is never written, nor are files made beside it when its journal is a
-  // rollback one (an older schema is migrated in a copy in memory); for analyses and exports.
+  // kReadOnly: a query-only connection (analyses, exports, replays; safe beside a session
+  // writing the file): no change to the study is made, an older schema is migrated in a copy
+  // in memory, and a file with a rollback journal gets nothing made beside it.
   enum class Access { kReadWrite, kReadOnly };
   // Opens an existing study file, migrating an older schema forward.
   explicit StudyStore(const std::string& path, Access access = Access::kReadWrite);

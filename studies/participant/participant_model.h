@@ -30,7 +30,7 @@ struct MotorParameters {
   double practice_rate = 0.35;     // per repetition: durations' exponential law of practice
   double practice_floor = 0.60;    // the share of a duration practice leaves
   double confirm_dwell = 0.15;     // s seeing both pads on the cube before lifting
-  double regrasp_squeeze = 0.003;  // m more closing past the faces after each failed grasp
+  double regrasp_squeeze = 0.003;  // m more closing past the faces after each slip under load
   // Trial-by-trial adaptation of where it expects its pads to meet the cube.
   TwoRateRates contact_rates{0.59, 0.21, 0.992, 0.02};
 };

@@ -401,7 +401,8 @@ void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
     const Eigen::Vector3d own_now = grip_.at(time_) + servo_;
     Eigen::Vector3d away = up(behaviour().withdraw_height);
     if (slide_out_) {
-      const Eigen::Vector3d side = horizontal(own_now - s.cube);
+      // Away from the cube as it sees its pads and the cube (one frame, the scene's).
+      const Eigen::Vector3d side = s.hand ? horizontal(s.grip - s.cube) : Eigen::Vector3d::Zero();
       away += behaviour().withdraw_height *
               (side.norm() > 1e-6 ? side.normalized() : Eigen::Vector3d::UnitZ());
     }

@@ -281,7 +281,7 @@ class Builder {
     }
     ReportTable rates;
     rates.caption = "Success per condition: the scheduled trials completed.";
-    rates.header = {"Condition", "Completed", "Timed out", "Share completed"};
+    rates.header = {"Condition", "Completed", "Timed out", "Completed of scheduled"};
     for (std::size_t i = 0; i < q.by_condition.size(); ++i) {
       const ConditionOutcome& c = q.by_condition[i];
       const std::string key = "/data_quality/by_condition/" + std::to_string(i) + "/";

@@ -90,9 +90,18 @@ SensitivityReport run_model_sensitivity(
         (std::filesystem::path(options.work_dir) / ("point-" + std::to_string(k + 1) + ".db"))
             .string();
     remove_database(db);
-    simulate_study(protocol, db, run);
-    const StudyTests tests =
-        study_tests(analyze_study_database(db), power::SphericityCorrection::kAuto, 0.05);
+    StudyTests tests;
+    try {
+      simulate_study(protocol, db, run);
+      tests = study_tests(analyze_study_database(db), power::SphericityCorrection::kAuto, 0.05);
+    } catch (...) {
+      remove_database(db);  // the parts a failed simulation left are removed with it
+      for (const auto& f : std::filesystem::directory_iterator(options.work_dir))
+        if (f.path().filename().string().rfind(
+                std::filesystem::path(db).filename().string() + ".part-", 0) == 0)
+          std::filesystem::remove(f.path());
+      throw;
+    }
     remove_database(db);
     std::vector<double> values;
     for (const std::string& name : options.outputs) {

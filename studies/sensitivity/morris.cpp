@@ -22,8 +22,8 @@ MorrisDesign morris_design(int parameters, int trajectories, int levels, std::ui
   util::PortableRandom random(util::splitmix64(seed ^ 0x4D6F72726973ull));  // "Morris"
   const auto below = [&](int n) { return int(random.below(std::uint64_t(n))); };
   for (int t = 0; t < trajectories; ++t) {
-    // A base point on the grid from which every parameter can step by delta one way or the
-    // other, the steps in a random order and each in a random direction.
+    // A base point on the grid, the steps in a random order, each by delta the one way the
+    // grid allows from the level it is at (with an even number of levels, one way only).
     std::vector<double> x(static_cast<std::size_t>(parameters));
     for (double& v : x) v = grid * below(levels);
     std::vector<int> order(static_cast<std::size_t>(parameters));
@@ -33,9 +33,8 @@ MorrisDesign morris_design(int parameters, int trajectories, int levels, std::ui
     d.steps.push_back({});
     for (int i : order) {
       double& v = x[std::size_t(i)];
-      const bool up = v + delta <= 1.0 + 1e-12 && (v - delta < -1e-12 || below(2) == 0);
-      const double step = up ? delta : -delta;
-      v = std::clamp(v + step, 0.0, 1.0);
+      const double step = v + delta <= 1.0 + 1e-12 ? delta : -delta;
+      v += step;
       d.points.push_back(x);
       d.steps.push_back({i, step});
     }

@@ -73,6 +73,11 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   for (int k = 0; k < 3; ++k) held = remember(held, TrialExperience{.cube_size = 0.01}, r);
   EXPECT_LT(held.cube(0.01)->grip.correction(), f->grip.correction());
   EXPECT_GT(held.cube(0.01)->grip.correction(), 0.0);
+  ParticipantMemory slipping = m;
+  TrialExperience slips = fine;  // every trial needing 6 mm more
+  for (int k = 0; k < 500; ++k) slipping = remember(slipping, slips, r);
+  // The steady state: 6 mm × (0.21 / 0.41 + 0.02 / 0.008) = 18.1 mm.
+  EXPECT_LT(slipping.cube(0.01)->grip.correction(), 0.0181);
   const CubeMemory* g = m.cube(0.06);
   ASSERT_NE(g, nullptr);
   EXPECT_EQ(g->trials, 1);

@@ -146,8 +146,6 @@ TEST(StudyTests, NamePairsOfCellsInTheProtocolsOrderWithTheirSigns) {
     }
 }
 
-// An effect judged with a sphericity correction carries that correction's df: each
-// correction's own epsilon, taken from the correction (not guessed from the p it returned).
 // Timed-out trials three ways: at the limit (the main analysis keeps every participant), left
 // out (a participant without a completed trial in some cell is left out, as R's aov leaves
 // them), and success as its own outcome: the rates' Friedman test against its value by hand.
@@ -178,6 +176,8 @@ TEST(StudyTests, TimedOutTrialsAtTheLimitLeftOutAndAsSuccess) {
   EXPECT_EQ(pair->value, 0.0);  // Naive fine never the more successful
 }
 
+// An effect judged with a sphericity correction carries that correction's df: each
+// correction's own epsilon, taken from the correction (not guessed from the p it returned).
 TEST(StudyTests, CorrectedEffectsCarryTheirCorrectionsDf) {
   const StudyDatabaseAnalysis a = analyze_study_database(simulated_study(1));
   ASSERT_TRUE(a.completion_time);
