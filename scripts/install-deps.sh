@@ -17,6 +17,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libbullet-dev
   # GUI and report checks
   xvfb xauth poppler-utils
+  # the Slurm test: a single-node cluster on this machine (scripts/slurm-local.sh)
+  slurm-wlm munge
 )
 
 missing=()

@@ -96,6 +96,16 @@ long Arguments::integer(const std::string& name) const {
   return result;
 }
 
+std::uint64_t Arguments::seed(const std::string& name) const {
+  const std::string value = text(name);
+  std::uint64_t result = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), result);
+  if (value.empty() || error != std::errc() || end != value.data() + value.size())
+    throw UsageError("option --" + name + " needs a whole number from 0 to 2^64 - 1, got '" +
+                     value + "'");
+  return result;
+}
+
 std::string format_options_help(const std::vector<OptionSpec>& specs) {
   std::ostringstream out;
   for (const OptionSpec& s : specs) {

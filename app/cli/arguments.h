@@ -2,6 +2,7 @@
 // with the --help text generated from the same declarations.
 #pragma once
 
+#include <cstdint>
 #include <initializer_list>
 #include <map>
 #include <optional>
@@ -45,6 +46,8 @@ class Arguments {
   std::vector<std::string> all(const std::string& name) const;
   double number(const std::string& name) const;
   long integer(const std::string& name) const;
+  // A seed: any 64-bit unsigned whole number.
+  std::uint64_t seed(const std::string& name) const;
   const std::vector<std::string>& positional() const { return positional_; }
   bool help_requested() const { return help_; }
 

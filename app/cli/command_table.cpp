@@ -23,6 +23,8 @@ const std::vector<Command>& all_commands() {
       {"simulate",
        "run a whole study with simulated participants on the soft hand (or the grasp proxy)",
        run_simulate},
+      {"merge", "one study from several databases of one protocol (shards, lab machines)",
+       run_merge},
       {"power",
        "simulation-based power of a study design for every N, per effect and planned contrast",
        run_power},

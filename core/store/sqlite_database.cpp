@@ -50,6 +50,16 @@ Statement& Statement::bind_null(int index) {
   return *this;
 }
 
+Statement& Statement::bind_column(int index, const Statement& source, int column) {
+  if (sqlite3_bind_value(stmt_, index, sqlite3_column_value(source.stmt_, column)) != SQLITE_OK)
+    fail(db_, "bind");
+  return *this;
+}
+
+int Statement::column_count() const {
+  return sqlite3_column_count(stmt_);
+}
+
 bool Statement::step() {
   const int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;

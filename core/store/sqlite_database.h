@@ -34,6 +34,8 @@ class Statement {
   Statement& bind(int index, std::string_view text);
   Statement& bind_blob(int index, std::span<const std::uint8_t> bytes);
   Statement& bind_null(int index);
+  // The value in `source`'s current row at `column`, with its type (a copy between databases).
+  Statement& bind_column(int index, const Statement& source, int column);
 
   // Advances; true while a row is available.
   bool step();
@@ -46,6 +48,7 @@ class Statement {
   double column_double(int column) const;
   std::string column_text(int column) const;
   std::vector<std::uint8_t> column_blob(int column) const;
+  int column_count() const;
 
  private:
   sqlite3* db_;

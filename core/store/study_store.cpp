@@ -160,11 +160,15 @@ StudyInfo StudyStore::study() {
   return info;
 }
 
-void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRow>& plan) {
+void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRow>& plan,
+                                 std::optional<int> enrolment) {
   Transaction t(db_);
   if (participant(p.id))
     throw StoreError("participant " + p.id + " already exists in " + db_.path());
-  p.enrolment = participant_count();
+  p.enrolment = enrolment ? *enrolment
+                          : int(std::stoll(db_.query_text("SELECT coalesce(max(enrolment) + 1, 0) "
+                                                          "FROM participant")
+                                               .value()));
   db_.prepare(
          "INSERT INTO participant (id, enrolment, age, sex, handedness, hand_length, "
          "vr_experience, notes, created_at, simulated) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")

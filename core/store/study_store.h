@@ -112,9 +112,11 @@ class StudyStore {
   explicit StudyStore(const std::string& path, Access access = Access::kReadWrite);
 
   StudyInfo study();
-  // Enrols a participant with the planned schedule, in one transaction. Throws StoreError
-  // on a duplicate id or a value the schema's constraints reject.
-  void add_participant(Participant participant, const std::vector<PlannedTrialRow>& plan);
+  // Enrols a participant with the planned schedule, in one transaction, next in the study's
+  // order or at `enrolment` (a shard of a simulated study keeps the whole study's places).
+  // Throws StoreError on a duplicate id or place, or a value the schema's constraints reject.
+  void add_participant(Participant participant, const std::vector<PlannedTrialRow>& plan,
+                       std::optional<int> enrolment = std::nullopt);
   // What may change after enrolment (age, sex, handedness, hand length, VR experience, notes);
   // the id, the enrolment order and the schedule stay.
   void update_participant(const Participant& participant);

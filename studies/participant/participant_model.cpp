@@ -229,10 +229,15 @@ store::SimulatedPersonRow simulated_person_row(const SimulatedPerson& person, st
   return {person.participant.id, kParticipantModelVersion, model_sha256(model), out.str(), seed};
 }
 
-SimulatedPerson draw_person(const Population& p, std::uint64_t seed, int index,
-                            const ParticipantModel& model) {
+std::string simulated_participant_id(int index) {
   char id[16];
   std::snprintf(id, sizeof id, "S%02d", index + 1);
+  return id;
+}
+
+SimulatedPerson draw_person(const Population& p, std::uint64_t seed, int index,
+                            const ParticipantModel& model) {
+  const std::string id = simulated_participant_id(index);
   MotorRandom r(person_seed(seed, id));
   store::Participant q;
   q.id = id;

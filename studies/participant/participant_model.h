@@ -84,8 +84,11 @@ extern const char* const kParticipantModelVersion;
 std::string model_parameters_json(const ParticipantModel& model = frozen_participant_model());
 std::string model_sha256(const ParticipantModel& model = frozen_participant_model());
 
+// The id of person `index` (0-based): "S01", "S02", ...
+std::string simulated_participant_id(int index);
+
 // Person `index` (0-based) of the population under `seed`: covariates and motor parameters.
-// The id is "S01", "S02", ...; the notes mark the participant as simulated.
+// The id is simulated_participant_id(index); the notes mark the participant as simulated.
 SimulatedPerson draw_person(const Population& population, std::uint64_t seed, int index,
                             const ParticipantModel& model = frozen_participant_model());
 

@@ -8,6 +8,7 @@
 
 #include "studies/analysis/study_database_analysis.h"
 #include "studies/analysis/study_tests.h"
+#include "studies/cluster/slurm_batch.h"
 #include "studies/simulate/simulated_study.h"
 
 namespace handlab::studies {
@@ -38,6 +39,16 @@ void remove_study(const std::filesystem::path& db) {
 
 }  // namespace
 
+std::vector<std::vector<PipelineStudy>> pipeline_studies(const power::PowerOptions& o) {
+  std::vector<std::vector<PipelineStudy>> studies(o.n.size());
+  for (std::size_t k = 0; k < o.n.size(); ++k)
+    for (int s = 0; s < o.sims; ++s)
+      studies[k].push_back(
+          {o.n[k], util::splitmix64(o.seed ^ util::splitmix64(std::uint64_t(o.n[k]) * 1000003ull +
+                                                              std::uint64_t(s)))});
+  return studies;
+}
+
 power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerOptions& options,
                                   const std::function<void(int, int)>& progress) {
   const power::PowerOptions& o = options.power;
@@ -53,17 +64,28 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
   std::vector<double> seconds(o.n.size(), 0.0);
   const int total = int(o.n.size()) * o.sims;
   int done = 0;
+  const std::vector<std::vector<PipelineStudy>> planned = pipeline_studies(o);
   for (std::size_t k = 0; k < o.n.size(); ++k) {
     const auto start = std::chrono::steady_clock::now();
     for (int s = 0; s < o.sims; ++s) {
+      const PipelineStudy& study = planned[k][std::size_t(s)];
+      if (!options.from_dir.empty()) {
+        const std::string db = study_path(options.from_dir, {study.participants, study.seed});
+        if (!std::filesystem::exists(db))
+          throw std::runtime_error(db +
+                                   " is missing: the series is unfinished (simulate --status " +
+                                   options.from_dir + ")");
+        outcomes[k].push_back(outcome_of(analyze_study_database(db), o));
+        if (progress) progress(++done, total);
+        continue;
+      }
       const std::filesystem::path db =
           dir / ("handlab-power-" + std::to_string(o.n[k]) + "-" + std::to_string(s) + "-" +
                  std::to_string(util::splitmix64(o.seed) % 100000) + ".db");
       remove_study(db);
       SimulationOptions so;
-      so.participants = o.n[k];
-      so.seed = util::splitmix64(
-          o.seed ^ util::splitmix64(std::uint64_t(o.n[k]) * 1000003ull + std::uint64_t(s)));
+      so.participants = study.participants;
+      so.seed = study.seed;
       so.jobs = std::max(1, o.threads);
       so.world = options.world;
       try {
@@ -117,9 +139,13 @@ power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerO
     power::set_counts(report, k, effect_hits, contrast_hits, warnings, seconds[k]);
   }
   report.warning_examples = examples;
-  report.notes.push_back(std::string("pipeline: whole simulated studies on the ") +
-                         (options.world == WorldKind::kSoftHand ? "soft hand" : "grasp proxy") +
-                         ", analysed by analyze --db");
+  report.notes.push_back(
+      options.from_dir.empty()
+          ? std::string("pipeline: whole simulated studies on the ") +
+                (options.world == WorldKind::kSoftHand ? "soft hand" : "grasp proxy") +
+                ", analysed by analyze --db"
+          : "pipeline: whole simulated studies run as Slurm jobs, merged in " + options.from_dir +
+                ", analysed by analyze --db");
   return report;
 }
 

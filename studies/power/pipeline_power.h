@@ -20,7 +20,18 @@ struct PipelinePowerOptions {
   power::PowerOptions power;  // n, sims, alpha, seed, correction; threads: sessions side by side
   WorldKind world = WorldKind::kSoftHand;
   std::string work_dir;  // where each study's database is written, then removed
+  // Analyse the studies a Slurm series merged in this folder (power --pipeline --slurm)
+  // instead of simulating them: each must be there (empty: simulate).
+  std::string from_dir;
 };
+
+// The studies a pipeline power runs: for every N, `sims` studies, each with its own seed
+// derived from the power's seed, N and its index.
+struct PipelineStudy {
+  int participants = 0;
+  std::uint64_t seed = 0;
+};
+std::vector<std::vector<PipelineStudy>> pipeline_studies(const power::PowerOptions& options);
 
 // `progress(done, total)` after every simulated study.
 power::PowerReport pipeline_power(const Protocol& protocol, const PipelinePowerOptions& options,

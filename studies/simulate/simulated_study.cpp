@@ -35,6 +35,13 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
                                 const SimulationOptions& options,
                                 const std::function<void(const SimulationProgress&)>& progress) {
   if (options.participants < 1) throw std::invalid_argument("a study needs participants");
+  std::vector<int> indices = options.only;
+  if (indices.empty())
+    for (int i = 0; i < options.participants; ++i) indices.push_back(i);
+  std::sort(indices.begin(), indices.end());
+  if (indices.front() < 0 || indices.back() >= options.participants ||
+      std::adjacent_find(indices.begin(), indices.end()) != indices.end())
+    throw std::invalid_argument("a shard's participants are distinct places in the study");
   if (std::filesystem::exists(db_path))
     throw std::runtime_error(db_path + " exists; a simulated study is written to a new file");
   const auto start = std::chrono::steady_clock::now();
@@ -46,10 +53,10 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   std::vector<store::Participant> people;
   std::vector<std::vector<store::PlannedTrialRow>> plans;
   int planned_total = 0;
-  for (int i = 0; i < options.participants; ++i) {
+  for (int i : indices) {
     const SimulatedPerson person = draw_person(options.population, options.seed, i, options.model);
     plans.push_back(planned_rows(protocol, person.participant.id, i));
-    study.add_participant(person.participant, plans.back());
+    study.add_participant(person.participant, plans.back(), i);
     study.add_simulated_person(simulated_person_row(person, options.seed, options.model));
     people.push_back(person.participant);
     planned_total += int(plans.back().size());
@@ -61,7 +68,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
     remove_database(path);
     study.copy_to(path);
   }
-  const int n = options.participants;
+  const int n = int(people.size());
   const TrackerKind tracker = TrackerKind::simulated(options.seed, options.model);
   const std::string tracker_name =
       options.world == WorldKind::kSoftHand ? tracker.name() + " (soft hand)" : tracker.name();

@@ -18,7 +18,12 @@
 namespace handlab::studies {
 
 struct SimulationOptions {
-  int participants = 20;
+  int participants = 20;  // the study's size: participants S01 ... drawn in this order
+  // A shard: the indices (0-based) of the participants to enrol and run here, each at its
+  // place in the whole study's enrolment (empty: all). A participant's data depends on the
+  // protocol, the seed, its index and the model alone, so that shards merged
+  // (`handlab-cli merge`) equal the whole study run at once.
+  std::vector<int> only;
   std::uint64_t seed = 0;  // the population's draws and every person's own stream
   int jobs = 1;            // sessions run at once (threads)
   WorldKind world = WorldKind::kSoftHand;
@@ -28,7 +33,7 @@ struct SimulationOptions {
 };
 
 struct SimulationReport {
-  int participants = 0;
+  int participants = 0;                         // run here
   int trials = 0, completed = 0, timeouts = 0;  // every trial run, practice included
   std::vector<ConditionOutcome> conditions;     // in the protocol's order (scheduled trials)
   double seconds = 0.0;                         // wall-clock
@@ -45,7 +50,8 @@ struct SimulationProgress {
 };
 
 // Creates the study database `db_path` (which must not exist) from `protocol`, enrols
-// and runs. `progress` is called from the calling thread after every trial of any session.
+// and runs (the participants of `options.only`, if given). `progress` is called from the calling
+// thread after every trial of any session.
 SimulationReport simulate_study(
     const Protocol& protocol, const std::string& db_path, const SimulationOptions& options,
     const std::function<void(const SimulationProgress&)>& progress = {});

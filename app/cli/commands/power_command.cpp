@@ -1,6 +1,7 @@
 // handlab-cli power: simulation-based power of a study design (docs/power.md).
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <thread>
@@ -8,6 +9,7 @@
 #include "analysis/power/power_analysis.h"
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
+#include "app/cli/commands/simulate_slurm.h"
 #include "app/cli/output_file.h"
 #include "core/util/json_writer.h"
 #include "studies/power/pilot_model.h"
@@ -106,6 +108,53 @@ power::SphericityCorrection sphericity_correction(const std::string& option) {
   throw UsageError("--correction must be auto, none, gg or hf");
 }
 
+namespace {
+
+// The pipeline's studies as a Slurm series: every study's shards, a merge, then this command
+// again with --from DIR (the same design, seed and tests) writing DIR/power.json.
+studies::SlurmSeries power_series(const Arguments& args, const power::PowerOptions& options) {
+  studies::SlurmSeries series = series_settings(args);
+  for (const auto& per_n : studies::pipeline_studies(options))
+    for (const studies::PipelineStudy& s : per_n)
+      series.studies.push_back({s.participants, s.seed});
+  series.simulate_options = {"--world", args.text("world")};
+  series.then = {series.cli,
+                 "power",
+                 "--protocol",
+                 series.protocol,
+                 "--pipeline",
+                 "--world",
+                 args.text("world"),
+                 "--n",
+                 args.text("n"),
+                 "--sims",
+                 std::to_string(options.sims),
+                 "--alpha",
+                 args.text("alpha"),
+                 "--target",
+                 args.text("target"),
+                 "--seed",
+                 args.text("seed"),
+                 "--correction",
+                 args.text("correction"),
+                 "--from",
+                 series.dir,
+                 "--quiet",
+                 "--json",
+                 series.dir + "/power.json"};
+  if (args.has("plot")) {
+    series.then.push_back("--plot");
+    series.then.push_back(std::filesystem::absolute(args.text("plot")).string());
+  }
+  for (const std::string& name : args.all("plot-name")) {
+    series.then.push_back("--plot-name");
+    series.then.push_back(name);
+  }
+  return series;
+}
+
+}  // namespace
+
 int run_power(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = {
       {"protocol", "FILE", "the study protocol (its factors and blocks make the design)"},
@@ -134,28 +183,45 @@ int run_power(const std::vector<std::string>& argv) {
        "an effect or contrast to draw (repeatable; default: the protocol's "
        "factors' effects)",
        "", true},
+      {"slurm", "DIR",
+       "with --pipeline: instead of running here, write the studies as Slurm batch jobs into "
+       "DIR and submit them (a job array, a merge job, then this analysis into DIR/power.json; "
+       "docs/cluster.md)"},
+      {"from", "DIR",
+       "with --pipeline: analyse the studies the Slurm series in DIR merged instead of "
+       "simulating them"},
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the results as JSON (- for standard output)"},
   };
-  const Arguments args(specs, argv);
+  std::vector<OptionSpec> all_specs = specs;
+  for (const OptionSpec& spec : slurm_option_specs()) all_specs.push_back(spec);
+  const Arguments args(all_specs, argv);
   if (args.help_requested()) {
     std::cout
         << "Usage: handlab-cli power --protocol FILE (--pilot DB | --model FILE | --pipeline "
            "[--world soft|proxy]) --n 10:40:2 --sims 1000 [--alpha 0.05] [--seed S] [--target "
-           "0.8] [--exact] [--plot FILE] [--json OUT]\n\nFor every N, simulates studies of the "
+           "0.8] [--exact] [--plot FILE] [--json OUT]\n"
+           "       handlab-cli power --protocol FILE --pipeline ... --slurm DIR [--per-task K] "
+           "[--dry-run]\n\nFor every N, simulates studies of the "
            "protocol's design from the model (or, with --pipeline, runs whole simulated studies) "
            "and analyses each as `analyze --db` does (RM-ANOVA with the sphericity "
            "correction, Tukey-adjusted pairwise comparisons, Friedman and Bonferroni-adjusted "
            "Wilcoxon tests per questionnaire item): the power of every effect and planned "
            "contrast with its Monte Carlo SE and 95 % interval, and the smallest N reaching "
-           "the target.\n\nOptions:\n"
-        << format_options_help(specs);
+           "the target. With --pipeline --slurm, the studies run as Slurm jobs and the power is "
+           "written to DIR/power.json when they are merged (docs/cluster.md).\n\nOptions:\n"
+        << format_options_help(all_specs);
     return 0;
   }
   args.require({"protocol"});
   const bool pipeline = args.flag("pipeline");
   if (pipeline && (args.has("model") || args.has("pilot") || args.flag("exact")))
     throw UsageError("--pipeline simulates participants: it takes no --model, --pilot or --exact");
+  for (const char* option : {"slurm", "from"})
+    if (args.has(option) && !pipeline)
+      throw UsageError(std::string("--") + option + " goes with --pipeline");
+  if (!args.has("slurm") && has_slurm_options(args))
+    throw UsageError("--per-task, --partition, --time, --mem and --dry-run go with --slurm");
   if (!pipeline && args.has("model") == args.has("pilot"))
     throw UsageError("give one of --model FILE or --pilot DB (or --pipeline)");
   const std::string world = args.text("world");
@@ -173,7 +239,7 @@ int run_power(const std::vector<std::string>& argv) {
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
   const double target = args.number("target");
   if (!(target > 0 && target < 1)) throw UsageError("--target must be in (0, 1)");
-  options.seed = std::uint64_t(args.integer("seed"));
+  options.seed = args.seed("seed");
   options.threads = int(args.integer("jobs"));
   if (options.threads < 0) throw UsageError("--jobs must be 0 (all cores) or more");
   if (options.threads == 0)
@@ -181,6 +247,10 @@ int run_power(const std::vector<std::string>& argv) {
   options.correction = sphericity_correction(args.text("correction"));
   const bool exact = args.flag("exact");
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
+  if (args.has("slurm")) {
+    submit_slurm_series(power_series(args, options), args.flag("dry-run"));
+    return 0;
+  }
 #ifndef HANDLAB_WITH_REPORT
   if (args.has("plot")) throw UsageError("--plot needs handlab-cli built with Qt (the app)");
 #endif
@@ -195,6 +265,7 @@ int run_power(const std::vector<std::string>& argv) {
   } else if (pipeline) {
     studies::PipelinePowerOptions po;
     po.power = options;
+    if (args.has("from")) po.from_dir = args.text("from");
     po.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
     report = studies::pipeline_power(protocol, po, [&](int done, int total) {
       if (quiet) return;

@@ -59,7 +59,7 @@ int run_sensitivity(const std::vector<std::string>& argv) {
   options.work_dir = args.text("work");
   options.participants = int(args.integer("participants"));
   if (options.participants < 2) throw UsageError("--participants must be 2 or more");
-  options.seed = std::uint64_t(args.integer("seed"));
+  options.seed = args.seed("seed");
   options.trajectories = int(args.integer("trajectories"));
   options.levels = int(args.integer("levels"));
   if (options.trajectories < 2) throw UsageError("--trajectories must be 2 or more");

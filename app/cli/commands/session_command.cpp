@@ -48,7 +48,7 @@ int session_run(const std::vector<std::string>& argv) {
   const std::string world = args.text("world");
   if (world != "proxy" && world != "soft") throw UsageError("--world must be proxy or soft");
   store::StudyStore store(args.text("db"));
-  const std::uint64_t seed = std::uint64_t(args.integer("seed"));
+  const std::uint64_t seed = args.seed("seed");
   const studies::TrackerKind kind = tracker == "scripted" ? studies::TrackerKind::scripted()
                                     : tracker == "simulated"
                                         ? studies::TrackerKind::simulated(seed)

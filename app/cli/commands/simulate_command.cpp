@@ -11,6 +11,7 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
+#include "app/cli/commands/simulate_slurm.h"
 #include "app/cli/output_file.h"
 #include "core/util/json_writer.h"
 #include "studies/analysis/condition_outcomes.h"
@@ -40,6 +41,37 @@ studies::ParticipantModel model_with_changes(const std::vector<std::string>& set
   }
 }
 
+// The participants' indices (0-based) that --shard K/M or --only ID,... name (empty: all).
+std::vector<int> shard_members(const Arguments& args, int participants) {
+  std::vector<int> members;
+  if (args.has("shard") && args.has("only")) throw UsageError("give --shard or --only, not both");
+  if (args.has("shard")) {
+    const std::string text = args.text("shard");
+    int k = 0, m = 0;
+    char rest = 0;
+    if (std::sscanf(text.c_str(), "%d/%d%c", &k, &m, &rest) != 2 || m < 1 || k < 1 || k > m)
+      throw UsageError("--shard takes K/M with 1 <= K <= M, not '" + text + "'");
+    if (m > participants) throw UsageError("--shard: more shards than participants");
+    for (int i = k - 1; i < participants; i += m) members.push_back(i);
+  }
+  if (args.has("only")) {
+    std::string list = args.text("only") + ",";
+    for (std::size_t at = 0, comma; (comma = list.find(',', at)) != std::string::npos;
+         at = comma + 1) {
+      const std::string id = list.substr(at, comma - at);
+      int index = 0;
+      while (index < participants && studies::simulated_participant_id(index) != id) ++index;
+      if (index == participants)
+        throw UsageError("--only: '" + id + "' is not a participant of a study of " +
+                         std::to_string(participants) + " (S01 ...)");
+      if (std::find(members.begin(), members.end(), index) != members.end())
+        throw UsageError("--only: " + id + " named twice");
+      members.push_back(index);
+    }
+  }
+  return members;
+}
+
 }  // namespace
 
 int run_simulate(const std::vector<std::string>& argv) {
@@ -53,6 +85,10 @@ int run_simulate(const std::vector<std::string>& argv) {
        "the hand-cube physics: the soft-hand simulator (contact and friction) or the grasp "
        "proxy (the cube attaches to a pinch)",
        "soft"},
+      {"shard", "K/M",
+       "run only the K-th of M shards (participants K, K+M, K+2M, ...), each at its place in "
+       "the whole study; `merge` joins the shards into the study a single run makes"},
+      {"only", "ID,...", "run only these participants (S01, S02, ...) of the study"},
       {"frames", "", "store every trial's frames (about 160 kB a simulated second)"},
       {"set", "NAME=VALUE",
        "change a parameter of the participant model, for a sensitivity analysis: a per-person "
@@ -60,27 +96,60 @@ int run_simulate(const std::vector<std::string>& argv) {
        "are the JSON keys of docs/simulated-participants.md's table); the model's hash "
        "changes with it; repeatable",
        "", true},
+      {"slurm", "DIR",
+       "instead of running here, write the study as Slurm batch jobs into DIR and submit them "
+       "with sbatch: a job array (a task a shard) and a merge job after it (docs/cluster.md)"},
+      {"studies", "K", "with --slurm: a series of K studies, seeds S ... S+K-1", "1"},
+      {"status", "DIR",
+       "say which parts of the series in DIR are done, running, stopped or missing, and how "
+       "to rerun them (reads the files, not squeue)"},
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the outcome per condition as JSON (- for standard output)"},
   };
-  const Arguments args(specs, argv);
+  std::vector<OptionSpec> all_specs = specs;  // the Slurm settings after --studies
+  const auto after_studies = std::find_if(all_specs.begin(), all_specs.end(),
+                                          [](const OptionSpec& o) { return o.name == "studies"; });
+  const std::vector<OptionSpec> slurm_specs = slurm_option_specs();
+  all_specs.insert(after_studies + 1, slurm_specs.begin(), slurm_specs.end());
+  const Arguments args(all_specs, argv);
   if (args.help_requested()) {
     std::cout << "Usage: handlab-cli simulate --protocol FILE --participants N --seed S --db OUT "
-                 "[--jobs J] [--world soft|proxy]\n\nEnrols N participants drawn from the "
+                 "[--jobs J] [--world soft|proxy] [--shard K/M | --only ID,...]\n"
+                 "       handlab-cli simulate --protocol FILE --participants N --seed S --slurm "
+                 "DIR [--studies K] [--per-task K] [--dry-run]\n"
+                 "       handlab-cli simulate --status DIR\n\nEnrols N participants drawn from the "
                  "study population (covariates stored like real ones, marked simulated) and runs "
                  "every session with the closed-loop participant model "
                  "(docs/simulated-participants.md): its own tracked hand -> retargeting -> "
-                 "physics -> task, questionnaires answered from what it experienced.\n\n"
+                 "physics -> task, questionnaires answered from what it experienced. On a Slurm "
+                 "cluster, the study (or a series) as a job array of shards and a merge job "
+                 "(docs/cluster.md).\n\n"
                  "Options:\n"
-              << format_options_help(specs);
+              << format_options_help(all_specs);
     return 0;
   }
-  args.require({"protocol", "db"});
+  if (args.has("status")) {
+    print_series_status(args.text("status"), args.has("json") ? args.text("json") : "");
+    return 0;
+  }
+  const bool slurm = args.has("slurm");
+  if (slurm)
+    args.require({"protocol"});
+  else
+    args.require({"protocol", "db"});
+  if (slurm && (args.has("db") || args.has("shard") || args.has("only")))
+    throw UsageError(
+        "--slurm writes the study's parts and merges them: no --db, --shard or --only");
+  if (!slurm && (args.has("studies") || has_slurm_options(args)))
+    throw UsageError(
+        "--studies, --per-task, --partition, --time, --mem and --dry-run go with "
+        "--slurm");
   studies::SimulationOptions options;
   options.participants = int(args.integer("participants"));
   if (options.participants < 1 || options.participants > 10000)
     throw UsageError("--participants must be between 1 and 10000");
-  options.seed = std::uint64_t(args.integer("seed"));
+  options.seed = args.seed("seed");
+  options.only = shard_members(args, options.participants);
   options.jobs = int(args.integer("jobs"));
   if (options.jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
   if (options.jobs == 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -90,6 +159,21 @@ int run_simulate(const std::vector<std::string>& argv) {
   options.frames = args.flag("frames");
   options.model = model_with_changes(args.all("set"));
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
+  if (slurm) {
+    studies::SlurmSeries series = series_settings(args);
+    const long count = args.integer("studies");
+    if (count < 1 || count > 100000) throw UsageError("--studies must be between 1 and 100000");
+    for (long k = 0; k < count; ++k)
+      series.studies.push_back({options.participants, options.seed + std::uint64_t(k)});
+    series.simulate_options = {"--world", world};
+    if (options.frames) series.simulate_options.push_back("--frames");
+    for (const std::string& s : args.all("set")) {
+      series.simulate_options.push_back("--set");
+      series.simulate_options.push_back(s);
+    }
+    submit_slurm_series(series, args.flag("dry-run"));
+    return 0;
+  }
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   // On a terminal one line rewritten in place; into a log a line each time a participant is
   // done.

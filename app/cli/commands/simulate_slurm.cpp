@@ -1,0 +1,191 @@
+#include "app/cli/commands/simulate_slurm.h"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/cli/output_file.h"
+#include "core/util/json_writer.h"
+
+namespace handlab::cli {
+namespace {
+
+// Runs `command` and returns what it printed (stdout, trimmed); throws with its output when it
+// fails or cannot run.
+std::string run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + command);
+  std::string out;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+    out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    const std::string first = out.substr(0, out.find('\n'));
+    throw std::runtime_error(command.substr(0, command.find(' ')) + " failed" +
+                             (WIFEXITED(status) && WEXITSTATUS(status) == 127
+                                  ? " (not found: is Slurm's client installed?)"
+                                  : ": " + first));
+  }
+  return out;
+}
+
+const char* state_name(studies::PartState s) {
+  switch (s) {
+    case studies::PartState::kDone:
+      return "done";
+    case studies::PartState::kRunning:
+      return "running";
+    case studies::PartState::kStopped:
+      return "stopped";
+    case studies::PartState::kMissing:
+      return "missing";
+  }
+  return "?";
+}
+
+std::string index_list(const std::vector<int>& indices) {
+  std::string out;
+  for (int i : indices) out += (out.empty() ? "" : ",") + std::to_string(i);
+  return out;
+}
+
+}  // namespace
+
+std::vector<OptionSpec> slurm_option_specs() {
+  return {
+      {"per-task", "K", "with --slurm: participants an array task runs", "1"},
+      {"partition", "P", "with --slurm: the partition (#SBATCH --partition)"},
+      {"time", "LIMIT", "with --slurm: a task's time limit (#SBATCH --time, e.g. 0:30:00)"},
+      {"mem", "SIZE", "with --slurm: a task's memory (#SBATCH --mem, e.g. 1G)"},
+      {"dry-run", "", "with --slurm: write and print the scripts, submit nothing"},
+  };
+}
+
+bool has_slurm_options(const Arguments& args) {
+  for (const OptionSpec& spec : slurm_option_specs())
+    if (args.has(spec.name)) return true;
+  return false;
+}
+
+studies::SlurmSeries series_settings(const Arguments& args) {
+  studies::SlurmSeries series;
+  series.dir = std::filesystem::absolute(args.text("slurm")).lexically_normal().string();
+  if (series.dir.size() > 1 && series.dir.back() == '/') series.dir.pop_back();
+  series.cli = std::filesystem::canonical("/proc/self/exe").string();
+  series.protocol = std::filesystem::canonical(args.text("protocol")).string();
+  series.per_task = int(args.integer("per-task"));
+  if (series.per_task < 1) throw UsageError("--per-task must be 1 or more");
+  if (args.has("partition")) series.partition = args.text("partition");
+  if (args.has("time")) series.time = args.text("time");
+  if (args.has("mem")) series.mem = args.text("mem");
+  return series;
+}
+
+void submit_slurm_series(const studies::SlurmSeries& series, bool dry_run) {
+  studies::write_slurm_series(series);
+  const std::string array = series.dir + "/array.sh", merge = series.dir + "/merge.sh";
+  const std::string then = series.dir + "/then.sh";
+  const std::size_t n = series.studies.size();
+  std::cout << n << (n == 1 ? " study" : " studies") << ": " << studies::array_tasks(series)
+            << " array tasks of up to " << series.per_task << " participants, then a merge job"
+            << (series.then.empty() ? "" : " and " + series.then[1]) << "; scripts in "
+            << series.dir << "\n";
+  if (dry_run) {
+    std::cout << "\nsbatch --parsable " << array << "\nsbatch --dependency=afterok:ARRAY_JOB_ID "
+              << merge << "\n";
+    if (!series.then.empty())
+      std::cout << "sbatch --dependency=afterok:MERGE_JOB_ID " << then << "\n";
+    std::cout << "\n--- " << array << "\n"
+              << studies::array_script(series) << "--- " << merge << "\n"
+              << studies::merge_script(series);
+    if (!series.then.empty()) std::cout << "--- " << then << "\n" << studies::then_script(series);
+    return;
+  }
+  const std::string array_job = run_command("sbatch --parsable '" + array + "'");
+  const std::string id = array_job.substr(0, array_job.find(';'));  // "id;cluster"
+  std::string merge_job =
+      run_command("sbatch --parsable --dependency=afterok:" + id + " '" + merge + "'");
+  merge_job = merge_job.substr(0, merge_job.find(';'));
+  std::string then_job;
+  if (!series.then.empty()) {
+    then_job =
+        run_command("sbatch --parsable --dependency=afterok:" + merge_job + " '" + then + "'");
+    then_job = then_job.substr(0, then_job.find(';'));
+  }
+  write_output(series.dir + "/jobs.txt", [&](std::ostream& out) {
+    out << "array " << id << "\nmerge " << merge_job << "\n";
+    if (!then_job.empty()) out << "then " << then_job << "\n";
+  });
+  std::cout << "submitted: array job " << id << ", merge job " << merge_job
+            << " (after the array succeeds)"
+            << (then_job.empty()
+                    ? ""
+                    : ", " + series.then[1] + " job " + then_job + " (after the merge)")
+            << "\nprogress: handlab-cli simulate --status " << series.dir << "\n";
+}
+
+void print_series_status(const std::string& dir, const std::string& json) {
+  const studies::SlurmSeries series = studies::read_slurm_series(dir);
+  const studies::SeriesStatus status = studies::series_status(series);
+  if (json != "-") {
+    // A row per study (up to 20 of them), and the totals.
+    const std::size_t n = status.studies.size();
+    std::cout << series.dir << ": " << n << (n == 1 ? " study, " : " studies, ")
+              << studies::array_tasks(series) << " parts\n";
+    std::printf("%-4s %-22s %6s %8s %8s %8s  %s\n", "N", "seed", "done", "running", "stopped",
+                "missing", "merged");
+    int total[4] = {0, 0, 0, 0}, merged = 0;
+    for (const auto& s : status.studies) {
+      int count[4] = {0, 0, 0, 0};
+      for (studies::PartState p : s.parts) ++count[int(p)];
+      for (int k = 0; k < 4; ++k) total[k] += count[k];
+      merged += s.merged;
+      if (n <= 20)
+        std::printf("%-4d %-22llu %6d %8d %8d %8d  %s\n", s.study.participants,
+                    static_cast<unsigned long long>(s.study.seed), count[0], count[1], count[2],
+                    count[3], s.merged ? "yes" : "no");
+    }
+    if (n > 20)
+      std::printf("%-27s %6d %8d %8d %8d  %d of %zu\n", "all", total[0], total[1], total[2],
+                  total[3], merged, n);
+    if (status.unfinished_tasks.empty()) {
+      std::cout << "every part is done\n";
+    } else {
+      std::cout << "unfinished array tasks: " << index_list(status.unfinished_tasks) << "\n";
+      if (total[2] > 0)
+        std::cout << "stopped parts: their tasks' logs are in " << series.dir << "/logs\n";
+      std::cout << "once none runs, rerun them: sbatch --array="
+                << index_list(status.unfinished_tasks) << " " << series.dir
+                << "/array.sh, then sbatch --dependency=afterok:JOB " << series.dir
+                << "/merge.sh\n";
+    }
+  }
+  if (json.empty()) return;
+  write_output(json, [&](std::ostream& out) {
+    util::JsonWriter w(out);
+    w.begin_object().field("dir", series.dir).key("studies").begin_array();
+    for (const auto& s : status.studies) {
+      w.begin_object()
+          .field("participants", s.study.participants)
+          .field("seed", std::to_string(s.study.seed))
+          .field("path", s.path)
+          .field("merged", s.merged)
+          .key("parts")
+          .begin_array();
+      for (studies::PartState p : s.parts) w.value(state_name(p));
+      w.end_array().end_object();
+    }
+    w.end_array().key("unfinished_tasks").begin_array();
+    for (int i : status.unfinished_tasks) w.value(i);
+    w.end_array().end_object();
+    out << "\n";
+  });
+}
+
+}  // namespace handlab::cli
