@@ -19,6 +19,8 @@ packages=(
   xvfb xauth poppler-utils
   # the Slurm test: a single-node cluster on this machine (scripts/slurm-local.sh)
   slurm-wlm munge
+  # scripts/cluster-plan.py (the planning table of docs/cluster.md)
+  python3
 )
 
 missing=()

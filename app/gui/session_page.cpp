@@ -14,7 +14,6 @@
 #include <QListWidget>
 #include <QPushButton>
 #include <QSpinBox>
-#include <QThread>
 #include <QTime>
 #include <QVBoxLayout>
 
@@ -22,8 +21,8 @@
 #include "app/gui/questionnaire_dialog.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/session_worker.h"
+#include "app/gui/trial_phase_text.h"
 #include "app/gui/trial_replay_bar.h"
-#include "app/live/leap_websocket_client.h"
 #include "app/live/live_frames.h"
 #include "core/hand/simulated_hand.h"
 #include "core/render/frame_drawing.h"
@@ -34,46 +33,7 @@
 #include "studies/session/session_runner.h"
 
 namespace handlab::gui {
-namespace {
-
-enum TrackerChoice { kLiveLeap, kRecording, kSimulated, kScripted };
-
-// What the participant reads: what to do now, never the condition.
-QString instruction(task::TaskPhase phase) {
-  switch (phase) {
-    case task::TaskPhase::kReady:
-    case task::TaskPhase::kStarted:
-      return QObject::tr("Pick up the cube with thumb and index finger.");
-    case task::TaskPhase::kGrasped:
-      return QObject::tr("Carry the cube to the blue square and put it down.");
-    case task::TaskPhase::kReleased:
-      return QObject::tr("Let the cube rest in the blue square.");
-    case task::TaskPhase::kDone:
-      return QObject::tr("Done. Take your hand back.");
-    case task::TaskPhase::kFailed:
-      return QObject::tr("Time is up. Take your hand back.");
-  }
-  return {};
-}
-
-QString phase_text(task::TaskPhase phase) {
-  switch (phase) {
-    case task::TaskPhase::kReady:
-    case task::TaskPhase::kStarted:
-      return QObject::tr("waiting for the grasp over A");
-    case task::TaskPhase::kGrasped:
-      return QObject::tr("grasped");
-    case task::TaskPhase::kReleased:
-      return QObject::tr("released");
-    case task::TaskPhase::kDone:
-      return QObject::tr("done");
-    case task::TaskPhase::kFailed:
-      return QObject::tr("timed out");
-  }
-  return {};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   auto* layout = new QHBoxLayout(this);
@@ -98,53 +58,8 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   auto* side = new QVBoxLayout;
   layout->addLayout(side, 1);
 
-  auto* setup = new QGroupBox(tr("Set-up"));
-  auto* form = new QFormLayout(setup);
-  participant_ = new QComboBox;
-  participant_->setObjectName("participant");
-  form->addRow(tr("Participant"), participant_);
-  tracker_ = new QComboBox;
-  tracker_->setObjectName("tracker");
-  tracker_->addItem(tr("Live Leap Motion"), kLiveLeap);
-  tracker_->addItem(tr("Recording file"), kRecording);
-  tracker_->addItem(tr("Simulated participant"), kSimulated);
-  tracker_->addItem(tr("Scripted participant"), kScripted);
-  form->addRow(tr("Tracker"), tracker_);
-  address_ = new QLineEdit("ws://127.0.0.1:6437");
-  address_->setObjectName("leap_address");
-  form->addRow(tr("Leap address"), address_);
-  leap_state_ = new QLabel(tr("not connected"));
-  leap_state_->setObjectName("leap_state");
-  form->addRow(tr("Leap"), leap_state_);
-  auto* file_row = new QHBoxLayout;
-  recording_ = new QLineEdit;
-  recording_->setObjectName("recording");
-  recording_->setPlaceholderText(tr("a .json, .json.lz or .hlrec recording"));
-  auto* browse = new QPushButton(tr("…"));
-  connect(browse, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Recording"), QString(),
-                                                      tr("Recordings (*.json *.lz *.hlrec)"));
-    if (!path.isEmpty()) recording_->setText(path);
-  });
-  file_row->addWidget(recording_);
-  file_row->addWidget(browse);
-  form->addRow(tr("Recording"), file_row);
-  seed_ = new QSpinBox;
-  seed_->setObjectName("seed");
-  seed_->setRange(0, 1 << 30);
-  form->addRow(tr("Population seed"), seed_);
-  world_ = new QComboBox;
-  world_->setObjectName("world");
-  world_->addItem(tr("Soft hand (simulator)"), int(studies::WorldKind::kSoftHand));
-  world_->addItem(tr("Grasp proxy"), int(studies::WorldKind::kGraspProxy));
-  form->addRow(tr("World"), world_);
-  real_time_ = new QCheckBox(tr("Real time"));
-  real_time_->setObjectName("real_time");
-  real_time_->setChecked(true);
-  form->addRow(QString(), real_time_);
-  side->addWidget(setup);
-  connect(tracker_, &QComboBox::currentIndexChanged, this, &SessionPage::update_tracker_fields);
-  connect(address_, &QLineEdit::editingFinished, this, &SessionPage::update_tracker_fields);
+  setup_ = new SessionSetup;
+  side->addWidget(setup_);
 
   auto* calibration = new QGroupBox(tr("Calibration"));
   auto* cal_layout = new QVBoxLayout(calibration);
@@ -221,18 +136,12 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   log_->setObjectName("session_log");
   side->addWidget(log_, 1);
 
-  connect(view_, &SceneView::picture_shown, this, &SessionPage::picture_shown);
-  update_tracker_fields();
+  connect(view_, &SceneView::picture_shown, this, [this] { display_.picture_shown(); });
   set_running(false);
 }
 
 SessionPage::~SessionPage() {
-  worker_.reset();  // the session stops before the client whose frames it reads goes
-  drop_leap_client();
-  if (leap_thread_) {
-    leap_thread_->quit();
-    leap_thread_->wait();
-  }
+  worker_.reset();  // the session stops before the live client whose frames it reads goes
 }
 
 void SessionPage::set_study(const QString& database) {
@@ -252,78 +161,18 @@ void SessionPage::set_study(const QString& database) {
 void SessionPage::set_participants(const QStringList& ids, const QString& selected) {
   // A running session's participant stays chosen.
   const QString keep =
-      selected.isEmpty() || session_running() ? participant_->currentText() : selected;
-  participant_->clear();
-  participant_->addItems(ids);
-  if (ids.contains(keep)) participant_->setCurrentText(keep);
+      selected.isEmpty() || session_running() ? setup_->participant_box()->currentText() : selected;
+  setup_->participant_box()->clear();
+  setup_->participant_box()->addItems(ids);
+  if (ids.contains(keep)) setup_->participant_box()->setCurrentText(keep);
 }
 
 bool SessionPage::session_running() const {
   return worker_ && worker_->running();
 }
 
-void SessionPage::update_tracker_fields() {
-  const int choice = tracker_->currentData().toInt();
-  address_->setEnabled(choice == kLiveLeap);
-  recording_->setEnabled(choice == kRecording);
-  seed_->setEnabled(choice == kSimulated);
-  if (choice == kLiveLeap) ensure_leap_client();
-}
-
-void SessionPage::ensure_leap_client() {
-  if (leap_ && leap_address_ == address_->text()) return;
-  if (session_running()) return;  // the running session reads this client's frames
-  drop_leap_client();
-  live::LeapClientOptions options;
-  options.server = QUrl(address_->text());
-  leap_address_ = address_->text();
-  // The client lives on a thread of its own: frames arrive (and their arrival is timed)
-  // while the window draws.
-  if (!leap_thread_) {
-    leap_thread_ = new QThread(this);
-    leap_thread_->setObjectName("leap");
-    leap_thread_->start();
-  }
-  leap_ = new live::LeapWebSocketClient(options);
-  leap_->moveToThread(leap_thread_);
-  leap_connected_ = leap_streaming_ = leap_hand_ = false;
-  auto show = [this] {
-    leap_state_->setText(!leap_connected_   ? tr("not connected (retrying)")
-                         : !leap_streaming_ ? tr("connected, no device streaming")
-                         : leap_hand_       ? tr("device streaming, hand seen")
-                                            : tr("device streaming, no hand"));
-  };
-  connect(leap_, &live::LeapWebSocketClient::connection_changed, this, [this, show](bool on) {
-    leap_connected_ = on;
-    if (!on) leap_hand_ = false;
-    show();
-  });
-  connect(leap_, &live::LeapWebSocketClient::device_changed, this,
-          [this, show](bool, bool streaming) {
-            leap_streaming_ = streaming;
-            show();
-          });
-  connect(leap_, &live::LeapWebSocketClient::hand_visibility_changed, this, [this, show](bool on) {
-    leap_hand_ = on;
-    leap_streaming_ = leap_streaming_ || on;
-    show();
-  });
-  QMetaObject::invokeMethod(leap_, &live::LeapWebSocketClient::start, Qt::QueuedConnection);
-  show();
-}
-
-void SessionPage::drop_leap_client() {
-  if (!leap_) return;
-  live::LeapWebSocketClient* client = leap_;
-  leap_ = nullptr;
-  // Deleted on its own thread, where its socket lives.
-  QMetaObject::invokeMethod(
-      client, [client] { delete client; }, Qt::BlockingQueuedConnection);
-}
-
 void SessionPage::set_leap_address(const QString& address) {
-  address_->setText(address);
-  update_tracker_fields();
+  setup_->set_leap_address(address);
 }
 
 QString SessionPage::replay_trial(const QString& participant, int position, int attempt) {
@@ -337,7 +186,7 @@ QString SessionPage::replay_trial(const QString& participant, int position, int 
   }
   if (view_->layout().cube_size != replay_->replay()->layout.cube_size)
     view_->set_layout(replay_->replay()->layout);
-  participant_->setCurrentText(participant);
+  setup_->participant_box()->setCurrentText(participant);
   const studies::TrialReplay& r = *replay_->replay();
   trial_->setText(
       tr("%1, %2 (replay)").arg(r.position + 1).arg(QString::fromStdString(r.condition)));
@@ -349,41 +198,18 @@ QString SessionPage::replay_trial(const QString& participant, int position, int 
 QString SessionPage::start_session() {
   if (database_.isEmpty()) return tr("no study is open");
   if (session_running()) return tr("a session is running");
-  if (participant_->currentText().isEmpty()) return tr("choose a participant");
+  if (setup_->participant_box()->currentText().isEmpty()) return tr("choose a participant");
   // A replay gives the view back to the session.
   replay_->set_playing(false);
   replay_->hide();
   SessionOptions options;
   options.database = database_;
-  options.participant = participant_->currentText().toStdString();
-  options.world = studies::WorldKind(world_->currentData().toInt());
-  options.real_time = real_time_->isChecked();
-  const int choice = tracker_->currentData().toInt();
-  live_stats_.reset();
-  if (choice == kLiveLeap) {
-    ensure_leap_client();
-    live_stats_ = std::make_shared<live::LiveFrameStats>();
-    if (!leap_) return tr("the Leap client cannot change while a session runs");
-    live::FrameQueue* queue = &leap_->queue();
-    auto stats = live_stats_;
-    options.tracker = studies::TrackerKind::live(
-        "leap " + address_->text().toStdString(),
-        [queue, stats] { return std::make_unique<live::LiveFrames>(*queue, stats); });
-    options.frame_arrival = [stats] { return stats->last_arrival_ns.load(); };
-  } else if (choice == kRecording) {
-    if (recording_->text().isEmpty()) return tr("choose a recording file");
-    options.tracker = studies::TrackerKind::recording(recording_->text().toStdString());
-  } else if (choice == kSimulated) {
-    options.tracker = studies::TrackerKind::simulated(std::uint64_t(seed_->value()));
-    options.simulated_answers = true;
-  } else {
-    options.tracker = studies::TrackerKind::scripted();
-  }
+  if (const QString error = setup_->fill(options, live_stats_); !error.isEmpty()) return error;
   {
     store::StudyStore store(database_.toStdString());
     options.resume = store.has_started(options.participant);
     if (!store.next_trial(options.participant) && !store.has_running_session(options.participant))
-      return tr("%1 has done every planned trial").arg(participant_->currentText());
+      return tr("%1 has done every planned trial").arg(setup_->participant_box()->currentText());
   }
   try {
     worker_ = std::make_unique<SessionWorker>(std::move(options));
@@ -438,15 +264,12 @@ QString SessionPage::start_session() {
     emit session_ended(tr("Session failed: %1").arg(error));
   });
   calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
-  reset_display_stats();
-  pending_origin_.reset();
-  picture_waiting_ = false;
-  pending_arrival_ns_ = shown_arrival_ns_ = 0;
+  display_.start(live_stats_);
   last_drawn_step_ = -1;
   w->start();
   set_running(true);
-  append_log(
-      tr("Session of %1 started (%2)").arg(participant_->currentText(), tracker_->currentText()));
+  append_log(tr("Session of %1 started (%2)")
+                 .arg(setup_->participant_box()->currentText(), setup_->tracker_name()));
   emit session_started();
   return {};
 }
@@ -478,7 +301,8 @@ QString SessionPage::redo_trial(int position, const QString& reason) {
   }
   try {
     store::StudyStore store(database_.toStdString());
-    store.redo_trial(participant_->currentText().toStdString(), position, reason.toStdString());
+    store.redo_trial(setup_->participant_box()->currentText().toStdString(), position,
+                     reason.toStdString());
   } catch (const std::exception& e) {
     return tr("Redo refused: %1").arg(QString::fromStdString(e.what()));
   }
@@ -497,8 +321,9 @@ QString SessionPage::skip_trial(int position, const QString& reason) {
   }
   try {
     store::StudyStore store(database_.toStdString());
-    studies::skip_trial_between_sessions(store, participant_->currentText().toStdString(), position,
-                                         reason.toStdString());
+    studies::skip_trial_between_sessions(store,
+                                         setup_->participant_box()->currentText().toStdString(),
+                                         position, reason.toStdString());
   } catch (const std::exception& e) {
     return tr("Skip refused: %1").arg(QString::fromStdString(e.what()));
   }
@@ -513,11 +338,7 @@ void SessionPage::set_running(bool running) {
   stop_->setEnabled(running);
   redo_->setEnabled(!database_.isEmpty());
   skip_->setEnabled(!database_.isEmpty());
-  participant_->setEnabled(!running);
-  tracker_->setEnabled(!running);
-  address_->setEnabled(!running && tracker_->currentData().toInt() == kLiveLeap);
-  world_->setEnabled(!running);
-  real_time_->setEnabled(!running);
+  setup_->set_running(running);
   if (!running) pause_->setChecked(false);
 }
 
@@ -581,49 +402,15 @@ void SessionPage::refresh_picture() {
   clock_->setText(tr("%1 s").arg(snap.step.time, 0, 'f', 1));
   counts_->setText(tr("%1, %2").arg(snap.step.grasps).arg(snap.step.drops));
 
-  picture_waiting_ = true;
-  // A live frame's latency counts once, with the first picture of a state simulated from it.
-  if (live_stats_) {
-    stats_.frames_used = live_stats_->used - used_before_;
-    stats_.frames_superseded = live_stats_->superseded - superseded_before_;
-    if (snap.frame_arrival_ns == 0 || snap.frame_arrival_ns == shown_arrival_ns_) return;
-  }
-  pending_origin_ = live_stats_ ? std::chrono::steady_clock::time_point(
-                                      std::chrono::steady_clock::duration(snap.frame_arrival_ns))
-                                : snap.stepped_at;
-  pending_arrival_ns_ = snap.frame_arrival_ns;
-  pending_stepped_ = snap.stepped_at;
+  display_.picture_made(snap.frame_arrival_ns, snap.stepped_at);
 }
 
-void SessionPage::picture_shown() {
-  if (!picture_waiting_) return;
-  picture_waiting_ = false;
-  const auto now = std::chrono::steady_clock::now();
-  if (pending_origin_) {
-    auto ms = [](auto duration) {
-      return std::chrono::duration<double, std::milli>(duration).count();
-    };
-    stats_.latency_ms.push_back(ms(now - *pending_origin_));
-    stats_.pipeline_ms.push_back(ms(pending_stepped_ - *pending_origin_));
-    pending_origin_.reset();
-    shown_arrival_ns_ = pending_arrival_ns_;
-  }
-  ++stats_.pictures;
-  // The display rate counts the time between pictures, not the pauses between trials.
-  if (last_shown_ && now - *last_shown_ < std::chrono::milliseconds(250))
-    stats_.seconds += std::chrono::duration<double>(now - *last_shown_).count();
-  last_shown_ = now;
-}
-
-SessionPage::DisplayStats SessionPage::display_stats() const {
-  return stats_;
+DisplayStats SessionPage::display_stats() const {
+  return display_.stats();
 }
 
 void SessionPage::reset_display_stats() {
-  stats_ = {};
-  last_shown_.reset();
-  used_before_ = live_stats_ ? live_stats_->used.load() : 0;
-  superseded_before_ = live_stats_ ? live_stats_->superseded.load() : 0;
+  display_.reset();
 }
 
 }  // namespace handlab::gui

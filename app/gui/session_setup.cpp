@@ -1,0 +1,136 @@
+#include "app/gui/session_setup.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSpinBox>
+
+#include "app/gui/leap_link.h"
+#include "app/live/leap_websocket_client.h"
+#include "app/live/live_frames.h"
+
+namespace handlab::gui {
+namespace {
+
+enum TrackerChoice { kLiveLeap, kRecording, kSimulated, kScripted };
+
+}  // namespace
+
+SessionSetup::SessionSetup(QWidget* parent) : QGroupBox(tr("Set-up"), parent) {
+  auto* form = new QFormLayout(this);
+  participant_ = new QComboBox;
+  participant_->setObjectName("participant");
+  form->addRow(tr("Participant"), participant_);
+  tracker_ = new QComboBox;
+  tracker_->setObjectName("tracker");
+  tracker_->addItem(tr("Live Leap Motion"), kLiveLeap);
+  tracker_->addItem(tr("Recording file"), kRecording);
+  tracker_->addItem(tr("Simulated participant"), kSimulated);
+  tracker_->addItem(tr("Scripted participant"), kScripted);
+  form->addRow(tr("Tracker"), tracker_);
+  address_ = new QLineEdit("ws://127.0.0.1:6437");
+  address_->setObjectName("leap_address");
+  form->addRow(tr("Leap address"), address_);
+  leap_state_ = new QLabel(tr("not connected"));
+  leap_state_->setObjectName("leap_state");
+  form->addRow(tr("Leap"), leap_state_);
+  leap_ = new LeapLink(this);
+  connect(leap_, &LeapLink::state_changed, leap_state_, &QLabel::setText);
+  auto* file_row = new QHBoxLayout;
+  recording_ = new QLineEdit;
+  recording_->setObjectName("recording");
+  recording_->setPlaceholderText(tr("a .json, .json.lz or .hlrec recording"));
+  auto* browse = new QPushButton(tr("…"));
+  connect(browse, &QPushButton::clicked, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Recording"), QString(),
+                                                      tr("Recordings (*.json *.lz *.hlrec)"));
+    if (!path.isEmpty()) recording_->setText(path);
+  });
+  file_row->addWidget(recording_);
+  file_row->addWidget(browse);
+  form->addRow(tr("Recording"), file_row);
+  seed_ = new QSpinBox;
+  seed_->setObjectName("seed");
+  seed_->setRange(0, 1 << 30);
+  form->addRow(tr("Population seed"), seed_);
+  world_ = new QComboBox;
+  world_->setObjectName("world");
+  world_->addItem(tr("Soft hand (simulator)"), int(studies::WorldKind::kSoftHand));
+  world_->addItem(tr("Grasp proxy"), int(studies::WorldKind::kGraspProxy));
+  form->addRow(tr("World"), world_);
+  real_time_ = new QCheckBox(tr("Real time"));
+  real_time_->setObjectName("real_time");
+  real_time_->setChecked(true);
+  form->addRow(QString(), real_time_);
+  connect(tracker_, &QComboBox::currentIndexChanged, this, &SessionSetup::update_fields);
+  connect(address_, &QLineEdit::editingFinished, this, &SessionSetup::update_fields);
+  update_fields();
+}
+
+SessionSetup::~SessionSetup() = default;
+
+QString SessionSetup::tracker_name() const {
+  return tracker_->currentText();
+}
+
+void SessionSetup::set_leap_address(const QString& address) {
+  address_->setText(address);
+  update_fields();
+}
+
+void SessionSetup::set_running(bool running) {
+  running_ = running;
+  participant_->setEnabled(!running);
+  tracker_->setEnabled(!running);
+  world_->setEnabled(!running);
+  real_time_->setEnabled(!running);
+  update_fields();
+}
+
+void SessionSetup::update_fields() {
+  const int choice = tracker_->currentData().toInt();
+  address_->setEnabled(!running_ && choice == kLiveLeap);
+  recording_->setEnabled(choice == kRecording);
+  seed_->setEnabled(choice == kSimulated);
+  // The running session reads the live client's frames: it stays.
+  if (choice == kLiveLeap && !running_) leap_->connect_to(address_->text());
+}
+
+QString SessionSetup::fill(SessionOptions& options, std::shared_ptr<live::LiveFrameStats>& live) {
+  options.participant = participant_->currentText().toStdString();
+  options.world = studies::WorldKind(world_->currentData().toInt());
+  options.real_time = real_time_->isChecked();
+  live.reset();
+  switch (tracker_->currentData().toInt()) {
+    case kLiveLeap: {
+      update_fields();
+      if (!leap_->client()) return tr("the Leap client cannot change while a session runs");
+      live = std::make_shared<live::LiveFrameStats>();
+      live::FrameQueue* queue = &leap_->client()->queue();
+      auto stats = live;
+      options.tracker = studies::TrackerKind::live(
+          "leap " + address_->text().toStdString(),
+          [queue, stats] { return std::make_unique<live::LiveFrames>(*queue, stats); });
+      options.frame_arrival = [stats] { return stats->last_arrival_ns.load(); };
+      break;
+    }
+    case kRecording:
+      if (recording_->text().isEmpty()) return tr("choose a recording file");
+      options.tracker = studies::TrackerKind::recording(recording_->text().toStdString());
+      break;
+    case kSimulated:
+      options.tracker = studies::TrackerKind::simulated(std::uint64_t(seed_->value()));
+      options.simulated_answers = true;
+      break;
+    default:
+      options.tracker = studies::TrackerKind::scripted();
+  }
+  return {};
+}
+
+}  // namespace handlab::gui
