@@ -6,7 +6,8 @@ cost on a cluster, projected from measured participants.
 
 Each simulated participant's time is its session's (ended_at - started_at), a participant
 being one array task on one core. The projection draws participants from that distribution
-(with replacement, 400 times) and deals them to C cores as Slurm deals array tasks, each to
+(with replacement: 400 times for a study or a series, 20 times for a power point's 20,000)
+and deals them to C cores as Slurm deals array tasks, each to
 the first core that is free; a study waits for its slowest participant, a series for its
 last. Prints the distribution and the median (and 90th percentile) wall time per case.
 Python's standard library only."""

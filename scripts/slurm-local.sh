@@ -47,6 +47,8 @@ for port in "$ctld_port" "$slurmd_port"; do
 done
 
 stop
+# A start that fails part way leaves no daemon behind.
+trap 'status=$?; [ "$status" = 0 ] || stop' EXIT
 mkdir -p "$dir/state" "$dir/spool" "$dir/log" "$dir/munge"
 chmod 700 "$dir/munge"
 if [ ! -s "$dir/munge/munge.key" ]; then

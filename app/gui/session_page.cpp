@@ -33,7 +33,6 @@
 #include "studies/session/session_runner.h"
 
 namespace handlab::gui {
-namespace {}  // namespace
 
 SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   auto* layout = new QHBoxLayout(this);

@@ -44,6 +44,8 @@ class Statement {
   void reset();
 
   bool is_null(int column) const;
+  // SQLite's storage class of the value: SQLITE_INTEGER, _FLOAT, _TEXT, _BLOB or _NULL (1-5).
+  int column_type(int column) const;
   std::int64_t column_int64(int column) const;
   double column_double(int column) const;
   std::string column_text(int column) const;

@@ -93,9 +93,8 @@ std::string participant_digest(Database& db, const std::string& id) {
     while (s.step()) {
       for (int c = 0; c < s.column_count(); ++c) {
         if (skipped.count(c)) continue;
-        if (s.is_null(c)) {
-          text += "\x01";
-        } else {
+        text += char('0' + s.column_type(c));  // 1 (integer) and '1' (text) differ
+        if (!s.is_null(c)) {
           const std::vector<std::uint8_t> bytes = s.column_blob(c);  // any type, as stored
           text += util::sha256_hex(
               std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
@@ -130,6 +129,17 @@ std::string participant_digest(Database& db, const std::string& id) {
   return util::sha256_hex(text);
 }
 
+// The id a referred row took in the merged study; a reference to a row that is not the
+// participant's own (a damaged part) is refused by the part's name.
+std::int64_t mapped_id(const IdMap& map, std::int64_t id, const Database& from,
+                       const char* referred) {
+  const auto it = map.find(id);
+  if (it == map.end())
+    throw StoreError(from.path() + ": a row refers to " + referred + " " + std::to_string(id) +
+                     ", which is not its participant's");
+  return it->second;
+}
+
 void copy_participant(Database& from, Database& to, const std::string& id, int enrolment) {
   {
     Statement s = from.prepare(std::string("SELECT ") + kParticipantColumns +
@@ -153,7 +163,8 @@ void copy_participant(Database& from, Database& to, const std::string& id, int e
         if (remapped == table.remap.end())
           insert.bind_column(c, s, c);
         else
-          insert.bind(c, maps[remapped->second].at(s.column_int64(c)));
+          insert.bind(c,
+                      mapped_id(maps[remapped->second], s.column_int64(c), from, remapped->second));
       }
       insert.run();
       if (table.name) maps[table.name][s.column_int64(0)] = to.last_insert_rowid();

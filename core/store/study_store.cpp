@@ -165,10 +165,7 @@ void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRo
   Transaction t(db_);
   if (participant(p.id))
     throw StoreError("participant " + p.id + " already exists in " + db_.path());
-  p.enrolment = enrolment ? *enrolment
-                          : int(std::stoll(db_.query_text("SELECT coalesce(max(enrolment) + 1, 0) "
-                                                          "FROM participant")
-                                               .value()));
+  p.enrolment = enrolment ? *enrolment : next_enrolment();
   db_.prepare(
          "INSERT INTO participant (id, enrolment, age, sex, handedness, hand_length, "
          "vr_experience, notes, created_at, simulated) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
@@ -197,6 +194,11 @@ void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRo
         .bind(8, std::int64_t(r.questionnaire))
         .run();
   t.commit();
+}
+
+int StudyStore::next_enrolment() {
+  return int(std::stoll(
+      db_.query_text("SELECT coalesce(max(enrolment) + 1, 0) FROM participant").value()));
 }
 
 int StudyStore::participant_count() {

@@ -121,6 +121,9 @@ class StudyStore {
   // the id, the enrolment order and the schedule stay.
   void update_participant(const Participant& participant);
   int participant_count();
+  // The place the next participant takes: one after the last enrolled (a merged or sharded
+  // study may have gaps, so not the count).
+  int next_enrolment();
   std::int64_t frame_count();  // frames stored, over every trial
   std::int64_t frame_count(std::int64_t trial_id);
   std::vector<FrameRecord> frames(std::int64_t trial_id);  // one trial's, in logged order

@@ -116,6 +116,12 @@ JsonWriter& JsonWriter::value(long long number) {
   return *this;
 }
 
+JsonWriter& JsonWriter::value(unsigned long long number) {
+  before_value();
+  out_ << number;
+  return *this;
+}
+
 JsonWriter& JsonWriter::value(bool flag) {
   before_value();
   out_ << (flag ? "true" : "false");

@@ -22,7 +22,10 @@ class JsonWriter {
   JsonWriter& value(double number);
   JsonWriter& value(int number) { return value(static_cast<long long>(number)); }
   JsonWriter& value(long long number);
-  JsonWriter& value(std::size_t number) { return value(static_cast<long long>(number)); }
+  // Every digit of a count or a 64-bit seed (JSON's integers have no limit; a reader that
+  // keeps them as doubles rounds those past 2^53).
+  JsonWriter& value(unsigned long long number);
+  JsonWriter& value(std::size_t number) { return value(static_cast<unsigned long long>(number)); }
   JsonWriter& value(bool flag);
   JsonWriter& value(std::string_view text);
   JsonWriter& value(const char* text) { return value(std::string_view(text)); }

@@ -1,5 +1,6 @@
 #include "studies/cluster/slurm_batch.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -57,6 +58,7 @@ std::string series_json(const SlurmSeries& s) {
       .field("cli", s.cli)
       .field("protocol", s.protocol)
       .field("per_task", s.per_task)
+      .field("max_array", s.max_array)
       .key("simulate_options")
       .string_array(s.simulate_options)
       .field("partition", s.partition)
@@ -98,6 +100,46 @@ int array_tasks(const SlurmSeries& s) {
   return tasks;
 }
 
+std::vector<ArrayChunk> array_chunks(const SlurmSeries& s) {
+  std::vector<ArrayChunk> chunks;
+  const int tasks = array_tasks(s);
+  for (int offset = 0; offset < tasks; offset += s.max_array)
+    chunks.push_back({offset, std::min(s.max_array, tasks - offset)});
+  return chunks;
+}
+
+std::string index_ranges(const std::vector<int>& indices) {
+  std::string out;
+  for (std::size_t k = 0; k < indices.size();) {
+    std::size_t end = k;
+    while (end + 1 < indices.size() && indices[end + 1] == indices[end] + 1) ++end;
+    out += (out.empty() ? "" : ",") + std::to_string(indices[k]);
+    if (end > k) out += (end == k + 1 ? "," : "-") + std::to_string(indices[end]);
+    k = end + 1;
+  }
+  return out;
+}
+
+std::vector<std::string> rerun_commands(const SlurmSeries& s, const std::vector<int>& tasks) {
+  std::vector<std::string> commands;
+  for (const ArrayChunk& chunk : array_chunks(s)) {
+    std::vector<int> indices;
+    for (int t : tasks)
+      if (t >= chunk.offset && t < chunk.offset + chunk.tasks) indices.push_back(t - chunk.offset);
+    if (indices.empty()) continue;
+    commands.push_back("sbatch --array=" + index_ranges(indices) +
+                       (chunk.offset == 0
+                            ? ""
+                            : " --export=ALL,HANDLAB_TASK_OFFSET=" + std::to_string(chunk.offset)) +
+                       " " + quoted(s.dir + "/array.sh"));
+  }
+  const std::string after = commands.size() == 1 ? "JOB" : "JOB1:JOB2:...";
+  commands.push_back("sbatch --dependency=afterok:" + after + " " + quoted(s.dir + "/merge.sh"));
+  if (!s.then.empty())
+    commands.push_back("sbatch --dependency=afterok:JOB " + quoted(s.dir + "/then.sh"));
+  return commands;
+}
+
 std::string part_path(const SlurmSeries& s, const SlurmStudy& study, int shard) {
   return s.dir + "/parts/" + study_name(study) + "/shard-" + std::to_string(shard) + "-of-" +
          std::to_string(shards_of(s, study)) + ".db";
@@ -111,16 +153,18 @@ std::string array_script(const SlurmSeries& s) {
   std::ostringstream out;
   out << "#!/bin/bash\n"
       << "# A simulated series on Slurm, written by handlab-cli (docs/cluster.md). Array task i\n"
-      << "# runs the shard on line i + 1 of tasks.tsv (participants, seed, shard, shards).\n"
+      << "# runs the shard on line i + 1 of tasks.tsv (participants, seed, shard, shards), i its\n"
+      << "# index plus HANDLAB_TASK_OFFSET (a series of more tasks than an array may hold is\n"
+      << "# submitted as several arrays).\n"
       << "# Rerunning a task whose part is there does nothing; one stopped midway starts its\n"
       << "# part again.\n"
       << "#SBATCH --job-name=handlab-simulate\n"
-      << "#SBATCH --array=0-" << array_tasks(s) - 1 << "\n"
+      << "#SBATCH --array=0-" << std::min(array_tasks(s), s.max_array) - 1 << "\n"
       << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n"
       << "#SBATCH --output=" << s.dir << "/logs/task-%a.out\n"
       << site_directives(s) << "set -euo pipefail\n"
       << "dir=" << quoted(s.dir) << "\n"
-      << "i=${1:-$SLURM_ARRAY_TASK_ID}\n"
+      << "i=${1:-$((${HANDLAB_TASK_OFFSET:-0} + SLURM_ARRAY_TASK_ID))}\n"
       << "read -r participants seed shard shards < <(sed -n \"$((i + 1))p\" \"$dir/tasks.tsv\")\n"
       << "part=$dir/parts/n$participants-seed$seed/shard-$shard-of-$shards.db\n"
       << "if [ -e \"$part\" ]; then echo \"$part: done already\"; exit 0; fi\n"
@@ -176,8 +220,8 @@ std::string then_script(const SlurmSeries& s) {
 }
 
 void write_slurm_series(const SlurmSeries& s) {
-  if (s.studies.empty() || s.per_task < 1)
-    throw std::invalid_argument("a series needs studies and participants a task");
+  if (s.studies.empty() || s.per_task < 1 || s.max_array < 1)
+    throw std::invalid_argument("a series needs studies, participants a task and array tasks");
   for (const SlurmStudy& study : s.studies)
     if (study.participants < 1) throw std::invalid_argument("a study needs participants");
   std::filesystem::create_directories(s.dir + "/parts");
@@ -205,22 +249,27 @@ SlurmSeries read_slurm_series(const std::string& dir) {
     throw std::runtime_error(dir +
                              " holds no series (no series.json): write one with "
                              "simulate --slurm");
-  const util::JsonValue j = util::JsonValue::parse(read_file(plan));
   SlurmSeries s;
-  s.dir = std::filesystem::absolute(dir).lexically_normal().string();
-  if (!s.dir.empty() && s.dir.back() == '/') s.dir.pop_back();
-  s.cli = j["cli"].as_string();
-  s.protocol = j["protocol"].as_string();
-  s.per_task = int(j["per_task"].as_number());
-  for (const util::JsonValue& o : j["simulate_options"].as_array())
-    s.simulate_options.push_back(o.as_string());
-  for (const util::JsonValue& o : j["then"].as_array()) s.then.push_back(o.as_string());
-  for (const util::JsonValue& study : j["studies"].as_array())
-    s.studies.push_back(
-        {int(study["participants"].as_number()), std::stoull(study["seed"].as_string())});
-  s.partition = j["partition"].as_string();
-  s.time = j["time"].as_string();
-  s.mem = j["mem"].as_string();
+  try {
+    const util::JsonValue j = util::JsonValue::parse(read_file(plan));
+    s.dir = std::filesystem::absolute(dir).lexically_normal().string();
+    if (!s.dir.empty() && s.dir.back() == '/') s.dir.pop_back();
+    s.cli = j["cli"].as_string();
+    s.protocol = j["protocol"].as_string();
+    s.per_task = int(j["per_task"].as_number());
+    s.max_array = int(j["max_array"].as_number());
+    for (const util::JsonValue& o : j["simulate_options"].as_array())
+      s.simulate_options.push_back(o.as_string());
+    for (const util::JsonValue& o : j["then"].as_array()) s.then.push_back(o.as_string());
+    for (const util::JsonValue& study : j["studies"].as_array())
+      s.studies.push_back(
+          {int(study["participants"].as_number()), std::stoull(study["seed"].as_string())});
+    s.partition = j["partition"].as_string();
+    s.time = j["time"].as_string();
+    s.mem = j["mem"].as_string();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(plan + " is not a series handlab-cli wrote: " + e.what());
+  }
   return s;
 }
 

@@ -23,6 +23,10 @@ struct SlurmSeries {
   std::string protocol;  // absolute path of the protocol, as the nodes see it
   std::vector<SlurmStudy> studies;
   int per_task = 1;  // participants a task runs
+  // Tasks one job array may hold: the cluster's MaxArraySize (Slurm's default 1001). A series
+  // of more tasks is submitted as several arrays, each told its first task by
+  // HANDLAB_TASK_OFFSET.
+  int max_array = 1001;
   // Passed on to every task's `simulate` (--world, --frames, --set ...), each a word.
   std::vector<std::string> simulate_options;
   std::string partition, time, mem;  // #SBATCH --partition, --time, --mem (empty: the site's)
@@ -34,6 +38,20 @@ struct SlurmSeries {
 // Shards a study is cut into (its tasks), and the array's task count.
 int shards_of(const SlurmSeries& series, const SlurmStudy& study);
 int array_tasks(const SlurmSeries& series);
+
+// The arrays a series is submitted as: the first task of each and how many it runs.
+struct ArrayChunk {
+  int offset = 0, tasks = 0;
+};
+std::vector<ArrayChunk> array_chunks(const SlurmSeries& series);
+
+// Indices as Slurm's --array takes them: "0-3,7,9-10" (ascending input).
+std::string index_ranges(const std::vector<int>& indices);
+
+// The sbatch commands that rerun the array tasks given (indices into tasks.tsv) on a cluster
+// where none of the series' jobs runs any more, then the merge and `then` after them; `JOB`
+// stands for the job id sbatch printed for the line before.
+std::vector<std::string> rerun_commands(const SlurmSeries& series, const std::vector<int>& tasks);
 
 // Where a study's shard (1-based) and the merged study go.
 std::string part_path(const SlurmSeries& series, const SlurmStudy& study, int shard);

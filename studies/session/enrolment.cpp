@@ -34,9 +34,9 @@ int enrol_participant(store::StudyStore& store, const store::Participant& partic
   const auto problems = participant_problems(participant, store.participants());
   if (!problems.empty()) throw std::invalid_argument(problems.front().message);
   const Protocol protocol = stored_protocol(store);
-  const int enrolment = store.participant_count();
+  const int enrolment = store.next_enrolment();
   const auto plan = planned_rows(protocol, participant.id, enrolment);
-  store.add_participant(participant, plan);
+  store.add_participant(participant, plan, enrolment);
   return int(plan.size());
 }
 

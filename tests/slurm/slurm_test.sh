@@ -30,7 +30,7 @@ wait_for_jobs() {
     [ "$waited" -lt "$limit" ] || fail "jobs $jobs still queued after $limit s: $(squeue)"
   done
 }
-jobs_of() { tr '\n' ' ' <"$1/jobs.txt" | awk '{print $2 "," $4}'; }
+jobs_of() { awk '{print $2}' "$1/jobs.txt" | paste -sd,; }
 
 # What a study gives: its exports, and its analysis without the file's name and creation time.
 outputs() {
@@ -50,14 +50,16 @@ same_study() {
   echo "$name: merged study equals the one-process run ($(wc -l <"$work/$name-merged/trials.csv") trial rows)"
 }
 
-# 1. Four participants on the grasp proxy, a task each, and one on the soft hand (one block of
-# the study's design without practice: four trials, to spare the test's time).
+# 1. Four participants on the grasp proxy, a task each, in two arrays (as on a cluster whose
+# MaxArraySize is 3), and one on the soft hand (one block of the study's design without
+# practice: four trials, to spare the test's time).
 short=$work/one-block.json
 sed -e 's/"blocks": 5/"blocks": 1/' -e 's/"trials_per_condition": 1/"trials_per_condition": 0/' \
   "$protocol" >"$short"
 grep -q '"blocks": 1' "$short" || fail "could not shorten $protocol"
 "$cli" simulate --protocol "$protocol" --participants 4 --seed 21 --world proxy \
-  --slurm "$work/proxy" --time 0:10:00 >/dev/null
+  --slurm "$work/proxy" --time 0:10:00 --max-array 3 >/dev/null
+[ "$(grep -c '^array' "$work/proxy/jobs.txt")" = 2 ] || fail "not two arrays: $(cat "$work/proxy/jobs.txt")"
 "$cli" simulate --protocol "$short" --participants 1 --seed 22 --world soft \
   --slurm "$work/soft" --time 1:00:00 >/dev/null
 "$cli" simulate --protocol "$protocol" --participants 4 --seed 21 --world proxy --jobs 2 --quiet \
@@ -76,7 +78,7 @@ same_study "$work/soft/study-n1-seed22.db" "$work/soft-reference.db" soft
   --slurm "$work/power" --per-task 2 >/dev/null
 "$cli" power --protocol "$protocol" --pipeline --world proxy --n 4,6 --sims 2 --seed 5 --quiet \
   --jobs 2 --json "$work/power-reference.json" >/dev/null
-wait_for_jobs "$(tr '\n' ' ' <"$work/power/jobs.txt" | awk '{print $2 "," $4 "," $6}')" 600
+wait_for_jobs "$(jobs_of "$work/power")" 600
 [ -s "$work/power/power.json" ] || fail "no power.json: $(cat "$work/power/logs/"*)"
 # The JSON without its timings and its note of where the studies ran.
 untimed() {
@@ -92,6 +94,7 @@ echo "power: the power from $(wc -l <"$work/power/tasks.tsv") array tasks equals
 "$cli" simulate --protocol "$protocol" --participants 4 --seed 23 --world proxy --frames \
   --per-task 2 --slurm "$work/cut" --time 0:10:00 >/dev/null
 read -r array merge < <(jobs_of "$work/cut" | tr ',' ' ')
+echo "$array $merge" | grep -qE '^[0-9]+ [0-9]+$' || fail "jobs of the cut series: $(cat "$work/cut/jobs.txt")"
 for _ in $(seq 1 300); do
   [ -e "$work/cut/parts/n4-seed23/shard-2-of-2.db.tmp" ] && break
   sleep 0.1
@@ -104,8 +107,11 @@ status=$("$cli" simulate --status "$work/cut" --json - | tr -d ' \n')
 echo "$status" | grep -q '"parts":\["done","stopped"\]' || fail "status after the cancel: $status"
 echo "$status" | grep -q '"unfinished_tasks":\[1\]' || fail "status after the cancel: $status"
 [ ! -e "$work/cut/study-n4-seed23.db" ] || fail "a study was merged with a part missing"
-rerun=$(sbatch --parsable --array=1 "$work/cut/array.sh")
-merge=$(sbatch --parsable --dependency=afterok:"$rerun" "$work/cut/merge.sh")
+# The rerun as `status` tells it, its JOB the id of the line before.
+mapfile -t rerun_lines < <("$cli" simulate --status "$work/cut" | sed -n 's/^  sbatch //p')
+[ "${#rerun_lines[@]}" = 2 ] || fail "status's rerun commands: ${rerun_lines[*]}"
+rerun=$(eval "sbatch --parsable ${rerun_lines[0]}")
+merge=$(eval "sbatch --parsable ${rerun_lines[1]/JOB/$rerun}")
 wait_for_jobs "$rerun,$merge" 600
 "$cli" simulate --status "$work/cut" | grep -q "every part is done" || fail "the rerun left parts"
 "$cli" simulate --protocol "$protocol" --participants 4 --seed 23 --world proxy --frames --jobs 2 \

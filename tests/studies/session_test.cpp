@@ -8,6 +8,7 @@
 #include "core/store/frame_record.h"
 #include "core/store/study_store.h"
 #include "studies/export/study_export.h"
+#include "studies/session/enrolment.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 #include "tests/support/test_files.h"
@@ -100,6 +101,32 @@ TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
   EXPECT_EQ(driver.simulator_totals().at(setup.condition.label).steps, run.simulator.steps);
   EXPECT_GT(touching, 10) << "frames with thumb or index on the cube";
   EXPECT_EQ(moved_untouched, 0) << "the cube moved before the hand touched it";
+}
+
+// A study merged from shards may lack a place (S02 of three ran elsewhere); the next person
+// enrols after the last place, with that place's schedule, not at the count of people.
+TEST(Enrolment, TheNextPersonTakesThePlaceAfterTheLastEvenWithAGap) {
+  const std::string path = test::fresh_path("enrolment_gap.db");
+  // A Latin square: the schedule follows the place.
+  std::string text = read_protocol(kStudy).text;
+  text.replace(text.find("randomized-per-block"), 20, "latin-square");
+  const Protocol protocol = parse_protocol(text, "latin-square.json");
+  ASSERT_EQ(protocol.counterbalancing, Counterbalancing::kLatinSquare);
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore db(path);
+  db.add_participant(test::participant("S01"), planned_rows(protocol, "S01", 0), 0);
+  db.add_participant(test::participant("S03"), planned_rows(protocol, "S03", 2), 2);
+  EXPECT_EQ(db.next_enrolment(), 3);
+  enrol_participant(db, test::participant("P04"));
+  EXPECT_EQ(db.participant("P04")->enrolment, 3);
+  const auto plan = db.plan("P04");
+  const auto conditions = [](const std::vector<store::PlannedTrialRow>& rows) {
+    std::vector<int> ids;
+    for (const auto& r : rows) ids.push_back(r.condition);
+    return ids;
+  };
+  EXPECT_EQ(conditions(plan), conditions(planned_rows(protocol, "P04", 3)));
+  EXPECT_NE(conditions(plan), conditions(planned_rows(protocol, "P04", 2)));
 }
 
 TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) {

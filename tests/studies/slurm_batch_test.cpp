@@ -1,6 +1,7 @@
 // A simulated series as Slurm jobs (studies/cluster/slurm_batch.h): a task per shard of each
 // study, written as tasks.tsv lines the array script reads; the state of every part read from
-// the files alone; a directory that holds another series refused.
+// the files alone; a directory that holds another series refused; a series larger than the
+// cluster's MaxArraySize cut into arrays, and the tasks to rerun named in each.
 #include <filesystem>
 #include <fstream>
 
@@ -78,6 +79,54 @@ TEST(SlurmBatch, EachPartsStateFromTheFilesAlone) {
   EXPECT_FALSE(status.studies[0].merged);
   EXPECT_TRUE(status.studies[1].merged);
   EXPECT_EQ(status.unfinished_tasks, (std::vector<int>{1, 2}));
+}
+
+TEST(SlurmBatch, MoreTasksThanAnArrayMayHoldGoInSeveralArraysTheirTasksOffset) {
+  const std::string dir = test::fresh_path("slurm_batch_chunks");
+  std::filesystem::remove_all(dir);
+  SlurmSeries s = two_studies(dir);
+  s.max_array = 2;
+  s.then = {"/opt/handlab/bin/handlab-cli", "power", "--from", dir};
+  const auto chunks = array_chunks(s);
+  ASSERT_EQ(chunks.size(), 3u);
+  EXPECT_EQ(chunks[0].offset, 0);
+  EXPECT_EQ(chunks[1].offset, 2);
+  EXPECT_EQ(chunks[2].offset, 4);
+  EXPECT_EQ(chunks[2].tasks, 1);
+  write_slurm_series(s);
+  const std::string array = test::file_bytes(dir + "/array.sh");
+  EXPECT_NE(array.find("#SBATCH --array=0-1\n"), std::string::npos) << array;
+  EXPECT_NE(array.find("$((${HANDLAB_TASK_OFFSET:-0} + SLURM_ARRAY_TASK_ID))"), std::string::npos);
+  EXPECT_EQ(read_slurm_series(dir).max_array, 2);
+  // Tasks 1 and 4 to rerun: index 1 of the first array, index 0 of the third; then the merge
+  // after both and the power after the merge.
+  const auto commands = rerun_commands(s, {1, 4});
+  ASSERT_EQ(commands.size(), 4u);
+  EXPECT_EQ(commands[0], "sbatch --array=1 '" + dir + "/array.sh'");
+  EXPECT_EQ(commands[1],
+            "sbatch --array=0 --export=ALL,HANDLAB_TASK_OFFSET=4 '" + dir + "/array.sh'");
+  EXPECT_EQ(commands[2], "sbatch --dependency=afterok:JOB1:JOB2:... '" + dir + "/merge.sh'");
+  EXPECT_EQ(commands[3], "sbatch --dependency=afterok:JOB '" + dir + "/then.sh'");
+}
+
+TEST(SlurmBatch, IndicesAsRangesAsSlurmsArrayTakesThem) {
+  EXPECT_EQ(index_ranges({}), "");
+  EXPECT_EQ(index_ranges({4}), "4");
+  EXPECT_EQ(index_ranges({0, 1, 2, 3, 7, 9, 10, 12, 13, 14}), "0-3,7,9,10,12-14");
+}
+
+TEST(SlurmBatch, ASeriesFileThatIsNotOneIsRefusedByName) {
+  const std::string dir = test::fresh_path("slurm_batch_bad");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/series.json") << "{\"cli\": \"x\"}";
+  try {
+    read_slurm_series(dir);
+    FAIL() << "read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + "/series.json is not a series"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

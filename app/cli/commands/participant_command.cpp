@@ -50,8 +50,8 @@ int participant_add(const std::vector<std::string>& argv) {
   }
 
   store::StudyStore store(args.text("db"));
-  const int enrolment = store.participant_count();
   const int planned = studies::enrol_participant(store, p);
+  const int enrolment = store.participant(p.id)->enrolment;
   std::cout << "enrolled " << p.id << " (participant " << enrolment + 1 << "): " << planned
             << " trials planned\n";
   return 0;

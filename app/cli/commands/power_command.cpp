@@ -347,7 +347,7 @@ int run_power(const std::vector<std::string>& argv) {
       w.end_object();
       w.field("target", target).field("alpha", options.alpha).field("exact", exact);
       w.field("pipeline", pipeline);
-      w.field("sims", exact ? 0 : options.sims).field("seed", double(options.seed));
+      w.field("sims", exact ? 0 : options.sims).field("seed", options.seed);
       w.field("seconds", seconds);
       w.key("seconds_per_n").begin_array();
       for (double s : report.seconds) w.value(s);

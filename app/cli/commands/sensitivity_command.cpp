@@ -64,7 +64,7 @@ int run_sensitivity(const std::vector<std::string>& argv) {
   options.levels = int(args.integer("levels"));
   if (options.trajectories < 2) throw UsageError("--trajectories must be 2 or more");
   if (options.levels < 2 || options.levels % 2) throw UsageError("--levels must be even");
-  options.design_seed = std::uint64_t(args.integer("design-seed"));
+  options.design_seed = args.seed("design-seed");
   options.jobs = int(args.integer("jobs"));
   if (options.jobs <= 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
   const std::string world = args.text("world");

@@ -234,7 +234,7 @@ int run_simulate(const std::vector<std::string>& argv) {
       w.begin_object()
           .field("db", args.text("db"))
           .field("participants", report.participants)
-          .field("seed", static_cast<long long>(options.seed))
+          .field("seed", options.seed)
           .field("jobs", options.jobs)
           .field("world", world)
           .field("model", studies::kParticipantModelVersion)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "app/cli/output_file.h"
@@ -49,10 +50,25 @@ const char* state_name(studies::PartState s) {
   return "?";
 }
 
-std::string index_list(const std::vector<int>& indices) {
-  std::string out;
-  for (int i : indices) out += (out.empty() ? "" : ",") + std::to_string(i);
-  return out;
+// The cluster's MaxArraySize (scontrol show config), or Slurm's default where it cannot be
+// asked (no Slurm client here: a dry run).
+int cluster_max_array() {
+  try {
+    std::istringstream config(run_command("scontrol show config"));
+    for (std::string line; std::getline(config, line);)
+      if (line.rfind("MaxArraySize", 0) == 0) return std::stoi(line.substr(line.find('=') + 1));
+  } catch (const std::exception&) {
+  }
+  return 1001;
+}
+
+// A value that goes into an #SBATCH line, which Slurm splits at spaces and ends at a newline.
+std::string directive_value(const Arguments& args, const std::string& option) {
+  const std::string value = args.text(option);
+  if (value.empty() || value.find_first_of(" \t\n\r'\"") != std::string::npos)
+    throw UsageError("--" + option + " '" + value +
+                     "': Slurm's #SBATCH lines take a value without spaces or quotes");
+  return value;
 }
 
 }  // namespace
@@ -63,6 +79,8 @@ std::vector<OptionSpec> slurm_option_specs() {
       {"partition", "P", "with --slurm: the partition (#SBATCH --partition)"},
       {"time", "LIMIT", "with --slurm: a task's time limit (#SBATCH --time, e.g. 0:30:00)"},
       {"mem", "SIZE", "with --slurm: a task's memory (#SBATCH --mem, e.g. 1G)"},
+      {"max-array", "N",
+       "with --slurm: tasks a job array may hold (default: the cluster's MaxArraySize)"},
       {"dry-run", "", "with --slurm: write and print the scripts, submit nothing"},
   };
 }
@@ -77,13 +95,18 @@ studies::SlurmSeries series_settings(const Arguments& args) {
   studies::SlurmSeries series;
   series.dir = std::filesystem::absolute(args.text("slurm")).lexically_normal().string();
   if (series.dir.size() > 1 && series.dir.back() == '/') series.dir.pop_back();
+  if (series.dir.find_first_of(" \t\n\r'\"") != std::string::npos)
+    throw UsageError("--slurm " + series.dir +
+                     ": Slurm's #SBATCH --output line cannot hold a path with spaces or quotes");
   series.cli = std::filesystem::canonical("/proc/self/exe").string();
   series.protocol = std::filesystem::canonical(args.text("protocol")).string();
   series.per_task = int(args.integer("per-task"));
   if (series.per_task < 1) throw UsageError("--per-task must be 1 or more");
-  if (args.has("partition")) series.partition = args.text("partition");
-  if (args.has("time")) series.time = args.text("time");
-  if (args.has("mem")) series.mem = args.text("mem");
+  if (args.has("partition")) series.partition = directive_value(args, "partition");
+  if (args.has("time")) series.time = directive_value(args, "time");
+  if (args.has("mem")) series.mem = directive_value(args, "mem");
+  series.max_array = args.has("max-array") ? int(args.integer("max-array")) : cluster_max_array();
+  if (series.max_array < 1) throw UsageError("--max-array must be 1 or more");
   return series;
 }
 
@@ -93,37 +116,55 @@ void submit_slurm_series(const studies::SlurmSeries& series, bool dry_run) {
   const std::string then = series.dir + "/then.sh";
   const std::size_t n = series.studies.size();
   std::cout << n << (n == 1 ? " study" : " studies") << ": " << studies::array_tasks(series)
-            << " array tasks of up to " << series.per_task << " participants, then a merge job"
+            << " array tasks of up to " << series.per_task
+            << (series.per_task == 1 ? " participant" : " participants") << ", then a merge job"
             << (series.then.empty() ? "" : " and " + series.then[1]) << "; scripts in "
             << series.dir << "\n";
+  const std::vector<studies::ArrayChunk> chunks = studies::array_chunks(series);
+  auto array_command = [&](const studies::ArrayChunk& c) {
+    return "sbatch --parsable --array=0-" + std::to_string(c.tasks - 1) +
+           (c.offset == 0 ? "" : " --export=ALL,HANDLAB_TASK_OFFSET=" + std::to_string(c.offset)) +
+           " '" + array + "'";
+  };
   if (dry_run) {
-    std::cout << "\nsbatch --parsable " << array << "\nsbatch --dependency=afterok:ARRAY_JOB_ID "
-              << merge << "\n";
+    std::cout << "\n";
+    for (const studies::ArrayChunk& c : chunks) std::cout << array_command(c) << "\n";
+    std::cout << "sbatch --dependency=afterok";
+    for (std::size_t k = 0; k < chunks.size(); ++k)
+      std::cout << ":ARRAY" << (chunks.size() == 1 ? "" : std::to_string(k + 1)) << "_JOB_ID";
+    std::cout << " '" << merge << "'\n";
     if (!series.then.empty())
-      std::cout << "sbatch --dependency=afterok:MERGE_JOB_ID " << then << "\n";
+      std::cout << "sbatch --dependency=afterok:MERGE_JOB_ID '" << then << "'\n";
     std::cout << "\n--- " << array << "\n"
               << studies::array_script(series) << "--- " << merge << "\n"
               << studies::merge_script(series);
     if (!series.then.empty()) std::cout << "--- " << then << "\n" << studies::then_script(series);
     return;
   }
-  const std::string array_job = run_command("sbatch --parsable '" + array + "'");
-  const std::string id = array_job.substr(0, array_job.find(';'));  // "id;cluster"
-  std::string merge_job =
-      run_command("sbatch --parsable --dependency=afterok:" + id + " '" + merge + "'");
-  merge_job = merge_job.substr(0, merge_job.find(';'));
+  auto job_id = [](const std::string& parsable) {
+    return parsable.substr(0, parsable.find(';'));  // "id;cluster"
+  };
+  std::vector<std::string> arrays;
+  for (const studies::ArrayChunk& c : chunks)
+    arrays.push_back(job_id(run_command(array_command(c))));
+  std::string after;
+  for (const std::string& id : arrays) after += ":" + id;
+  const std::string merge_job =
+      job_id(run_command("sbatch --parsable --dependency=afterok" + after + " '" + merge + "'"));
   std::string then_job;
-  if (!series.then.empty()) {
-    then_job =
-        run_command("sbatch --parsable --dependency=afterok:" + merge_job + " '" + then + "'");
-    then_job = then_job.substr(0, then_job.find(';'));
-  }
+  if (!series.then.empty())
+    then_job = job_id(
+        run_command("sbatch --parsable --dependency=afterok:" + merge_job + " '" + then + "'"));
   write_output(series.dir + "/jobs.txt", [&](std::ostream& out) {
-    out << "array " << id << "\nmerge " << merge_job << "\n";
+    for (const std::string& id : arrays) out << "array " << id << "\n";
+    out << "merge " << merge_job << "\n";
     if (!then_job.empty()) out << "then " << then_job << "\n";
   });
-  std::cout << "submitted: array job " << id << ", merge job " << merge_job
-            << " (after the array succeeds)"
+  std::string array_ids;
+  for (const std::string& id : arrays) array_ids += (array_ids.empty() ? "" : ", ") + id;
+  std::cout << "submitted: array job" << (arrays.size() == 1 ? " " : "s ") << array_ids
+            << ", merge job " << merge_job << " (after the array" << (arrays.size() == 1 ? "" : "s")
+            << " succeed" << (arrays.size() == 1 ? "s" : "") << ")"
             << (then_job.empty()
                     ? ""
                     : ", " + series.then[1] + " job " + then_job + " (after the merge)")
@@ -157,13 +198,14 @@ void print_series_status(const std::string& dir, const std::string& json) {
     if (status.unfinished_tasks.empty()) {
       std::cout << "every part is done\n";
     } else {
-      std::cout << "unfinished array tasks: " << index_list(status.unfinished_tasks) << "\n";
+      std::cout << "unfinished array tasks: " << studies::index_ranges(status.unfinished_tasks)
+                << "\n";
       if (total[2] > 0)
         std::cout << "stopped parts: their tasks' logs are in " << series.dir << "/logs\n";
-      std::cout << "once none runs, rerun them: sbatch --array="
-                << index_list(status.unfinished_tasks) << " " << series.dir
-                << "/array.sh, then sbatch --dependency=afterok:JOB " << series.dir
-                << "/merge.sh\n";
+      std::cout << "once none of the series' jobs runs, rerun them (JOB: the job ids sbatch "
+                   "printed for the lines before):\n";
+      for (const std::string& c : studies::rerun_commands(series, status.unfinished_tasks))
+        std::cout << "  " << c << "\n";
     }
   }
   if (json.empty()) return;
