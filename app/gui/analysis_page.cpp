@@ -47,7 +47,7 @@ class FigurePanel : public QWidget {
     const double w = width() - 20;
     for (const studies::ReportBlock& b : document_->blocks) {
       if (b.kind != studies::ReportBlock::Kind::kFigure) continue;
-      const double h = report::figure_height(b.figure.kind, w);
+      const double h = report::figure_height(b.figure.kind, *analysis_, w);
       report::paint_figure(p, QRectF(10, y, w, h), b.figure, *analysis_, *document_);
       y += h + kGap;
     }
@@ -56,11 +56,11 @@ class FigurePanel : public QWidget {
  private:
   static constexpr double kGap = 16;
   double total_height(int width) const {
-    if (!document_) return 400;
+    if (!document_ || !analysis_) return 400;
     double h = 0;
     for (const studies::ReportBlock& b : document_->blocks)
       if (b.kind == studies::ReportBlock::Kind::kFigure)
-        h += report::figure_height(b.figure.kind, width - 20) + kGap;
+        h += report::figure_height(b.figure.kind, *analysis_, width - 20) + kGap;
     return std::max(h, 400.0);
   }
   const studies::StudyDatabaseAnalysis* analysis_ = nullptr;

@@ -1,6 +1,7 @@
 #include "app/report/power_figure.h"
 
 #include "app/report/figure_file.h"
+#include "app/report/figure_marker.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,30 +26,6 @@ const Qt::PenStyle kStyles[] = {Qt::SolidLine, Qt::DashLine, Qt::DotLine, Qt::Da
                                 Qt::DashDotDotLine};
 const QColor kColours[] = {QColor(20, 20, 20), QColor(0, 90, 181), QColor(220, 50, 32),
                            QColor(0, 140, 70), QColor(120, 60, 160)};
-
-void marker(QPainter& p, int kind, QPointF at, double r) {
-  switch (kind % 4) {
-    case 0:
-      p.drawEllipse(at, r, r);
-      break;
-    case 1:
-      p.drawRect(QRectF(at.x() - r, at.y() - r, 2 * r, 2 * r));
-      break;
-    case 2: {
-      const QPointF tri[] = {
-          {at.x(), at.y() - r * 1.2}, {at.x() - r, at.y() + r}, {at.x() + r, at.y() + r}};
-      p.drawPolygon(tri, 3);
-      break;
-    }
-    default: {
-      const QPointF dia[] = {{at.x(), at.y() - r * 1.3},
-                             {at.x() + r * 1.3, at.y()},
-                             {at.x(), at.y() + r * 1.3},
-                             {at.x() - r * 1.3, at.y()}};
-      p.drawPolygon(dia, 4);
-    }
-  }
-}
 
 void paint(QPainter& p, const QRectF& area, const power::PowerReport& r,
            const std::vector<std::string>& names, double target, const std::string& title) {
@@ -116,14 +93,14 @@ void paint(QPainter& p, const QRectF& area, const power::PowerReport& r,
       if (e.upper[k] > e.lower[k])
         p.drawLine(QPointF(x(r.n[k]), y(e.lower[k])), QPointF(x(r.n[k]), y(e.upper[k])));
       p.setBrush(i % 2 ? QBrush(Qt::white) : QBrush(colour));
-      marker(p, int(i), QPointF(x(r.n[k]), y(e.power[k])), 0.28 * em);
+      draw_marker(p, int(i), QPointF(x(r.n[k]), y(e.power[k])), 0.28 * em);
     }
     // Legend.
     const double ly = plot.bottom() + 3.8 * em + double(i) * 1.5 * em;
     p.setPen(QPen(colour, 1.6, kStyles[i % 5]));
     p.drawLine(QPointF(plot.left(), ly), QPointF(plot.left() + 3 * em, ly));
     p.setPen(QPen(colour, 1.0));
-    marker(p, int(i), QPointF(plot.left() + 1.5 * em, ly), 0.28 * em);
+    draw_marker(p, int(i), QPointF(plot.left() + 1.5 * em, ly), 0.28 * em);
     p.setPen(Qt::black);
     p.drawText(QRectF(plot.left() + 3.6 * em, ly - 0.75 * em, plot.width() - 3.6 * em, 1.5 * em),
                Qt::AlignVCenter | Qt::AlignLeft, QString::fromStdString(names[i]));

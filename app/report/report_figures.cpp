@@ -1,5 +1,7 @@
 #include "app/report/report_figures.h"
 
+#include "app/report/figure_marker.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -13,6 +15,7 @@
 namespace handlab::report {
 namespace {
 
+constexpr int kCellLabelFlags = Qt::AlignHCenter | Qt::AlignTop | Qt::TextWordWrap;
 const QColor kShades[] = {QColor(60, 60, 60), QColor(150, 150, 150), QColor(210, 210, 210),
                           QColor(100, 100, 100)};
 const Qt::BrushStyle kPatterns[] = {Qt::SolidPattern, Qt::BDiagPattern, Qt::SolidPattern,
@@ -65,6 +68,26 @@ QRectF axes(QPainter& p, const QRectF& area, const QString& title, const QString
   return r;
 }
 
+// A level's marker, the same in every figure: filled circle, open square, filled triangle,
+// open diamond, then again.
+void marker(QPainter& p, const QPointF& at, std::size_t level) {
+  p.setPen(QPen(Qt::black, 1));
+  p.setBrush(level % 2 ? Qt::white : Qt::black);
+  draw_marker(p, int(level), at, 3.5);
+}
+
+// Level `level`'s line, marker and name in the top right corner of the plot `r`.
+void legend_entry(QPainter& p, const QRectF& r, std::size_t level, const QString& name) {
+  const QFontMetricsF fm(p.font());
+  const double y = r.top() + 4 + double(level) * fm.height() * 1.2 + fm.height() / 2;
+  const double x = r.right() - fm.horizontalAdvance("MMMMMMMMMM");
+  p.setPen(QPen(kShades[level % 4], 2, kLines[level % 4]));
+  p.drawLine(QPointF(x, y), QPointF(x + 24, y));
+  marker(p, QPointF(x + 12, y), level);
+  p.drawText(QRectF(x + 30, y - fm.height() / 2, r.right() - x - 30, fm.height()),
+             Qt::AlignLeft | Qt::AlignVCenter, name);
+}
+
 void error_bar(QPainter& p, double x, double y_low, double y_high, double half_width) {
   p.setPen(QPen(Qt::black, 1.2));
   p.drawLine(QPointF(x, y_low), QPointF(x, y_high));
@@ -82,6 +105,36 @@ QString join(const std::vector<std::string>& levels) {
   QStringList parts;
   for (const std::string& l : levels) parts << display(l);
   return parts.join(" ");
+}
+
+// The font for the cells' names under a figure's bars or boxes: the axes' font, or smaller
+// where a design of many cells leaves a slot too narrow for it (the words wrap, and the lines
+// must fit under the axis). One size for every name of the figure.
+QFont cell_label_font(const QFont& axes_font, const QSizeF& slot, const QStringList& names) {
+  QFont font = axes_font;
+  for (int smaller = 0; smaller < 4; ++smaller) {
+    const QFontMetricsF fm(font);
+    const bool fits = std::all_of(names.begin(), names.end(), [&](const QString& name) {
+      const QRectF needed = fm.boundingRect(QRectF(QPointF(0, 0), slot), kCellLabelFlags, name);
+      return needed.width() <= slot.width() + 0.5 && needed.height() <= slot.height();
+    });
+    if (fits) break;
+    font.setPixelSize(std::max(6, int(font.pixelSize() * 0.85)));
+  }
+  return font;
+}
+
+// The cells' names under the axis of a plot `r` with one slot a cell.
+void cell_labels(QPainter& p, const QRectF& r, const QStringList& names) {
+  const double slot = r.width() / double(std::max<qsizetype>(1, names.size()));
+  const QSizeF label(slot, QFontMetricsF(p.font()).height() * 3.0 - 2);
+  p.save();
+  p.setPen(Qt::black);
+  p.setFont(cell_label_font(p.font(), label, names));
+  for (qsizetype k = 0; k < names.size(); ++k)
+    p.drawText(QRectF(QPointF(r.left() + slot * double(k), r.bottom() + 2), label), kCellLabelFlags,
+               names[k]);
+  p.restore();
 }
 
 double error_of(const studies::CellSummary& c, const studies::ReportDocument& doc) {
@@ -117,11 +170,10 @@ void time_by_condition(QPainter& p, const QRectF& area, const studies::StudyData
     p.drawRect(QRectF(x0, y_of(c.mean), w, r.bottom() - y_of(c.mean)));
     const double e = error_of(c, doc);
     error_bar(p, x0 + w / 2, y_of(c.mean - e), y_of(c.mean + e), w * 0.15);
-    p.setPen(Qt::black);
-    p.drawText(QRectF(r.left() + slot * double(k), r.bottom() + 2, slot, fm.height() * 2.4),
-               Qt::AlignHCenter | Qt::AlignTop | Qt::TextWordWrap,
-               join(c.levels) + QString("\nn = %1").arg(c.n));
   }
+  QStringList names;
+  for (const auto& c : cells) names << join(c.levels) + QString("\nn = %1").arg(c.n);
+  cell_labels(p, r, names);
   // Brackets, the shorter spans lower.
   struct Span {
     std::size_t from, to;
@@ -202,20 +254,9 @@ void time_by_repetition(QPainter& p, const QRectF& area, const std::string& fact
     p.setPen(QPen(kShades[l % 4], 2, kLines[l % 4]));
     p.setBrush(Qt::NoBrush);
     p.drawPath(line);
-    for (int e = 0; e < line.elementCount(); ++e) {
-      p.setBrush(l % 2 ? Qt::white : Qt::black);
-      p.setPen(QPen(Qt::black, 1));
-      p.drawEllipse(QPointF(line.elementAt(e).x, line.elementAt(e).y), 3.5, 3.5);
-    }
-    const double ly = r.top() + 4 + double(l) * fm.height() * 1.2;
-    const double lx = r.right() - fm.horizontalAdvance("MMMMMMMMMM");
-    p.setPen(QPen(kShades[l % 4], 2, kLines[l % 4]));
-    p.drawLine(QPointF(lx, ly + fm.height() / 2), QPointF(lx + 24, ly + fm.height() / 2));
-    p.setBrush(l % 2 ? Qt::white : Qt::black);
-    p.setPen(QPen(Qt::black, 1));
-    p.drawEllipse(QPointF(lx + 12, ly + fm.height() / 2), 3.5, 3.5);
-    p.drawText(QRectF(lx + 30, ly, r.right() - lx - 30, fm.height()),
-               Qt::AlignLeft | Qt::AlignVCenter, display(levels[l]));
+    for (int e = 0; e < line.elementCount(); ++e)
+      marker(p, QPointF(line.elementAt(e).x, line.elementAt(e).y), l);
+    legend_entry(p, r, l, display(levels[l]));
   }
 }
 
@@ -256,12 +297,7 @@ void time_by_hand_length(QPainter& p, const QRectF& area, const std::string& fac
     for (const auto& q : points) {
       if (q.level != levels[l]) continue;
       const QPointF at(x_of(q.hand_length_cm), y_of(q.mean));
-      p.setPen(QPen(Qt::black, 1));
-      p.setBrush(l % 2 ? Qt::white : Qt::black);
-      if (l % 2)
-        p.drawRect(QRectF(at.x() - 3.5, at.y() - 3.5, 7, 7));
-      else
-        p.drawEllipse(at, 3.5, 3.5);
+      marker(p, at, l);
       sx += q.hand_length_cm;
       sy += q.mean;
       sxx += q.hand_length_cm * q.hand_length_cm;
@@ -276,19 +312,14 @@ void time_by_hand_length(QPainter& p, const QRectF& area, const std::string& fac
       p.drawLine(QPointF(x_of(x_lo), y_of(intercept + slope * x_lo)),
                  QPointF(x_of(x_hi), y_of(intercept + slope * x_hi)));
     }
-    const double ly = r.top() + 4 + double(l) * fm.height() * 1.2;
-    const double lx = r.right() - fm.horizontalAdvance("MMMMMMMMMM");
-    p.setPen(QPen(kShades[l % 4], 2, kLines[l % 4]));
-    p.drawLine(QPointF(lx, ly + fm.height() / 2), QPointF(lx + 24, ly + fm.height() / 2));
-    p.setPen(QPen(Qt::black, 1));
-    p.setBrush(l % 2 ? Qt::white : Qt::black);
-    if (l % 2)
-      p.drawRect(QRectF(lx + 8.5, ly + fm.height() / 2 - 3.5, 7, 7));
-    else
-      p.drawEllipse(QPointF(lx + 12, ly + fm.height() / 2), 3.5, 3.5);
-    p.drawText(QRectF(lx + 30, ly, r.right() - lx - 30, fm.height()),
-               Qt::AlignLeft | Qt::AlignVCenter, display(levels[l]));
+    legend_entry(p, r, l, display(levels[l]));
   }
+}
+
+// The questionnaire's panels side by side, as in the paper, up to four conditions; one a row
+// for more, where side by side would leave a condition too narrow a slot for its name.
+bool items_in_rows(const studies::StudyDatabaseAnalysis& a) {
+  return !a.items_by_condition.empty() && a.items_by_condition.front().second.size() > 4;
 }
 
 // Fig. 3.8: medians with their ranges per condition, one panel per item.
@@ -296,11 +327,13 @@ void items(QPainter& p, const QRectF& area, const studies::StudyDatabaseAnalysis
   const auto& items = a.items_by_condition;
   if (items.empty()) return;
   const int scale_points = a.protocol.scale_points;
-  const double panel_width = area.width() / double(items.size());
-  const QFontMetricsF fm(p.font());
+  const bool rows = items_in_rows(a);
+  const double panel_width = rows ? area.width() : area.width() / double(items.size());
+  const double panel_height = rows ? area.height() / double(items.size()) : area.height();
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const QRectF panel(area.left() + panel_width * double(i), area.top(), panel_width,
-                       area.height());
+    const double at = double(i);
+    const QRectF panel(area.left() + (rows ? 0 : panel_width * at),
+                       area.top() + (rows ? panel_height * at : 0), panel_width, panel_height);
     double y_max = 1;
     const QRectF r = axes(p, panel, display(items[i].first),
                           QObject::tr("Score (1–%1)").arg(scale_points), scale_points, &y_max);
@@ -314,20 +347,23 @@ void items(QPainter& p, const QRectF& area, const studies::StudyDatabaseAnalysis
       p.setBrush(QBrush(kShades[k % 4], kPatterns[k % 4]));
       p.setPen(QPen(Qt::black, 1));
       p.drawRect(QRectF(x - slot * 0.2, y(c.median) - 3.5, slot * 0.4, 7));
-      p.drawText(QRectF(r.left() + slot * double(k), r.bottom() + 2, slot, fm.height() * 2.4),
-                 Qt::AlignHCenter | Qt::AlignTop | Qt::TextWordWrap, join(c.levels));
     }
+    QStringList names;
+    for (const auto& c : cells) names << join(c.levels);
+    cell_labels(p, r, names);
   }
 }
 
 }  // namespace
 
-double figure_height(studies::FigureKind kind, double width) {
+double figure_height(studies::FigureKind kind, const studies::StudyDatabaseAnalysis& analysis,
+                     double width) {
   switch (kind) {
     case studies::FigureKind::kTimeByCondition:
       return 0.55 * width;
     case studies::FigureKind::kItems:
-      return 0.42 * width;
+      return items_in_rows(analysis) ? 0.3 * width * double(analysis.items_by_condition.size())
+                                     : 0.42 * width;
     default:
       return 0.45 * width;
   }
@@ -368,7 +404,7 @@ void paint_figure(QPainter& p, const QRectF& area, const studies::ReportFigure& 
 std::string figure_svg(const studies::ReportFigure& figure,
                        const studies::StudyDatabaseAnalysis& analysis,
                        const studies::ReportDocument& document, int width) {
-  const int height = int(std::ceil(figure_height(figure.kind, width)));
+  const int height = int(std::ceil(figure_height(figure.kind, analysis, width)));
   QBuffer buffer;
   buffer.open(QIODevice::WriteOnly);
   QSvgGenerator svg;

@@ -15,8 +15,10 @@ class QPainter;
 
 namespace handlab::report {
 
-// The height a figure wants for a width (its panels' proportions).
-double figure_height(studies::FigureKind kind, double width);
+// The height a figure wants for a width (its panels' proportions and how many rows of them
+// the study's design needs).
+double figure_height(studies::FigureKind kind, const studies::StudyDatabaseAnalysis& analysis,
+                     double width);
 
 // Paints `figure` into `area` with the painter's font (its size sets the figure's text).
 void paint_figure(QPainter& p, const QRectF& area, const studies::ReportFigure& figure,

@@ -216,7 +216,7 @@ class PdfLayout {
   }
 
   void figure(const studies::ReportFigure& f) {
-    const double h = figure_height(f.kind, kBodyWidth);
+    const double h = figure_height(f.kind, a_, kBodyWidth);
     const QFont caption = font(9, false, true);
     const QString caption_text = QString::fromStdString(f.caption);
     const double total = h + 4 + height(caption_text, caption);

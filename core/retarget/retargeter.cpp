@@ -56,7 +56,7 @@ std::optional<Calibration> calibrate_open_palm(const std::vector<tracking::Track
 }
 
 Retargeter::Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calibration calibration,
-                       std::optional<tracking::TrackedHandFitter> fitter, SolverOptions options)
+                       std::optional<tracking::TrackedHandFitter> fitter, OursOptions ours)
     : strategy_(strategy),
       simulated_(simulated),
       calibration_(calibration),
@@ -72,10 +72,10 @@ Retargeter::Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calib
         hand::marker_position(simulated, rest, mcp_markers_[std::size_t(f)]);
   if (strategy == Strategy::kNaive && !fitter_)
     throw std::invalid_argument("Naive retargeting needs a tracked-hand fitter");
-  // Thumb and index carry the pinch: they weigh more.
   std::vector<Feature> features;
-  const double weights[5] = {4.0, 4.0, 1.0, 1.0, 1.0};
-  for (int f = 0; f < 5; ++f) features.push_back({tip_markers_[std::size_t(f)], -1, weights[f]});
+  for (int f = 0; f < 5; ++f)
+    features.push_back({tip_markers_[std::size_t(f)], -1, ours.tip_weights[std::size_t(f)]});
+  SolverOptions options = ours.solver;
   options.root_translation_weight = 0.0;
   solver_ = std::make_unique<FingertipSolver>(simulated, features, options);
   // When a tip stays out of reach from the palm placed on the finger bases (the two

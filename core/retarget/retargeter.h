@@ -41,13 +41,21 @@ struct RetargetResult {
   int iterations = 0;
 };
 
+// What Ours lets a study change: how much each fingertip counts (thumb first; thumb and
+// index carry the pinch) and the fingertip solver's regularisers and iteration limits (its
+// root translation weight is the retargeter's own).
+struct OursOptions {
+  std::array<double, 5> tip_weights = {4.0, 4.0, 1.0, 1.0, 1.0};
+  SolverOptions solver;
+};
+
 class Retargeter {
  public:
   // `simulated` must outlive the retargeter. Naive needs the tracked skeleton's fit of each
-  // frame, so it takes a fitter measured for the participant.
+  // frame, so it takes a fitter measured for the participant; Naive ignores `ours`.
   Retargeter(Strategy strategy, const hand::Skeleton& simulated, Calibration calibration,
              std::optional<tracking::TrackedHandFitter> fitter = std::nullopt,
-             SolverOptions options = {});
+             OursOptions ours = {});
 
   RetargetResult retarget(const tracking::TrackedHand& hand);
   Strategy strategy() const { return strategy_; }

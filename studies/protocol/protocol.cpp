@@ -17,94 +17,50 @@ namespace {
 
 using util::JsonValue;
 
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
+// A cube's side: 5-150 mm, from a fingertip pinch to a whole-hand grasp.
+double cube_size(const ProtocolReader& r, const JsonValue& object, const std::string& where,
+                 std::optional<double> fallback) {
+  const double side = r.number(object, "cube_size", where, 0.0, 10.0, fallback);
+  if (!(side >= 0.005 && side <= 0.15))
+    r.fail(where + ".cube_size", "a cube's side is 5-150 mm (0.005-0.15 m), is " +
+                                     std::to_string(int(std::lround(side * 1000))) + " mm");
+  return side;
+}
 
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw ProtocolError(source_ + ": " + where + ": " + what);
+// "blocks": the blocks whose trials ask the questionnaire, with "when": "blocks" only.
+std::vector<int> questionnaire_blocks(const ProtocolReader& r, const JsonValue& questionnaire,
+                                      const Protocol& p) {
+  const JsonValue* listed = questionnaire.find("blocks");
+  const bool given = p.questionnaire_timing == QuestionnaireTiming::kGivenBlocks;
+  if (!given) {
+    if (listed) r.fail("questionnaire.blocks", "needs \"when\": \"blocks\"");
+    return {};
   }
-
-  // Every key of `object` must be one of `known`: a misspelt key is an error, not ignored.
-  void check_keys(const JsonValue& object, const std::string& where,
-                  std::initializer_list<const char*> known) const {
-    if (!object.is_object()) fail(where, "must be an object");
-    for (const auto& [key, value] : object.as_object()) {
-      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
-        std::string list;
-        for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(where, "unknown key \"" + key + "\" (known: " + list + ")");
-      }
-    }
+  if (!listed || !listed->is_array() || listed->size() == 0)
+    r.fail("questionnaire.blocks", "must list the blocks (1 to " + std::to_string(p.blocks) +
+                                       ") after whose trials the questionnaire is asked");
+  std::set<int> blocks;
+  for (const JsonValue& b : listed->as_array()) {
+    const double x = b.is_number() ? b.as_number() : 0.0;
+    if (x != std::floor(x) || x < 1 || x > p.blocks)
+      r.fail("questionnaire.blocks", "a block is a number from 1 to " + std::to_string(p.blocks));
+    if (!blocks.insert(int(x)).second)
+      r.fail("questionnaire.blocks", "block " + std::to_string(int(x)) + " appears twice");
   }
+  return {blocks.begin(), blocks.end()};
+}
 
-  double number(const JsonValue& object, const char* key, const std::string& where, double lo,
-                double hi, std::optional<double> fallback = std::nullopt) const {
-    const JsonValue* v = object.find(key);
-    if (!v) {
-      if (fallback) return *fallback;
-      fail(where, std::string("\"") + key + "\" is required");
-    }
-    if (!v->is_number()) fail(where + "." + key, "must be a number");
-    const double x = v->as_number();
-    if (!(x >= lo && x <= hi)) {
-      std::ostringstream range;
-      range << "must be in [" << lo << ", " << hi << "], is " << x;
-      fail(where + "." + key, range.str());
-    }
-    return x;
-  }
-
-  int integer(const JsonValue& object, const char* key, const std::string& where, int lo, int hi,
-              std::optional<int> fallback = std::nullopt) const {
-    const double x = number(object, key, where, lo, hi,
-                            fallback ? std::optional<double>(*fallback) : std::nullopt);
-    if (x != std::floor(x)) fail(where + "." + key, "must be a whole number");
-    return int(x);
-  }
-
-  std::string text(const JsonValue& object, const char* key, const std::string& where,
-                   std::optional<std::string> fallback = std::nullopt) const {
-    const JsonValue* v = object.find(key);
-    if (!v) {
-      if (fallback) return *fallback;
-      fail(where, std::string("\"") + key + "\" is required");
-    }
-    if (!v->is_string() || v->as_string().empty())
-      fail(where + "." + key, "must be a non-empty string");
-    return v->as_string();
-  }
-
-  Eigen::Vector3d point(const JsonValue& object, const char* key, const std::string& where,
-                        const Eigen::Vector3d& fallback) const {
-    const JsonValue* v = object.find(key);
-    if (!v) return fallback;
-    if (!v->is_array() || v->size() != 3) fail(where + "." + key, "must be [x, y, z] in metres");
-    Eigen::Vector3d p;
-    for (int i = 0; i < 3; ++i) {
-      if (!(*v)[std::size_t(i)].is_number()) fail(where + "." + key, "must hold numbers");
-      p[i] = (*v)[std::size_t(i)].as_number();
-      if (std::abs(p[i]) > 2.0) fail(where + "." + key, "is more than 2 m from the origin");
-    }
-    return p;
-  }
-
- private:
-  std::string source_;
-};
-
-Level parse_level(const Reader& r, const std::string& factor, const JsonValue& v,
+Level parse_level(const ProtocolReader& r, const std::string& factor, const JsonValue& v,
                   const std::string& where) {
   Level level;
   if (factor == "strategy") {
-    r.check_keys(v, where, {"name"});
+    r.check_keys(v, where, {"name", "method", "parameters"});
     level.name = r.text(v, "name", where);
-    if (level.name != "naive" && level.name != "ours")
-      r.fail(where + ".name", "a strategy is \"naive\" or \"ours\", not \"" + level.name + "\"");
+    level.method = read_strategy_method(r, v, where);
   } else if (factor == "manipulation") {
     r.check_keys(v, where, {"name", "cube_size"});
     level.name = r.text(v, "name", where);
-    level.cube_size = r.number(v, "cube_size", where, 0.002, 0.2);
+    level.cube_size = cube_size(r, v, where, std::nullopt);
   } else if (factor == "hand_length") {
     r.check_keys(v, where, {"name", "length"});
     level.name = r.text(v, "name", where);
@@ -121,13 +77,13 @@ std::vector<Condition> Protocol::conditions() const {
   while (true) {
     Condition c;
     c.levels = index;
-    c.naive_strategy = naive_strategy;
+    c.strategy = strategy;
     c.cube_size = scene.cube_size;
     c.simulated_hand_length = simulated_hand_length;
     for (std::size_t f = 0; f < factors.size(); ++f) {
       const Level& level = factors[f].levels[std::size_t(index[f])];
       c.label += (f ? "-" : "") + level.name;
-      if (factors[f].name == "strategy") c.naive_strategy = level.name == "naive";
+      if (level.method) c.strategy = *level.method;
       if (level.cube_size) c.cube_size = *level.cube_size;
       if (level.hand_length) c.simulated_hand_length = *level.hand_length;
     }
@@ -150,6 +106,42 @@ std::vector<Condition> Protocol::conditions() const {
   return out;
 }
 
+bool Protocol::asks_questionnaire(int block) const {
+  switch (questionnaire_timing) {
+    case QuestionnaireTiming::kNever:
+      return false;
+    case QuestionnaireTiming::kLastBlock:
+      return block == blocks;
+    case QuestionnaireTiming::kEveryTrial:
+      return block >= 1;
+    case QuestionnaireTiming::kGivenBlocks:
+      return std::find(questionnaire_blocks.begin(), questionnaire_blocks.end(), block) !=
+             questionnaire_blocks.end();
+  }
+  return false;
+}
+
+std::string Protocol::questionnaire_schedule() const {
+  switch (questionnaire_timing) {
+    case QuestionnaireTiming::kNever:
+      return "never";
+    case QuestionnaireTiming::kLastBlock:
+      return "after each trial of the last block";
+    case QuestionnaireTiming::kEveryTrial:
+      return "after every trial";
+    case QuestionnaireTiming::kGivenBlocks:
+      break;
+  }
+  std::string list;
+  for (std::size_t k = 0; k < questionnaire_blocks.size(); ++k)
+    list += (k == 0                                 ? ""
+             : k + 1 == questionnaire_blocks.size() ? " and "
+                                                    : ", ") +
+            std::to_string(questionnaire_blocks[k]);
+  return "after each trial of block" + std::string(questionnaire_blocks.size() > 1 ? "s " : " ") +
+         list;
+}
+
 int Protocol::factor_index(const std::string& name) const {
   for (std::size_t f = 0; f < factors.size(); ++f)
     if (factors[f].name == name) return int(f);
@@ -157,7 +149,7 @@ int Protocol::factor_index(const std::string& name) const {
 }
 
 Protocol parse_protocol(const std::string& text, const std::string& source_name) {
-  const Reader r(source_name);
+  const ProtocolReader r(source_name);
   JsonValue root;
   try {
     root = JsonValue::parse(text);
@@ -208,14 +200,17 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
     if (!factor_names.insert(factor.name).second)
       r.fail(where + ".name", "factor \"" + factor.name + "\" appears twice");
     const JsonValue* levels = f.find("levels");
-    if (!levels || !levels->is_array() || levels->size() < 2)
-      r.fail(where, "\"levels\" must list at least two levels");
+    if (!levels || !levels->is_array()) r.fail(where, "\"levels\" must be an array");
+    if (levels->size() < 2)
+      r.fail(where + ".levels", "a factor needs at least two levels, \"" + factor.name + "\" has " +
+                                    std::to_string(levels->size()));
     std::set<std::string> level_names;
     for (std::size_t k = 0; k < levels->size(); ++k) {
-      factor.levels.push_back(
-          parse_level(r, factor.name, (*levels)[k], where + ".levels[" + std::to_string(k) + "]"));
+      const std::string at = where + ".levels[" + std::to_string(k) + "]";
+      factor.levels.push_back(parse_level(r, factor.name, (*levels)[k], at));
       if (!level_names.insert(factor.levels.back().name).second)
-        r.fail(where, "level \"" + factor.levels.back().name + "\" appears twice");
+        r.fail(at + ".name", "the label \"" + factor.levels.back().name +
+                                 "\" is another level's of \"" + factor.name + "\"");
     }
     p.factors.push_back(std::move(factor));
   }
@@ -226,7 +221,7 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
   }
 
   if (const JsonValue* q = root.find("questionnaire")) {
-    r.check_keys(*q, "questionnaire", {"when", "scale_points", "items"});
+    r.check_keys(*q, "questionnaire", {"when", "blocks", "scale_points", "items"});
     const std::string when = r.text(*q, "when", "questionnaire");
     if (when == "never")
       p.questionnaire_timing = QuestionnaireTiming::kNever;
@@ -234,8 +229,12 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
       p.questionnaire_timing = QuestionnaireTiming::kLastBlock;
     else if (when == "every-trial")
       p.questionnaire_timing = QuestionnaireTiming::kEveryTrial;
+    else if (when == "blocks")
+      p.questionnaire_timing = QuestionnaireTiming::kGivenBlocks;
     else
-      r.fail("questionnaire.when", "\"" + when + "\" is not one of never, last-block, every-trial");
+      r.fail("questionnaire.when",
+             "\"" + when + "\" is not one of never, last-block, every-trial, blocks");
+    p.questionnaire_blocks = questionnaire_blocks(r, *q, p);
     p.scale_points = r.integer(*q, "scale_points", "questionnaire", 2, 11);
     const JsonValue* items = q->find("items");
     if (!items || !items->is_array() || items->size() == 0)
@@ -271,7 +270,7 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
     p.scene.zone_a = r.point(*scene, "zone_a", "scene", p.scene.zone_a);
     p.scene.zone_b = r.point(*scene, "zone_b", "scene", p.scene.zone_b);
     p.scene.zone_size = r.number(*scene, "zone_size", "scene", 0.01, 1.0, p.scene.zone_size);
-    p.scene.cube_size = r.number(*scene, "cube_size", "scene", 0.002, 0.2, p.scene.cube_size);
+    p.scene.cube_size = cube_size(r, *scene, "scene", p.scene.cube_size);
     p.cube_density = r.number(*scene, "cube_density", "scene", 10, 20000, p.cube_density);
     p.rest_time_s = r.number(*scene, "rest_time_s", "scene", 0.0, 10.0, p.rest_time_s);
     if ((p.scene.zone_a - p.scene.zone_b).norm() < p.scene.zone_size)
@@ -286,7 +285,7 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
   if (root.find("strategy")) {
     const std::string s = r.text(root, "strategy", "protocol");
     if (s != "naive" && s != "ours") r.fail("protocol.strategy", "is \"naive\" or \"ours\"");
-    p.naive_strategy = s == "naive";
+    p.strategy.method = s == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
   }
   if (const JsonValue* trial = root.find("trial")) {
     r.check_keys(*trial, "trial", {"timeout_s"});
@@ -346,9 +345,7 @@ std::vector<PlannedTrial> plan_schedule(const Protocol& protocol, const std::str
       plan.push_back({int(plan.size()), 0, int(k) + 1, practice[k], 0, true, false});
   }
   for (int b = 0; b < protocol.blocks; ++b) {
-    const bool ask = protocol.questionnaire_timing == QuestionnaireTiming::kEveryTrial ||
-                     (protocol.questionnaire_timing == QuestionnaireTiming::kLastBlock &&
-                      b == protocol.blocks - 1);
+    const bool ask = protocol.asks_questionnaire(b + 1);
     for (int k = 0; k < n; ++k) {
       const int c = orders[std::size_t(b)][std::size_t(k)];
       plan.push_back(

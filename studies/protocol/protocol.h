@@ -7,26 +7,24 @@
 #include <array>
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/hand/hand_shape.h"
 #include "core/task/scene_layout.h"
+#include "studies/protocol/protocol_reader.h"
+#include "studies/protocol/strategy_method.h"
 
 namespace handlab::studies {
 
-class ProtocolError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// A level of a factor and the settings it fixes. Factors the pipeline knows:
-//   strategy      levels "naive" | "ours"         (retargeting strategy)
-//   manipulation  levels with "cube_size" (m)     (the cube of the task)
-//   hand_length   levels with "length" (m)        (the simulated hand's length)
+// A level of a factor and the settings it fixes; its name is a label for people, which the
+// pipeline never reads. Factors the pipeline knows:
+//   strategy      levels with "method" (and "parameters")   (the retargeting)
+//   manipulation  levels with "cube_size" (m)               (the cube of the task)
+//   hand_length   levels with "length" (m)                  (the simulated hand's length)
 struct Level {
   std::string name;
+  std::optional<StrategyMethod> method;
   std::optional<double> cube_size, hand_length;
 };
 
@@ -39,7 +37,7 @@ struct Factor {
 struct Condition {
   std::string label;                     // levels joined by '-', e.g. "naive-gross"
   std::vector<int> levels;               // per factor
-  bool naive_strategy = false;           // the strategy factor's level, or the protocol default
+  StrategyMethod strategy;               // the strategy factor's level, or the protocol's
   double cube_size = 0.06;               // m
   double simulated_hand_length = 0.214;  // m
   hand::HandShape simulated_hand;        // the protocol's shape at that length
@@ -51,7 +49,9 @@ enum class Counterbalancing {
   kFixed,               // the conditions in protocol order
 };
 
-enum class QuestionnaireTiming { kNever, kLastBlock, kEveryTrial };
+// After which trials the questionnaire is asked: each trial of the last block, of every
+// block, or of the blocks the protocol lists (practice trials never).
+enum class QuestionnaireTiming { kNever, kLastBlock, kEveryTrial, kGivenBlocks };
 
 struct QuestionnaireItem {
   std::string id;                    // column name in exports, e.g. "precision"
@@ -67,13 +67,14 @@ struct Protocol {
   Counterbalancing counterbalancing = Counterbalancing::kRandomizedPerBlock;
   int practice_per_condition = 0;
   QuestionnaireTiming questionnaire_timing = QuestionnaireTiming::kNever;
+  std::vector<int> questionnaire_blocks;  // kGivenBlocks: 1-based, ascending
   int scale_points = 5;
   std::vector<QuestionnaireItem> items;
   task::SceneLayout scene;
   double cube_density = 500.0;  // kg/m^3
   double rest_time_s = 0.5;     // the cube must rest in zone B this long
   double timeout_s = 60.0;
-  bool naive_strategy = false;  // without a strategy factor
+  StrategyMethod strategy;  // without a strategy factor ("strategy": "naive" | "ours")
   double simulated_hand_length = 0.214;
   double simulated_hand_breadth = 0.0;  // m across the MCPs; 0: 0.45 of the length
   double simulated_hand_tissue = 1.0;   // scales finger breadth and thickness
@@ -81,6 +82,10 @@ struct Protocol {
 
   std::vector<Condition> conditions() const;        // first factor varies slowest
   int factor_index(const std::string& name) const;  // -1 when absent
+  // Whether the trials of `block` (1-based; 0, practice, never) ask the questionnaire, and
+  // when it is asked in words ("after each trial of blocks 1 and 5").
+  bool asks_questionnaire(int block) const;
+  std::string questionnaire_schedule() const;
 };
 
 // Parses and validates; errors name the offending key.

@@ -104,10 +104,7 @@ class Builder {
     }
     ReportTable t;
     t.caption = "Questionnaire items (" + std::to_string(p.scale_points) + "-point scale, asked " +
-                (p.questionnaire_timing == QuestionnaireTiming::kLastBlock
-                     ? "after each trial of the last block"
-                     : "after every trial") +
-                ").";
+                p.questionnaire_schedule() + ").";
     t.header = {"Item", "Question", "Anchors (1 to " + std::to_string(p.scale_points) + ")"};
     for (const QuestionnaireItem& item : p.items)
       t.rows.push_back(

@@ -79,11 +79,9 @@ std::vector<std::pair<std::string, std::string>> protocol_summary(const Protocol
                                      ? "none"
                                      : std::to_string(protocol.practice_per_condition) +
                                            " trial(s) per condition before the blocks");
-  lines.emplace_back("Questionnaire",
-                     protocol.questionnaire_timing == QuestionnaireTiming::kNever ? "none"
-                     : protocol.questionnaire_timing == QuestionnaireTiming::kLastBlock
-                         ? "after each trial of the last block"
-                         : "after every trial");
+  lines.emplace_back("Questionnaire", protocol.questionnaire_timing == QuestionnaireTiming::kNever
+                                          ? "none"
+                                          : protocol.questionnaire_schedule());
   for (const QuestionnaireItem& item : protocol.items) {
     std::string anchors;
     for (std::size_t k = 0; k < item.anchors.size(); ++k)

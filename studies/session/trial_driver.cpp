@@ -242,16 +242,15 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   const Protocol& protocol = *setup.protocol;
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
   const task::SceneLayout layout = layout_of(setup);
-  const bool naive = setup.condition.naive_strategy;
+  const StrategyMethod& strategy = setup.condition.strategy;
   std::optional<tracking::TrackedHandFitter> fitter;
-  if (naive) {
+  if (strategy.method == retarget::Strategy::kNaive) {
     if (!tracker_.is_recording())
       fitter.emplace(setup.participant.hand_length, Side::kRight);
     else
       fitter = tracking::TrackedHandFitter::for_recording(recording_, Side::kRight);
   }
-  retarget::Retargeter retargeter(naive ? retarget::Strategy::kNaive : retarget::Strategy::kOurs,
-                                  sim, setup.calibration, fitter);
+  retarget::Retargeter retargeter(strategy.method, sim, setup.calibration, fitter, strategy.ours);
   const Eigen::Vector3d cube_start = task::cube_start_pose(layout).translation();
   std::unique_ptr<task::HandCubeWorld> physics;
   const task::SoftHandWorld* soft = nullptr;

@@ -4,7 +4,8 @@
 // the trial panel,
 // every questionnaire answered in its dialog with the keys, one trial redone with a reason;
 // then the study file read back and checked against what was done. And the app process
-// killed during a trial, the study reopened in a new window and the session resumed there.
+// killed during a trial, the study reopened in a new window and the session resumed there. And
+// a session of the 3 × 3 example design.
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
@@ -61,6 +62,19 @@ void when_form_opens(std::function<void(ParticipantForm*)> fill) {
     ASSERT_NE(form, nullptr);
     fill(form);
   });
+}
+
+// Enrols P01, a right-handed man new to VR, into the study `db`.
+void enrol_p01(const QString& db, int age, double hand_length) {
+  store::StudyStore store(db.toStdString());
+  store::Participant p;
+  p.id = "P01";
+  p.age = age;
+  p.sex = "M";
+  p.handedness = "right";
+  p.hand_length = hand_length;
+  p.vr_experience = "none";
+  studies::enrol_participant(store, p);
 }
 
 TEST(AppSession, RunsAWholeSessionFromTheWindow) {
@@ -263,6 +277,56 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   EXPECT_EQ(page->state_label()->text(), "–");
 }
 
+// A design beyond the paper's: the 3 × 3 example protocol's session through the trial panel,
+// on the grasp proxy with the scripted participant. The schedule holds its 36 trials, each of
+// the nine conditions ran four times (a practice trial and three blocks), and the
+// questionnaire came after each of the last block's nine trials.
+TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
+  const QString protocol = QString(HANDLAB_SOURCE_DIR) + "/studies/examples/three-by-three.json";
+  const QString db = QString::fromStdString(test::fresh_path("app_3x3.db"));
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  ASSERT_EQ(window.create_study(protocol, db), QString());
+  enrol_p01(db, 31, 0.191);
+  ASSERT_EQ(window.open_study(db), QString());
+  window.participants()->select("P01");
+  EXPECT_EQ(window.participants()->schedule()->rowCount(), 36);
+
+  SessionPage* page = window.session();
+  page->participant_box()->setCurrentText("P01");
+  page->tracker_box()->setCurrentIndex(3);  // scripted
+  page->world_box()->setCurrentIndex(
+      page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
+  page->real_time_box()->setChecked(false);
+  int questionnaires = 0;
+  QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireDialog* dialog) {
+    ++questionnaires;
+    QTimer::singleShot(0, [dialog] {
+      for (int k : {3, 4, 5}) QTest::keyClick(dialog, Qt::Key(Qt::Key_0 + k));
+      QTest::keyClick(dialog, Qt::Key_Return);
+    });
+  });
+  QSignalSpy ended(page, &SessionPage::session_ended);
+  QTest::mouseClick(page->start_button(), Qt::LeftButton);
+  ASSERT_TRUE(page->session_running());
+  ASSERT_TRUE(ended.wait(120000)) << "the session ends";
+  EXPECT_TRUE(ended.front().front().toString().contains("every trial done"))
+      << ended.front().front().toString().toStdString();
+  EXPECT_EQ(questionnaires, 9);
+  EXPECT_EQ(window.participants()->table()->item(0, 8)->text(), "complete");
+
+  store::StudyStore store(db.toStdString());
+  const auto plan = store.plan("P01");
+  const auto trials = store.trials("P01");
+  ASSERT_EQ(trials.size(), 36u);
+  std::map<int, int> runs;  // per condition
+  for (const auto& t : trials) ++runs[plan[std::size_t(t.position)].condition];
+  ASSERT_EQ(runs.size(), 9u);
+  for (const auto& [condition, n] : runs) EXPECT_EQ(n, 4) << "condition " << condition;
+  EXPECT_EQ(store.database().query_text("SELECT count(*) FROM answer"), "27");
+}
+
 // The trials of a participant, read while another process may be writing (a busy database
 // is read again).
 std::vector<store::TrialRow> trials_of(const QString& db, const std::string& id) {
@@ -290,17 +354,7 @@ TEST(AppSession, ResumesInTheAppAfterTheAppWasKilledDuringATrial) {
   const QString db = QString::fromStdString(test::fresh_path("app_killed.db"));
   const studies::Protocol protocol = studies::read_protocol(kProtocol.toStdString());
   store::StudyStore::create(db.toStdString(), studies::study_definition(protocol));
-  {
-    store::StudyStore store(db.toStdString());
-    store::Participant p;
-    p.id = "P01";
-    p.age = 35;
-    p.sex = "M";
-    p.handedness = "right";
-    p.hand_length = 0.19;
-    p.vr_experience = "none";
-    studies::enrol_participant(store, p);
-  }
+  enrol_p01(db, 35, 0.19);
 
   // The app runs the session in real time from the command line, as an experimenter would
   // start it, and is killed once two trials are done and the third has run a while.

@@ -100,7 +100,8 @@ TEST(CliMerge, ShardsMergedEqualTheStudyRunInOneProcess) {
   const Outputs whole = outputs(simulate("merge_whole.db", "", protocol));
   ASSERT_GT(std::count(whole.frames.begin(), whole.frames.end(), '\n'), 10000);
   ASSERT_NE(whole.analysis.find("\"manipulation\""), std::string::npos) << whole.analysis;
-  for (int m : {1, 2, 4}) {
+  // Two and four shards (a single shard merged is a copy of its part: nothing to compare).
+  for (int m : {2, 4}) {
     std::vector<std::string> parts;
     for (int k = m; k >= 1; --k)  // in reverse: the merge restores the enrolment order
       parts.push_back(simulate("merge_shard" + std::to_string(k) + "of" + std::to_string(m) + ".db",

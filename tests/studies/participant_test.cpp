@@ -248,7 +248,7 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
     const std::vector<TrialSetup> setups =
         setups_of_cube(p.protocol, p.person, cube, 7, p.calibration);
     ASSERT_EQ(setups.size(), 2u);
-    ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
+    ASSERT_NE(setups[0].condition.strategy.method, setups[1].condition.strategy.method);
     ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
     auto first = participant_for(setups[0], 5, p.own);
     const ClosedLoop loop = run_closed_loop(*first, setups[0]);
@@ -294,7 +294,7 @@ TEST(SimulatedParticipantKinematics, ReachAndGraspWithinPublishedRanges) {
   PipelineTrialDriver driver(TrackerKind::simulated(5));
   Condition base;
   for (const Condition& c : protocol.conditions())
-    if (!c.naive_strategy && c.cube_size == 0.06) base = c;
+    if (c.strategy.method == retarget::Strategy::kOurs && c.cube_size == 0.06) base = c;
   auto fit = [](const std::vector<double>& x, const std::vector<double>& y) {
     const double n = double(x.size());
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -508,7 +508,7 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
             setups_of_cube(protocol, person, cube, 3 + 5 * runs % 19, calibration);
         ASSERT_EQ(setups.size(), 2u);
         ASSERT_NE(setups[0].condition.label, setups[1].condition.label);
-        ASSERT_NE(setups[0].condition.naive_strategy, setups[1].condition.naive_strategy);
+        ASSERT_NE(setups[0].condition.strategy.method, setups[1].condition.strategy.method);
         ASSERT_TRUE(same_seen(seen_trial_of(setups[0], 120.0), seen_trial_of(setups[1], 120.0)));
         const hand::Skeleton sim = hand::build_simulated_hand(setups[0].condition.simulated_hand);
         task::SceneLayout layout = protocol.scene;
@@ -552,9 +552,7 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
         }
         auto first = participant_for(setups[0], 5, own, memory);
         auto second = participant_for(setups[1], 5, own, memory);
-        const retarget::Strategy strategy = setups[0].condition.naive_strategy
-                                                ? retarget::Strategy::kNaive
-                                                : retarget::Strategy::kOurs;
+        const retarget::Strategy strategy = setups[0].condition.strategy.method;
         const ClosedLoop loop =
             drive(*first, *world, setups[0], strategy, limit, &phases, rest_time);
         for (std::size_t k = 0; k < loop.sent.size(); ++k)
@@ -596,8 +594,7 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
   task::SceneLayout layout = p.protocol.scene;
   layout.cube_size = 0.06;
-  const retarget::Strategy strategy =
-      setup.condition.naive_strategy ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
+  const retarget::Strategy strategy = setup.condition.strategy.method;
   {
     SeenOtherwiseWorld dropped(sim, layout, SeenOtherwiseWorld::Twist::kDropOnce);
     auto participant = participant_for(setup, 5, p.own, {});
@@ -613,9 +610,7 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
     layout.cube_size = 0.01;
     SeenOtherwiseWorld hidden(sim, layout, SeenOtherwiseWorld::Twist::kHideContact);
     auto participant = participant_for(fine, 5, p.own, {});
-    drive(*participant, hidden, fine,
-          fine.condition.naive_strategy ? retarget::Strategy::kNaive : retarget::Strategy::kOurs,
-          30.0);
+    drive(*participant, hidden, fine, fine.condition.strategy.method, 30.0);
     const TrialExperience e = participant->experience();
     ASSERT_GE(e.grasp_attempts, 2);  // the closing missed, and it closed again
     EXPECT_EQ(e.losses, 0);
@@ -643,7 +638,7 @@ TEST(SimulatedParticipantCare, WipesOffACubeCaughtOnItsThumb) {
   for (const Condition& c : protocol.conditions())
     if (c.cube_size == 0.01) fine.push_back(c);
   ASSERT_EQ(fine.size(), 2u);
-  ASSERT_NE(fine[0].naive_strategy, fine[1].naive_strategy);
+  ASSERT_NE(fine[0].strategy.method, fine[1].strategy.method);
   setup.condition = fine[0];
   TrialSetup swapped = setup;
   swapped.condition = fine[1];

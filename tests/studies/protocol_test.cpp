@@ -22,10 +22,10 @@ TEST(Protocol, TheStudyFileDescribesThePaper) {
   const auto conditions = p.conditions();
   ASSERT_EQ(conditions.size(), 4u);
   EXPECT_EQ(conditions[0].label, "naive-gross");
-  EXPECT_TRUE(conditions[0].naive_strategy);
+  EXPECT_EQ(conditions[0].strategy.method, handlab::retarget::Strategy::kNaive);
   EXPECT_DOUBLE_EQ(conditions[0].cube_size, 0.06);
   EXPECT_EQ(conditions[3].label, "ours-fine");
-  EXPECT_FALSE(conditions[3].naive_strategy);
+  EXPECT_EQ(conditions[3].strategy.method, handlab::retarget::Strategy::kOurs);
   EXPECT_DOUBLE_EQ(conditions[3].cube_size, 0.01);
   EXPECT_DOUBLE_EQ(conditions[3].simulated_hand_length, 0.214);
   EXPECT_EQ(p.blocks, 5);
@@ -105,7 +105,27 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
   const std::vector<Case> cases = {
       {with(text, "\"name\": \"manipulation\"", "\"name\": \"glove\""), "unknown factor \"glove\""},
       {with(text, "\"blocks\": 5", "\"blokcs\": 5"), "unknown key \"blokcs\""},
-      {with(text, "{\"name\": \"ours\"}", "{\"name\": \"naive\"}"), "appears twice"},
+      {with(text, "{\"name\": \"ours\", \"method\": \"ours\"}",
+            "{\"name\": \"naive\", \"method\": \"ours\"}"),
+       "factors[0].levels[1].name: the label \"naive\" is another level's of \"strategy\""},
+      {with(text, "\"method\": \"ours\"", "\"method\": \"mirror\""),
+       "factors[0].levels[1].method: unknown method \"mirror\" (known: naive, ours)"},
+      {with(text, "{\"name\": \"naive\", \"method\": \"naive\"}",
+            "{\"name\": \"naive\", \"method\": \"naive\", \"parameters\": {}}"),
+       "factors[0].levels[0].parameters: method \"naive\" takes no parameters"},
+      {with(text, "\"method\": \"ours\"", "\"method\": \"ours\", \"parameters\": {\"damping\": 1}"),
+       "factors[0].levels[1].parameters: method \"ours\" takes no parameter \"damping\""},
+      {with(text, "\"method\": \"ours\"",
+            "\"method\": \"ours\", \"parameters\": {\"tip_weights\": [1, 1]}"),
+       "factors[0].levels[1].parameters.tip_weights: must list five weights"},
+      {with(text, "{\"name\": \"ours\", \"method\": \"ours\"}", "{\"name\": \"B\"}"),
+       "factors[0].levels[1]: \"method\" is required"},
+      {with(text, ",\n      {\"name\": \"fine\", \"cube_size\": 0.01}", ""),
+       "factors[1].levels: a factor needs at least two levels, \"manipulation\" has 1"},
+      {with(text, "\"cube_size\": 0.01", "\"cube_size\": 0.003"),
+       "factors[1].levels[1].cube_size: a cube's side is 5-150 mm (0.005-0.15 m), is 3 mm"},
+      {with(text, "\"cube_size\": 0.06", "\"cube_size\": 0.2"),
+       "factors[1].levels[0].cube_size: a cube's side is 5-150 mm (0.005-0.15 m), is 200 mm"},
       {with(text, "\"counterbalancing\": \"randomized-per-block\"",
             "\"counterbalancing\": \"abba\""),
        "abba"},
@@ -119,6 +139,71 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
       ADD_FAILURE() << "accepted: " << c.message;
     } catch (const ProtocolError& e) {
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Protocol, AStrategyLevelNamesItsMethodAndParametersApartFromItsLabel) {
+  std::string text = read_protocol(kStudy).text;
+  text = with(text, "{\"name\": \"naive\", \"method\": \"naive\"}",
+              "{\"name\": \"Condition A\", \"method\": \"naive\"}");
+  text = with(text, "{\"name\": \"ours\", \"method\": \"ours\"}",
+              "{\"name\": \"B\", \"method\": \"ours\"}, {\"name\": \"C\", \"method\": "
+              "\"ours\", \"parameters\": {\"tip_weights\": [2, 2, 1, 1, 0.5], "
+              "\"spatial_weight\": 2e-8, \"max_iterations\": 8}}");
+  const Protocol p = parse_protocol(text, "p.json");
+  const auto conditions = p.conditions();
+  ASSERT_EQ(conditions.size(), 6u);
+  EXPECT_EQ(conditions[0].label, "Condition A-gross");
+  EXPECT_EQ(conditions[0].strategy.method, retarget::Strategy::kNaive);
+  EXPECT_EQ(conditions[2].label, "B-gross");
+  EXPECT_EQ(conditions[2].strategy.method, retarget::Strategy::kOurs);
+  const retarget::OursOptions defaults;
+  EXPECT_EQ(conditions[2].strategy.ours.tip_weights, defaults.tip_weights);
+  EXPECT_EQ(conditions[2].strategy.ours.solver.max_iterations, defaults.solver.max_iterations);
+  const StrategyMethod& c = conditions[5].strategy;
+  EXPECT_EQ(conditions[5].label, "C-fine");
+  EXPECT_EQ(c.method, retarget::Strategy::kOurs);
+  EXPECT_EQ(c.ours.tip_weights, (std::array<double, 5>{2, 2, 1, 1, 0.5}));
+  EXPECT_DOUBLE_EQ(c.ours.solver.spatial_weight, 2e-8);
+  EXPECT_EQ(c.ours.solver.max_iterations, 8);
+  EXPECT_DOUBLE_EQ(c.ours.solver.temporal_weight, defaults.solver.temporal_weight);
+  // A protocol from before methods (the level's name was its method) reads as it did.
+  text = read_protocol(kStudy).text;
+  text = with(text, "{\"name\": \"naive\", \"method\": \"naive\"}", "{\"name\": \"naive\"}");
+  text = with(text, "{\"name\": \"ours\", \"method\": \"ours\"}", "{\"name\": \"ours\"}");
+  const auto old = parse_protocol(text, "old.json").conditions();
+  EXPECT_EQ(old[1].strategy.method, retarget::Strategy::kNaive);
+  EXPECT_EQ(old[2].strategy.method, retarget::Strategy::kOurs);
+}
+
+TEST(Protocol, TheQuestionnaireAfterTheBlocksTheProtocolLists) {
+  const std::string study = read_protocol(kStudy).text;
+  const Protocol p = parse_protocol(
+      with(study, "\"when\": \"last-block\"", "\"when\": \"blocks\", \"blocks\": [3, 1]"),
+      "p.json");
+  EXPECT_EQ(p.questionnaire_blocks, (std::vector<int>{1, 3}));
+  EXPECT_EQ(p.questionnaire_schedule(), "after each trial of blocks 1 and 3");
+  int asked = 0;
+  for (const auto& t : plan_schedule(p, "P01", 0)) {
+    EXPECT_EQ(t.questionnaire, t.block == 1 || t.block == 3) << t.position;
+    asked += t.questionnaire;
+  }
+  EXPECT_EQ(asked, 8);
+  EXPECT_EQ(read_protocol(kStudy).questionnaire_schedule(), "after each trial of the last block");
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {"\"when\": \"blocks\", \"blocks\": [6]",
+            "questionnaire.blocks: a block is a number from 1 to 5"},
+           {"\"when\": \"blocks\", \"blocks\": [2, 2]",
+            "questionnaire.blocks: block 2 appears twice"},
+           {"\"when\": \"blocks\"", "questionnaire.blocks: must list the blocks (1 to 5)"},
+           {"\"when\": \"last-block\", \"blocks\": [2]",
+            "questionnaire.blocks: needs \"when\": \"blocks\""}}) {
+    try {
+      parse_protocol(with(study, "\"when\": \"last-block\"", text), "q.json");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const ProtocolError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/store/study_store.h"
+#include "core/util/sha256.h"
 #include "studies/simulate/simulated_study.h"
 #include "tests/support/test_files.h"
 
@@ -46,6 +47,59 @@ std::string content(const std::string& path) {
     }
   }
   return out.str();
+}
+
+// What the participants did: every row of `content` but the study's and the conditions'
+// (which hold the labels), and a digest of every frame.
+std::string motor_data(const std::string& path) {
+  std::string rows = content(path);
+  rows = rows.substr(rows.find("SELECT id, enrolment"));
+  store::Database db(path, store::Database::Mode::kReadOnly);
+  std::string frames;
+  store::Statement s = db.prepare("SELECT trial_id, seq, t, data FROM frame ORDER BY id");
+  while (s.step()) {
+    frames += s.column_text(0) + "|" + s.column_text(1) + "|" + s.column_text(2) + "|";
+    const std::vector<std::uint8_t> data = s.column_blob(3);
+    frames.append(data.begin(), data.end());
+  }
+  return rows + "frames " + util::sha256_hex(frames) + "\n";
+}
+
+// `text` with `from` (present) replaced by `to`.
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Labels are for people: the paper's protocol with every label changed (and the strategies'
+// order in the file kept) gives the same trials, answers and frames under the same seed.
+TEST(SimulatedStudy, LabelsAreForPeopleEveryLabelRenamedTheSameMotorData) {
+  std::string text = with(read_protocol(kStudy).text, "\"blocks\": 5", "\"blocks\": 1");
+  const Protocol paper = parse_protocol(text, "paper");
+  text = with(text, "{\"name\": \"naive\", \"method\": \"naive\"}",
+              "{\"name\": \"Condition A\", \"method\": \"naive\"}");
+  text = with(text, "{\"name\": \"ours\", \"method\": \"ours\"}",
+              "{\"name\": \"Condition B\", \"method\": \"ours\"}");
+  text = with(text, "{\"name\": \"gross\"", "{\"name\": \"large\"");
+  text = with(text, "{\"name\": \"fine\"", "{\"name\": \"small\"");
+  const Protocol renamed = parse_protocol(text, "renamed");
+  ASSERT_EQ(renamed.conditions()[3].label, "Condition B-small");
+  SimulationOptions options;
+  options.participants = 2;
+  options.seed = 9;
+  options.world = WorldKind::kGraspProxy;
+  options.jobs = 2;
+  options.frames = true;
+  const std::string a = test::fresh_path("labels_paper.db"), b = test::fresh_path("labels_new.db");
+  simulate_study(paper, a, options);
+  simulate_study(renamed, b, options);
+  const std::string data = motor_data(a);
+  ASSERT_GT(data.size(), 2000u);
+  EXPECT_EQ(motor_data(b), data);
+  store::Database db(b, store::Database::Mode::kReadOnly);
+  EXPECT_EQ(db.query_text("SELECT label FROM condition WHERE id = 3"), "Condition B-small");
 }
 
 TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {

@@ -1,0 +1,79 @@
+#include "studies/protocol/protocol_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace handlab::studies {
+
+using util::JsonValue;
+
+void ProtocolReader::fail(const std::string& where, const std::string& what) const {
+  throw ProtocolError(source_ + ": " + where + ": " + what);
+}
+
+void ProtocolReader::check_keys(const JsonValue& object, const std::string& where,
+                                std::initializer_list<const char*> known) const {
+  if (!object.is_object()) fail(where, "must be an object");
+  for (const auto& [key, value] : object.as_object()) {
+    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
+      std::string list;
+      for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+      fail(where, "unknown key \"" + key + "\" (known: " + list + ")");
+    }
+  }
+}
+
+double ProtocolReader::number(const JsonValue& object, const char* key, const std::string& where,
+                              double lo, double hi, std::optional<double> fallback) const {
+  const JsonValue* v = object.find(key);
+  if (!v) {
+    if (fallback) return *fallback;
+    fail(where, std::string("\"") + key + "\" is required");
+  }
+  if (!v->is_number()) fail(where + "." + key, "must be a number");
+  const double x = v->as_number();
+  if (!(x >= lo && x <= hi)) {
+    std::ostringstream range;
+    range << "must be in [" << lo << ", " << hi << "], is " << x;
+    fail(where + "." + key, range.str());
+  }
+  return x;
+}
+
+int ProtocolReader::integer(const JsonValue& object, const char* key, const std::string& where,
+                            int lo, int hi, std::optional<int> fallback) const {
+  const double x = number(object, key, where, lo, hi,
+                          fallback ? std::optional<double>(*fallback) : std::nullopt);
+  if (x != std::floor(x)) fail(where + "." + key, "must be a whole number");
+  return int(x);
+}
+
+std::string ProtocolReader::text(const JsonValue& object, const char* key, const std::string& where,
+                                 std::optional<std::string> fallback) const {
+  const JsonValue* v = object.find(key);
+  if (!v) {
+    if (fallback) return *fallback;
+    fail(where, std::string("\"") + key + "\" is required");
+  }
+  if (!v->is_string() || v->as_string().empty())
+    fail(where + "." + key, "must be a non-empty string");
+  return v->as_string();
+}
+
+Eigen::Vector3d ProtocolReader::point(const JsonValue& object, const char* key,
+                                      const std::string& where,
+                                      const Eigen::Vector3d& fallback) const {
+  const JsonValue* v = object.find(key);
+  if (!v) return fallback;
+  if (!v->is_array() || v->size() != 3) fail(where + "." + key, "must be [x, y, z] in metres");
+  Eigen::Vector3d p;
+  for (int i = 0; i < 3; ++i) {
+    if (!(*v)[std::size_t(i)].is_number()) fail(where + "." + key, "must hold numbers");
+    p[i] = (*v)[std::size_t(i)].as_number();
+    if (std::abs(p[i]) > 2.0) fail(where + "." + key, "is more than 2 m from the origin");
+  }
+  return p;
+}
+
+}  // namespace handlab::studies
