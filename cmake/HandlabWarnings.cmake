@@ -18,7 +18,11 @@ if(HANDLAB_SANITIZE)
                       -fno-sanitize=alignment,null,pointer-overflow
                       # GCC's manual: sanitizers raise -Wmaybe-uninitialized's false positives
                       # (Release still warns).
-                      -Wno-maybe-uninitialized)
+                      -Wno-maybe-uninitialized
+                      # Its debug information would name the build folder, which ccache then
+                      # hashes too: mapped away, clones in other folders share the cache
+                      # (ccache's manual, "Compiling in different directories").
+                      -fdebug-prefix-map=${CMAKE_BINARY_DIR}=.)
   add_link_options(-fsanitize=address,undefined)
 endif()
 

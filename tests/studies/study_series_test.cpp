@@ -25,9 +25,13 @@ const std::string kSource = HANDLAB_SOURCE_DIR;
 const std::string kProtocol = kSource + "/studies/fine-manipulation-2021.json";
 const std::string kPublished = kSource + "/studies/fine-manipulation-2021-published.json";
 
-// A copy of a committed study database (opening a study may write to it).
+// A copy of a committed study database (opening a study may write to it), named after the test
+// that asks: CTest runs the tests of this file side by side.
 std::string simulated_study(int seed) {
-  const std::string copy = test::fresh_path("series_seed" + std::to_string(seed) + ".db");
+  const ::testing::TestInfo* asking = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string copy =
+      test::fresh_path(std::string(asking->test_suite_name()) + "_" + asking->name() + "_seed" +
+                       std::to_string(seed) + ".db");
   std::filesystem::copy_file(
       kSource + "/tests/data/studies/simulated-n20-seed" + std::to_string(seed) + ".db", copy);
   return copy;
