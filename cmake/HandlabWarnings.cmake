@@ -12,8 +12,9 @@ function(handlab_target_setup target)
 endfunction()
 
 if(HANDLAB_SANITIZE)
-  # UBSan without three checks that halve the tests' time (docs/development.md says why each
-  # may go): after -fsanitize=undefined, as GCC reads these flags in order.
+  # UBSan without three checks that cost half a simulated participant's time under the
+  # sanitizers (docs/development.md says why each may go): after -fsanitize=undefined, as GCC
+  # reads these flags in order.
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
                       -fno-sanitize=alignment,null,pointer-overflow
                       # GCC's manual: sanitizers raise -Wmaybe-uninitialized's false positives

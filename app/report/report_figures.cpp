@@ -119,7 +119,11 @@ QFont cell_label_font(const QFont& axes_font, const QSizeF& slot, const QStringL
       return needed.width() <= slot.width() + 0.5 && needed.height() <= slot.height();
     });
     if (fits) break;
-    font.setPixelSize(std::max(6, int(font.pixelSize() * 0.85)));
+    // The PDF's and the app's fonts are sized in points, the SVG's in pixels.
+    if (font.pixelSize() > 0)
+      font.setPixelSize(std::max(6, int(font.pixelSize() * 0.85)));
+    else
+      font.setPointSizeF(std::max(4.5, font.pointSizeF() * 0.85));
   }
   return font;
 }
@@ -362,8 +366,10 @@ double figure_height(studies::FigureKind kind, const studies::StudyDatabaseAnaly
     case studies::FigureKind::kTimeByCondition:
       return 0.55 * width;
     case studies::FigureKind::kItems:
-      return items_in_rows(analysis) ? 0.3 * width * double(analysis.items_by_condition.size())
-                                     : 0.42 * width;
+      // In rows, each item's panel 0.3 of the width high, all of them within a page.
+      return items_in_rows(analysis)
+                 ? std::min(1.2, 0.3 * double(analysis.items_by_condition.size())) * width
+                 : 0.42 * width;
     default:
       return 0.45 * width;
   }

@@ -215,6 +215,14 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
     p.factors.push_back(std::move(factor));
   }
 
+  // A condition's label joins its levels' with '-': free labels may meet ("a-b" and "c",
+  // "a" and "b-c"), and results are kept by condition label.
+  std::set<std::string> condition_labels;
+  for (const Condition& c : p.conditions())
+    if (!condition_labels.insert(c.label).second)
+      r.fail("factors", "two conditions would both be labelled \"" + c.label +
+                            "\": a level's label with '-' meets another's");
+
   if (const JsonValue* practice = root.find("practice")) {
     r.check_keys(*practice, "practice", {"trials_per_condition"});
     p.practice_per_condition = r.integer(*practice, "trials_per_condition", "practice", 0, 10);

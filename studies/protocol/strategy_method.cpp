@@ -41,8 +41,11 @@ retarget::OursOptions read_ours_parameters(const ProtocolReader& r, const JsonVa
     }
     if (sum <= 0) r.fail(where + ".tip_weights", "at least one fingertip must count");
   }
-  s.spatial_weight = r.number(parameters, "spatial_weight", where, 0, 1e-3, s.spatial_weight);
-  s.temporal_weight = r.number(parameters, "temporal_weight", where, 0, 1e-3, s.temporal_weight);
+  // Above zero: the regularisers keep the fit's matrix positive definite (a finger has more
+  // joints than its tip pins down).
+  s.spatial_weight = r.number(parameters, "spatial_weight", where, 1e-12, 1e-3, s.spatial_weight);
+  s.temporal_weight =
+      r.number(parameters, "temporal_weight", where, 1e-12, 1e-3, s.temporal_weight);
   s.max_iterations = r.integer(parameters, "max_iterations", where, 1, 1000, s.max_iterations);
   s.cold_start_iterations =
       r.integer(parameters, "cold_start_iterations", where, 1, 10000, s.cold_start_iterations);
@@ -51,10 +54,6 @@ retarget::OursOptions read_ours_parameters(const ProtocolReader& r, const JsonVa
 }
 
 }  // namespace
-
-std::string method_name(retarget::Strategy method) {
-  return method == retarget::Strategy::kNaive ? "naive" : "ours";
-}
 
 StrategyMethod read_strategy_method(const ProtocolReader& r, const JsonValue& level,
                                     const std::string& where) {

@@ -18,9 +18,6 @@ struct StrategyMethod {
   retarget::OursOptions ours;  // Ours' parameters; Naive takes none
 };
 
-// "naive" | "ours".
-std::string method_name(retarget::Strategy method);
-
 // A strategy level's method and parameters; `where` names the level in errors.
 StrategyMethod read_strategy_method(const ProtocolReader& reader, const util::JsonValue& level,
                                     const std::string& where);

@@ -97,8 +97,15 @@ std::string with(const std::string& text, const std::string& from, const std::st
   return out;
 }
 
+// The study's protocol with its strategy levels' methods written out (the file names its
+// levels naive and ours, which were their methods before levels named them).
+std::string with_methods(const std::string& text) {
+  return with(with(text, "{\"name\": \"naive\"}", "{\"name\": \"naive\", \"method\": \"naive\"}"),
+              "{\"name\": \"ours\"}", "{\"name\": \"ours\", \"method\": \"ours\"}");
+}
+
 TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
-  const std::string text = read_protocol(kStudy).text;
+  const std::string text = with_methods(read_protocol(kStudy).text);
   struct Case {
     std::string text, message;
   };
@@ -120,6 +127,14 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
        "factors[0].levels[1].parameters.tip_weights: must list five weights"},
       {with(text, "{\"name\": \"ours\", \"method\": \"ours\"}", "{\"name\": \"B\"}"),
        "factors[0].levels[1]: \"method\" is required"},
+      {with(text, "\"method\": \"ours\"",
+            "\"method\": \"ours\", \"parameters\": {\"spatial_weight\": 0}"),
+       "factors[0].levels[1].parameters.spatial_weight: must be in [1e-12, 0.001], is 0"},
+      {with(with(with(with(text, "{\"name\": \"naive\",", "{\"name\": \"a-b\","),
+                      "{\"name\": \"ours\",", "{\"name\": \"a\","),
+                 "\"name\": \"gross\"", "\"name\": \"c\""),
+            "\"name\": \"fine\"", "\"name\": \"b-c\""),
+       "factors: two conditions would both be labelled \"a-b-c\""},
       {with(text, ",\n      {\"name\": \"fine\", \"cube_size\": 0.01}", ""),
        "factors[1].levels: a factor needs at least two levels, \"manipulation\" has 1"},
       {with(text, "\"cube_size\": 0.01", "\"cube_size\": 0.003"),
@@ -144,7 +159,7 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
 }
 
 TEST(Protocol, AStrategyLevelNamesItsMethodAndParametersApartFromItsLabel) {
-  std::string text = read_protocol(kStudy).text;
+  std::string text = with_methods(read_protocol(kStudy).text);
   text = with(text, "{\"name\": \"naive\", \"method\": \"naive\"}",
               "{\"name\": \"Condition A\", \"method\": \"naive\"}");
   text = with(text, "{\"name\": \"ours\", \"method\": \"ours\"}",
@@ -168,11 +183,8 @@ TEST(Protocol, AStrategyLevelNamesItsMethodAndParametersApartFromItsLabel) {
   EXPECT_DOUBLE_EQ(c.ours.solver.spatial_weight, 2e-8);
   EXPECT_EQ(c.ours.solver.max_iterations, 8);
   EXPECT_DOUBLE_EQ(c.ours.solver.temporal_weight, defaults.solver.temporal_weight);
-  // A protocol from before methods (the level's name was its method) reads as it did.
-  text = read_protocol(kStudy).text;
-  text = with(text, "{\"name\": \"naive\", \"method\": \"naive\"}", "{\"name\": \"naive\"}");
-  text = with(text, "{\"name\": \"ours\", \"method\": \"ours\"}", "{\"name\": \"ours\"}");
-  const auto old = parse_protocol(text, "old.json").conditions();
+  // The study's file, from before methods (a level's name was its method), reads as it did.
+  const auto old = read_protocol(kStudy).conditions();
   EXPECT_EQ(old[1].strategy.method, retarget::Strategy::kNaive);
   EXPECT_EQ(old[2].strategy.method, retarget::Strategy::kOurs);
 }

@@ -73,15 +73,14 @@ std::string with(std::string text, const std::string& from, const std::string& t
   return text;
 }
 
-// Labels are for people: the paper's protocol with every label changed (and the strategies'
-// order in the file kept) gives the same trials, answers and frames under the same seed.
+// Labels are for people: the paper's protocol (its levels named by their methods, as before
+// levels named them) and the same with every label changed and the methods written out give
+// the same trials, answers and frames under the same seed.
 TEST(SimulatedStudy, LabelsAreForPeopleEveryLabelRenamedTheSameMotorData) {
   std::string text = with(read_protocol(kStudy).text, "\"blocks\": 5", "\"blocks\": 1");
   const Protocol paper = parse_protocol(text, "paper");
-  text = with(text, "{\"name\": \"naive\", \"method\": \"naive\"}",
-              "{\"name\": \"Condition A\", \"method\": \"naive\"}");
-  text = with(text, "{\"name\": \"ours\", \"method\": \"ours\"}",
-              "{\"name\": \"Condition B\", \"method\": \"ours\"}");
+  text = with(text, "{\"name\": \"naive\"}", "{\"name\": \"Condition A\", \"method\": \"naive\"}");
+  text = with(text, "{\"name\": \"ours\"}", "{\"name\": \"Condition B\", \"method\": \"ours\"}");
   text = with(text, "{\"name\": \"gross\"", "{\"name\": \"large\"");
   text = with(text, "{\"name\": \"fine\"", "{\"name\": \"small\"");
   const Protocol renamed = parse_protocol(text, "renamed");
