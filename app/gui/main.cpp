@@ -20,7 +20,7 @@
 #include "app/gui/participant_window.h"
 #include "app/gui/participants_page.h"
 #include "app/gui/pinch_simulation.h"
-#include "app/gui/questionnaire_dialog.h"
+#include "app/gui/questionnaire_form.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/session_page.h"
 #include "app/gui/study_home.h"
@@ -266,7 +266,9 @@ int main(int argc, char** argv) {
   if (parser.isSet(screenshot)) {
     auto save = [&] {
       QImage picture = handlab::gui::grab_with_views(&window);
-      if (auto* dialog = window.session()->questionnaire()) {  // as it stands over the window
+      auto* form = window.session()->questionnaire();
+      if (form && form->window() != window.participant_window()) {  // a dialog over the window
+        QWidget* dialog = form->window();
         QPainter painter(&picture);
         painter.drawPixmap(dialog->frameGeometry().topLeft() - window.frameGeometry().topLeft(),
                            dialog->grab());

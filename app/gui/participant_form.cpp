@@ -14,8 +14,10 @@
 namespace handlab::gui {
 
 ParticipantForm::ParticipantForm(std::vector<store::Participant> enrolled,
-                                 const store::Participant* editing, QWidget* parent)
+                                 const store::Participant* editing, QWidget* parent,
+                                 const studies::Protocol* protocol)
     : QDialog(parent), enrolled_(std::move(enrolled)), editing_(editing != nullptr) {
+  if (protocol) protocol_ = *protocol;
   setWindowTitle(editing ? tr("Edit Participant") : tr("Add Participant"));
   setObjectName("participant_form");
   auto* form = new QFormLayout(this);
@@ -50,6 +52,13 @@ ParticipantForm::ParticipantForm(std::vector<store::Participant> enrolled,
   vr_->setObjectName("vr_experience");
   vr_->setEditable(true);
   vr_->addItems({"", "none", "some", "yes", "expert"});
+  if (protocol_)
+    for (const studies::BetweenFactor& f : protocol_->between)
+      if (f.field == "vr_experience")
+        for (const studies::BetweenLevel& l : f.levels)
+          for (const std::string& v : l.values)
+            if (vr_->findText(QString::fromStdString(v)) < 0)
+              vr_->addItem(QString::fromStdString(v));
   notes_ = new QLineEdit;
   notes_->setObjectName("notes");
   form->addRow(tr("Id"), id_);
@@ -111,7 +120,8 @@ QStringList ParticipantForm::problems() const {
 
 void ParticipantForm::validate() {
   current_problems_.clear();
-  const auto problems = studies::participant_problems(participant(), enrolled_);
+  const auto problems =
+      studies::participant_problems(participant(), enrolled_, protocol_ ? &*protocol_ : nullptr);
   QWidget* fields[] = {id_, age_, sex_, handedness_, hand_length_, vr_};
   const char* names[] = {"id", "age", "sex", "handedness", "hand_length", "vr_experience"};
   for (int f = 0; f < 6; ++f) {

@@ -3,11 +3,13 @@
 // everything is acceptable. The hand length is entered in centimetres.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <QDialog>
 
 #include "core/store/study_store.h"
+#include "studies/protocol/protocol.h"
 
 class QComboBox;
 class QDialogButtonBox;
@@ -22,9 +24,11 @@ class ParticipantForm : public QDialog {
   Q_OBJECT
 
  public:
-  // `editing`: the participant to change (its id fixed); null: a new one.
+  // `editing`: the participant to change (its id fixed); null: a new one. With the study's
+  // protocol, a field that places the participant in no group of a between factor it decides
+  // is refused too, and the VR experience offers the protocol's answers.
   ParticipantForm(std::vector<store::Participant> enrolled, const store::Participant* editing,
-                  QWidget* parent = nullptr);
+                  QWidget* parent = nullptr, const studies::Protocol* protocol = nullptr);
   store::Participant participant() const;
   // The reasons shown now (empty: acceptable).
   QStringList problems() const;
@@ -42,6 +46,7 @@ class ParticipantForm : public QDialog {
   void validate();
 
   std::vector<store::Participant> enrolled_;
+  std::optional<studies::Protocol> protocol_;
   bool editing_ = false;
   QLineEdit *id_ = nullptr, *notes_ = nullptr;
   QSpinBox* age_ = nullptr;

@@ -1,10 +1,13 @@
 #include "app/gui/participant_window.h"
 
+#include <QCloseEvent>
 #include <QGuiApplication>
 #include <QLabel>
 #include <QScreen>
+#include <QStackedWidget>
 #include <QVBoxLayout>
 
+#include "app/gui/questionnaire_form.h"
 #include "app/gui/scene_view.h"
 
 namespace handlab::gui {
@@ -12,7 +15,13 @@ namespace handlab::gui {
 ParticipantWindow::ParticipantWindow(QWidget* parent) : QWidget(parent, Qt::Window) {
   setWindowTitle(tr("handlab — participant"));
   setObjectName("participant_window");
-  auto* layout = new QVBoxLayout(this);
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(0, 0, 0, 0);
+  pages_ = new QStackedWidget;
+  outer->addWidget(pages_);
+  scene_page_ = new QWidget;
+  pages_->addWidget(scene_page_);
+  auto* layout = new QVBoxLayout(scene_page_);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->setSpacing(0);
   view_ = new SceneView;
@@ -34,6 +43,34 @@ void ParticipantWindow::set_frame(const task::SceneLayout& layout,
 
 void ParticipantWindow::set_instruction(const QString& text) {
   if (instruction_->text() != text) instruction_->setText(text);
+}
+
+void ParticipantWindow::show_questionnaire(QuestionnaireForm* form) {
+  end_questionnaire();
+  questionnaire_ = form;
+  pages_->addWidget(form);
+  pages_->setCurrentWidget(form);
+  activateWindow();
+  form->setFocus();
+}
+
+void ParticipantWindow::end_questionnaire() {
+  if (!questionnaire_) return;
+  pages_->setCurrentWidget(scene_page_);
+  pages_->removeWidget(questionnaire_);
+  questionnaire_->deleteLater();
+  questionnaire_ = nullptr;
+}
+
+void ParticipantWindow::closeEvent(QCloseEvent* event) {
+  if (QuestionnaireForm* form = questionnaire_) {
+    questionnaire_ = nullptr;
+    pages_->removeWidget(form);
+    form->setParent(nullptr);
+    pages_->setCurrentWidget(scene_page_);
+    emit questionnaire_left(form);
+  }
+  QWidget::closeEvent(event);
 }
 
 QString ParticipantWindow::instruction() const {

@@ -44,11 +44,11 @@ ParticipantsPage::ParticipantsPage(QWidget* parent) : QWidget(parent) {
   connect(edit_, &QPushButton::clicked, this, [this] { edit_participant(); });
 
   auto* split = new QSplitter(Qt::Vertical);
-  table_ = new QTableWidget(0, 9);
+  table_ = new QTableWidget(0, 10);
   table_->setObjectName("participants");
   table_->setHorizontalHeaderLabels({tr("Id"), tr("Age"), tr("Sex"), tr("Handedness"),
-                                     tr("Hand length (cm)"), tr("VR experience"), tr("Notes"),
-                                     tr("Trials done / planned"), tr("Status")});
+                                     tr("Hand length (cm)"), tr("VR experience"), tr("Group"),
+                                     tr("Notes"), tr("Trials done / planned"), tr("Status")});
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->verticalHeader()->hide();
@@ -124,6 +124,7 @@ void ParticipantsPage::refresh(const QString& select_id) {
   const QString keep = select_id.isEmpty() ? selected() : select_id;
   table_->setRowCount(0);
   QStringList enrolled;
+  bool grouped = false;  // the protocol has between-participants factors
   if (!database_.isEmpty()) {
     store::StudyStore store(database_.toStdString());
     std::map<std::string, studies::ParticipantStatus> status;
@@ -150,11 +151,17 @@ void ParticipantsPage::refresh(const QString& select_id) {
       table_->setItem(row, 3, cell(QString::fromStdString(p.handedness)));
       table_->setItem(row, 4, cell(QString::number(p.hand_length * 100.0, 'f', 1)));
       table_->setItem(row, 5, cell(QString::fromStdString(p.vr_experience)));
-      table_->setItem(row, 6, cell(QString::fromStdString(p.notes)));
-      table_->setItem(row, 7, cell(QString("%1 / %2").arg(done).arg(s.trials_planned)));
-      table_->setItem(row, 8, cell(state));
+      QStringList group;  // "vr novice" for each between factor of the protocol
+      for (const auto& [factor, level] : p.between_levels)
+        group << QString::fromStdString(p.between_levels.size() > 1 ? factor + " " + level : level);
+      grouped = grouped || !group.isEmpty();
+      table_->setItem(row, 6, cell(group.join(", ")));
+      table_->setItem(row, 7, cell(QString::fromStdString(p.notes)));
+      table_->setItem(row, 8, cell(QString("%1 / %2").arg(done).arg(s.trials_planned)));
+      table_->setItem(row, 9, cell(state));
     }
   }
+  table_->setColumnHidden(6, !grouped);
   table_->resizeColumnsToContents();
   if (!keep.isEmpty())
     select(keep);
@@ -218,7 +225,8 @@ void ParticipantsPage::show_schedule() {
 QString ParticipantsPage::add_participant() {
   if (database_.isEmpty()) return {};
   store::StudyStore store(database_.toStdString());
-  ParticipantForm form(store.participants(), nullptr, this);
+  const studies::Protocol protocol = studies::stored_protocol(store);
+  ParticipantForm form(store.participants(), nullptr, this, &protocol);
   if (form.exec() != QDialog::Accepted) return {};
   const store::Participant p = form.participant();
   try {
@@ -238,7 +246,8 @@ QString ParticipantsPage::edit_participant() {
   store::StudyStore store(database_.toStdString());
   const auto current = store.participant(id.toStdString());
   if (!current) return {};
-  ParticipantForm form(store.participants(), &*current, this);
+  const studies::Protocol protocol = studies::stored_protocol(store);
+  ParticipantForm form(store.participants(), &*current, this, &protocol);
   if (form.exec() != QDialog::Accepted) return {};
   try {
     store::Participant changed = form.participant();

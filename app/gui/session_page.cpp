@@ -19,6 +19,7 @@
 
 #include "app/gui/participant_window.h"
 #include "app/gui/questionnaire_dialog.h"
+#include "app/gui/questionnaire_form.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/session_worker.h"
 #include "app/gui/trial_phase_text.h"
@@ -346,18 +347,45 @@ void SessionPage::append_log(const QString& line) {
   log_->scrollToBottom();
 }
 
+void SessionPage::set_participant_window(ParticipantWindow* window) {
+  participant_window_ = window;
+  // Closed while asking: the questions go on over the experimenter's window, answers kept.
+  connect(window, &ParticipantWindow::questionnaire_left, this, [this](QuestionnaireForm* form) {
+    form->setStyleSheet({});
+    auto* dialog = new QuestionnaireDialog(form, this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    append_log(tr("the participant's window closed: the questionnaire continues here"));
+    dialog->open();
+  });
+}
+
 void SessionPage::show_questionnaire(int position, const QString&) {
   if (!worker_ || !protocol_) return;
-  auto* dialog = new QuestionnaireDialog(*protocol_, position + 1, this);
-  questionnaire_ = dialog;
-  connect(dialog, &QDialog::accepted, this, [this, dialog] {
-    if (worker_) worker_->answer(dialog->answers());
+  // Where the participant looks: their window when it is open, else a dialog over this one.
+  const bool at_participant = participant_window_ && participant_window_->isVisible();
+  QuestionnaireDialog* dialog =
+      at_participant ? nullptr : new QuestionnaireDialog(*protocol_, position + 1, this);
+  QuestionnaireForm* form =
+      dialog ? dialog->form() : new QuestionnaireForm(*protocol_, true, participant_window_);
+  questionnaire_ = form;
+  connect(form, &QuestionnaireForm::saved, this, [this, form, dialog] {
+    if (worker_) worker_->answer(form->answers());
     questionnaire_ = nullptr;
-    dialog->deleteLater();
+    if (dialog)
+      dialog->deleteLater();
+    else
+      participant_window_->end_questionnaire();
+    append_log(tr("questionnaire answered"));
   });
-  if (participant_window_) participant_window_->set_instruction(tr("Please answer the questions."));
-  dialog->open();
-  emit questionnaire_opened(dialog);
+  if (dialog) {
+    dialog->open();
+  } else {
+    participant_window_->show_questionnaire(form);
+    state_->setText(tr("Awaiting the participant's answers (in their window)"));
+    append_log(tr("trial %1: questionnaire in the participant's window, answers awaited")
+                   .arg(position + 1));
+  }
+  emit questionnaire_opened(form);
 }
 
 void SessionPage::refresh_picture() {

@@ -33,7 +33,7 @@ struct LiveFrameStats;
 namespace handlab::gui {
 
 class ParticipantWindow;
-class QuestionnaireDialog;
+class QuestionnaireForm;
 class SceneView;
 class SessionWorker;
 class TrialReplayBar;
@@ -51,7 +51,7 @@ class SessionPage : public QWidget {
   SceneView* view() const { return view_; }
   bool session_running() const;
   SessionWorker* worker() const { return worker_.get(); }
-  void set_participant_window(ParticipantWindow* window) { participant_window_ = window; }
+  void set_participant_window(ParticipantWindow* window);
 
   // The actions behind the buttons (the shortcuts and the tests use them). Each returns the
   // reason when it cannot act (empty: done or requested).
@@ -78,7 +78,9 @@ class SessionPage : public QWidget {
   QLabel* calibration_label() const { return calibration_; }
   QLabel* state_label() const { return state_; }
   QListWidget* log() const { return log_; }
-  QuestionnaireDialog* questionnaire() const { return questionnaire_; }
+  // The questions awaiting answers: in a dialog over this window, or in the participant's
+  // window when it is open; null between questionnaires.
+  QuestionnaireForm* questionnaire() const { return questionnaire_; }
   TrialReplayBar* replay_bar() const { return replay_; }
 
   // The display's figures, for docs/performance.md (display_latency.h).
@@ -91,7 +93,7 @@ class SessionPage : public QWidget {
   void session_started();
   void session_ended(QString summary);
   void study_changed();  // a trial's result, a decision: the participants view refreshes
-  void questionnaire_opened(QuestionnaireDialog* dialog);
+  void questionnaire_opened(QuestionnaireForm* form);
 
  private:
   void refresh_picture();
@@ -112,7 +114,7 @@ class SessionPage : public QWidget {
   std::unique_ptr<SessionWorker> worker_;
   std::shared_ptr<live::LiveFrameStats> live_stats_;
   ParticipantWindow* participant_window_ = nullptr;
-  QuestionnaireDialog* questionnaire_ = nullptr;
+  QuestionnaireForm* questionnaire_ = nullptr;
   // The condition's hand, rebuilt when a trial of another hand starts.
   render::BoneMeshes hand_meshes_;
   hand::HandShape hand_shape_;

@@ -81,7 +81,8 @@ const std::vector<TableCopy>& participant_tables() {
 }
 
 constexpr const char* kParticipantColumns =
-    "id, age, sex, handedness, hand_length, vr_experience, notes, created_at, simulated";
+    "id, age, sex, handedness, hand_length, vr_experience, notes, created_at, simulated, "
+    "between_levels";
 
 // Everything stored of a participant but the ids the rows happen to have and its place in the
 // enrolment order, as one digest: equal digests, the same data.
@@ -147,9 +148,9 @@ void copy_participant(Database& from, Database& to, const std::string& id, int e
     s.bind(1, id);
     if (!s.step()) throw StoreError(from.path() + " has no participant " + id);
     Statement insert = to.prepare(std::string("INSERT INTO participant (") + kParticipantColumns +
-                                  ", enrolment) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    for (int c = 0; c < 9; ++c) insert.bind_column(c + 1, s, c);
-    insert.bind(10, std::int64_t(enrolment)).run();
+                                  ", enrolment) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    for (int c = 0; c < 10; ++c) insert.bind_column(c + 1, s, c);
+    insert.bind(11, std::int64_t(enrolment)).run();
   }
   std::map<std::string, IdMap> maps;
   for (const TableCopy& table : participant_tables()) {

@@ -125,6 +125,11 @@ CREATE TABLE simulated_memory (
   memory TEXT NOT NULL
 );
 )sql",
+    // 4 -> 5: the level of each between-participants factor a participant was assigned,
+    // as a JSON object (factor -> level).
+    R"sql(
+ALTER TABLE participant ADD COLUMN between_levels TEXT NOT NULL DEFAULT '{}';
+)sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 

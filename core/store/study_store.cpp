@@ -31,7 +31,25 @@ PlannedTrialRow read_planned(const Statement& s) {
 }
 
 constexpr const char* kParticipantColumns =
-    "id, age, sex, handedness, hand_length, vr_experience, notes, enrolment, simulated";
+    "id, age, sex, handedness, hand_length, vr_experience, notes, enrolment, simulated, "
+    "between_levels";
+
+std::string between_levels_json(const Participant& p) {
+  std::ostringstream text;
+  util::JsonWriter json(text, 0);
+  json.begin_object();
+  for (const auto& [factor, level] : p.between_levels) json.field(factor, level);
+  json.end_object();
+  return text.str();
+}
+
+std::vector<std::pair<std::string, std::string>> read_between_levels(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> levels;
+  const util::JsonValue object = util::JsonValue::parse(text);
+  for (const auto& [factor, level] : object.as_object())
+    levels.emplace_back(factor, level.as_string());
+  return levels;
+}
 
 Participant read_participant(const Statement& s) {
   Participant p;
@@ -44,6 +62,7 @@ Participant read_participant(const Statement& s) {
   p.notes = s.column_text(6);
   p.enrolment = int(s.column_int64(7));
   p.simulated = s.column_int64(8) != 0;
+  p.between_levels = read_between_levels(s.column_text(9));
   return p;
 }
 
@@ -168,7 +187,8 @@ void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRo
   p.enrolment = enrolment ? *enrolment : next_enrolment();
   db_.prepare(
          "INSERT INTO participant (id, enrolment, age, sex, handedness, hand_length, "
-         "vr_experience, notes, created_at, simulated) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
+         "vr_experience, notes, created_at, simulated, between_levels) VALUES (?, ?, ?, ?, ?, ?, "
+         "?, ?, ?, ?, ?)")
       .bind(1, p.id)
       .bind(2, std::int64_t(p.enrolment))
       .bind(3, std::int64_t(p.age))
@@ -179,6 +199,7 @@ void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRo
       .bind(8, p.notes)
       .bind(9, utc_timestamp())
       .bind(10, std::int64_t(p.simulated ? 1 : 0))
+      .bind(11, between_levels_json(p))
       .run();
   Statement insert = db_.prepare(
       "INSERT INTO planned_trial (participant_id, position, block, order_in_block, condition_id, "
@@ -327,14 +348,15 @@ bool StudyStore::has_started(const std::string& participant_id) {
 void StudyStore::update_participant(const Participant& p) {
   db_.prepare(
          "UPDATE participant SET age = ?, sex = ?, handedness = ?, hand_length = ?, "
-         "vr_experience = ?, notes = ? WHERE id = ?")
+         "vr_experience = ?, notes = ?, between_levels = ? WHERE id = ?")
       .bind(1, std::int64_t(p.age))
       .bind(2, p.sex)
       .bind(3, p.handedness)
       .bind(4, p.hand_length)
       .bind(5, p.vr_experience)
       .bind(6, p.notes)
-      .bind(7, p.id)
+      .bind(7, between_levels_json(p))
+      .bind(8, p.id)
       .run();
   if (db_.changes() != 1) throw StoreError("no participant " + p.id + " in " + db_.path());
 }

@@ -18,7 +18,7 @@
 
 namespace handlab::store {
 
-constexpr int kSchemaVersion = 4;
+constexpr int kSchemaVersion = 5;
 
 struct StudyDefinition {
   std::string name;
@@ -45,6 +45,9 @@ struct Participant {
   double hand_length = 0.0;   // m, wrist crease to middle fingertip
   std::string vr_experience;  // "none", "some", "yes", "expert" ...
   std::string notes;
+  // The level of each between-participants factor of the protocol, in its order, as
+  // assigned at enrolment (studies/session/group_assignment.h); empty without such factors.
+  std::vector<std::pair<std::string, std::string>> between_levels;
   int enrolment = 0;       // 0-based order of enrolment (set by add_participant)
   bool simulated = false;  // run by the participant model (docs/simulated-participants.md)
 };
@@ -117,8 +120,9 @@ class StudyStore {
   // Throws StoreError on a duplicate id or place, or a value the schema's constraints reject.
   void add_participant(Participant participant, const std::vector<PlannedTrialRow>& plan,
                        std::optional<int> enrolment = std::nullopt);
-  // What may change after enrolment (age, sex, handedness, hand length, VR experience, notes);
-  // the id, the enrolment order and the schedule stay.
+  // What may change after enrolment (age, sex, handedness, hand length, VR experience, notes,
+  // the between levels a changed field decides); the id, the enrolment order and the schedule
+  // stay.
   void update_participant(const Participant& participant);
   int participant_count();
   // The place the next participant takes: one after the last enrolled (a merged or sharded

@@ -157,8 +157,20 @@ std::vector<std::pair<std::string, int>> counts(const std::vector<std::string>& 
   return out;
 }
 
-ParticipantSummary summarise_participants(const std::vector<store::Participant>& people) {
+ParticipantSummary summarise_participants(const std::vector<store::Participant>& people,
+                                          const Protocol& protocol) {
   ParticipantSummary s;
+  for (const BetweenFactor& f : protocol.between) {
+    std::vector<std::pair<std::string, int>> levels;
+    for (const BetweenLevel& l : f.levels) {
+      int n = 0;
+      for (const store::Participant& p : people)
+        n +=
+            std::count(p.between_levels.begin(), p.between_levels.end(), std::pair{f.name, l.name});
+      levels.emplace_back(l.name, n);
+    }
+    s.groups.emplace_back(f.name, std::move(levels));
+  }
   s.enrolled = int(people.size());
   std::vector<double> ages, hands;
   std::vector<std::string> sex, handedness, vr;
@@ -271,7 +283,7 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
   result.protocol = stored_protocol(store);
   const store::StudyInfo& info = result.study;
   const std::vector<store::Participant> people = store.participants();
-  result.participants = summarise_participants(people);
+  result.participants = summarise_participants(people, result.protocol);
   result.quality = assess_data(store, result.protocol);
 
   std::ostringstream trials, answers;
@@ -290,13 +302,16 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
     result.success.not_computed = result.completion_time_not_computed;
   } else {
     const analysis::LongTable trial_table = analysis::LongTable::parse_csv(trial_text, "trials");
-    result.time_without_timeouts = time_without_timeouts(trial_table, info.factors);
+    std::vector<std::string> between;
+    for (const BetweenFactor& f : result.protocol.between) between.push_back(f.name);
+    result.time_without_timeouts = time_without_timeouts(trial_table, info.factors, between);
     result.success = success_rates(trial_table, info.factors);
     analysis::AnalysisRequest times;
     times.design.subject = "participant";
     times.design.dv = "completion_time_s";
     times.design.within = info.factors;
     times.design.within.push_back("repetition");
+    times.design.between = between;
     times.r_level_names = false;
     // A condition nobody has a time in: say which, not only that the design is incomplete.
     std::vector<std::string> missing;
@@ -470,6 +485,13 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
       for (const auto& [value, count] : *list) json.field(value, count);
       json.end_object();
     }
+    json.key("groups").begin_object();
+    for (const auto& [factor, levels] : p.groups) {
+      json.key(factor).begin_object();
+      for (const auto& [level, count] : levels) json.field(level, count);
+      json.end_object();
+    }
+    json.end_object();
     json.end_object();
   }
   out << ",\n\"data_quality\": ";

@@ -44,6 +44,8 @@ struct ParticipantSummary {
   double age_mean = 0, age_sd = 0, age_min = 0, age_max = 0;
   double hand_cm_mean = 0, hand_cm_sd = 0, hand_cm_min = 0, hand_cm_max = 0;
   std::vector<std::pair<std::string, int>> sex, handedness, vr_experience;  // counts
+  // Per between-participants factor of the protocol: participants per level, in its order.
+  std::vector<std::pair<std::string, std::vector<std::pair<std::string, int>>>> groups;
 };
 
 struct DataQuality {

@@ -8,7 +8,8 @@
 namespace handlab::studies {
 
 OutcomeAnalysis time_without_timeouts(const analysis::LongTable& trials,
-                                      const std::vector<std::string>& factors) {
+                                      const std::vector<std::string>& factors,
+                                      const std::vector<std::string>& between) {
   OutcomeAnalysis out;
   const analysis::LongTable completed = trials.without("outcome", {"timeout"});
   if (completed.rows() == 0) {
@@ -20,6 +21,7 @@ OutcomeAnalysis time_without_timeouts(const analysis::LongTable& trials,
   request.design.dv = "completion_time_s";
   request.design.within = factors;
   request.design.within.push_back("repetition");
+  request.design.between = between;
   request.r_level_names = false;
   try {
     analysis::AnalysisReport report = analysis::run_analysis(completed, request);

@@ -18,11 +18,12 @@ struct OutcomeAnalysis {
   std::string not_computed;  // why, when there is no result
 };
 
-// The RM-ANOVA over `factors` and repetition of the completed trials alone (the rows of
-// `trials` whose outcome is "success"); a participant without a completed trial in some
-// condition and repetition is left out, as R's aov / afex leave them.
+// The RM-ANOVA over `factors` and repetition (and the `between` factors) of the completed
+// trials alone (the rows of `trials` whose outcome is "success"); a participant without a
+// completed trial in some condition and repetition is left out, as R's aov / afex leave them.
 OutcomeAnalysis time_without_timeouts(const analysis::LongTable& trials,
-                                      const std::vector<std::string>& factors);
+                                      const std::vector<std::string>& factors,
+                                      const std::vector<std::string>& between = {});
 
 // Each participant's share of completed trials per condition (`success_rate`: completed of
 // completed and timed out), compared across the conditions by Friedman's test with pairwise

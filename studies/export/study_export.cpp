@@ -34,17 +34,34 @@ std::string micro(double x) {
   return out == "-0" ? "0" : out;
 }
 
-std::map<std::string, store::Participant> participants_by_id(store::StudyStore& store) {
-  std::map<std::string, store::Participant> m;
-  for (auto& p : store.participants()) m[p.id] = p;
-  return m;
-}
+// Each participant's columns: the form's fields, then their level of each of the protocol's
+// between factors (the groups).
+class ParticipantColumns {
+ public:
+  explicit ParticipantColumns(store::StudyStore& store) {
+    for (auto& p : store.participants()) people_[p.id] = p;
+    for (const BetweenFactor& f : stored_protocol(store).between) between_.push_back(f.name);
+  }
+  void header(std::ostream& out) const {
+    out << "participant,age,sex,handedness,hand_length,vr_experience";
+    for (const std::string& f : between_) out << ',' << csv_field(f);
+  }
+  void row(std::ostream& out, const std::string& id) const {
+    const store::Participant& p = people_.at(id);
+    out << csv_field(p.id) << ',' << p.age << ',' << csv_field(p.sex) << ','
+        << csv_field(p.handedness) << ',' << number(p.hand_length) << ','
+        << csv_field(p.vr_experience);
+    for (const std::string& f : between_) {
+      const auto level = std::find_if(p.between_levels.begin(), p.between_levels.end(),
+                                      [&](const auto& l) { return l.first == f; });
+      out << ',' << (level == p.between_levels.end() ? "NA" : csv_field(level->second));
+    }
+  }
 
-void write_covariates(std::ostream& out, const store::Participant& p) {
-  out << csv_field(p.id) << ',' << p.age << ',' << csv_field(p.sex) << ','
-      << csv_field(p.handedness) << ',' << number(p.hand_length) << ','
-      << csv_field(p.vr_experience);
-}
+ private:
+  std::map<std::string, store::Participant> people_;
+  std::vector<std::string> between_;
+};
 
 void write_design(std::ostream& out, const store::StudyInfo& info, const store::TrialResultRow& r) {
   out << ',' << r.block << ',' << r.order;
@@ -53,19 +70,18 @@ void write_design(std::ostream& out, const store::StudyInfo& info, const store::
   out << ',' << r.repetition;
 }
 
-constexpr const char* kCovariateHeader = "participant,age,sex,handedness,hand_length,vr_experience";
-
 }  // namespace
 
 void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_skipped) {
   const store::StudyInfo info = store.study();
-  const auto people = participants_by_id(store);
-  out << kCovariateHeader << ",block,order";
+  const ParticipantColumns people(store);
+  people.header(out);
+  out << ",block,order";
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
   out << ",repetition,completion_time_s,outcome,grasps,drops,attempt\n";
   for (const store::TrialResultRow& r : store.results()) {
     if (r.status == store::TrialStatus::kSkipped && !include_skipped) continue;
-    write_covariates(out, people.at(r.participant));
+    people.row(out, r.participant);
     write_design(out, info, r);
     if (r.status == store::TrialStatus::kSkipped)
       out << ",NA,skipped,NA,NA," << r.attempt << '\n';
@@ -78,7 +94,7 @@ void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_
 
 void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
   const store::StudyInfo info = store.study();
-  const auto people = participants_by_id(store);
+  const ParticipantColumns people(store);
   // Item ids in their first-asked order.
   std::vector<std::string> items;
   std::map<std::int64_t, std::map<std::string, int>> answers;
@@ -86,7 +102,8 @@ void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
     if (std::find(items.begin(), items.end(), a.item) == items.end()) items.push_back(a.item);
     answers[a.trial_id][a.item] = a.value;
   }
-  out << kCovariateHeader << ",block,order";
+  people.header(out);
+  out << ",block,order";
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
   out << ",repetition";
   for (const std::string& item : items) out << ',' << csv_field(item);
@@ -94,7 +111,7 @@ void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
   for (const store::TrialResultRow& r : store.results()) {
     const auto found = answers.find(r.trial_id);
     if (found == answers.end()) continue;
-    write_covariates(out, people.at(r.participant));
+    people.row(out, r.participant);
     write_design(out, info, r);
     for (const std::string& item : items) {
       const auto v = found->second.find(item);
@@ -110,7 +127,7 @@ void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
 
 void write_frames_csv(store::StudyStore& store, std::ostream& out) {
   const store::StudyInfo info = store.study();
-  const auto people = participants_by_id(store);
+  const ParticipantColumns people(store);
   const std::vector<Condition> conditions = stored_protocol(store).conditions();
   // Per condition: the simulated hand's thumb and index distal bones and their lengths.
   struct Tips {
@@ -128,7 +145,8 @@ void write_frames_csv(store::StudyStore& store, std::ostream& out) {
     t.index_length = hand.bones.at(std::size_t(t.index)).length;
     return tips.emplace(condition, t).first->second;
   };
-  out << kCovariateHeader << ",block,order";
+  people.header(out);
+  out << ",block,order";
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
   out << ",repetition,attempt,outcome,t,phase,cube_x,cube_y,cube_z,thumb_contact,index_contact,"
          "thumb_tip_x,thumb_tip_y,thumb_tip_z,index_tip_x,index_tip_y,index_tip_z,aperture,"
@@ -140,7 +158,7 @@ void write_frames_csv(store::StudyStore& store, std::ostream& out) {
     if (r.status == store::TrialStatus::kSkipped) continue;
     // The columns every row of this trial shares.
     std::ostringstream head;
-    write_covariates(head, people.at(r.participant));
+    people.row(head, r.participant);
     write_design(head, info, r);
     head << ',' << r.attempt << ','
          << (r.status == store::TrialStatus::kCompleted ? "success" : "timeout");

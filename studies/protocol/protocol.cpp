@@ -17,10 +17,12 @@ namespace {
 
 using util::JsonValue;
 
-// A cube's side: 5-150 mm, from a fingertip pinch to a whole-hand grasp.
+// A cube's side: 5-150 mm, from a fingertip pinch to a whole-hand grasp (2-200 mm in the
+// protocol of a study made before that rule).
 double cube_size(const ProtocolReader& r, const JsonValue& object, const std::string& where,
                  std::optional<double> fallback) {
   const double side = r.number(object, "cube_size", where, 0.0, 10.0, fallback);
+  if (r.stored() && side >= 0.002 && side <= 0.2) return side;
   if (!(side >= 0.005 && side <= 0.15))
     r.fail(where + ".cube_size", "a cube's side is 5-150 mm (0.005-0.15 m), is " +
                                      std::to_string(int(std::lround(side * 1000))) + " mm");
@@ -148,8 +150,9 @@ int Protocol::factor_index(const std::string& name) const {
   return -1;
 }
 
-Protocol parse_protocol(const std::string& text, const std::string& source_name) {
-  const ProtocolReader r(source_name);
+Protocol parse_protocol(const std::string& text, const std::string& source_name,
+                        ProtocolSource source) {
+  const ProtocolReader r(source_name, source == ProtocolSource::kStoredStudy);
   JsonValue root;
   try {
     root = JsonValue::parse(text);
@@ -159,7 +162,7 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
   r.check_keys(
       root, "protocol",
       {"format", "version", "name", "title", "seed", "factors", "blocks", "counterbalancing",
-       "practice", "questionnaire", "scene", "simulated_hand", "strategy", "trial"});
+       "practice", "questionnaire", "scene", "simulated_hand", "strategy", "trial", "between"});
   if (r.text(root, "format", "protocol") != "handlab-protocol")
     r.fail("protocol.format", "must be \"handlab-protocol\"");
   const int version = r.integer(root, "version", "protocol", 1, 1000);
@@ -270,6 +273,22 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name)
       }
       p.items.push_back(std::move(item));
     }
+  }
+
+  if (const JsonValue* between = root.find("between")) {
+    // A between factor is a column of the exports beside the within factors, the
+    // participant's fields, the design's columns and the questionnaire's items.
+    std::set<std::string> taken(factor_names);
+    for (const char* column :
+         {"participant",   "age",         "sex",         "handedness",       "hand_length",
+          "vr_experience", "block",       "order",       "repetition",       "completion_time_s",
+          "outcome",       "grasps",      "drops",       "attempt",          "t",
+          "phase",         "cube_x",      "cube_y",      "cube_z",           "thumb_contact",
+          "index_contact", "thumb_tip_x", "thumb_tip_y", "thumb_tip_z",      "index_tip_x",
+          "index_tip_y",   "index_tip_z", "aperture",    "tracked_aperture", "condition"})
+      taken.insert(column);
+    for (const QuestionnaireItem& item : p.items) taken.insert(item.id);
+    p.between = read_between_factors(r, *between, taken);
   }
 
   if (const JsonValue* scene = root.find("scene")) {

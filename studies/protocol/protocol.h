@@ -12,6 +12,7 @@
 
 #include "core/hand/hand_shape.h"
 #include "core/task/scene_layout.h"
+#include "studies/protocol/between_factor.h"
 #include "studies/protocol/protocol_reader.h"
 #include "studies/protocol/strategy_method.h"
 
@@ -62,7 +63,8 @@ struct QuestionnaireItem {
 struct Protocol {
   std::string name, title;
   std::uint64_t seed = 0;
-  std::vector<Factor> factors;
+  std::vector<Factor> factors;         // within participants: the conditions
+  std::vector<BetweenFactor> between;  // between participants: the groups
   int blocks = 1;
   Counterbalancing counterbalancing = Counterbalancing::kRandomizedPerBlock;
   int practice_per_condition = 0;
@@ -88,8 +90,14 @@ struct Protocol {
   std::string questionnaire_schedule() const;
 };
 
+// Where a protocol's text comes from: a file for a new study, checked by today's rules, or
+// a study database, which holds a protocol that was valid when the study was made (a cube of
+// 2-200 mm, as handlab allowed before the 5-150 mm rule) and must still open.
+enum class ProtocolSource { kNewStudy, kStoredStudy };
+
 // Parses and validates; errors name the offending key.
-Protocol parse_protocol(const std::string& text, const std::string& source_name);
+Protocol parse_protocol(const std::string& text, const std::string& source_name,
+                        ProtocolSource source = ProtocolSource::kNewStudy);
 Protocol read_protocol(const std::string& path);
 
 // One planned trial of a participant's schedule, in running order.

@@ -20,7 +20,10 @@ class ProtocolError : public std::runtime_error {
 
 class ProtocolReader {
  public:
-  explicit ProtocolReader(std::string source) : source_(std::move(source)) {}
+  // `stored`: the text of a study database (the protocol.h ProtocolSource it came from).
+  explicit ProtocolReader(std::string source, bool stored = false)
+      : source_(std::move(source)), stored_(stored) {}
+  bool stored() const { return stored_; }
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const;
 
@@ -41,6 +44,7 @@ class ProtocolReader {
 
  private:
   std::string source_;
+  bool stored_ = false;
 };
 
 }  // namespace handlab::studies

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <iterator>
 
+#include "core/util/csv.h"
+
 namespace handlab::studies {
 namespace {
 
@@ -74,6 +76,30 @@ StrategyMethod read_strategy_method(const ProtocolReader& r, const JsonValue& le
     out.ours = read_ours_parameters(r, *parameters, where + ".parameters");
   }
   return out;
+}
+
+std::string describe(const StrategyMethod& m) {
+  if (m.method == retarget::Strategy::kNaive) return "naive";
+  const retarget::OursOptions defaults;
+  const retarget::SolverOptions &s = m.ours.solver, &d = defaults.solver;
+  std::string changed;
+  auto add = [&](const std::string& what) { changed += (changed.empty() ? "" : "; ") + what; };
+  if (m.ours.tip_weights != defaults.tip_weights) {
+    std::string weights;
+    for (double w : m.ours.tip_weights)
+      weights += (weights.empty() ? "" : ", ") + util::format_number(w);
+    add("tip weights " + weights);
+  }
+  if (s.spatial_weight != d.spatial_weight)
+    add("spatial weight " + util::format_number(s.spatial_weight));
+  if (s.temporal_weight != d.temporal_weight)
+    add("temporal weight " + util::format_number(s.temporal_weight));
+  if (s.max_iterations != d.max_iterations)
+    add("max iterations " + std::to_string(s.max_iterations));
+  if (s.cold_start_iterations != d.cold_start_iterations)
+    add("cold-start iterations " + std::to_string(s.cold_start_iterations));
+  if (s.trust_radius != d.trust_radius) add("trust radius " + util::format_number(s.trust_radius));
+  return changed.empty() ? "ours" : "ours (" + changed + ")";
 }
 
 }  // namespace handlab::studies

@@ -22,4 +22,8 @@ struct StrategyMethod {
 StrategyMethod read_strategy_method(const ProtocolReader& reader, const util::JsonValue& level,
                                     const std::string& where);
 
+// The method in words, with the parameters that differ from its defaults:
+// "naive", "ours", "ours (tip weights 1, 1, 1, 1, 1)".
+std::string describe(const StrategyMethod& method);
+
 }  // namespace handlab::studies

@@ -76,7 +76,10 @@ class Builder {
     std::string sizes;
     for (const Factor& f : p.factors) {
       std::vector<std::string> levels;
-      for (const Level& l : f.levels) levels.push_back(display(l.name));
+      for (const Level& l : f.levels)  // a label that is not its method says which it runs
+        levels.push_back(display(l.name) + (l.method && describe(*l.method) != l.name
+                                                ? ": " + describe(*l.method)
+                                                : std::string()));
       factors.push_back(display(f.name) + " (" + join(levels, ", ") + ")");
       sizes += (sizes.empty() ? "" : " × ") + std::to_string(f.levels.size());
     }
@@ -88,11 +91,22 @@ class Builder {
                             ? "the participant's row of a balanced Latin square in every block"
                             : "fixed, in the protocol's order";
     const std::size_t conditions = p.conditions().size();
+    std::string groups;
+    for (const BetweenFactor& f : p.between) {
+      std::vector<std::string> levels;
+      for (const BetweenLevel& l : f.levels) levels.push_back(display(l.name));
+      groups += std::string(groups.empty() ? ", with " : " × ") + display(f.name) + " (" +
+                join(levels, ", ") +
+                (f.assignment == GroupAssignment::kEnrolment ? "; balanced in order of enrolment"
+                                                             : "; by " + display(f.field)) +
+                ")";
+    }
     paragraph({words("Protocol “" + p.name + "” (SHA-256 " + a_.study.protocol_sha256 + "): a " +
-                     sizes + " within-participants design, " + join_all(factors, " × ") +
-                     ". Each participant ran " + std::to_string(p.blocks) + " blocks of the " +
-                     std::to_string(conditions) + " conditions, the order within a block " + order +
-                     ", after " + std::to_string(p.practice_per_condition) +
+                     sizes + " within-participants design, " + join_all(factors, " × ") + groups +
+                     (groups.empty() ? "" : " between participants") + ". Each participant ran " +
+                     std::to_string(p.blocks) + " blocks of the " + std::to_string(conditions) +
+                     " conditions, the order within a block " + order + ", after " +
+                     std::to_string(p.practice_per_condition) +
                      " practice trial(s) per condition that are not analysed. A trial ends when "
                      "the cube rests in zone B for " +
                      fixed(p.rest_time_s, 1) + " s, or at the " + fixed(p.timeout_s, 0) +
@@ -150,6 +164,8 @@ class Builder {
               words(", SD = "), number(s.hand_cm_sd, 2, "/participants/hand_length_cm_sd"),
               words(").")});
       counts("VR experience", "vr_experience", s.vr_experience);
+      for (const auto& [factor, levels] : s.groups)
+        counts(("Group " + display(factor)).c_str(), ("groups/" + factor).c_str(), levels);
     }
     paragraph(std::move(line));
   }

@@ -55,6 +55,20 @@ const std::vector<SensitivityParameter>& participant_sensitivity_parameters() {
   return list;
 }
 
+std::vector<std::string> default_sensitivity_outputs(const Protocol& protocol) {
+  std::string interaction;
+  for (const Factor& f : protocol.factors) interaction += (interaction.empty() ? "" : ":") + f.name;
+  std::vector<std::string> outputs = {interaction, "repetition"};
+  if (protocol.factors.size() >= 2) {
+    const std::vector<Level>& first = protocol.factors[0].levels;
+    std::string rest;  // the other factors at their last level
+    for (std::size_t f = 1; f < protocol.factors.size(); ++f)
+      rest += " " + protocol.factors[f].levels.back().name;
+    outputs.push_back(interaction + ": " + first[0].name + rest + " - " + first[1].name + rest);
+  }
+  return outputs;
+}
+
 SensitivityReport run_model_sensitivity(
     const Protocol& protocol, const SensitivityOptions& options,
     const std::function<void(const SensitivityProgress&)>& progress) {
@@ -68,7 +82,8 @@ SensitivityReport run_model_sensitivity(
     if (std::none_of(report.parameters.begin(), report.parameters.end(),
                      [&](const SensitivityParameter& p) { return p.name == name; }))
       throw std::invalid_argument("the sensitivity analysis has no parameter " + name);
-  report.outputs = options.outputs;
+  report.outputs =
+      options.outputs.empty() ? default_sensitivity_outputs(protocol) : options.outputs;
   report.design = morris_design(int(report.parameters.size()), options.trajectories, options.levels,
                                 options.design_seed);
   std::filesystem::create_directories(options.work_dir);
@@ -104,7 +119,7 @@ SensitivityReport run_model_sensitivity(
     }
     remove_database(db);
     std::vector<double> values;
-    for (const std::string& name : options.outputs) {
+    for (const std::string& name : report.outputs) {
       double v = std::numeric_limits<double>::quiet_NaN();
       for (const StudyTest& t : tests.tests)
         if (t.name == name) v = t.value;
@@ -115,7 +130,7 @@ SensitivityReport run_model_sensitivity(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (progress) progress({k + 1, points, report.seconds});
   }
-  for (std::size_t o = 0; o < options.outputs.size(); ++o) {
+  for (std::size_t o = 0; o < report.outputs.size(); ++o) {
     std::vector<double> output;
     for (const auto& v : report.values) output.push_back(v[o]);
     report.indices.push_back(morris_indices(report.design, output));

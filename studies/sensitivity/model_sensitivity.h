@@ -34,9 +34,8 @@ struct SensitivityOptions {
   std::uint64_t design_seed = 1;
   int jobs = 2;
   WorldKind world = WorldKind::kGraspProxy;
-  std::string work_dir;  // where each point's study database is written (and removed)
-  std::vector<std::string> outputs = {"strategy:manipulation", "repetition",
-                                      "strategy:manipulation: naive fine - ours fine"};
+  std::string work_dir;              // where each point's study database is written (and removed)
+  std::vector<std::string> outputs;  // tests as replications names them; empty: the defaults
   // Only these of participant_sensitivity_parameters() (by name); empty: all of them.
   std::vector<std::string> only;
 };
@@ -55,6 +54,12 @@ struct SensitivityProgress {
   int points_done = 0, points = 0;
   double seconds = 0.0;
 };
+
+// The protocol's within factors' interaction F (or its one factor's F), the repetition F
+// and, with two factors or more, the t of the first factor's first two levels at the second
+// factor's last level, labelled as the protocol labels them. The study's:
+// "strategy:manipulation", "repetition", "strategy:manipulation: naive fine - ours fine".
+std::vector<std::string> default_sensitivity_outputs(const Protocol& protocol);
 
 // Throws std::invalid_argument when `only` names a parameter the analysis lacks.
 SensitivityReport run_model_sensitivity(

@@ -1,15 +1,19 @@
 #include "studies/session/enrolment.h"
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/util/csv.h"
 #include "core/util/sha256.h"
+#include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
 
 namespace handlab::studies {
 
 std::vector<FieldProblem> participant_problems(const store::Participant& p,
-                                               const std::vector<store::Participant>& enrolled) {
+                                               const std::vector<store::Participant>& enrolled,
+                                               const Protocol* protocol) {
   std::vector<FieldProblem> problems;
   if (p.id.empty() || p.id.size() > 64)
     problems.push_back({"id", "The id is required (1 to 64 characters)."});
@@ -27,28 +31,68 @@ std::vector<FieldProblem> participant_problems(const store::Participant& p,
                         "30 cm."});
   if (p.vr_experience.empty())
     problems.push_back({"vr_experience", "The VR experience is required."});
+  if (protocol)
+    for (const BetweenFactor& f : protocol->between) {
+      if (f.assignment != GroupAssignment::kParticipantField) continue;
+      try {
+        level_from_field(f, p);
+      } catch (const std::invalid_argument& e) {
+        problems.push_back({f.field, e.what()});
+      }
+    }
   return problems;
 }
 
 int enrol_participant(store::StudyStore& store, const store::Participant& participant) {
-  const auto problems = participant_problems(participant, store.participants());
-  if (!problems.empty()) throw std::invalid_argument(problems.front().message);
   const Protocol protocol = stored_protocol(store);
+  const auto problems = participant_problems(participant, store.participants(), &protocol);
+  if (!problems.empty()) throw std::invalid_argument(problems.front().message);
   const int enrolment = store.next_enrolment();
   const auto plan = planned_rows(protocol, participant.id, enrolment);
-  store.add_participant(participant, plan, enrolment);
+  store::Participant enrolled = participant;
+  enrolled.between_levels = assign_groups(protocol, participant, enrolment);
+  store.add_participant(enrolled, plan, enrolment);
   return int(plan.size());
 }
 
 void update_participant(store::StudyStore& store, const store::Participant& p) {
   std::vector<store::Participant> others = store.participants();
   std::erase_if(others, [&](const store::Participant& o) { return o.id == p.id; });
-  const auto problems = participant_problems(p, others);
+  const Protocol protocol = stored_protocol(store);
+  const auto problems = participant_problems(p, others, &protocol);
   if (!problems.empty()) throw std::invalid_argument(problems.front().message);
-  if (!store.participant(p.id))
-    throw std::invalid_argument("no participant " + p.id + " to update");
-  store.update_participant(p);
+  const auto stored = store.participant(p.id);
+  if (!stored) throw std::invalid_argument("no participant " + p.id + " to update");
+  store::Participant changed = p;
+  changed.between_levels = assign_groups(protocol, p, stored->enrolment);
+  store.update_participant(changed);
 }
+
+namespace {
+
+// "novice (none), experienced (yes, some); from the VR experience" or
+// "A, B; balanced in order of enrolment".
+std::string between_factor_summary(const BetweenFactor& f) {
+  std::string out;
+  for (const BetweenLevel& l : f.levels) {
+    std::string held;
+    for (const std::string& v : l.values) held += (held.empty() ? "" : ", ") + v;
+    if (f.assignment == GroupAssignment::kParticipantField && held.empty()) {
+      const double scale = f.field == "hand_length" ? 100.0 : 1.0;  // cm as the form has it
+      const std::string unit = f.field == "hand_length" ? " cm" : " years";
+      if (std::isfinite(l.from)) held = "from " + util::format_number(l.from * scale);
+      if (std::isfinite(l.below))
+        held += (held.empty() ? "" : " ") + std::string("below ") +
+                util::format_number(l.below * scale);
+      held += unit;
+    }
+    out += (out.empty() ? "" : ", ") + l.name + (held.empty() ? "" : " (" + held + ")");
+  }
+  return out + (f.assignment == GroupAssignment::kEnrolment ? "; balanced in order of enrolment"
+                                                            : "; from " + f.field);
+}
+
+}  // namespace
 
 std::vector<std::pair<std::string, std::string>> protocol_summary(const Protocol& protocol) {
   std::vector<std::pair<std::string, std::string>> lines;
@@ -61,9 +105,14 @@ std::vector<std::pair<std::string, std::string>> protocol_summary(const Protocol
   if (!protocol.title.empty()) lines.emplace_back("Title", protocol.title);
   for (const Factor& f : protocol.factors) {
     std::string levels;
-    for (const Level& l : f.levels) levels += (levels.empty() ? "" : ", ") + l.name;
+    for (const Level& l : f.levels)
+      levels +=
+          (levels.empty() ? "" : ", ") + l.name +
+          (l.method && describe(*l.method) != l.name ? " = " + describe(*l.method) : std::string());
     lines.emplace_back("Factor " + f.name, levels);
   }
+  for (const BetweenFactor& f : protocol.between)
+    lines.emplace_back("Between factor " + f.name, between_factor_summary(f));
   std::string conditions;
   for (const Condition& c : protocol.conditions())
     conditions += (conditions.empty() ? "" : ", ") + c.label;

@@ -18,17 +18,20 @@ struct FieldProblem {
   std::string message;
 };
 
-// What the store would refuse of these values (its CHECK constraints), and a duplicate id
-// among `enrolled`. Empty: acceptable.
+// What the store would refuse of these values (its CHECK constraints), a duplicate id among
+// `enrolled`, and, with a protocol, a field that puts the participant in no level of a
+// between factor it decides. Empty: acceptable.
 std::vector<FieldProblem> participant_problems(const store::Participant& participant,
-                                               const std::vector<store::Participant>& enrolled);
+                                               const std::vector<store::Participant>& enrolled,
+                                               const Protocol* protocol = nullptr);
 
-// Enrols after the checks (throws std::invalid_argument with the first problem's message);
-// returns the number of trials planned.
+// Enrols after the checks (throws std::invalid_argument with the first problem's message),
+// in the groups of the protocol's between factors; returns the number of trials planned.
 int enrol_participant(store::StudyStore& store, const store::Participant& participant);
 
 // Changes what may change after enrolment (age, sex, handedness, hand length, VR experience,
-// notes); the id and the schedule stay. Throws std::invalid_argument on a refused value.
+// notes, and the group a changed field decides); the id and the schedule stay. Throws
+// std::invalid_argument on a refused value.
 void update_participant(store::StudyStore& store, const store::Participant& participant);
 
 // (label, value) lines: name, title, factors and levels, conditions, blocks,

@@ -29,7 +29,8 @@ QuestionnaireResponder simulated_responder(std::uint64_t seed) {
 
 Protocol stored_protocol(store::StudyStore& store) {
   const store::StudyInfo info = store.study();
-  return parse_protocol(info.protocol_text, store.path() + " (stored protocol)");
+  return parse_protocol(info.protocol_text, store.path() + " (stored protocol)",
+                        ProtocolSource::kStoredStudy);
 }
 
 store::StudyDefinition study_definition(const Protocol& protocol) {

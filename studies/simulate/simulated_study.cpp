@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/store/study_store.h"
+#include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
 
 namespace handlab::studies {
@@ -54,7 +55,8 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   std::vector<std::vector<store::PlannedTrialRow>> plans;
   int planned_total = 0;
   for (int i : indices) {
-    const SimulatedPerson person = draw_person(options.population, options.seed, i, options.model);
+    SimulatedPerson person = draw_person(options.population, options.seed, i, options.model);
+    person.participant.between_levels = assign_groups(protocol, person.participant, i);
     plans.push_back(planned_rows(protocol, person.participant.id, i));
     study.add_participant(person.participant, plans.back(), i);
     study.add_simulated_person(simulated_person_row(person, options.seed, options.model));

@@ -35,8 +35,9 @@
 #include "app/gui/analysis_page.h"
 #include "app/gui/main_window.h"
 #include "app/gui/participant_form.h"
+#include "app/gui/participant_window.h"
 #include "app/gui/participants_page.h"
-#include "app/gui/questionnaire_dialog.h"
+#include "app/gui/questionnaire_form.h"
 #include "app/gui/scene_view.h"
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
@@ -126,7 +127,7 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   page->real_time_box()->setChecked(false);
   std::vector<std::vector<int>> answered;
   int questionnaires = 0;
-  QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireDialog* dialog) {
+  QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireForm* dialog) {
     // Answered with the keys: 4, 2, 5 for the first trial, then 3s; Enter saves.
     const std::vector<int> keys =
         questionnaires++ == 0 ? std::vector<int>{4, 2, 5} : std::vector<int>{3, 3, 3};
@@ -167,7 +168,7 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   EXPECT_EQ(questionnaires, 4);
   EXPECT_EQ(skins, 1u);
   EXPECT_GT(skin_triangles, 5000u);
-  EXPECT_EQ(window.participants()->table()->item(0, 8)->text(), "complete");
+  EXPECT_EQ(window.participants()->table()->item(0, 9)->text(), "complete");
 
   // The study file, reopened, holds what was done.
   store::StudyStore store(db.toStdString());
@@ -300,7 +301,7 @@ TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
       page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
   page->real_time_box()->setChecked(false);
   int questionnaires = 0;
-  QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireDialog* dialog) {
+  QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireForm* dialog) {
     ++questionnaires;
     QTimer::singleShot(0, [dialog] {
       for (int k : {3, 4, 5}) QTest::keyClick(dialog, Qt::Key(Qt::Key_0 + k));
@@ -314,7 +315,7 @@ TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
   EXPECT_TRUE(ended.front().front().toString().contains("every trial done"))
       << ended.front().front().toString().toStdString();
   EXPECT_EQ(questionnaires, 9);
-  EXPECT_EQ(window.participants()->table()->item(0, 8)->text(), "complete");
+  EXPECT_EQ(window.participants()->table()->item(0, 9)->text(), "complete");
 
   store::StudyStore store(db.toStdString());
   const auto plan = store.plan("P01");
@@ -325,6 +326,87 @@ TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
   ASSERT_EQ(runs.size(), 9u);
   for (const auto& [condition, n] : runs) EXPECT_EQ(n, 4) << "condition " << condition;
   EXPECT_EQ(store.database().query_text("SELECT count(*) FROM answer"), "27");
+}
+
+// The mixed example: the form refuses a VR experience in no group and the table shows the
+// group; with the participant's window open the questions appear there, full size, answered
+// with the keys, while the experimenter's window says answers are awaited; when that window
+// closes mid-questionnaire the questions go on in a dialog, the answers given kept.
+TEST(AppSession, AMixedDesignGroupsAtEnrolmentAndAsksInTheParticipantsWindow) {
+  const QString protocol =
+      QString(HANDLAB_SOURCE_DIR) + "/studies/examples/mixed-vr-experience.json";
+  const QString db = QString::fromStdString(test::fresh_path("app_mixed.db"));
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  ASSERT_EQ(window.create_study(protocol, db), QString());
+  when_form_opens([](ParticipantForm* form) {
+    QTest::keyClicks(form->id_edit(), "P01");
+    form->age_box()->setValue(30);
+    form->sex_box()->setCurrentIndex(form->sex_box()->findData("X"));
+    form->handedness_box()->setCurrentIndex(form->handedness_box()->findData("right"));
+    form->hand_length_box()->setValue(19.0);
+    form->vr_box()->setCurrentText("daily");
+    EXPECT_TRUE(form->problems().join(" ").contains("in no level of the between factor experience"))
+        << form->problems().join(";").toStdString();
+    EXPECT_FALSE(form->buttons()->button(QDialogButtonBox::Ok)->isEnabled());
+    form->vr_box()->setCurrentText("expert");
+    EXPECT_TRUE(form->problems().isEmpty()) << form->problems().join(";").toStdString();
+    QTest::mouseClick(form->buttons()->button(QDialogButtonBox::Ok), Qt::LeftButton);
+  });
+  ASSERT_EQ(window.participants()->add_participant(), "P01");
+  QTableWidget* table = window.participants()->table();
+  EXPECT_FALSE(table->isColumnHidden(6));
+  EXPECT_EQ(table->horizontalHeaderItem(6)->text(), "Group");
+  EXPECT_EQ(table->item(0, 6)->text(), "experienced");
+
+  ParticipantWindow* seen = window.show_participant_window(-1);
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(seen));
+  SessionPage* page = window.session();
+  page->participant_box()->setCurrentText("P01");
+  page->tracker_box()->setCurrentIndex(3);  // scripted
+  page->world_box()->setCurrentIndex(
+      page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
+  page->real_time_box()->setChecked(false);
+  int questionnaires = 0, in_participant_window = 0;
+  QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireForm* form) {
+    const int n = questionnaires++;
+    if (form->window() == seen) {
+      ++in_participant_window;
+      EXPECT_EQ(seen->questionnaire(), form);
+      EXPECT_TRUE(page->state_label()->text().contains("Awaiting the participant's answers"));
+    }
+    QTimer::singleShot(0, [&, form, n] {
+      if (form->window() == seen) {
+        EXPECT_GE(form->findChild<QLabel*>()->font().pointSizeF(), 18.0) << "full size";
+      }
+      if (n == 1) {  // the window closes after one answer: the rest asked over the panel
+        QTest::keyClick(form, Qt::Key_2);
+        seen->close();
+        QApplication::processEvents();
+        ASSERT_NE(form->window(), seen);
+        EXPECT_TRUE(form->window()->isVisible());
+        EXPECT_EQ(form->answers(), (std::vector<int>{2, 0}));
+        QTest::keyClick(form, Qt::Key_4);
+      } else {
+        for (int k : {5, 1}) QTest::keyClick(form, Qt::Key(Qt::Key_0 + k));
+      }
+      QTest::keyClick(form, Qt::Key_Return);
+    });
+  });
+  QSignalSpy ended(page, &SessionPage::session_ended);
+  QTest::mouseClick(page->start_button(), Qt::LeftButton);
+  ASSERT_TRUE(page->session_running());
+  ASSERT_TRUE(ended.wait(120000)) << "the session ends";
+  EXPECT_EQ(questionnaires, 20);  // every trial of every block
+  EXPECT_EQ(in_participant_window, 2);
+
+  store::StudyStore store(db.toStdString());
+  EXPECT_EQ(store.database().query_text("SELECT count(*) FROM answer"), "40");
+  EXPECT_EQ(store.database().query_text(
+                "SELECT group_concat(value, ',') FROM (SELECT value FROM answer ORDER BY "
+                "trial_id, item LIMIT 4)"),
+            "1,5,4,2");  // ease before precision; the second trial's precision 2, ease 4
 }
 
 // The trials of a participant, read while another process may be writing (a busy database

@@ -125,5 +125,15 @@ TEST(DesignCli, ThreeStrategiesThreeCubesSimulatedAnalysedExportedReportedAsRCom
     EXPECT_NE(html.find(label), std::string::npos) << label;
 }
 
+// The paper's 2 x 2 within participants, VR experience between them (assigned from the
+// participant field): the mixed ANOVA as afex's aov_ez with `between` computes it.
+TEST(DesignCli, AMixedDesignSimulatedAnalysedExportedReportedAsRComputesIt) {
+  const std::string html = simulate_analyse_export_report({"mixed-vr-experience", 12, 1, 4});
+  for (const char* text : {"with Experience (Novice, Experienced; by VR experience) between "
+                           "participants",
+                           "Experience × Strategy × Manipulation", "Group Experience: "})
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace handlab

@@ -177,7 +177,8 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
     db.database().exec(
         "DROP INDEX event_by_trial; DROP INDEX trial_by_planned; ALTER TABLE trial DROP COLUMN "
         "frames; ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
-        "DROP TABLE simulated_memory; PRAGMA user_version = 1");
+        "DROP TABLE simulated_memory; ALTER TABLE participant DROP COLUMN between_levels; "
+        "PRAGMA user_version = 1");
   }
   StudyStore db(path);
   EXPECT_EQ(db.study().schema_version, kSchemaVersion);
@@ -201,6 +202,12 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
   db.add_simulated_person({"S01", "model 2", "abc", "{}", 7});
   EXPECT_EQ(db.simulated_person("S01")->seed, 7u);
   EXPECT_EQ(db.simulated_person("S01")->model_sha256, "abc");
+  // Schema 5: the groups of between-participants factors; none for those enrolled before.
+  EXPECT_TRUE(db.participant("P01")->between_levels.empty());
+  Participant grouped = person("G01");
+  grouped.between_levels = {{"experience", "novice"}, {"glove", "on"}};
+  db.add_participant(grouped, {});
+  EXPECT_EQ(db.participant("G01")->between_levels, grouped.between_levels);
 }
 
 // Analyses open a study read-only: a file committed with a rollback journal (as the test
@@ -214,7 +221,8 @@ TEST(StudyStore, ReadOnlyAccessWritesNothing) {
     db.add_participant(person("P01"), two_trials());
     db.database().exec(
         "ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
-        "DROP TABLE simulated_memory; PRAGMA user_version = 2");
+        "DROP TABLE simulated_memory; ALTER TABLE participant DROP COLUMN between_levels; "
+        "PRAGMA user_version = 2");
   }
   { Database(path, Database::Mode::kInspect).exec("PRAGMA journal_mode = DELETE"); }
   ASSERT_FALSE(std::filesystem::exists(path + "-wal"));

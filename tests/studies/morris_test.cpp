@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "studies/protocol/protocol.h"
+#include "studies/sensitivity/model_sensitivity.h"
 #include "studies/sensitivity/morris.h"
 
 namespace handlab::studies {
@@ -73,6 +75,25 @@ TEST(MorrisIndices, ExactForLinearFunctionsAndInteractions) {
   int effects = 0;
   for (const MorrisIndex& g : gap) effects += g.effects;
   EXPECT_EQ(effects, 4 * 10 - 2);
+}
+
+// The sensitivity's default tests follow the protocol's factors and labels: the study's
+// three, and a 3 x 3 design's with its own labels.
+TEST(ModelSensitivity, DefaultTestsNameTheProtocolsFactorsAndLabels) {
+  const std::string source = HANDLAB_SOURCE_DIR;
+  EXPECT_EQ(
+      default_sensitivity_outputs(read_protocol(source + "/studies/fine-manipulation-2021.json")),
+      (std::vector<std::string>{"strategy:manipulation", "repetition",
+                                "strategy:manipulation: naive fine - ours fine"}));
+  std::string text = read_protocol(source + "/studies/examples/three-by-three.json").text;
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"naive\", \"method\"", "\"A\", \"method\""},
+        {"\"ours\", \"method\"", "\"B\", \"method\""},
+        {"\"name\": \"fine\"", "\"name\": \"1 cm\""}})
+    text.replace(text.find(from), from.size(), to);
+  EXPECT_EQ(default_sensitivity_outputs(parse_protocol(text, "relabelled.json")),
+            (std::vector<std::string>{"strategy:manipulation", "repetition",
+                                      "strategy:manipulation: A 1 cm - B 1 cm"}));
 }
 
 }  // namespace

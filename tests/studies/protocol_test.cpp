@@ -7,6 +7,8 @@
 
 #include "core/util/sha256.h"
 #include "studies/protocol/protocol.h"
+#include "studies/session/session_runner.h"
+#include "tests/support/test_files.h"
 
 namespace handlab::studies {
 namespace {
@@ -156,6 +158,21 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
     }
   }
+}
+
+// A study made before the 5-150 mm rule (2-200 mm were allowed) still opens: its database's
+// protocol is read by the rules it was made under; a new study is refused.
+TEST(Protocol, AStudyMadeBeforeTheCubeRuleStillOpens) {
+  const std::string text = with(read_protocol(kStudy).text, "\"cube_size\": 0.01", "\"cube_size\": 0.003");
+  EXPECT_THROW(parse_protocol(text, "new.json"), ProtocolError);
+  const Protocol old = parse_protocol(text, "old.db", ProtocolSource::kStoredStudy);
+  EXPECT_EQ(old.factors[1].levels[1].cube_size, 0.003);
+  EXPECT_THROW(parse_protocol(with(text, "0.003", "0.25"), "old.db", ProtocolSource::kStoredStudy),
+               ProtocolError);
+  const std::string path = test::fresh_path("cube_3mm.db");
+  store::StudyStore::create(path, study_definition(old));
+  store::StudyStore study(path, store::StudyStore::Access::kReadOnly);
+  EXPECT_EQ(stored_protocol(study).factors[1].levels[1].cube_size, 0.003);
 }
 
 TEST(Protocol, AStrategyLevelNamesItsMethodAndParametersApartFromItsLabel) {

@@ -6,6 +6,7 @@
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
 #include "studies/session/enrolment.h"
+#include "studies/session/session_runner.h"
 
 namespace handlab::cli {
 namespace {
@@ -40,20 +41,26 @@ int participant_add(const std::vector<std::string>& argv) {
   p.hand_length = args.number("hand-length");
   p.vr_experience = args.text("vr-experience");
   p.notes = args.text("notes");
-  // The enrolment's own checks (the app's form uses them too), named by the option.
-  const auto problems = studies::participant_problems(p, {});
-  if (!problems.empty()) {
+  // The enrolment's own checks (the app's form uses them too), named by the option: the
+  // values first, then, with the study's protocol, the groups they decide.
+  auto refuse_problems = [](const std::vector<studies::FieldProblem>& problems) {
+    if (problems.empty()) return;
     std::string option = problems.front().field;
     std::replace(option.begin(), option.end(), '_', '-');
     throw UsageError("--" + option + ": " + problems.front().message +
                      (option == "hand-length" ? " Give it in metres (e.g. 0.188)." : ""));
-  }
-
+  };
+  refuse_problems(studies::participant_problems(p, {}));
   store::StudyStore store(args.text("db"));
+  const studies::Protocol protocol = studies::stored_protocol(store);
+  refuse_problems(studies::participant_problems(p, {}, &protocol));
+
   const int planned = studies::enrol_participant(store, p);
-  const int enrolment = store.participant(p.id)->enrolment;
-  std::cout << "enrolled " << p.id << " (participant " << enrolment + 1 << "): " << planned
-            << " trials planned\n";
+  const store::Participant enrolled = *store.participant(p.id);
+  std::string groups;
+  for (const auto& [factor, level] : enrolled.between_levels) groups += ", " + factor + " " + level;
+  std::cout << "enrolled " << p.id << " (participant " << enrolled.enrolment + 1 << groups
+            << "): " << planned << " trials planned\n";
   return 0;
 }
 

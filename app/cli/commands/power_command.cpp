@@ -282,6 +282,11 @@ int run_power(const std::vector<std::string>& argv) {
   }
   const double seconds = elapsed();
   if (!quiet && !exact) std::fprintf(stderr, "\n");
+  if (!protocol.between.empty() && !pipeline)  // the model is of the within cells alone
+    report.notes.insert(report.notes.begin(),
+                        "the protocol's between-participants factors are not in the power "
+                        "model: its groups are pooled, and the powers are of the within "
+                        "effects");
 
   if (args.text("json") != "-") {
     if (args.has("pilot"))

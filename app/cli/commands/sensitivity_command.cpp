@@ -32,7 +32,8 @@ int run_sensitivity(const std::vector<std::string>& argv) {
       {"world", "proxy|soft", "the hand-cube physics", "proxy"},
       {"output", "TEST",
        "a test whose statistic is analysed, as replications names it; repeatable (default: "
-       "the strategy x manipulation F, the repetition F, the fine Naive - Ours t)",
+       "the within factors' interaction F, the repetition F, and the t of the first factor's "
+       "first two levels at the others' last: in the study, fine Naive - Ours)",
        "", true},
       {"parameter", "NAME",
        "vary only this parameter (the others stay at the model's values); repeatable "
