@@ -163,7 +163,8 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
 // A study made before the 5-150 mm rule (2-200 mm were allowed) still opens: its database's
 // protocol is read by the rules it was made under; a new study is refused.
 TEST(Protocol, AStudyMadeBeforeTheCubeRuleStillOpens) {
-  const std::string text = with(read_protocol(kStudy).text, "\"cube_size\": 0.01", "\"cube_size\": 0.003");
+  const std::string text =
+      with(read_protocol(kStudy).text, "\"cube_size\": 0.01", "\"cube_size\": 0.003");
   EXPECT_THROW(parse_protocol(text, "new.json"), ProtocolError);
   const Protocol old = parse_protocol(text, "old.db", ProtocolSource::kStoredStudy);
   EXPECT_EQ(old.factors[1].levels[1].cube_size, 0.003);
