@@ -454,7 +454,10 @@ void MainWindow::closeEvent(QCloseEvent* event) {
       return;
     }
   }
-  if (participant_window_) participant_window_->close();
+  if (participant_window_) {
+    participant_window_->end_questionnaire();  // the app ends: not asked again elsewhere
+    participant_window_->close();
+  }
   event->accept();
 }
 

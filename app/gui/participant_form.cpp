@@ -57,7 +57,7 @@ ParticipantForm::ParticipantForm(std::vector<store::Participant> enrolled,
       if (f.field == "vr_experience")
         for (const studies::BetweenLevel& l : f.levels)
           for (const std::string& v : l.values)
-            if (vr_->findText(QString::fromStdString(v)) < 0)
+            if (vr_->findText(QString::fromStdString(v), Qt::MatchFixedString) < 0)
               vr_->addItem(QString::fromStdString(v));
   notes_ = new QLineEdit;
   notes_->setObjectName("notes");

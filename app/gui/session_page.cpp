@@ -348,6 +348,8 @@ void SessionPage::append_log(const QString& line) {
 }
 
 void SessionPage::set_participant_window(ParticipantWindow* window) {
+  if (window == participant_window_) return;
+  if (participant_window_) participant_window_->disconnect(this);
   participant_window_ = window;
   // Closed while asking: the questions go on over the experimenter's window, answers kept.
   connect(window, &ParticipantWindow::questionnaire_left, this, [this](QuestionnaireForm* form) {

@@ -34,6 +34,25 @@ std::string micro(double x) {
   return out == "-0" ? "0" : out;
 }
 
+// The columns the exports write whatever the protocol: each file is the participant's
+// columns, the between factors', the design's, the within factors', then its own.
+constexpr const char* kParticipantColumns[] = {"participant", "age",         "sex",
+                                               "handedness",  "hand_length", "vr_experience"};
+constexpr const char* kDesignColumns[] = {"block", "order"};
+constexpr const char* kTrialColumns[] = {
+    "repetition", "completion_time_s", "outcome", "grasps", "drops", "attempt"};
+constexpr const char* kFrameColumns[] = {
+    "repetition",    "attempt",         "outcome",     "t",
+    "phase",         "cube_x",          "cube_y",      "cube_z",
+    "thumb_contact", "index_contact",   "thumb_tip_x", "thumb_tip_y",
+    "thumb_tip_z",   "index_tip_x",     "index_tip_y", "index_tip_z",
+    "aperture",      "tracked_aperture"};
+
+template <std::size_t N>
+void write_columns(std::ostream& out, const char* const (&columns)[N], bool first = false) {
+  for (std::size_t k = 0; k < N; ++k) out << (first && k == 0 ? "" : ",") << columns[k];
+}
+
 // Each participant's columns: the form's fields, then their level of each of the protocol's
 // between factors (the groups).
 class ParticipantColumns {
@@ -43,7 +62,7 @@ class ParticipantColumns {
     for (const BetweenFactor& f : stored_protocol(store).between) between_.push_back(f.name);
   }
   void header(std::ostream& out) const {
-    out << "participant,age,sex,handedness,hand_length,vr_experience";
+    write_columns(out, kParticipantColumns, true);
     for (const std::string& f : between_) out << ',' << csv_field(f);
   }
   void row(std::ostream& out, const std::string& id) const {
@@ -72,13 +91,27 @@ void write_design(std::ostream& out, const store::StudyInfo& info, const store::
 
 }  // namespace
 
+std::vector<std::string> fixed_export_columns() {
+  std::vector<std::string> columns;
+  auto add = [&](auto& list) {
+    for (const char* c : list)
+      if (std::find(columns.begin(), columns.end(), c) == columns.end()) columns.push_back(c);
+  };
+  add(kParticipantColumns);
+  add(kDesignColumns);
+  add(kTrialColumns);
+  add(kFrameColumns);
+  return columns;
+}
+
 void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_skipped) {
   const store::StudyInfo info = store.study();
   const ParticipantColumns people(store);
   people.header(out);
-  out << ",block,order";
+  write_columns(out, kDesignColumns);
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
-  out << ",repetition,completion_time_s,outcome,grasps,drops,attempt\n";
+  write_columns(out, kTrialColumns);
+  out << '\n';
   for (const store::TrialResultRow& r : store.results()) {
     if (r.status == store::TrialStatus::kSkipped && !include_skipped) continue;
     people.row(out, r.participant);
@@ -103,9 +136,9 @@ void write_questionnaire_csv(store::StudyStore& store, std::ostream& out) {
     answers[a.trial_id][a.item] = a.value;
   }
   people.header(out);
-  out << ",block,order";
+  write_columns(out, kDesignColumns);
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
-  out << ",repetition";
+  out << ",repetition";  // then the items
   for (const std::string& item : items) out << ',' << csv_field(item);
   out << '\n';
   for (const store::TrialResultRow& r : store.results()) {
@@ -146,11 +179,10 @@ void write_frames_csv(store::StudyStore& store, std::ostream& out) {
     return tips.emplace(condition, t).first->second;
   };
   people.header(out);
-  out << ",block,order";
+  write_columns(out, kDesignColumns);
   for (const std::string& f : info.factors) out << ',' << csv_field(f);
-  out << ",repetition,attempt,outcome,t,phase,cube_x,cube_y,cube_z,thumb_contact,index_contact,"
-         "thumb_tip_x,thumb_tip_y,thumb_tip_z,index_tip_x,index_tip_y,index_tip_z,aperture,"
-         "tracked_aperture\n";
+  write_columns(out, kFrameColumns);
+  out << '\n';
   auto point = [&](const Eigen::Vector3d& p) {
     out << ',' << micro(p.x()) << ',' << micro(p.y()) << ',' << micro(p.z());
   };

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <string_view>
+
+#include "core/store/participant_fields.h"
 
 namespace handlab::studies {
 namespace {
@@ -39,6 +42,25 @@ GroupAssignment read_assignment(const ProtocolReader& r, const JsonValue& f,
   return GroupAssignment::kParticipantField;
 }
 
+// Sex and handedness take the store's few answers; the VR experience is free text.
+bool answer_possible(const std::string& field, const std::string& answer) {
+  auto in = [&](const auto& allowed) {
+    return std::any_of(allowed.begin(), allowed.end(), [&](std::string_view a) {
+      return folded(std::string(a)) == folded(answer);
+    });
+  };
+  return field == "sex"          ? in(store::kSexes)
+         : field == "handedness" ? in(store::kHandednesses)
+                                 : true;
+}
+
+std::string possible_answers(const std::string& field) {
+  std::string out;
+  for (std::string_view a : field == "sex" ? store::kSexes : store::kHandednesses)
+    out += (out.empty() ? "" : ", ") + std::string(a);
+  return out;
+}
+
 BetweenLevel read_level(const ProtocolReader& r, const BetweenFactor& factor, const JsonValue& v,
                         const std::string& where) {
   BetweenLevel level;
@@ -46,13 +68,19 @@ BetweenLevel read_level(const ProtocolReader& r, const BetweenFactor& factor, co
     r.check_keys(v, where, {"name"});
   } else if (numeric_participant_field(factor.field)) {
     r.check_keys(v, where, {"name", "from", "below"});
-    const double hi = factor.field == "age" ? 120.0 : 0.30;
-    level.from = r.number(v, "from", where, 0.0, hi, level.from);
-    level.below = r.number(v, "below", where, 0.0, hi + 1.0, level.below);
+    level.from = r.number(v, "from", where, 0.0, 1000.0, level.from);
+    level.below = r.number(v, "below", where, 0.0, 1000.0, level.below);
     if (!v.find("from") && !v.find("below"))
       r.fail(where, "give \"from\", \"below\" or both: the range of " + factor.field +
                         " that places a participant in this level");
     if (!(level.from < level.below)) r.fail(where, "\"from\" must be below \"below\"");
+    // A level no enrolled participant can be in would stay empty.
+    const bool age = factor.field == "age";
+    const double lo = age ? store::kMinAge : store::kMinHandLength;
+    const double hi = age ? store::kMaxAge : store::kMaxHandLength;
+    if (level.from > hi || level.below <= lo)
+      r.fail(where, "no participant's " + factor.field + " is in its range (the form takes " +
+                        (age ? "5-120 years" : "0.10-0.30 m") + ")");
   } else {
     r.check_keys(v, where, {"name", "values"});
     const JsonValue* values = v.find("values");
@@ -63,6 +91,9 @@ BetweenLevel read_level(const ProtocolReader& r, const BetweenFactor& factor, co
       if (!x.is_string() || folded(x.as_string()).empty())
         r.fail(where + ".values", "values are non-empty strings");
       level.values.push_back(x.as_string());
+      if (!answer_possible(factor.field, x.as_string()))
+        r.fail(where + ".values", "\"" + x.as_string() + "\" is not a " + factor.field +
+                                      " the form takes (" + possible_answers(factor.field) + ")");
     }
   }
   level.name = r.text(v, "name", where);
@@ -89,6 +120,11 @@ void check_levels_disjoint(const ProtocolReader& r, const BetweenFactor& factor,
 }
 
 }  // namespace
+
+std::string assignment_rule(const BetweenFactor& factor, const std::string& field_name) {
+  return factor.assignment == GroupAssignment::kEnrolment ? "balanced in order of enrolment"
+                                                          : "by " + field_name;
+}
 
 bool numeric_participant_field(const std::string& field) {
   return std::count(std::begin(kNumericFields), std::end(kNumericFields), field) > 0;
@@ -117,12 +153,7 @@ std::vector<BetweenFactor> read_between_factors(const ProtocolReader& r, const J
     const JsonValue& f = between[i];
     r.check_keys(f, where, {"name", "assignment", "levels"});
     BetweenFactor factor;
-    factor.name = r.text(f, "name", where);
-    const bool identifier =
-        !factor.name.empty() && std::all_of(factor.name.begin(), factor.name.end(), [](char c) {
-          return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-        });
-    if (!identifier) r.fail(where + ".name", "use letters, digits and '_' (it becomes a column)");
+    factor.name = r.column_name(f, "name", where);
     if (!names.insert(factor.name).second)
       r.fail(where + ".name", "\"" + factor.name +
                                   "\" is taken (by a factor or a column of the exports); name "

@@ -36,6 +36,10 @@ struct BetweenFactor {
 // Whether the participant field holds a number (age in years, hand_length in m).
 bool numeric_participant_field(const std::string& field);
 
+// How its participants are assigned, in words: "balanced in order of enrolment", or "by "
+// and the field as `field_name` names it.
+std::string assignment_rule(const BetweenFactor& factor, const std::string& field_name);
+
 // The level a participant field's answer places a person in: the one whose values hold it
 // (case and surrounding spaces aside, as the form's answers are typed), or whose range holds
 // the number; nullptr when none does.

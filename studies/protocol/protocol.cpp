@@ -10,6 +10,7 @@
 
 #include "core/util/json_value.h"
 #include "core/util/portable_random.h"
+#include "studies/export/study_export.h"
 #include "studies/protocol/block_schedule.h"
 
 namespace handlab::studies {
@@ -226,6 +227,9 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
       r.fail("factors", "two conditions would both be labelled \"" + c.label +
                             "\": a level's label with '-' meets another's");
 
+  const std::vector<std::string> columns = fixed_export_columns();
+  const std::set<std::string> fixed_columns(columns.begin(), columns.end());
+
   if (const JsonValue* practice = root.find("practice")) {
     r.check_keys(*practice, "practice", {"trials_per_condition"});
     p.practice_per_condition = r.integer(*practice, "trials_per_condition", "practice", 0, 10);
@@ -256,12 +260,12 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
       const JsonValue& it = (*items)[i];
       r.check_keys(it, where, {"id", "text", "anchors"});
       QuestionnaireItem item;
-      item.id = r.text(it, "id", where);
-      const bool identifier = std::all_of(item.id.begin(), item.id.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-      });
-      if (!identifier) r.fail(where + ".id", "use letters, digits and '_' (it becomes a column)");
+      item.id = r.column_name(it, "id", where);
       if (!ids.insert(item.id).second) r.fail(where + ".id", "\"" + item.id + "\" appears twice");
+      if (fixed_columns.count(item.id) || factor_names.count(item.id))
+        r.fail(where + ".id", "\"" + item.id +
+                                  "\" is taken (by a factor or a column of the exports); name "
+                                  "the item otherwise");
       item.text = r.text(it, "text", where);
       const JsonValue* anchors = it.find("anchors");
       if (!anchors || !anchors->is_array() || int(anchors->size()) != p.scale_points)
@@ -279,14 +283,7 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
     // A between factor is a column of the exports beside the within factors, the
     // participant's fields, the design's columns and the questionnaire's items.
     std::set<std::string> taken(factor_names);
-    for (const char* column :
-         {"participant",   "age",         "sex",         "handedness",       "hand_length",
-          "vr_experience", "block",       "order",       "repetition",       "completion_time_s",
-          "outcome",       "grasps",      "drops",       "attempt",          "t",
-          "phase",         "cube_x",      "cube_y",      "cube_z",           "thumb_contact",
-          "index_contact", "thumb_tip_x", "thumb_tip_y", "thumb_tip_z",      "index_tip_x",
-          "index_tip_y",   "index_tip_z", "aperture",    "tracked_aperture", "condition"})
-      taken.insert(column);
+    taken.insert(fixed_columns.begin(), fixed_columns.end());
     for (const QuestionnaireItem& item : p.items) taken.insert(item.id);
     p.between = read_between_factors(r, *between, taken);
   }

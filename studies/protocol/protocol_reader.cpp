@@ -1,6 +1,7 @@
 #include "studies/protocol/protocol_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -74,6 +75,16 @@ Eigen::Vector3d ProtocolReader::point(const JsonValue& object, const char* key,
     if (std::abs(p[i]) > 2.0) fail(where + "." + key, "is more than 2 m from the origin");
   }
   return p;
+}
+
+std::string ProtocolReader::column_name(const JsonValue& object, const char* key,
+                                        const std::string& where) const {
+  const std::string name = text(object, key, where);
+  const bool identifier = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+  if (!identifier) fail(where + "." + key, "use letters, digits and '_' (it becomes a column)");
+  return name;
 }
 
 }  // namespace handlab::studies

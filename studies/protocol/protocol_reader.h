@@ -38,6 +38,9 @@ class ProtocolReader {
               int hi, std::optional<int> fallback = std::nullopt) const;
   std::string text(const util::JsonValue& object, const char* key, const std::string& where,
                    std::optional<std::string> fallback = std::nullopt) const;
+  // A text that becomes a column of the exports: letters, digits and '_' only.
+  std::string column_name(const util::JsonValue& object, const char* key,
+                          const std::string& where) const;
   // [x, y, z] in metres within 2 m of the origin.
   Eigen::Vector3d point(const util::JsonValue& object, const char* key, const std::string& where,
                         const Eigen::Vector3d& fallback) const;

@@ -96,10 +96,7 @@ class Builder {
       std::vector<std::string> levels;
       for (const BetweenLevel& l : f.levels) levels.push_back(display(l.name));
       groups += std::string(groups.empty() ? ", with " : " × ") + display(f.name) + " (" +
-                join(levels, ", ") +
-                (f.assignment == GroupAssignment::kEnrolment ? "; balanced in order of enrolment"
-                                                             : "; by " + display(f.field)) +
-                ")";
+                join(levels, ", ") + "; " + assignment_rule(f, display(f.field)) + ")";
     }
     paragraph({words("Protocol “" + p.name + "” (SHA-256 " + a_.study.protocol_sha256 + "): a " +
                      sizes + " within-participants design, " + join_all(factors, " × ") + groups +

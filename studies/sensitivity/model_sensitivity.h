@@ -56,7 +56,7 @@ struct SensitivityProgress {
 };
 
 // The protocol's within factors' interaction F (or its one factor's F), the repetition F
-// and, with two factors or more, the t of the first factor's first two levels at the second
+// and, with two factors or more, the t of the first factor's first two levels at every other
 // factor's last level, labelled as the protocol labels them. The study's:
 // "strategy:manipulation", "repetition", "strategy:manipulation: naive fine - ours fine".
 std::vector<std::string> default_sensitivity_outputs(const Protocol& protocol);

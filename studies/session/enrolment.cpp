@@ -1,9 +1,11 @@
 #include "studies/session/enrolment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/store/participant_fields.h"
 #include "core/util/csv.h"
 #include "core/util/sha256.h"
 #include "studies/session/group_assignment.h"
@@ -20,12 +22,16 @@ std::vector<FieldProblem> participant_problems(const store::Participant& p,
   for (const store::Participant& other : enrolled)
     if (other.id == p.id)
       problems.push_back({"id", "A participant " + p.id + " is already enrolled."});
-  if (p.age < 5 || p.age > 120) problems.push_back({"age", "The age is between 5 and 120 years."});
-  if (p.sex != "F" && p.sex != "M" && p.sex != "X")
+  auto one_of = [](const auto& allowed, const std::string& value) {
+    return std::find(allowed.begin(), allowed.end(), value) != allowed.end();
+  };
+  if (p.age < store::kMinAge || p.age > store::kMaxAge)
+    problems.push_back({"age", "The age is between 5 and 120 years."});
+  if (!one_of(store::kSexes, p.sex))
     problems.push_back({"sex", "Sex is F, M or X (other or not given)."});
-  if (p.handedness != "right" && p.handedness != "left" && p.handedness != "ambidextrous")
+  if (!one_of(store::kHandednesses, p.handedness))
     problems.push_back({"handedness", "Handedness is right, left or ambidextrous."});
-  if (!(p.hand_length >= 0.10 && p.hand_length <= 0.30))
+  if (!(p.hand_length >= store::kMinHandLength && p.hand_length <= store::kMaxHandLength))
     problems.push_back({"hand_length",
                         "The hand length (wrist crease to middle fingertip) is between 10 and "
                         "30 cm."});
@@ -64,7 +70,24 @@ void update_participant(store::StudyStore& store, const store::Participant& p) {
   const auto stored = store.participant(p.id);
   if (!stored) throw std::invalid_argument("no participant " + p.id + " to update");
   store::Participant changed = p;
-  changed.between_levels = assign_groups(protocol, p, stored->enrolment);
+  changed.between_levels = stored->between_levels;  // an enrolment-assigned group stays
+  for (const BetweenFactor& f : protocol.between) {
+    if (f.assignment != GroupAssignment::kParticipantField) continue;
+    const std::string& level = level_from_field(f, p);
+    const auto at = std::find_if(changed.between_levels.begin(), changed.between_levels.end(),
+                                 [&](const auto& l) { return l.first == f.name; });
+    if (at != changed.between_levels.end() && at->second == level) continue;
+    // Data recorded in one group are not moved to another.
+    if (at != changed.between_levels.end() && store.has_started(p.id))
+      throw std::invalid_argument("The " + f.field + " change would move " + p.id + " from " +
+                                  f.name + " " + at->second + " to " + level +
+                                  " after trials were run; a participant's group is fixed "
+                                  "once their schedule has started.");
+    if (at == changed.between_levels.end())
+      changed.between_levels.emplace_back(f.name, level);
+    else
+      at->second = level;
+  }
   store.update_participant(changed);
 }
 
@@ -88,8 +111,7 @@ std::string between_factor_summary(const BetweenFactor& f) {
     }
     out += (out.empty() ? "" : ", ") + l.name + (held.empty() ? "" : " (" + held + ")");
   }
-  return out + (f.assignment == GroupAssignment::kEnrolment ? "; balanced in order of enrolment"
-                                                            : "; from " + f.field);
+  return out + "; " + assignment_rule(f, f.field);
 }
 
 }  // namespace

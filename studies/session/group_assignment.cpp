@@ -25,11 +25,14 @@ int balanced_combination(const Protocol& protocol, int combinations, int enrolme
 
 const std::string& level_from_field(const BetweenFactor& f, const store::Participant& p) {
   if (numeric_participant_field(f.field)) {
-    const double x = f.field == "age" ? double(p.age) : p.hand_length;
+    const bool age = f.field == "age";
+    const double x = age ? double(p.age) : p.hand_length;
     if (const BetweenLevel* level = level_holding(f, x)) return level->name;
-    throw std::invalid_argument("The " + f.field + " " + util::format_number(x) +
-                                " is in no level of the between factor " + f.name +
-                                " (the protocol's ranges).");
+    // As the form takes it: years, or centimetres.
+    throw std::invalid_argument(
+        (age ? "The age " + util::format_number(x) + " years"
+             : "The hand length " + util::format_number(100.0 * x) + " cm") +
+        " is in no level of the between factor " + f.name + " (the protocol's ranges).");
   }
   const std::string& answer = f.field == "sex"          ? p.sex
                               : f.field == "handedness" ? p.handedness

@@ -48,17 +48,29 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   const auto start = std::chrono::steady_clock::now();
   const store::StudyDefinition definition = study_definition(protocol);
 
-  // Enrol everyone first, in order: the schedules' counterbalancing follows enrolment.
+  // Everyone drawn and placed in their groups before the file exists: a person the protocol
+  // has no group for stops the study before it starts.
+  std::vector<SimulatedPerson> persons;
+  for (int i : indices) {
+    persons.push_back(draw_person(options.population, options.seed, i, options.model));
+    store::Participant& p = persons.back().participant;
+    try {
+      p.between_levels = assign_groups(protocol, p, i);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("simulated participant " + p.id + " (population seed " +
+                                  std::to_string(options.seed) + "): " + e.what());
+    }
+  }
+  // Enrolled in order: the schedules' counterbalancing follows enrolment.
   store::StudyStore::create(db_path, definition);
   store::StudyStore study(db_path);
   std::vector<store::Participant> people;
   std::vector<std::vector<store::PlannedTrialRow>> plans;
   int planned_total = 0;
-  for (int i : indices) {
-    SimulatedPerson person = draw_person(options.population, options.seed, i, options.model);
-    person.participant.between_levels = assign_groups(protocol, person.participant, i);
-    plans.push_back(planned_rows(protocol, person.participant.id, i));
-    study.add_participant(person.participant, plans.back(), i);
+  for (std::size_t k = 0; k < persons.size(); ++k) {
+    const SimulatedPerson& person = persons[k];
+    plans.push_back(planned_rows(protocol, person.participant.id, indices[k]));
+    study.add_participant(person.participant, plans.back(), indices[k]);
     study.add_simulated_person(simulated_person_row(person, options.seed, options.model));
     people.push_back(person.participant);
     planned_total += int(plans.back().size());

@@ -205,7 +205,7 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
   // Schema 5: the groups of between-participants factors; none for those enrolled before.
   EXPECT_TRUE(db.participant("P01")->between_levels.empty());
   Participant grouped = person("G01");
-  grouped.between_levels = {{"experience", "novice"}, {"glove", "on"}};
+  grouped.between_levels = {{"glove", "on"}, {"experience", "novice"}};  // the protocol's order
   db.add_participant(grouped, {});
   EXPECT_EQ(db.participant("G01")->between_levels, grouped.between_levels);
 }

@@ -1,17 +1,20 @@
 // Between-participants factors: read from the protocol with refusals that name the field,
 // assigned at enrolment (balanced in order of enrolment, or from a participant field), stored
 // with the participant, exported beside the fields and shown in the protocol's summary.
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
+#include "core/store/study_merge.h"
 #include "core/store/study_store.h"
 #include "studies/export/study_export.h"
 #include "studies/session/enrolment.h"
 #include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
+#include "studies/simulate/simulated_study.h"
 #include "tests/support/test_files.h"
 #include "tests/support/test_participant.h"
 
@@ -91,6 +94,14 @@ TEST(BetweenFactor, RefusalsNameTheField) {
            R"([{"name": "g", "assignment": "age", "levels": [{"name": "young", "below": 30}, {"name": "old"}]}])"),
        "between[0].levels[1]: give \"from\", \"below\" or both"},
       {with_between(two.substr(0, two.size() - 1) + ", 3]"), "between[1]: must be an object"},
+      {with_between(
+           R"([{"name": "g", "assignment": "sex", "levels": [{"name": "a", "values": ["F"]}, {"name": "b", "values": ["female"]}]}])"),
+       "between[0].levels[1].values: \"female\" is not a sex the form takes (F, M, X)"},
+      {with_between(
+           R"([{"name": "g", "assignment": "hand_length", "levels": [{"name": "a", "below": 0.2}, {"name": "b", "from": 0.31}]}])"),
+       "between[0].levels[1]: no participant's hand_length is in its range"},
+      {with(read_protocol(kMixed).text, "{\"id\": \"ease\"", "{\"id\": \"block\""),
+       "questionnaire.items[1].id: \"block\" is taken"},
   };
   for (const Case& c : cases) {
     try {
@@ -145,12 +156,25 @@ TEST(GroupAssignment, FromAFieldByValueOrRangeAndRefusedWhenInNoLevel) {
   EXPECT_EQ(groups[1].second, "older");
   person.hand_length = 0.18;
   EXPECT_EQ(assign_groups(p, person, 0)[0].second, "large");
+  person.hand_length = 0.1795;  // as the form takes it, in cm
+  const Protocol small_only = parse_protocol(
+      with_between(R"([{"name": "hand", "assignment": "hand_length", "levels": [{"name": "a", "from": 0.15, "below": 0.17}, {"name": "b", "from": 0.18}]}])"),
+      "gap.json");
+  try {
+    assign_groups(small_only, person, 0);
+    ADD_FAILURE() << "placed in a gap";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("The hand length 17.95 cm is in no level"),
+              std::string::npos)
+        << e.what();
+  }
+  person.hand_length = 0.18;
   person.age = 17;
   EXPECT_THROW(assign_groups(p, person, 0), std::invalid_argument);
   const auto problems = participant_problems(person, {}, &p);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0].field, "age");
-  EXPECT_NE(problems[0].message.find("The age 17 is in no level of the between factor age_group"),
+  EXPECT_NE(problems[0].message.find("The age 17 years is in no level of the between factor age_group"),
             std::string::npos)
       << problems[0].message;
 }
@@ -195,8 +219,118 @@ TEST(GroupAssignment, StoredWithTheParticipantExportedAndSummarised) {
   std::map<std::string, std::string> summary;
   for (const auto& [label, value] : protocol_summary(protocol)) summary[label] = value;
   EXPECT_EQ(summary["Between factor experience"],
-            "novice (none), experienced (some, yes, expert); from vr_experience");
+            "novice (none), experienced (some, yes, expert); by vr_experience");
   EXPECT_EQ(summary["Factor strategy"], "naive, ours");  // labels that say their method
+}
+
+// The mixed example with a second factor assigned in order of enrolment.
+Protocol with_glove() {
+  const std::string text = read_protocol(kMixed).text;
+  const std::size_t at = text.find("\"between\": [") + std::string("\"between\": [").size();
+  return parse_protocol(
+      text.substr(0, at) +
+          R"({"name": "glove", "assignment": "enrolment", "levels": [{"name": "on"}, {"name": "off"}]}, )" +
+          text.substr(at),
+      "glove.json");
+}
+
+// A mended field moves the participant to the group it decides, but only before their
+// schedule has started; a group assigned in order of enrolment never moves.
+TEST(GroupAssignment, AnEditKeepsTheEnrolmentGroupAndMovesNoOneWhoseTrialsRan) {
+  const Protocol protocol = with_glove();
+  const std::string path = test::fresh_path("groups_edit.db");
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore db(path);
+  store::Participant a = test::participant("A");
+  a.vr_experience = "none";
+  enrol_participant(db, a);
+  const auto enrolled = db.participant("A")->between_levels;
+  ASSERT_EQ(enrolled.size(), 2u);
+  EXPECT_EQ(enrolled[0].first, "glove");
+  // The stored level stays even where the enrolment order would now say otherwise.
+  db.database().exec(std::string("UPDATE participant SET between_levels = '{\"glove\":\"") +
+                     (enrolled[0].second == "on" ? "off" : "on") +
+                     "\",\"experience\":\"novice\"}' WHERE id = 'A'");
+  const auto moved = db.participant("A")->between_levels;
+  a.notes = "glasses";
+  a.vr_experience = "yes";
+  update_participant(db, a);
+  EXPECT_EQ(db.participant("A")->between_levels, (std::vector<std::pair<std::string, std::string>>{
+                                                     moved[0], {"experience", "experienced"}}));
+  db.begin_session("A", "x");  // the schedule has started
+  a.vr_experience = "none";
+  try {
+    update_participant(db, a);
+    ADD_FAILURE() << "moved after trials";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("would move A from experience experienced to novice"),
+              std::string::npos)
+        << e.what();
+  }
+  a.vr_experience = " YES ";  // the same group: accepted
+  update_participant(db, a);
+  EXPECT_EQ(db.participant("A")->vr_experience, " YES ");
+}
+
+// Shards place each person as the whole study does (the group follows the place, not the
+// shard); merged, the groups are carried.
+TEST(GroupAssignment, ShardsAndTheirMergeHoldTheGroupsOfTheWholeStudy) {
+  const Protocol protocol = with_glove();
+  SimulationOptions options;
+  options.participants = 4;
+  options.seed = 3;
+  options.world = WorldKind::kGraspProxy;
+  options.jobs = 2;
+  const std::string whole = test::fresh_path("groups_whole.db");
+  simulate_study(protocol, whole, options);
+  std::vector<std::string> parts;
+  for (const std::vector<int>& only : {std::vector<int>{2, 3}, std::vector<int>{0, 1}}) {
+    options.only = only;
+    parts.push_back(test::fresh_path("groups_part" + std::to_string(only[0]) + ".db"));
+    simulate_study(protocol, parts.back(), options);
+  }
+  const std::string merged = test::fresh_path("groups_merged.db");
+  store::merge_studies(parts, merged);
+  store::StudyStore a(whole, store::StudyStore::Access::kReadOnly);
+  store::StudyStore b(merged, store::StudyStore::Access::kReadOnly);
+  const auto people = a.participants();
+  ASSERT_EQ(people.size(), 4u);
+  std::set<std::string> gloves;
+  for (const store::Participant& p : people) {
+    ASSERT_EQ(p.between_levels.size(), 2u) << p.id;
+    gloves.insert(p.between_levels[0].second);
+    EXPECT_EQ(b.participant(p.id)->between_levels, p.between_levels) << p.id;
+  }
+  EXPECT_EQ(gloves.size(), 2u) << "each run of two enrolments holds both levels";
+}
+
+// Every column the exports write is a fixed column, a factor or an item: the names a factor
+// or an item may not take are the ones that would be written twice.
+TEST(GroupAssignment, ExportHeadersAreTheFixedColumnsTheFactorsAndTheItems) {
+  const Protocol protocol = read_protocol(kMixed);
+  const std::string path = test::fresh_path("groups_headers.db");
+  store::StudyStore::create(path, study_definition(protocol));
+  store::StudyStore db(path);
+  enrol_participant(db, test::participant("A"));
+  std::set<std::string> allowed;
+  for (const std::string& c : fixed_export_columns()) allowed.insert(c);
+  for (const Factor& f : protocol.factors) allowed.insert(f.name);
+  for (const BetweenFactor& f : protocol.between) allowed.insert(f.name);
+  for (const QuestionnaireItem& i : protocol.items) allowed.insert(i.id);
+  const std::vector<std::function<void(std::ostream&)>> writers = {
+      [&](std::ostream& out) { write_trials_csv(db, out); },
+      [&](std::ostream& out) { write_questionnaire_csv(db, out); },
+      [&](std::ostream& out) { write_frames_csv(db, out); }};
+  for (const auto& write : writers) {
+    std::ostringstream out;
+    write(out);
+    std::stringstream header(out.str().substr(0, out.str().find('\n')));
+    std::set<std::string> seen;
+    for (std::string column; std::getline(header, column, ',');) {
+      EXPECT_TRUE(allowed.count(column)) << column;
+      EXPECT_TRUE(seen.insert(column).second) << column << " twice";
+    }
+  }
 }
 
 }  // namespace

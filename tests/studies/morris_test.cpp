@@ -94,6 +94,21 @@ TEST(ModelSensitivity, DefaultTestsNameTheProtocolsFactorsAndLabels) {
   EXPECT_EQ(default_sensitivity_outputs(parse_protocol(text, "relabelled.json")),
             (std::vector<std::string>{"strategy:manipulation", "repetition",
                                       "strategy:manipulation: A 1 cm - B 1 cm"}));
+  // One factor: no contrast; three: the first factor's levels at the others' last.
+  const std::string study = read_protocol(source + "/studies/fine-manipulation-2021.json").text;
+  const std::size_t from = study.find(",\n    {\"name\": \"manipulation\"");
+  const std::size_t to = study.find("\n  ],\n  \"blocks\"");
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(default_sensitivity_outputs(
+                parse_protocol(study.substr(0, from) + study.substr(to), "one.json")),
+            (std::vector<std::string>{"strategy", "repetition"}));
+  const std::string three = study.substr(0, to) +
+                            ",\n    {\"name\": \"hand_length\", \"levels\": [{\"name\": \"small\", "
+                            "\"length\": 0.18}, {\"name\": \"large\", \"length\": 0.23}]}" +
+                            study.substr(to);
+  EXPECT_EQ(default_sensitivity_outputs(parse_protocol(three, "three.json")).back(),
+            "strategy:manipulation:hand_length: naive fine large - ours fine large");
 }
 
 }  // namespace

@@ -43,17 +43,18 @@ int participant_add(const std::vector<std::string>& argv) {
   p.notes = args.text("notes");
   // The enrolment's own checks (the app's form uses them too), named by the option: the
   // values first, then, with the study's protocol, the groups they decide.
-  auto refuse_problems = [](const std::vector<studies::FieldProblem>& problems) {
+  auto refuse_problems = [](const std::vector<studies::FieldProblem>& problems,
+                            const std::string& hint) {
     if (problems.empty()) return;
     std::string option = problems.front().field;
     std::replace(option.begin(), option.end(), '_', '-');
     throw UsageError("--" + option + ": " + problems.front().message +
-                     (option == "hand-length" ? " Give it in metres (e.g. 0.188)." : ""));
+                     (option == "hand-length" ? hint : ""));
   };
-  refuse_problems(studies::participant_problems(p, {}));
+  refuse_problems(studies::participant_problems(p, {}), " Give it in metres (e.g. 0.188).");
   store::StudyStore store(args.text("db"));
   const studies::Protocol protocol = studies::stored_protocol(store);
-  refuse_problems(studies::participant_problems(p, {}, &protocol));
+  refuse_problems(studies::participant_problems(p, {}, &protocol), "");
 
   const int planned = studies::enrol_participant(store, p);
   const store::Participant enrolled = *store.participant(p.id);
