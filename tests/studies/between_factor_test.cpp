@@ -158,7 +158,8 @@ TEST(GroupAssignment, FromAFieldByValueOrRangeAndRefusedWhenInNoLevel) {
   EXPECT_EQ(assign_groups(p, person, 0)[0].second, "large");
   person.hand_length = 0.1795;  // as the form takes it, in cm
   const Protocol small_only = parse_protocol(
-      with_between(R"([{"name": "hand", "assignment": "hand_length", "levels": [{"name": "a", "from": 0.15, "below": 0.17}, {"name": "b", "from": 0.18}]}])"),
+      with_between(
+          R"([{"name": "hand", "assignment": "hand_length", "levels": [{"name": "a", "from": 0.15, "below": 0.17}, {"name": "b", "from": 0.18}]}])"),
       "gap.json");
   try {
     assign_groups(small_only, person, 0);
@@ -174,8 +175,9 @@ TEST(GroupAssignment, FromAFieldByValueOrRangeAndRefusedWhenInNoLevel) {
   const auto problems = participant_problems(person, {}, &p);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0].field, "age");
-  EXPECT_NE(problems[0].message.find("The age 17 years is in no level of the between factor age_group"),
-            std::string::npos)
+  EXPECT_NE(
+      problems[0].message.find("The age 17 years is in no level of the between factor age_group"),
+      std::string::npos)
       << problems[0].message;
 }
 
