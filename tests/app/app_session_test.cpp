@@ -78,6 +78,16 @@ void enrol_p01(const QString& db, int age, double hand_length) {
   studies::enrol_participant(store, p);
 }
 
+// The session page set for P01 and the scripted participant in `world`, as fast as it goes.
+SessionPage* scripted_session(MainWindow& window, studies::WorldKind world) {
+  SessionPage* page = window.session();
+  page->participant_box()->setCurrentText("P01");
+  page->tracker_box()->setCurrentIndex(3);  // scripted
+  page->world_box()->setCurrentIndex(page->world_box()->findData(int(world)));
+  page->real_time_box()->setChecked(false);
+  return page;
+}
+
 TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   const QString db = QString::fromStdString(test::fresh_path("app_session.db"));
   MainWindow window;
@@ -119,12 +129,7 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   EXPECT_EQ(window.participants()->schedule()->rowCount(), 24);
 
   // Set up: the scripted participant on the soft hand, as fast as it goes.
-  SessionPage* page = window.session();
-  page->participant_box()->setCurrentText("P01");
-  page->tracker_box()->setCurrentIndex(3);  // scripted
-  page->world_box()->setCurrentIndex(
-      page->world_box()->findData(int(studies::WorldKind::kSoftHand)));
-  page->real_time_box()->setChecked(false);
+  SessionPage* page = scripted_session(window, studies::WorldKind::kSoftHand);
   std::vector<std::vector<int>> answered;
   int questionnaires = 0;
   QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireForm* dialog) {
@@ -294,12 +299,7 @@ TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
   window.participants()->select("P01");
   EXPECT_EQ(window.participants()->schedule()->rowCount(), 36);
 
-  SessionPage* page = window.session();
-  page->participant_box()->setCurrentText("P01");
-  page->tracker_box()->setCurrentIndex(3);  // scripted
-  page->world_box()->setCurrentIndex(
-      page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
-  page->real_time_box()->setChecked(false);
+  SessionPage* page = scripted_session(window, studies::WorldKind::kGraspProxy);
   int questionnaires = 0;
   QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireForm* dialog) {
     ++questionnaires;
@@ -362,12 +362,7 @@ TEST(AppSession, AMixedDesignGroupsAtEnrolmentAndAsksInTheParticipantsWindow) {
 
   ParticipantWindow* seen = window.show_participant_window(-1);
   ASSERT_TRUE(QTest::qWaitForWindowExposed(seen));
-  SessionPage* page = window.session();
-  page->participant_box()->setCurrentText("P01");
-  page->tracker_box()->setCurrentIndex(3);  // scripted
-  page->world_box()->setCurrentIndex(
-      page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
-  page->real_time_box()->setChecked(false);
+  SessionPage* page = scripted_session(window, studies::WorldKind::kGraspProxy);
   int questionnaires = 0, in_participant_window = 0;
   QObject::connect(page, &SessionPage::questionnaire_opened, [&](QuestionnaireForm* form) {
     const int n = questionnaires++;
