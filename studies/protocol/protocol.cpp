@@ -262,7 +262,8 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
       QuestionnaireItem item;
       item.id = r.column_name(it, "id", where);
       if (!ids.insert(item.id).second) r.fail(where + ".id", "\"" + item.id + "\" appears twice");
-      if (fixed_columns.count(item.id) || factor_names.count(item.id))
+      // (A study's stored protocol keeps the items it was made with.)
+      if (!r.stored() && (fixed_columns.count(item.id) || factor_names.count(item.id)))
         r.fail(where + ".id", "\"" + item.id +
                                   "\" is taken (by a factor or a column of the exports); name "
                                   "the item otherwise");

@@ -93,7 +93,7 @@ void update_participant(store::StudyStore& store, const store::Participant& p) {
 
 namespace {
 
-// "novice (none), experienced (yes, some); from the VR experience" or
+// "novice (none), experienced (yes, some); by vr_experience" or
 // "A, B; balanced in order of enrolment".
 std::string between_factor_summary(const BetweenFactor& f) {
   std::string out;
