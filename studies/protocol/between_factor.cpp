@@ -159,19 +159,9 @@ std::vector<BetweenFactor> read_between_factors(const ProtocolReader& r, const J
                                   "\" is taken (by a factor or a column of the exports); name "
                                   "the between factor otherwise");
     factor.assignment = read_assignment(r, f, where, factor.field);
-    const JsonValue* levels = f.find("levels");
-    if (!levels || !levels->is_array()) r.fail(where, "\"levels\" must be an array");
-    if (levels->size() < 2)
-      r.fail(where + ".levels", "a factor needs at least two levels, \"" + factor.name + "\" has " +
-                                    std::to_string(levels->size()));
-    std::set<std::string> labels;
-    for (std::size_t k = 0; k < levels->size(); ++k) {
-      const std::string at = where + ".levels[" + std::to_string(k) + "]";
-      factor.levels.push_back(read_level(r, factor, (*levels)[k], at));
-      if (!labels.insert(factor.levels.back().name).second)
-        r.fail(at + ".name", "the label \"" + factor.levels.back().name +
-                                 "\" is another level's of \"" + factor.name + "\"");
-    }
+    factor.levels = r.levels(f, where, factor.name, [&](const JsonValue& v, const std::string& at) {
+      return read_level(r, factor, v, at);
+    });
     check_levels_disjoint(r, factor, where);
     out.push_back(std::move(factor));
   }

@@ -203,19 +203,9 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
              "unknown factor \"" + factor.name + "\" (known: strategy, manipulation, hand_length)");
     if (!factor_names.insert(factor.name).second)
       r.fail(where + ".name", "factor \"" + factor.name + "\" appears twice");
-    const JsonValue* levels = f.find("levels");
-    if (!levels || !levels->is_array()) r.fail(where, "\"levels\" must be an array");
-    if (levels->size() < 2)
-      r.fail(where + ".levels", "a factor needs at least two levels, \"" + factor.name + "\" has " +
-                                    std::to_string(levels->size()));
-    std::set<std::string> level_names;
-    for (std::size_t k = 0; k < levels->size(); ++k) {
-      const std::string at = where + ".levels[" + std::to_string(k) + "]";
-      factor.levels.push_back(parse_level(r, factor.name, (*levels)[k], at));
-      if (!level_names.insert(factor.levels.back().name).second)
-        r.fail(at + ".name", "the label \"" + factor.levels.back().name +
-                                 "\" is another level's of \"" + factor.name + "\"");
-    }
+    factor.levels = r.levels(f, where, factor.name, [&](const JsonValue& v, const std::string& at) {
+      return parse_level(r, factor.name, v, at);
+    });
     p.factors.push_back(std::move(factor));
   }
 

@@ -4,8 +4,10 @@
 
 #include <initializer_list>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -38,6 +40,28 @@ class ProtocolReader {
               int hi, std::optional<int> fallback = std::nullopt) const;
   std::string text(const util::JsonValue& object, const char* key, const std::string& where,
                    std::optional<std::string> fallback = std::nullopt) const;
+  // A factor's "levels", within or between participants: an array of two or more, each read
+  // by `read(value, where)` into a level with a `name`, no label twice.
+  template <typename Read>
+  auto levels(const util::JsonValue& factor, const std::string& where, const std::string& name,
+              Read read) const {
+    const util::JsonValue* list = factor.find("levels");
+    if (!list || !list->is_array()) fail(where, "\"levels\" must be an array");
+    if (list->size() < 2)
+      fail(where + ".levels", "a factor needs at least two levels, \"" + name + "\" has " +
+                                  std::to_string(list->size()));
+    std::vector<decltype(read((*list)[0], where))> out;
+    std::set<std::string> labels;
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      const std::string at = where + ".levels[" + std::to_string(k) + "]";
+      out.push_back(read((*list)[k], at));
+      if (!labels.insert(out.back().name).second)
+        fail(at + ".name",
+             "the label \"" + out.back().name + "\" is another level's of \"" + name + "\"");
+    }
+    return out;
+  }
+
   // A text that becomes a column of the exports: letters, digits and '_' only.
   std::string column_name(const util::JsonValue& object, const char* key,
                           const std::string& where) const;
