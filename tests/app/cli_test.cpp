@@ -157,6 +157,26 @@ TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
   EXPECT_EQ(cli("retarget " + recording + " --timing-runs 0").status, 2);
 }
 
+// The recording degraded as low tracking confidence degrades it (noise, jumping fingers,
+// another frame rate): the frames resampled, the degradation in the summary, the same seed
+// the same per-frame results, nonsense refused with a one-line error.
+TEST(CliRetarget, DegradedAsLowConfidenceTracking) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
+  const std::string base = std::string(HANDLAB_TEST_TMP) + "/retarget_degraded";
+  const std::string degrade = " --frame-rate 74 --joint-noise 0.002 --jump-chance 0.02";
+  const Result r = cli("retarget " + recording + degrade + " --csv " + base + "_1.csv --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* key : {"\"frames\": 199", "\"degradation\"", "\"joint_noise_m\": 0.002",
+                          "\"frame_rate_hz\": 74", "\"seed\": 1"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+  ASSERT_EQ(cli("retarget " + recording + degrade + " --csv " + base + "_2.csv").status, 0);
+  EXPECT_EQ(handlab::test::file_bytes(base + "_1.csv"), handlab::test::file_bytes(base + "_2.csv"));
+  const Result bad = cli("retarget " + recording + " --jump-chance 2");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--jump-chance must be 0 to 1"), std::string::npos) << bad.out;
+  EXPECT_EQ(cli("retarget " + recording + " --frame-rate 5").status, 2);
+}
+
 TEST(CliRetarget, DrawsThePinchPicture) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string png = std::string(HANDLAB_TEST_TMP) + "/retarget_pinch.png";

@@ -22,6 +22,7 @@
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/test_files.h"
+#include "tests/support/under_sanitizers.h"
 
 namespace {
 
@@ -100,8 +101,10 @@ TEST(CliMerge, ShardsMergedEqualTheStudyRunInOneProcess) {
   const Outputs whole = outputs(simulate("merge_whole.db", "", protocol));
   ASSERT_GT(std::count(whole.frames.begin(), whole.frames.end(), '\n'), 10000);
   ASSERT_NE(whole.analysis.find("\"manipulation\""), std::string::npos) << whole.analysis;
-  // Two and four shards (a single shard merged is a copy of its part: nothing to compare).
+  // Two and four shards (a single shard merged is a copy of its part: nothing to compare);
+  // under the sanitizers four alone, whose merge goes through all the code two shards' does.
   for (int m : {2, 4}) {
+    if (handlab::test::kUnderSanitizers && m == 2) continue;
     std::vector<std::string> parts;
     for (int k = m; k >= 1; --k)  // in reverse: the merge restores the enrolment order
       parts.push_back(simulate("merge_shard" + std::to_string(k) + "of" + std::to_string(m) + ".db",

@@ -24,6 +24,7 @@
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/test_files.h"
+#include "tests/support/under_sanitizers.h"
 
 namespace {
 
@@ -619,9 +620,12 @@ TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
     }
   // Faster movements or faster learning change the repetition F of the same people.
   EXPECT_GT(doc["outputs"][1]["indices"]["practice_rate"]["mu_star"].as_number(), 0.0);
-  // The same seeds, the same numbers (all but the wall-clock seconds on the first line).
+  // The same seeds, the same numbers (all but the wall-clock seconds on the first line): a
+  // second analysis, in the Release tree only (under the sanitizers it runs no other code).
   const auto numbers = [](const std::string& json) { return json.substr(json.find("\"levels\"")); };
-  EXPECT_EQ(numbers(cli(command).out), numbers(r.out));
+  if (!handlab::test::kUnderSanitizers) {
+    EXPECT_EQ(numbers(cli(command).out), numbers(r.out));
+  }
   one_line_error(cli("sensitivity --protocol " + two_blocks + " --work " + work +
                      " --parameter no_such_thing"),
                  "no parameter no_such_thing");

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/tracking/degraded_recording.h"
+#include "core/tracking/frame_source.h"
 #include "core/tracking/leap_json.h"
 #include "core/tracking/lz_string.h"
 #include "core/tracking/recording_io.h"
@@ -307,6 +309,67 @@ TEST(TrackedHandFitting, HandLengthFromFrames) {
 
 namespace handlab::tracking {
 namespace {
+
+// A recording degraded as low tracking confidence degrades it: each joint's noise has the
+// standard deviation asked for; a jumping finger turns rigidly about its knuckle (its bones
+// keep their lengths) for its frames and comes back; resampled, the frames come at the rate;
+// the same seed gives the same frames, another seed others; nonsense is refused.
+TEST(DegradedRecording, NoiseJumpsAndRateAsAsked) {
+  const Recording recording = read_recording(data("leap/pinch.json.lz"));
+  const std::vector<TrackedFrame>& frames = recording.frames;
+  Degradation noisy;
+  noisy.joint_noise = 0.002;
+  const std::vector<TrackedFrame> a = degrade(frames, noisy);
+  ASSERT_EQ(a.size(), frames.size());
+  double sum = 0.0;
+  long count = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    for (std::size_t h = 0; h < frames[i].hands.size(); ++h)
+      for (std::size_t d = 0; d < 5; ++d)
+        for (std::size_t k = 0; k < 5; ++k) {
+          const Eigen::Vector3d e = a[i].hands[h].joints[d][k] - frames[i].hands[h].joints[d][k];
+          sum += e.squaredNorm();
+          count += 3;
+        }
+  ASSERT_GT(count, 10000);
+  EXPECT_NEAR(std::sqrt(sum / double(count)), 0.002, 0.0001);
+  EXPECT_EQ(degrade(frames, noisy)[7].hands.at(0).joints[1][4], a[7].hands.at(0).joints[1][4]);
+  noisy.seed = 2;
+  EXPECT_NE(degrade(frames, noisy)[7].hands.at(0).joints[1][4], a[7].hands.at(0).joints[1][4]);
+
+  Degradation jumpy;
+  jumpy.jump_chance = 0.05;
+  const std::vector<TrackedFrame> b = degrade(frames, jumpy);
+  int moved = 0, still = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    for (std::size_t h = 0; h < frames[i].hands.size(); ++h)
+      for (std::size_t d = 0; d < 5; ++d) {
+        const auto& was = frames[i].hands[h].joints[d];
+        const auto& now = b[i].hands[h].joints[d];
+        EXPECT_EQ(now[1], was[1]) << "the knuckle stays";
+        for (std::size_t k = 1; k < 4; ++k)
+          EXPECT_NEAR((now[k + 1] - now[k]).norm(), (was[k + 1] - was[k]).norm(), 1e-12);
+        ((now[4] - was[4]).norm() > 1e-9 ? moved : still) += 1;
+      }
+  // Each jump lasts three frames: about three in 1 / 0.05 + 3 frames of a finger are moved.
+  const double share = double(moved) / double(moved + still);
+  EXPECT_GT(share, 0.08);
+  EXPECT_LT(share, 0.18);
+
+  Degradation slow;
+  slow.rate_hz = 74.0;
+  const std::vector<TrackedFrame> c = degrade(frames, slow);
+  const double span = frames.back().timestamp - frames.front().timestamp;
+  EXPECT_NEAR(double(c.size()), span * 74.0, 2.0);
+  EXPECT_NEAR(c[1].timestamp - c[0].timestamp, 1.0 / 74.0, 1e-9);
+
+  Degradation bad;
+  bad.jump_chance = 1.5;
+  EXPECT_THROW(degrade(frames, bad), std::invalid_argument);
+  bad = {};
+  bad.joint_noise = -1.0;
+  EXPECT_THROW(degrade(frames, bad), std::invalid_argument);
+}
 
 TEST(Replay, AsFastAsPossibleAndRealTime) {
   const Recording r = read_recording(data("leap/wave.json.lz"));

@@ -13,6 +13,7 @@
 #include "app/cli/output_file.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/retargeter.h"
+#include "core/tracking/degraded_recording.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
 
@@ -51,13 +52,25 @@ int run_retarget(const std::vector<std::string>& argv) {
        "time each frame in N runs of the recording and keep its fastest (what the frame "
        "costs, without other processes' interruptions)",
        "1"},
+      {"joint-noise", "METRES",
+       "degrade the recording as low tracking confidence does: noise of this standard "
+       "deviation on every joint coordinate",
+       "0"},
+      {"jump-chance", "P",
+       "degrade: each frame, each finger jumps (turns about its knuckle by up to 1 rad for 3 "
+       "frames) with this chance",
+       "0"},
+      {"frame-rate", "HZ", "degrade: resample the recording to this frame rate (0: its own)", "0"},
+      {"degrade-seed", "S", "the seed of the noise and the jumps", "1"},
   };
   const Arguments args(specs, argv, 1);
   if (args.help_requested()) {
     std::cout
         << "Usage: handlab-cli retarget FILE [--strategy naive|ours] [--hand right|left] "
            "[--sim-length 0.214]\n"
-           "                              [--csv per_frame.csv] [--json summary.json]\n\n"
+           "                              [--csv per_frame.csv] [--json summary.json]\n"
+           "                              [--joint-noise M] [--jump-chance P] [--frame-rate HZ]"
+           "\n\n"
            "Runs a recording through calibration (uniform scale from open-palm frames) and "
            "retargeting onto\n"
            "the simulated hand, and reports fingertip and pinch errors and timings.\n\nOptions:\n"
@@ -92,6 +105,23 @@ int run_retarget(const std::vector<std::string>& argv) {
     calibration->scale = sim_length / *tracking::estimate_hand_length(recording.frames, side);
     calibration_source = "hand lengths";
   }
+  // Calibrated on the recording as recorded (a held open hand); retargeted on its frames
+  // degraded when asked.
+  tracking::Degradation degradation;
+  degradation.joint_noise = args.number("joint-noise");
+  degradation.jump_chance = args.number("jump-chance");
+  degradation.rate_hz = args.number("frame-rate");
+  degradation.seed = std::uint64_t(args.integer("degrade-seed"));
+  if (!(degradation.joint_noise >= 0 && degradation.joint_noise <= 0.05))
+    throw UsageError("--joint-noise must be 0 to 0.05 m");
+  if (!(degradation.jump_chance >= 0 && degradation.jump_chance <= 1))
+    throw UsageError("--jump-chance must be 0 to 1");
+  if (!(degradation.rate_hz == 0 || (degradation.rate_hz >= 10 && degradation.rate_hz <= 1000)))
+    throw UsageError("--frame-rate must be 0 or 10 to 1000 Hz");
+  const bool degraded =
+      degradation.joint_noise > 0 || degradation.jump_chance > 0 || degradation.rate_hz > 0;
+  const std::vector<tracking::TrackedFrame> played =
+      degraded ? tracking::degrade(recording.frames, degradation) : recording.frames;
   if (args.has("picture")) {
     std::optional<std::int64_t> frame_id;
     if (args.has("frame")) frame_id = args.integer("frame");
@@ -109,7 +139,7 @@ int run_retarget(const std::vector<std::string>& argv) {
   for (std::int64_t run = 1; run < timing_runs; ++run) {
     retarget::Retargeter timed = make_retargeter();
     std::size_t i = 0;
-    for (const auto& frame : recording.frames) {
+    for (const auto& frame : played) {
       const tracking::TrackedHand* h = frame.hand(side);
       if (!h) continue;
       const auto start = std::chrono::steady_clock::now();
@@ -134,7 +164,7 @@ int run_retarget(const std::vector<std::string>& argv) {
   csv << std::setprecision(9) << "frame_id,timestamp_s,pinch_strength,iterations";
   for (const char* n : kNames) csv << ',' << n << "_tip_error_mm";
   csv << ",gap_intermediate_mm,gap_tracked_scaled_mm,joint_limit_violation_rad\n";
-  for (const auto& frame : recording.frames) {
+  for (const auto& frame : played) {
     const tracking::TrackedHand* h = frame.hand(side);
     if (!h) continue;
     const auto start = std::chrono::steady_clock::now();
@@ -200,6 +230,14 @@ int run_retarget(const std::vector<std::string>& argv) {
           .field("strategy", strategy_name)
           .field("hand", side_name);
       json.field("scale", calibration->scale).field("calibration", calibration_source);
+      if (degraded)
+        json.key("degradation")
+            .begin_object()
+            .field("joint_noise_m", degradation.joint_noise)
+            .field("jump_chance", degradation.jump_chance)
+            .field("frame_rate_hz", degradation.rate_hz)
+            .field("seed", int(degradation.seed))
+            .end_object();
       json.field("frames", time_us.values.size());
       json.key("time_us")
           .begin_object()

@@ -11,6 +11,7 @@
 #include "core/hand/hand_shape.h"
 #include "core/sim/box_distance.h"
 #include "core/task/pinch_scene.h"
+#include "tests/support/under_sanitizers.h"
 
 namespace handlab::sim {
 namespace {
@@ -74,7 +75,10 @@ void expect_held_at_each_squeeze(double cube, std::initializer_list<double> sque
 // 3 mm, the default, held). The skin within 1 mm: where rounding differs (no fused multiply-add)
 // a squeeze of 3.1 mm reached 0.67 mm, this build 0.22-0.39 mm for all five.
 TEST(PinchRobustness, HoldsTheLightCubeForAnySqueeze) {
-  expect_held_at_each_squeeze(0.01, {0.0025, 0.0027, 0.0028, 0.0031, 0.0035}, 1.0);
+  if (test::kUnderSanitizers)  // the softest and the hardest: the same code as the others
+    expect_held_at_each_squeeze(0.01, {0.0025, 0.0035}, 1.0);
+  else
+    expect_held_at_each_squeeze(0.01, {0.0025, 0.0027, 0.0028, 0.0031, 0.0035}, 1.0);
 }
 
 // The heavy cube (108 g) too, its pads 20 mm under the top. With them 12 mm under it the
@@ -82,7 +86,10 @@ TEST(PinchRobustness, HoldsTheLightCubeForAnySqueeze) {
 // its nodes (2.2 mm with contact at the nodes alone), the cube turned out of the pads at the
 // lift for 3.0, 3.2, 3.4 and 3.6 mm of fifteen squeezes from 2.5 to 4 mm.
 TEST(PinchRobustness, HoldsTheHeavyCubeForAnySqueeze) {
-  expect_held_at_each_squeeze(0.06, {0.0025, 0.0027, 0.0028, 0.003, 0.0031, 0.0035}, 1.5);
+  if (test::kUnderSanitizers)  // the softest and the hardest: the same code as the others
+    expect_held_at_each_squeeze(0.06, {0.0025, 0.0035}, 1.5);
+  else
+    expect_held_at_each_squeeze(0.06, {0.0025, 0.0027, 0.0028, 0.003, 0.0031, 0.0035}, 1.5);
 }
 
 // The skin, not only its nodes, keeps out of the cube: in the held light pinch no point of the
