@@ -30,7 +30,8 @@ struct Jump {
   int frames_left = 0;
 };
 
-// Turns finger d (not the thumb's carp and MCP: the knuckle stays) about its MCP.
+// Turns digit d's joints past its knuckle (the Leap's pip, dip and tip) about the knuckle (its
+// mcp).
 void turn_finger(TrackedHand& hand, std::size_t d, double angle) {
   const Eigen::Vector3d axis = palm_frame(hand).col(0);
   const Eigen::Matrix3d r = Eigen::AngleAxisd(angle, axis).toRotationMatrix();

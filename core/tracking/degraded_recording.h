@@ -24,8 +24,9 @@ struct Degradation {
   std::uint64_t seed = 1;
 };
 
-// Throws std::invalid_argument for a negative noise, a chance outside [0, 1], a jump of no
-// frames or a negative rate.
+// The joints, palm position and wrist are degraded; the palm's orientation and any bone bases
+// stay as recorded. Throws std::invalid_argument for a negative noise, a chance outside
+// [0, 1], a jump of no frames or a negative rate.
 std::vector<TrackedFrame> degrade(const std::vector<TrackedFrame>& frames,
                                   const Degradation& degradation);
 

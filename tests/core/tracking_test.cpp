@@ -312,7 +312,7 @@ namespace {
 
 // A recording degraded as low tracking confidence degrades it: each joint's noise has the
 // standard deviation asked for; a jumping finger turns rigidly about its knuckle (its bones
-// keep their lengths) for its frames and comes back; resampled, the frames come at the rate;
+// keep their lengths) for a few frames at a time; resampled, the frames come at the rate;
 // the same seed gives the same frames, another seed others; nonsense is refused.
 TEST(DegradedRecording, NoiseJumpsAndRateAsAsked) {
   const Recording recording = read_recording(data("leap/pinch.json.lz"));
