@@ -1,14 +1,10 @@
 #include "core/hand/simulated_hand.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "core/hand/degrees.h"
 
 namespace handlab::hand {
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
 
 Skeleton build_simulated_hand(const HandShape& shape) {
   const double hl = shape.length, hb = shape.hand_breadth();

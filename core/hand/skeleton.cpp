@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/hand/degrees.h"
+
 namespace handlab::hand {
 
 namespace {
@@ -46,7 +48,6 @@ Eigen::Matrix3d frame_along(const Eigen::Vector3d& direction, const Eigen::Vecto
 
 void add_dof(Skeleton& skeleton, Bone& bone, const std::string& name, const Eigen::Vector3d& axis,
              double lower_deg, double upper_deg) {
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
   if (bone.dof_count == 0) bone.first_dof = int(skeleton.dofs.size());
   skeleton.dofs.push_back({name, axis, lower_deg * kDeg, upper_deg * kDeg});
   ++bone.dof_count;

@@ -1,14 +1,14 @@
 #include "core/hand/tracked_hand.h"
 
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Dense>
+
+#include "core/hand/degrees.h"
 
 namespace handlab::hand {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr const char* kJointNames[5] = {"_carp", "_mcp", "_pip", "_dip", "_tip"};
 // A fit ends when its step would move no parameter by more than kStepTolerance (rad, or m at
 // the root), or when an accepted step lowered the cost by less than kDropTolerance of it.

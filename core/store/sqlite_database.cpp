@@ -1,5 +1,7 @@
 #include "core/store/sqlite_database.h"
 
+#include <filesystem>
+
 #include <sqlite3.h>
 
 namespace handlab::store {
@@ -215,6 +217,12 @@ Transaction::~Transaction() {
 void Transaction::commit() {
   db_.exec("COMMIT");
   done_ = true;
+}
+
+void remove_database_files(const std::string& path) {
+  std::error_code ignored;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+    std::filesystem::remove(path + suffix, ignored);
 }
 
 }  // namespace handlab::store

@@ -103,4 +103,8 @@ class Transaction {
   bool done_ = false;
 };
 
+// Deletes a closed database file and SQLite's files beside it (-wal, -shm, -journal); files
+// that are not there are no error.
+void remove_database_files(const std::string& path);
+
 }  // namespace handlab::store

@@ -10,6 +10,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "core/store/sqlite_database.h"
 #include "core/util/json_writer.h"
 #include "studies/analysis/study_database_analysis.h"
 #include "studies/analysis/study_tests.h"
@@ -22,10 +23,6 @@ namespace {
 constexpr const char* kPerson = "a person's parameter: the population mean within one SD";
 constexpr const char* kSourced = "a fixed parameter with a source: within 25 %";
 constexpr const char* kAssumed = "an assumption: half to twice its value";
-
-void remove_database(const std::string& path) {
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
-}
 
 }  // namespace
 
@@ -104,20 +101,20 @@ SensitivityReport run_model_sensitivity(
     const std::string db =
         (std::filesystem::path(options.work_dir) / ("point-" + std::to_string(k + 1) + ".db"))
             .string();
-    remove_database(db);
+    store::remove_database_files(db);
     StudyTests tests;
     try {
       simulate_study(protocol, db, run);
       tests = study_tests(analyze_study_database(db), power::SphericityCorrection::kAuto, 0.05);
     } catch (...) {
-      remove_database(db);  // the parts a failed simulation left are removed with it
+      store::remove_database_files(db);  // the parts a failed simulation left are removed with it
       for (const auto& f : std::filesystem::directory_iterator(options.work_dir))
         if (f.path().filename().string().rfind(
                 std::filesystem::path(db).filename().string() + ".part-", 0) == 0)
           std::filesystem::remove(f.path());
       throw;
     }
-    remove_database(db);
+    store::remove_database_files(db);
     std::vector<double> values;
     for (const std::string& name : report.outputs) {
       double v = std::numeric_limits<double>::quiet_NaN();

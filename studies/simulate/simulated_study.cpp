@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/store/sqlite_database.h"
 #include "core/store/study_store.h"
 #include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
@@ -22,12 +23,6 @@ namespace {
 
 std::string part_path(const std::string& db_path, const std::string& id) {
   return db_path + ".part-" + id;
-}
-
-void remove_database(const std::string& path) {
-  std::error_code ignored;
-  for (const char* suffix : {"", "-wal", "-shm", "-journal"})
-    std::filesystem::remove(path + suffix, ignored);
 }
 
 }  // namespace
@@ -79,7 +74,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   // Sessions side by side, each in a copy of the enrolled study; imported in enrolment order.
   for (const store::Participant& p : people) {
     const std::string path = part_path(db_path, p.id);
-    remove_database(path);
+    store::remove_database_files(path);
     study.copy_to(path);
   }
   const int n = int(people.size());
@@ -137,7 +132,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
         lock.unlock();
         try {
           study.import_sessions(path);
-          remove_database(path);
+          store::remove_database_files(path);
         } catch (...) {
           import_failure = std::current_exception();
         }
@@ -161,7 +156,8 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   }
   for (std::thread& t : threads) t.join();
   if (failure) {
-    for (const store::Participant& p : people) remove_database(part_path(db_path, p.id));
+    for (const store::Participant& p : people)
+      store::remove_database_files(part_path(db_path, p.id));
     std::rethrow_exception(failure);
   }
 

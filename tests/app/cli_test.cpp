@@ -16,24 +16,22 @@ namespace handlab {
 namespace {
 
 using Result = test::CliResult;
-Result cli(const std::string& args) {
-  return test::run_cli(args);
-}
+using handlab::test::run_cli;
 
 TEST(Cli, Version) {
-  const Result r = cli("--version");
+  const Result r = run_cli("--version");
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.out.rfind("handlab-cli ", 0), 0u) << r.out;
 }
 
 TEST(Cli, HelpListsCommandsAndEachCommandHasHelp) {
-  const Result r = cli("--help");
+  const Result r = run_cli("--help");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("render"), std::string::npos);
   // Every name stands apart from its summary, the longest too.
   for (const char* name : {"  replications  ", "  participant  ", "  analyze  "})
     EXPECT_NE(r.out.find(name), std::string::npos) << name;
-  const Result h = cli("render --help");
+  const Result h = run_cli("render --help");
   EXPECT_EQ(h.status, 0);
   EXPECT_NE(h.out.find("--width"), std::string::npos);
 }
@@ -41,7 +39,7 @@ TEST(Cli, HelpListsCommandsAndEachCommandHasHelp) {
 TEST(Cli, ErrorsAreOneLineWithNonZeroStatus) {
   for (const char* args : {"no-such-command", "render --width", "render --width abc",
                            "render --bogus 1", "render --out /no/such/dir/x.png"}) {
-    const Result r = cli(args);
+    const Result r = run_cli(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << args << ": " << r.out;
   }
@@ -50,7 +48,7 @@ TEST(Cli, ErrorsAreOneLineWithNonZeroStatus) {
 TEST(Cli, RenderWritesThePicture) {
   const std::string path = std::string(HANDLAB_TEST_TMP) + "/cli_scene.png";
   std::filesystem::remove(path);
-  const Result r = cli("render --out " + path + " --width 320 --height 200");
+  const Result r = run_cli("render --out " + path + " --width 320 --height 200");
   ASSERT_EQ(r.status, 0) << r.out;
   int w = 0, h = 0;
   ASSERT_TRUE(handlab::render::read_png_size(path, &w, &h));
@@ -74,8 +72,8 @@ const char* kGood =
 
 TEST(CliHand, WritesSkinFleshAndPicture) {
   const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";
-  const Result r = cli("hand --length 0.214 --out " + dir + "hand.obj --tets " + dir +
-                       "hand.vtk --png " + dir + "hand.png --pair --json " + dir + "hand.json");
+  const Result r = run_cli("hand --length 0.214 --out " + dir + "hand.obj --tets " + dir +
+                           "hand.vtk --png " + dir + "hand.png --pair --json " + dir + "hand.json");
   ASSERT_EQ(r.status, 0) << r.out;
   std::FILE* vtk = std::fopen((dir + "hand.vtk").c_str(), "rb");
   ASSERT_NE(vtk, nullptr);
@@ -88,16 +86,16 @@ TEST(CliHand, WritesSkinFleshAndPicture) {
   EXPECT_LE(cells, 2800);
   int w = 0, h = 0;
   EXPECT_TRUE(handlab::render::read_png_size(dir + "hand.png", &w, &h));
-  const Result tracked = cli("hand --tracked --length 0.18");
+  const Result tracked = run_cli("hand --tracked --length 0.18");
   EXPECT_EQ(tracked.status, 0);
   EXPECT_NE(tracked.out.find("tracked (Leap) skeleton"), std::string::npos);
-  EXPECT_NE(cli("hand --length 0.5").status, 0);
+  EXPECT_NE(run_cli("hand --length 0.5").status, 0);
 }
 
 TEST(CliTracking, InfoJsonAndBadFiles) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/pinch_info.json";
-  const Result r = cli("tracking info " + recording + " --json " + json);
+  const Result r = run_cli("tracking info " + recording + " --json " + json);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("18.0 to 113.0 mm"), std::string::npos) << r.out;
   std::FILE* f = std::fopen(json.c_str(), "rb");
@@ -110,11 +108,11 @@ TEST(CliTracking, InfoJsonAndBadFiles) {
         "\"duration_s\"", "\"fps_mean\"", "\"rejected\": []", "\"thumb_index_mm\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
   const std::string csv = std::string(HANDLAB_TEST_TMP) + "/pinch.csv";
-  EXPECT_EQ(cli("tracking convert " + recording + " --out " + csv).status, 0);
+  EXPECT_EQ(run_cli("tracking convert " + recording + " --out " + csv).status, 0);
   // A truncated copy: nothing usable remains, so a one-line error and a non-zero status.
   const std::string truncated =
       write_temp("cut.json.lz", "N4IgZgTghgtgpgZxALgNqgMYFcITgOwBcAxaeAJSkLhQEZaBWAOgGYBOAJg");
-  const Result bad = cli("tracking info " + truncated);
+  const Result bad = run_cli("tracking info " + truncated);
   EXPECT_EQ(bad.status, 1);
   EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
   EXPECT_NE(bad.out.find("cut.json.lz"), std::string::npos) << bad.out;
@@ -125,13 +123,13 @@ TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
   const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";
   for (const char* strategy : {"ours", "naive"}) {
     const std::string base = dir + "retarget_" + strategy;
-    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base +
-                  "_1.csv --json " + base + ".json")
+    ASSERT_EQ(run_cli("retarget " + recording + " --strategy " + strategy + " --csv " + base +
+                      "_1.csv --json " + base + ".json")
                   .status,
               0);
     // Extra timing runs (fresh retargeters) change no result, only how frames are timed.
-    ASSERT_EQ(cli("retarget " + recording + " --strategy " + strategy + " --csv " + base +
-                  "_2.csv --timing-runs 3 --json " + base + "_3.json")
+    ASSERT_EQ(run_cli("retarget " + recording + " --strategy " + strategy + " --csv " + base +
+                      "_2.csv --timing-runs 3 --json " + base + "_3.json")
                   .status,
               0);
     auto slurp = [](const std::string& path) {
@@ -153,8 +151,8 @@ TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
     ASSERT_NE(at, std::string::npos);
     EXPECT_LT(std::strtod(json.c_str() + at + 33, nullptr), 1e-9) << strategy;
   }
-  EXPECT_EQ(cli("retarget " + recording + " --strategy magic").status, 2);
-  EXPECT_EQ(cli("retarget " + recording + " --timing-runs 0").status, 2);
+  EXPECT_EQ(run_cli("retarget " + recording + " --strategy magic").status, 2);
+  EXPECT_EQ(run_cli("retarget " + recording + " --timing-runs 0").status, 2);
 }
 
 // The recording degraded as low tracking confidence degrades it (noise, jumping fingers,
@@ -164,31 +162,32 @@ TEST(CliRetarget, DegradedAsLowConfidenceTracking) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string base = std::string(HANDLAB_TEST_TMP) + "/retarget_degraded";
   const std::string degrade = " --frame-rate 74 --joint-noise 0.002 --jump-chance 0.02";
-  const Result r = cli("retarget " + recording + degrade + " --csv " + base + "_1.csv --json -");
+  const Result r =
+      run_cli("retarget " + recording + degrade + " --csv " + base + "_1.csv --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   for (const char* key : {"\"frames\": 199", "\"degradation\"", "\"joint_noise_m\": 0.002",
                           "\"frame_rate_hz\": 74", "\"seed\": 1"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
-  ASSERT_EQ(cli("retarget " + recording + degrade + " --csv " + base + "_2.csv").status, 0);
+  ASSERT_EQ(run_cli("retarget " + recording + degrade + " --csv " + base + "_2.csv").status, 0);
   EXPECT_EQ(handlab::test::file_bytes(base + "_1.csv"), handlab::test::file_bytes(base + "_2.csv"));
-  const Result bad = cli("retarget " + recording + " --jump-chance 2");
+  const Result bad = run_cli("retarget " + recording + " --jump-chance 2");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.out.find("--jump-chance must be 0 to 1"), std::string::npos) << bad.out;
-  EXPECT_EQ(cli("retarget " + recording + " --frame-rate 5").status, 2);
+  EXPECT_EQ(run_cli("retarget " + recording + " --frame-rate 5").status, 2);
 }
 
 TEST(CliRetarget, DrawsThePinchPicture) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string png = std::string(HANDLAB_TEST_TMP) + "/retarget_pinch.png";
   std::remove(png.c_str());
-  const Result r = cli("retarget " + recording + " --picture " + png + " --json /dev/null");
+  const Result r = run_cli("retarget " + recording + " --picture " + png + " --json /dev/null");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("frame 133040"), std::string::npos) << r.out;  // the strongest pinch
   int width = 0, height = 0;
   ASSERT_TRUE(handlab::render::read_png_size(png, &width, &height));
   EXPECT_EQ(width, 1500);
   EXPECT_EQ(height, 600);
-  EXPECT_EQ(cli("retarget " + recording + " --picture " + png + " --frame 1").status, 1);
+  EXPECT_EQ(run_cli("retarget " + recording + " --picture " + png + " --frame 1").status, 1);
 }
 
 // A real recording on the soft hand: played, and held still in its first pose, where the
@@ -196,7 +195,7 @@ TEST(CliRetarget, DrawsThePinchPicture) {
 TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string json = test::fresh_path("sim_replay.json");
-  const Result held = cli("sim replay " + recording + " --hold --duration 2 --json " + json);
+  const Result held = run_cli("sim replay " + recording + " --hold --duration 2 --json " + json);
   ASSERT_EQ(held.status, 0) << held.out;
   EXPECT_NE(held.out.find("held still"), std::string::npos) << held.out;
   const std::string text = test::file_bytes(json);
@@ -208,20 +207,21 @@ TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   const std::size_t at = text.find("\"fastest_node_last_half_second_m_s\": ");
   ASSERT_NE(at, std::string::npos);
   EXPECT_LT(std::stod(text.substr(at + 37)), 1e-3) << "m/s: the held hand came to rest";
-  const Result played = cli("sim replay " + recording + " --strategy naive");
+  const Result played = run_cli("sim replay " + recording + " --strategy naive");
   ASSERT_EQ(played.status, 0) << played.out;
   EXPECT_NE(played.out.find("naive"), std::string::npos) << played.out;
-  EXPECT_EQ(cli("sim replay").status, 2);
-  EXPECT_EQ(cli("sim replay " + recording + " --strategy best").status, 2);
-  EXPECT_EQ(cli("sim replay " + recording + " --hold --duration 0").status, 2);
-  EXPECT_EQ(cli("sim replay /nonexistent.json.lz").status, 1);
+  EXPECT_EQ(run_cli("sim replay").status, 2);
+  EXPECT_EQ(run_cli("sim replay " + recording + " --strategy best").status, 2);
+  EXPECT_EQ(run_cli("sim replay " + recording + " --hold --duration 0").status, 2);
+  EXPECT_EQ(run_cli("sim replay /nonexistent.json.lz").status, 1);
 }
 
 TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string json = test::fresh_path("sim_bench.json");
   const std::string steps = test::fresh_path("sim_steps.csv");
-  const Result r = cli("sim bench --duration 0.4 --threads 1 --direct-steps 2 --runs 2 --json " +
-                       json + " --steps " + steps);
+  const Result r =
+      run_cli("sim bench --duration 0.4 --threads 1 --direct-steps 2 --runs 2 --json " + json +
+              " --steps " + steps);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("approach"), std::string::npos) << "the phases: " << r.out;
@@ -256,25 +256,25 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
             0u)
       << csv.substr(0, 200);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 49) << "a header and 48 steps";
-  EXPECT_EQ(cli("sim bench --threads 0").status, 2);
-  EXPECT_EQ(cli("sim bench --max-linear-iterations -1").status, 2);
-  EXPECT_EQ(cli("sim bench --direct-steps -1").status, 2);
-  EXPECT_EQ(cli("sim bench --refresh-steps -1").status, 2);
-  EXPECT_EQ(cli("sim bench --runs 0").status, 2);
-  EXPECT_EQ(cli("sim bench --halfway-gap -1").status, 2);
-  EXPECT_EQ(cli("sim bench --scale 3").status, 2);
-  EXPECT_EQ(cli("sim pinch --cube 2").status, 2);
-  EXPECT_EQ(cli("sim pinch --skin-samples 3").status, 2);
-  EXPECT_EQ(cli("sim bench --skin-samples -1").status, 2);
-  EXPECT_EQ(cli("sim wobble").status, 2);
-  EXPECT_EQ(cli("sim pinch --help").status, 0);
+  EXPECT_EQ(run_cli("sim bench --threads 0").status, 2);
+  EXPECT_EQ(run_cli("sim bench --max-linear-iterations -1").status, 2);
+  EXPECT_EQ(run_cli("sim bench --direct-steps -1").status, 2);
+  EXPECT_EQ(run_cli("sim bench --refresh-steps -1").status, 2);
+  EXPECT_EQ(run_cli("sim bench --runs 0").status, 2);
+  EXPECT_EQ(run_cli("sim bench --halfway-gap -1").status, 2);
+  EXPECT_EQ(run_cli("sim bench --scale 3").status, 2);
+  EXPECT_EQ(run_cli("sim pinch --cube 2").status, 2);
+  EXPECT_EQ(run_cli("sim pinch --skin-samples 3").status, 2);
+  EXPECT_EQ(run_cli("sim bench --skin-samples -1").status, 2);
+  EXPECT_EQ(run_cli("sim wobble").status, 2);
+  EXPECT_EQ(run_cli("sim pinch --help").status, 0);
 }
 
 TEST(CliAnalyze, ReportsAndWritesJson) {
   const std::string csv = write_temp("good.csv", kGood);
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";
   const Result r =
-      cli("analyze --csv " + csv + " --subject id --dv y --within cond,block --json " + json);
+      run_cli("analyze --csv " + csv + " --subject id --dv y --within cond,block --json " + json);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("cond "), std::string::npos);
   EXPECT_NE(r.out.find("F(1, 2) = "), std::string::npos) << r.out;
@@ -315,15 +315,16 @@ TEST(CliAnalyze, BadInputGivesOneClearLine) {
   };
   for (const Case& c : cases) {
     const std::string csv = write_temp(std::string(c.name) + ".csv", c.csv);
-    const Result r = cli("analyze --csv " + csv + " " + c.args);
+    const Result r = run_cli("analyze --csv " + csv + " " + c.args);
     EXPECT_EQ(r.status, 1) << c.name << ": " << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << c.name << ": " << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.name << ": " << r.out;
   }
-  const Result missing = cli("analyze --csv /no/such/file.csv --subject id --dv y --within cond");
+  const Result missing =
+      run_cli("analyze --csv /no/such/file.csv --subject id --dv y --within cond");
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.out.find("/no/such/file.csv"), std::string::npos);
-  const Result usage = cli("analyze --csv x.csv --dv y --within cond");
+  const Result usage = run_cli("analyze --csv x.csv --dv y --within cond");
   EXPECT_EQ(usage.status, 2);
   EXPECT_NE(usage.out.find("--subject"), std::string::npos);
 }

@@ -21,6 +21,7 @@
 #include "core/store/sqlite_database.h"
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 #include "tests/support/under_sanitizers.h"
 
@@ -29,21 +30,18 @@ namespace {
 using handlab::test::file_bytes;
 using handlab::test::fresh_path;
 using Result = handlab::test::CliResult;
+using handlab::test::run_cli;
 
-Result cli(const std::string& args) {
-  return handlab::test::run_cli(args);
-}
-
-const std::string kProtocol =
-    std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using handlab::test::kStudy;
 
 // The N = 4 proxy study of seed 11 with its frames, all of it or the shard `shard` ("K/M").
 std::string simulate(const std::string& name, const std::string& shard = "",
-                     const std::string& protocol = kProtocol, int seed = 11, bool frames = true) {
+                     const std::string& protocol = kStudy, int seed = 11, bool frames = true) {
   const std::string db = fresh_path(name);
-  const Result r = cli("simulate --protocol " + protocol + " --participants 4 --seed " +
-                       std::to_string(seed) + " --world proxy --quiet --jobs 2 --db " + db +
-                       (frames ? " --frames" : "") + (shard.empty() ? "" : " --shard " + shard));
+  const Result r =
+      run_cli("simulate --protocol " + protocol + " --participants 4 --seed " +
+              std::to_string(seed) + " --world proxy --quiet --jobs 2 --db " + db +
+              (frames ? " --frames" : "") + (shard.empty() ? "" : " --shard " + shard));
   EXPECT_EQ(r.status, 0) << r.out;
   return db;
 }
@@ -55,9 +53,9 @@ struct Outputs {
 };
 Outputs outputs(const std::string& db) {
   const std::string dir = fresh_path(std::filesystem::path(db).stem().string() + "-export");
-  Result r = cli("export --db " + db + " --out " + dir + " --frames");
+  Result r = run_cli("export --db " + db + " --out " + dir + " --frames");
   EXPECT_EQ(r.status, 0) << r.out;
-  r = cli("analyze --db " + db + " --json -");
+  r = run_cli("analyze --db " + db + " --json -");
   EXPECT_EQ(r.status, 0) << r.out;
   std::string analysis;
   std::istringstream lines(r.out);
@@ -73,7 +71,7 @@ std::string merge(const std::string& name, const std::vector<std::string>& parts
   const std::string out = fresh_path(name);
   std::string args = "merge --out " + out;
   for (const std::string& p : parts) args += " " + p;
-  const Result r = cli(args);
+  const Result r = run_cli(args);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("4 participants from " + std::to_string(parts.size()) + " parts"),
             std::string::npos)
@@ -84,7 +82,7 @@ std::string merge(const std::string& name, const std::vector<std::string>& parts
 // The study's protocol with `blocks` blocks (and its practice trials, or none), written to a
 // fresh file.
 std::string short_protocol(int blocks, bool practice_trials = false) {
-  std::string text = file_bytes(kProtocol);
+  std::string text = file_bytes(kStudy);
   text.replace(text.find("\"blocks\": 5"), 11, "\"blocks\": " + std::to_string(blocks));
   const std::string practice = "\"trials_per_condition\": 1";
   if (!practice_trials)
@@ -117,8 +115,9 @@ TEST(CliMerge, ShardsMergedEqualTheStudyRunInOneProcess) {
   }
   // --only runs the named participants; a shard holds no one else.
   const std::string only = fresh_path("merge_only.db");
-  const Result r = cli("simulate --protocol " + protocol +
-                       " --participants 4 --seed 11 --world proxy --quiet --only S03 --db " + only);
+  const Result r =
+      run_cli("simulate --protocol " + protocol +
+              " --participants 4 --seed 11 --world proxy --quiet --only S03 --db " + only);
   ASSERT_EQ(r.status, 0) << r.out;
   handlab::store::Database db(only, handlab::store::Database::Mode::kReadOnly);
   EXPECT_EQ(db.query_text("SELECT group_concat(id || ':' || enrolment) FROM participant"), "S03:2");
@@ -156,24 +155,24 @@ TEST(CliMerge, RefusalsSayWhichFileAndWhyAndChangeNothing) {
   for (const std::string& f : files) before.push_back(file_bytes(f));
 
   const std::string out = fresh_path("merge_refused.db");
-  refused(cli("merge --out " + out + " " + a + " " + other),
+  refused(run_cli("merge --out " + out + " " + a + " " + other),
           other + " is a study of another protocol");
-  refused(cli("merge --out " + out + " " + a + " " + reseeded),
+  refused(run_cli("merge --out " + out + " " + a + " " + reseeded),
           "participant S01 is in " + a + " and " + reseeded + " with different data");
-  refused(cli("merge --out " + out + " " + a + " " + not_a_study),
+  refused(run_cli("merge --out " + out + " " + a + " " + not_a_study),
           not_a_study + " is not a handlab study");
-  refused(cli("merge --out " + out + " " + a + " " + damaged),
+  refused(run_cli("merge --out " + out + " " + a + " " + damaged),
           damaged + " fails SQLite's integrity check");
-  refused(cli("merge --out " + out + " " + a + " " + out + ".missing"),
+  refused(run_cli("merge --out " + out + " " + a + " " + out + ".missing"),
           out + ".missing: no such file");
-  refused(cli("merge --out " + a + " " + b), a + " exists");
-  refused(cli("merge --out " + out), "name the study databases to merge");
+  refused(run_cli("merge --out " + a + " " + b), a + " exists");
+  refused(run_cli("merge --out " + out), "name the study databases to merge");
   EXPECT_FALSE(std::filesystem::exists(out));
   EXPECT_FALSE(std::filesystem::exists(out + ".partial"));
   for (std::size_t i = 0; i < files.size(); ++i)
     EXPECT_TRUE(file_bytes(files[i]) == before[i]) << files[i] << " changed";
   // The same participant in two parts with the same data is taken once.
-  const Result twice = cli("merge --out " + out + " " + a + " " + b + " " + a + " --json -");
+  const Result twice = run_cli("merge --out " + out + " " + a + " " + b + " " + a + " --json -");
   ASSERT_EQ(twice.status, 0) << twice.out;
   const auto json = handlab::util::JsonValue::parse(twice.out);
   EXPECT_EQ(json["participants"].as_number(), 4);
@@ -218,7 +217,7 @@ TEST(CliMerge, KilledAtAnyMomentLeavesNoOutputAndItsInputsIntact) {
   }
   EXPECT_GE(killed, 3);
   // A merge after the killed ones replaces what they left and completes.
-  const Result r = cli("merge --out " + out + " " + a + " " + b);
+  const Result r = run_cli("merge --out " + out + " " + a + " " + b);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_FALSE(std::filesystem::exists(out + ".partial"));
   handlab::store::Database db(out, handlab::store::Database::Mode::kReadOnly);

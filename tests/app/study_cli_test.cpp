@@ -23,6 +23,7 @@
 #include "core/util/csv.h"
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 #include "tests/support/under_sanitizers.h"
 
@@ -32,12 +33,9 @@ using handlab::store::Database;
 using handlab::store::Statement;
 
 using Result = handlab::test::CliResult;
-Result cli(const std::string& args) {
-  return handlab::test::run_cli(args);
-}
+using handlab::test::run_cli;
 
-const std::string kProtocol =
-    std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using handlab::test::kStudy;
 
 std::string enrol(const std::string& db, const std::string& id, double length) {
   return "participant add --db " + db + " --id " + id + " --age 27 --sex M --handedness right " +
@@ -46,7 +44,7 @@ std::string enrol(const std::string& db, const std::string& id, double length) {
 
 // The study's protocol with two blocks and no practice, written to a fresh file.
 std::string two_block_protocol(const std::string& name) {
-  std::string protocol = handlab::test::file_bytes(kProtocol);
+  std::string protocol = handlab::test::file_bytes(kStudy);
   protocol.replace(protocol.find("\"blocks\": 5"), 11, "\"blocks\": 2");
   const std::string practice = "\"trials_per_condition\": 1";
   protocol.replace(protocol.find(practice), practice.size(), "\"trials_per_condition\": 0");
@@ -64,15 +62,15 @@ void one_line_error(const Result& e, const std::string& what) {
 
 TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   const std::string db = handlab::test::fresh_path("cli_study.db");
-  Result r = cli("study create --protocol " + kProtocol + " --db " + db);
+  Result r = run_cli("study create --protocol " + kStudy + " --db " + db);
   ASSERT_EQ(r.status, 0) << r.out;
   for (auto [id, length] :
        {std::pair{"P01", 0.17}, std::pair{"P02", 0.19}, std::pair{"P03", 0.2}}) {
-    r = cli(enrol(db, id, length));
+    r = run_cli(enrol(db, id, length));
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(r.out.find("24 trials planned"), std::string::npos) << r.out;
   }
-  r = cli("study status --db " + db + " --json -");
+  r = run_cli("study status --db " + db + " --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   {
     const auto status = handlab::util::JsonValue::parse(r.out);
@@ -82,13 +80,13 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
     EXPECT_EQ(status["participants"][0]["next"]["trial"].as_number(), 1);
   }
   for (const char* id : {"P01", "P02", "P03"}) {
-    r = cli("session run --db " + db + " --participant " + id + " --tracker scripted --quiet");
+    r = run_cli("session run --db " + db + " --participant " + id + " --tracker scripted --quiet");
     ASSERT_EQ(r.status, 0) << r.out;
   }
-  r = cli("session run --db " + db + " --participant P01 --tracker scripted");
+  r = run_cli("session run --db " + db + " --participant P01 --tracker scripted");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("--resume"), std::string::npos) << r.out;
-  r = cli("study status --db " + db + " --json -");
+  r = run_cli("study status --db " + db + " --json -");
   {
     const auto status = handlab::util::JsonValue::parse(r.out);
     for (const auto& p : status["participants"].as_array()) {
@@ -98,7 +96,7 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
     }
   }
   const std::string out = handlab::test::fresh_path("cli_export");
-  r = cli("export --db " + db + " --out " + out);
+  r = run_cli("export --db " + db + " --out " + out);
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream trials(out + "/trials.csv");
   std::string header;
@@ -114,7 +112,7 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   EXPECT_NE(header.find("repetition,precision,ease,naturalness"), std::string::npos) << header;
 
   // The frame log of the same trials: one row a logged step, the trial's columns on each.
-  r = cli("export --db " + db + " --out " + out + " --frames");
+  r = run_cli("export --db " + db + " --out " + out + " --frames");
   ASSERT_EQ(r.status, 0) << r.out;
   {
     const auto rows = handlab::util::parse_csv(handlab::test::file_bytes(out + "/frames.csv"));
@@ -149,7 +147,7 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
     }
   }
 
-  r = cli("analyze --db " + db + " --json " + out + "/analysis.json");
+  r = run_cli("analyze --db " + db + " --json " + out + "/analysis.json");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("strategy:manipulation"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Friedman"), std::string::npos);
@@ -161,12 +159,13 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   EXPECT_TRUE(analysis.find("questionnaire"));
 
   // Redo and skip, with reasons kept.
-  r = cli("session redo --db " + db + " --participant P02 --trial 7 --reason 'tracking lost'");
+  r = run_cli("session redo --db " + db + " --participant P02 --trial 7 --reason 'tracking lost'");
   ASSERT_EQ(r.status, 0) << r.out;
-  r = cli("study status --db " + db + " --json -");
+  r = run_cli("study status --db " + db + " --json -");
   EXPECT_EQ(handlab::util::JsonValue::parse(r.out)["participants"][1]["next"]["trial"].as_number(),
             7);
-  r = cli("session skip --db " + db + " --participant P02 --trial 7 --reason 'participant tired'");
+  r = run_cli("session skip --db " + db +
+              " --participant P02 --trial 7 --reason 'participant tired'");
   ASSERT_EQ(r.status, 0) << r.out;
   Database check(db, Database::Mode::kReadOnly);
   EXPECT_EQ(check.query_text("SELECT group_concat(status || ':' || reason) FROM trial WHERE reason "
@@ -176,8 +175,9 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   // A moment of a stored trial, drawn from the frame log: P02's trial 7, redone then skipped,
   // keeps the frames of its first attempt.
   const std::string png = out + "/moment.png";
-  r = cli("render --db " + db + " --participant P02 --trial 7 --time 1.504 --width 320 --height " +
-          "200 --out " + png);
+  r = run_cli("render --db " + db +
+              " --participant P02 --trial 7 --time 1.504 --width 320 --height " + "200 --out " +
+              png);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("P02 trial 7 (attempt 1, "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(") at 1.50 s of "), std::string::npos) << r.out;
@@ -189,7 +189,7 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
        {std::pair{"--participant P02 --trial 99", "P02 has no trial 99 (the schedule has 24)"},
         std::pair{"--participant P02 --trial 7 --attempt 3", "trial 7 of P02 has no attempt 3"},
         std::pair{"--participant P02", "--db needs --participant and --trial"}}) {
-    r = cli("render --db " + db + " " + args + " --out " + png);
+    r = run_cli("render --db " + db + " " + args + " --out " + png);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_NE(r.out.find(error), std::string::npos) << r.out;
   }
@@ -198,13 +198,13 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
 // A simulated study from the command line (one block, on the grasp proxy: quick): the
 // outcome per condition in JSON, the participants enrolled as simulated, bad options refused.
 TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
-  std::string protocol = handlab::test::file_bytes(kProtocol);
+  std::string protocol = handlab::test::file_bytes(kStudy);
   protocol.replace(protocol.find("\"blocks\": 5"), 11, "\"blocks\": 1");
   const std::string one_block = handlab::test::fresh_path("cli_one_block.json");
   std::ofstream(one_block) << protocol;
   const std::string db = handlab::test::fresh_path("cli_simulated.db");
-  Result r = cli("simulate --protocol " + one_block + " --participants 2 --seed 3 --db " + db +
-                 " --jobs 2 --world proxy --json -");
+  Result r = run_cli("simulate --protocol " + one_block + " --participants 2 --seed 3 --db " + db +
+                     " --jobs 2 --world proxy --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto doc = handlab::util::JsonValue::parse(r.out);
   EXPECT_EQ(doc["participants"].as_number(), 2);
@@ -216,20 +216,20 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
     EXPECT_GE(c["success_rate"].as_number(), 0.0);
     EXPECT_LE(c["success_rate"].as_number(), 1.0);
   }
-  r = cli("study status --db " + db + " --json -");
+  r = run_cli("study status --db " + db + " --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("S01"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("S02"), std::string::npos) << r.out;
 
   const std::string before = handlab::test::file_bytes(db);
-  one_line_error(cli("simulate --protocol " + one_block + " --participants 1 --db " + db),
+  one_line_error(run_cli("simulate --protocol " + one_block + " --participants 1 --db " + db),
                  "exists");
   EXPECT_EQ(handlab::test::file_bytes(db), before);
-  one_line_error(cli("simulate --protocol " + one_block + " --db " +
-                     handlab::test::fresh_path("cli_rigid.db") + " --world rigid"),
+  one_line_error(run_cli("simulate --protocol " + one_block + " --db " +
+                         handlab::test::fresh_path("cli_rigid.db") + " --world rigid"),
                  "--world must be soft or proxy");
-  one_line_error(cli("simulate --protocol " + one_block + " --participants 0 --db " +
-                     handlab::test::fresh_path("cli_none.db")),
+  one_line_error(run_cli("simulate --protocol " + one_block + " --participants 0 --db " +
+                         handlab::test::fresh_path("cli_none.db")),
                  "--participants");
 }
 
@@ -243,7 +243,7 @@ TEST(CliReplications, SetsStudiesSideBySideBesideThePublishedValues) {
       std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021-published.json";
   const std::string copy = handlab::test::fresh_path("cli_replications_copy.db");
   std::filesystem::copy_file(db, copy);
-  Result r = cli("replications " + db + " " + copy + " --published " + published);
+  Result r = run_cli("replications " + db + " " + copy + " --published " + published);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("| strategy:manipulation | F | 8.78 (.008) | 8.74 (.008) | 8.74 (.008) | "
                        "8.74 | 8.74 to 8.74 | .008 | 2 of 2 | 2 of 2 |"),
@@ -251,8 +251,8 @@ TEST(CliReplications, SetsStudiesSideBySideBesideThePublishedValues) {
       << r.out;
   EXPECT_NE(r.out.find("| ours-fine | 98 % | 98 % | 98.0 % | 98–98 % |"), std::string::npos)
       << r.out;
-  r = cli("replications " + db + " --published " + published +
-          " --test strategy:manipulation --test \"precision (Friedman)\" --json -");
+  r = run_cli("replications " + db + " --published " + published +
+              " --test strategy:manipulation --test \"precision (Friedman)\" --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto doc = handlab::util::JsonValue::parse(r.out);
   EXPECT_EQ(doc["protocol"].as_string(), "fine-manipulation-2021");
@@ -265,36 +265,36 @@ TEST(CliReplications, SetsStudiesSideBySideBesideThePublishedValues) {
   EXPECT_EQ(doc["tests"][0]["published"]["value"].as_number(), 8.78);
   EXPECT_EQ(doc["tests"][0]["below_published"].as_number(), 1);  // 8.74 of the one study
   EXPECT_EQ(doc["tests"][0]["rejected"].as_number(), 1);
-  one_line_error(cli("replications"), "give one or more study databases");
-  one_line_error(cli("replications " + db + " " + db), "given twice");
-  one_line_error(cli("replications " + db +
-                     " --test \"strategy:manipulation: ours fine - naive "
-                     "fine\""),
+  one_line_error(run_cli("replications"), "give one or more study databases");
+  one_line_error(run_cli("replications " + db + " " + db), "given twice");
+  one_line_error(run_cli("replications " + db +
+                         " --test \"strategy:manipulation: ours fine - naive "
+                         "fine\""),
                  "no study made the test");
-  one_line_error(cli("replications " + db + " --alpha 2"), "--alpha");
-  one_line_error(cli("replications " + db + " --published " + kProtocol), "handlab-published");
+  one_line_error(run_cli("replications " + db + " --alpha 2"), "--alpha");
+  one_line_error(run_cli("replications " + db + " --published " + kStudy), "handlab-published");
 }
 
 TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   const std::string db = handlab::test::fresh_path("cli_bad.db");
-  ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + db).status, 0);
-  ASSERT_EQ(cli(enrol(db, "P01", 0.18)).status, 0);
+  ASSERT_EQ(run_cli("study create --protocol " + kStudy + " --db " + db).status, 0);
+  ASSERT_EQ(run_cli(enrol(db, "P01", 0.18)).status, 0);
   const std::string before = handlab::test::file_bytes(db);
-  one_line_error(cli(enrol(db, "P01", 0.18)), "already enrolled");
-  one_line_error(cli("study create --protocol " + kProtocol + " --db " + db), "already exists");
-  one_line_error(cli("participant add --db " + db +
-                     " --id P09 --age 27 --sex M --handedness right "
-                     "--hand-length 18.8 --vr-experience some"),
+  one_line_error(run_cli(enrol(db, "P01", 0.18)), "already enrolled");
+  one_line_error(run_cli("study create --protocol " + kStudy + " --db " + db), "already exists");
+  one_line_error(run_cli("participant add --db " + db +
+                         " --id P09 --age 27 --sex M --handedness right "
+                         "--hand-length 18.8 --vr-experience some"),
                  "metres");
   EXPECT_EQ(handlab::test::file_bytes(db), before);
 
   // A protocol with an unknown factor: no database is created.
-  std::string protocol = handlab::test::file_bytes(kProtocol);
+  std::string protocol = handlab::test::file_bytes(kStudy);
   protocol.replace(protocol.find("\"manipulation\""), 14, "\"glove\"");
   const std::string bad_protocol = handlab::test::fresh_path("cli_bad_protocol.json");
   std::ofstream(bad_protocol) << protocol;
   const std::string never = handlab::test::fresh_path("cli_never.db");
-  one_line_error(cli("study create --protocol " + bad_protocol + " --db " + never),
+  one_line_error(run_cli("study create --protocol " + bad_protocol + " --db " + never),
                  "unknown factor");
   EXPECT_FALSE(std::filesystem::exists(never));
 
@@ -303,9 +303,9 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   std::filesystem::copy_file(db, newer);
   { Database(newer, Database::Mode::kReadWrite).exec("PRAGMA user_version = 7"); }
   const std::string newer_bytes = handlab::test::file_bytes(newer);
-  one_line_error(cli("study status --db " + newer), "newer handlab");
-  one_line_error(cli("session run --db " + newer + " --participant P01"), "newer handlab");
-  one_line_error(cli("session run --db " + newer + " --participant P01 --world rigid"),
+  one_line_error(run_cli("study status --db " + newer), "newer handlab");
+  one_line_error(run_cli("session run --db " + newer + " --participant P01"), "newer handlab");
+  one_line_error(run_cli("session run --db " + newer + " --participant P01 --world rigid"),
                  "--world must be proxy or soft");
   EXPECT_EQ(handlab::test::file_bytes(newer), newer_bytes);
 
@@ -313,24 +313,24 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   std::string garbage = before;
   for (std::size_t k = 100; k < garbage.size(); k += 7) garbage[k] = char(garbage[k] ^ 0x5a);
   std::ofstream(corrupt, std::ios::binary) << garbage;
-  one_line_error(cli("study status --db " + corrupt), "cli_corrupt.db");
-  one_line_error(cli(enrol(corrupt, "P02", 0.18)), "cli_corrupt.db");
+  one_line_error(run_cli("study status --db " + corrupt), "cli_corrupt.db");
+  one_line_error(run_cli(enrol(corrupt, "P02", 0.18)), "cli_corrupt.db");
   EXPECT_EQ(handlab::test::file_bytes(corrupt), garbage);
 
   const std::string truncated = handlab::test::fresh_path("cli_truncated.db");
   std::ofstream(truncated, std::ios::binary) << before.substr(0, before.size() / 2);
   const std::string cut = handlab::test::file_bytes(truncated);
-  const Result t = cli("session run --db " + truncated + " --participant P01 --quiet");
+  const Result t = run_cli("session run --db " + truncated + " --participant P01 --quiet");
   one_line_error(t, "cli_truncated.db");
   EXPECT_EQ(handlab::test::file_bytes(truncated), cut);
 
   {
     Database holder(db, Database::Mode::kReadWrite);
     holder.exec("PRAGMA locking_mode = EXCLUSIVE; BEGIN EXCLUSIVE");
-    one_line_error(cli(enrol(db, "P02", 0.18)), "locked");
+    one_line_error(run_cli(enrol(db, "P02", 0.18)), "locked");
     holder.exec("ROLLBACK");
   }
-  one_line_error(cli("study status --db " + handlab::test::fresh_path("cli_absent.db")),
+  one_line_error(run_cli("study status --db " + handlab::test::fresh_path("cli_absent.db")),
                  "no study database");
   EXPECT_FALSE(std::filesystem::exists(std::string(HANDLAB_TEST_TMP) + "/cli_absent.db"));
 }
@@ -395,11 +395,11 @@ TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
   const std::string db = handlab::test::fresh_path("crash.db");
   const std::string reference = handlab::test::fresh_path("crash_reference.db");
   for (const std::string& path : {db, reference})
-    ASSERT_EQ(cli("study create --protocol " + kProtocol + " --db " + path).status, 0);
+    ASSERT_EQ(run_cli("study create --protocol " + kStudy + " --db " + path).status, 0);
   const std::vector<std::string> ids = {"P01", "P02", "P03", "P04", "P05", "P06"};
   for (const std::string& id : ids)
     for (const std::string& path : {db, reference})
-      ASSERT_EQ(cli(enrol(path, id, 0.185)).status, 0);
+      ASSERT_EQ(run_cli(enrol(path, id, 0.185)).status, 0);
 
   std::mt19937 rng(20211004);
   std::uniform_int_distribution<int> delay_ms(15, 400);
@@ -471,8 +471,9 @@ TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
   EXPECT_GT(aborted_seen, 0) << "some kills should land inside a trial";
   // The finished participants' results equal an uninterrupted run's, trial by trial.
   for (std::size_t k = 0; k < participant; ++k) {
-    ASSERT_EQ(cli("session run --db " + reference + " --participant " + ids[k] + " --quiet").status,
-              0);
+    ASSERT_EQ(
+        run_cli("session run --db " + reference + " --participant " + ids[k] + " --quiet").status,
+        0);
     Database ref(reference, Database::Mode::kReadOnly);
     const auto got = results_of(check, ids[k]);
     const auto want = results_of(ref, ids[k]);
@@ -496,9 +497,9 @@ TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
 TEST(CliPower, SimulatesExactAndFromAPilotInOneShape) {
   const std::string effects =
       std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021-effects.json";
-  const std::string base = "power --protocol " + kProtocol + " --model " + effects +
+  const std::string base = "power --protocol " + kStudy + " --model " + effects +
                            " --n 10:14:2 --sims 200 --seed 5 --quiet";
-  Result r = cli(base + " --jobs 2 --json -");
+  Result r = run_cli(base + " --jobs 2 --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto doc = handlab::util::JsonValue::parse(r.out);
   ASSERT_EQ(doc["n"].size(), 3u);
@@ -515,11 +516,11 @@ TEST(CliPower, SimulatesExactAndFromAPilotInOneShape) {
   EXPECT_TRUE(doc["n_for_target"]["strategy:manipulation"].is_null());  // not by N = 14
   EXPECT_EQ(doc["n_for_target"]["manipulation"].is_null(), false);
   // The same seed gives the same powers, on any number of threads.
-  const Result again = cli(base + " --jobs 1 --json -");
+  const Result again = run_cli(base + " --jobs 1 --json -");
   ASSERT_EQ(again.status, 0) << again.out;
   EXPECT_EQ(handlab::util::JsonValue::parse(again.out)["effects"].dump(), doc["effects"].dump());
 
-  r = cli(base + " --exact --json -");
+  r = run_cli(base + " --exact --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto exact = handlab::util::JsonValue::parse(r.out);
   EXPECT_TRUE(exact["exact"].as_bool());
@@ -531,43 +532,45 @@ TEST(CliPower, SimulatesExactAndFromAPilotInOneShape) {
                 0.11);
 
   // The curve is drawn by a handlab-cli built with Qt (the app's build, with `report`).
-  if (cli("report --help").status == 0) {
+  if (run_cli("report --help").status == 0) {
     const std::string svg = handlab::test::fresh_path("power.svg");
-    r = cli(base + " --plot " + svg + " --plot-name strategy:manipulation --plot-name \"" + fine +
-            "\"");
+    r = run_cli(base + " --plot " + svg + " --plot-name strategy:manipulation --plot-name \"" +
+                fine + "\"");
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(handlab::test::file_bytes(svg).find("<svg"), std::string::npos);
-    EXPECT_NE(cli(base + " --plot " + svg + " --plot-name nothing").out.find("'nothing'"),
+    EXPECT_NE(run_cli(base + " --plot " + svg + " --plot-name nothing").out.find("'nothing'"),
               std::string::npos);
   } else {
-    EXPECT_NE(cli(base + " --plot x.svg").out.find("built with Qt"), std::string::npos);
+    EXPECT_NE(run_cli(base + " --plot x.svg").out.find("built with Qt"), std::string::npos);
   }
 
   // A pilot: a small simulated study of two blocks on the grasp proxy (no practice: quick).
   const std::string two_blocks = two_block_protocol("cli_two_blocks.json");
   const std::string pilot = handlab::test::fresh_path("cli_pilot.db");
-  r = cli("simulate --protocol " + two_blocks + " --participants 3 --seed 2 --db " + pilot +
-          " --jobs 2 --world proxy --quiet");
+  r = run_cli("simulate --protocol " + two_blocks + " --participants 3 --seed 2 --db " + pilot +
+              " --jobs 2 --world proxy --quiet");
   ASSERT_EQ(r.status, 0) << r.out;
-  r = cli("power --protocol " + two_blocks + " --pilot " + pilot + " --n 6,8 --sims 20");
+  r = run_cli("power --protocol " + two_blocks + " --pilot " + pilot + " --n 6,8 --sims 20");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("observed power"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("strategy:manipulation:repetition"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("(Friedman)"), std::string::npos) << r.out;
 
-  one_line_error(cli("power --protocol " + kProtocol + " --model " + effects + " --pilot " + pilot),
-                 "one of --model FILE or --pilot DB");
-  one_line_error(cli("power --protocol " + kProtocol + " --model " + effects + " --n 10:x"), "--n");
+  one_line_error(
+      run_cli("power --protocol " + kStudy + " --model " + effects + " --pilot " + pilot),
+      "one of --model FILE or --pilot DB");
+  one_line_error(run_cli("power --protocol " + kStudy + " --model " + effects + " --n 10:x"),
+                 "--n");
   // A pilot of another design (two blocks) for the five-block protocol.
-  one_line_error(cli("power --protocol " + kProtocol + " --pilot " + pilot), "design");
+  one_line_error(run_cli("power --protocol " + kStudy + " --pilot " + pilot), "design");
 }
 
 // --pipeline: a whole simulated study (two blocks on the grasp proxy, no practice: quick),
 // analysed as analyze --db analyses it, in the same JSON shape.
 TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
   const std::string two_blocks = two_block_protocol("cli_power_two_blocks.json");
-  const Result r = cli("power --protocol " + two_blocks +
-                       " --pipeline --world proxy --n 3 --sims 1 --seed 4 --jobs 2 --json -");
+  const Result r = run_cli("power --protocol " + two_blocks +
+                           " --pipeline --world proxy --n 3 --sims 1 --seed 4 --jobs 2 --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto doc = handlab::util::JsonValue::parse(r.out);
   EXPECT_TRUE(doc["pipeline"].as_bool());
@@ -591,7 +594,7 @@ TEST(CliPower, PipelineAnswersWithWholeSimulatedStudies) {
   EXPECT_NO_THROW(doc["contrasts"]["strategy:repetition: naive 1 - ours 1"]);
   EXPECT_EQ(doc["seconds_per_n"].size(), 1u);
   EXPECT_GT(doc["seconds_per_n"][0].as_number(), 0.0);
-  one_line_error(cli("power --protocol " + two_blocks + " --pipeline --model " + two_blocks),
+  one_line_error(run_cli("power --protocol " + two_blocks + " --pipeline --model " + two_blocks),
                  "takes no --model");
 }
 
@@ -605,7 +608,7 @@ TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
   const std::string command = "sensitivity --protocol " + two_blocks + " --work " + work +
                               " --participants 2 --trajectories 2 --parameter fitts_a "
                               "--parameter practice_rate --jobs 2 --json -";
-  const Result r = cli(command);
+  const Result r = run_cli(command);
   ASSERT_EQ(r.status, 0) << r.out;
   const auto doc = handlab::util::JsonValue::parse(r.out);
   ASSERT_EQ(doc["parameters"].size(), 2u);
@@ -624,9 +627,9 @@ TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
   // second analysis, in the Release tree only (under the sanitizers it runs no other code).
   const auto numbers = [](const std::string& json) { return json.substr(json.find("\"levels\"")); };
   if (!handlab::test::kUnderSanitizers) {
-    EXPECT_EQ(numbers(cli(command).out), numbers(r.out));
+    EXPECT_EQ(numbers(run_cli(command).out), numbers(r.out));
   }
-  one_line_error(cli("sensitivity --protocol " + two_blocks + " --work " + work +
-                     " --parameter no_such_thing"),
+  one_line_error(run_cli("sensitivity --protocol " + two_blocks + " --work " + work +
+                         " --parameter no_such_thing"),
                  "no parameter no_such_thing");
 }

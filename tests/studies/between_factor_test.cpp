@@ -15,6 +15,7 @@
 #include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
 #include "studies/simulate/simulated_study.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 #include "tests/support/test_participant.h"
 
@@ -24,12 +25,7 @@ namespace {
 const std::string kMixed =
     std::string(HANDLAB_SOURCE_DIR) + "/studies/examples/mixed-vr-experience.json";
 
-std::string with(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+using test::with;
 
 // The mixed example's between array replaced by `between`.
 std::string with_between(const std::string& between) {

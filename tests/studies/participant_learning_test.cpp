@@ -14,12 +14,13 @@
 #include "studies/session/session_control.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::studies {
 namespace {
 
-const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using test::kStudy;
 
 TEST(LawOfPractice, ExponentialFromOneTowardsItsFloor) {
   EXPECT_EQ(practice_factor(1, 0.35, 0.6), 1.0);

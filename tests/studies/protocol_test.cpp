@@ -8,12 +8,13 @@
 #include "core/util/sha256.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/session_runner.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::studies {
 namespace {
 
-const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using test::kStudy;
 
 TEST(Protocol, TheStudyFileDescribesThePaper) {
   const Protocol p = read_protocol(kStudy);
@@ -91,13 +92,7 @@ TEST(Protocol, BalancedLatinSquares) {
   }
 }
 
-std::string with(const std::string& text, const std::string& from, const std::string& to) {
-  std::string out = text;
-  const auto at = out.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  out.replace(at, from.size(), to);
-  return out;
-}
+using test::with;
 
 // The study's protocol with its strategy levels' methods written out (the file names its
 // levels naive and ours, which were their methods before levels named them).

@@ -18,13 +18,14 @@
 #include "studies/session/session_control.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 #include "tests/support/test_participant.h"
 
 namespace handlab::studies {
 namespace {
 
-const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using test::kStudy;
 
 std::string enrolled_study(const std::string& name, const Protocol& protocol) {
   const std::string path = test::fresh_path(name);

@@ -11,13 +11,14 @@
 #include "studies/session/enrolment.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 #include "tests/support/test_participant.h"
 
 namespace handlab::studies {
 namespace {
 
-const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using test::kStudy;
 
 // Every condition, for a small and a large hand: the scripted pinch lifts the cube 10 cm
 // (it only moves when held), carries it and puts it down inside B.

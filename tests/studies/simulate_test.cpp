@@ -9,12 +9,13 @@
 #include "core/store/study_store.h"
 #include "core/util/sha256.h"
 #include "studies/simulate/simulated_study.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::studies {
 namespace {
 
-const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using test::kStudy;
 
 // Every row of every table but the wall-clock columns (*_at), in id order.
 std::string content(const std::string& path) {
@@ -66,12 +67,7 @@ std::string motor_data(const std::string& path) {
 }
 
 // `text` with `from` (present) replaced by `to`.
-std::string with(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+using test::with;
 
 // Labels are for people: the paper's protocol (its levels named by their methods, as before
 // levels named them) and the same with every label changed and the methods written out give

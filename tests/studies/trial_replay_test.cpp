@@ -11,13 +11,14 @@
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 #include "studies/session/trial_replay.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 #include "tests/support/test_participant.h"
 
 namespace handlab::studies {
 namespace {
 
-const std::string kStudy = std::string(HANDLAB_SOURCE_DIR) + "/studies/fine-manipulation-2021.json";
+using test::kStudy;
 
 bool within_zone(const Eigen::Vector3f& p, const Eigen::Vector3d& zone, double size) {
   return std::abs(p.x() - zone.x()) <= size / 2 && std::abs(p.z() - zone.z()) <= size / 2;
