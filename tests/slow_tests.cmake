@@ -2,7 +2,8 @@
 # cost CTest runs tests in the order they were defined, and on a clean tree (no cost data of
 # an earlier run) a two-minute test started last leaves one core idle while it finishes. The
 # costs are seconds measured under the sanitizers (2026-11-29; the Slurm test's in Release,
-# where alone it runs); only their order matters.
+# where alone it runs); only their order matters, and a name that is no longer a test's is
+# passed over.
 set(handlab_slow_tests
   "Slurm.StudiesAndAPowerPointAsJobArraysMergedAndACancelledTaskRerun=110"
   "CliMerge.ShardsMergedEqualTheStudyRunInOneProcess=103"

@@ -174,6 +174,9 @@ TEST(CliRetarget, DegradedAsLowConfidenceTracking) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.out.find("--jump-chance must be 0 to 1"), std::string::npos) << bad.out;
   EXPECT_EQ(run_cli("retarget " + recording + " --frame-rate 5").status, 2);
+  EXPECT_EQ(run_cli("retarget " + recording + " --degrade-seed -1").status, 2);
+  // A usage error before the recording is read.
+  EXPECT_EQ(run_cli("retarget /no/such/recording.json.lz --joint-noise 1").status, 2);
 }
 
 TEST(CliRetarget, DrawsThePinchPicture) {

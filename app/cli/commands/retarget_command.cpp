@@ -90,6 +90,21 @@ int run_retarget(const std::vector<std::string>& argv) {
   const auto side = side_name == "left" ? tracking::Side::kLeft : tracking::Side::kRight;
   const std::int64_t timing_runs = args.integer("timing-runs");
   if (timing_runs < 1 || timing_runs > 1000) throw UsageError("--timing-runs must be 1 to 1000");
+  tracking::Degradation degradation;
+  degradation.joint_noise = args.number("joint-noise");
+  degradation.jump_chance = args.number("jump-chance");
+  degradation.rate_hz = args.number("frame-rate");
+  const std::int64_t seed = args.integer("degrade-seed");
+  if (!(degradation.joint_noise >= 0 && degradation.joint_noise <= 0.05))
+    throw UsageError("--joint-noise must be 0 to 0.05 m");
+  if (!(degradation.jump_chance >= 0 && degradation.jump_chance <= 1))
+    throw UsageError("--jump-chance must be 0 to 1");
+  if (!(degradation.rate_hz == 0 || (degradation.rate_hz >= 10 && degradation.rate_hz <= 1000)))
+    throw UsageError("--frame-rate must be 0 or 10 to 1000 Hz");
+  if (seed < 0) throw UsageError("--degrade-seed must be >= 0");
+  degradation.seed = std::uint64_t(seed);
+  const bool degraded =
+      degradation.joint_noise > 0 || degradation.jump_chance > 0 || degradation.rate_hz > 0;
 
   const tracking::Recording recording = tracking::read_recording(args.positional()[0]);
   hand::HandShape shape = hand::HandShape::with_length(sim_length);
@@ -107,21 +122,9 @@ int run_retarget(const std::vector<std::string>& argv) {
   }
   // Calibrated on the recording as recorded (a held open hand); retargeted on its frames
   // degraded when asked.
-  tracking::Degradation degradation;
-  degradation.joint_noise = args.number("joint-noise");
-  degradation.jump_chance = args.number("jump-chance");
-  degradation.rate_hz = args.number("frame-rate");
-  degradation.seed = std::uint64_t(args.integer("degrade-seed"));
-  if (!(degradation.joint_noise >= 0 && degradation.joint_noise <= 0.05))
-    throw UsageError("--joint-noise must be 0 to 0.05 m");
-  if (!(degradation.jump_chance >= 0 && degradation.jump_chance <= 1))
-    throw UsageError("--jump-chance must be 0 to 1");
-  if (!(degradation.rate_hz == 0 || (degradation.rate_hz >= 10 && degradation.rate_hz <= 1000)))
-    throw UsageError("--frame-rate must be 0 or 10 to 1000 Hz");
-  const bool degraded =
-      degradation.joint_noise > 0 || degradation.jump_chance > 0 || degradation.rate_hz > 0;
-  const std::vector<tracking::TrackedFrame> played =
-      degraded ? tracking::degrade(recording.frames, degradation) : recording.frames;
+  std::vector<tracking::TrackedFrame> degraded_frames;
+  if (degraded) degraded_frames = tracking::degrade(recording.frames, degradation);
+  const std::vector<tracking::TrackedFrame>& played = degraded ? degraded_frames : recording.frames;
   if (args.has("picture")) {
     std::optional<std::int64_t> frame_id;
     if (args.has("frame")) frame_id = args.integer("frame");
@@ -210,10 +213,16 @@ int run_retarget(const std::vector<std::string>& argv) {
   if (json_out != "-") {
     std::cout << std::fixed << std::setprecision(2) << recording.source << ": " << strategy_name
               << ", " << time_us.values.size() << " frames, scale " << calibration->scale << " ("
-              << calibration_source << ")\n  time per frame: median " << time_us.quantile(0.5)
-              << " us, p99 " << time_us.quantile(0.99) << " us; iterations mean "
-              << iterations.mean() << ", max " << iterations.quantile(1.0)
-              << "\n  fingertip error (mm, mean / p95):";
+              << calibration_source << ")";
+    if (degraded)
+      std::cout << ", degraded: joint noise " << 1000 * degradation.joint_noise << " mm, jumps "
+                << 100 * degradation.jump_chance << " % a finger and frame, "
+                << (degradation.rate_hz > 0 ? std::to_string(int(degradation.rate_hz)) + " Hz"
+                                            : std::string("its own frame rate"))
+                << ", seed " << seed;
+    std::cout << "\n  time per frame: median " << time_us.quantile(0.5) << " us, p99 "
+              << time_us.quantile(0.99) << " us; iterations mean " << iterations.mean() << ", max "
+              << iterations.quantile(1.0) << "\n  fingertip error (mm, mean / p95):";
     for (int f = 0; f < 5; ++f)
       std::cout << " " << kNames[f] << " " << tip_error[std::size_t(f)].mean() << " / "
                 << tip_error[std::size_t(f)].quantile(0.95);
@@ -236,7 +245,7 @@ int run_retarget(const std::vector<std::string>& argv) {
             .field("joint_noise_m", degradation.joint_noise)
             .field("jump_chance", degradation.jump_chance)
             .field("frame_rate_hz", degradation.rate_hz)
-            .field("seed", int(degradation.seed))
+            .field("seed", double(seed))
             .end_object();
       json.field("frames", time_us.values.size());
       json.key("time_us")
