@@ -10,8 +10,21 @@ scripts/install-deps.sh
 # The Release tree is scripts/run.sh's (the same preset): after run.sh nothing is rebuilt.
 cmake --preset release
 cmake --build build -j "$jobs"
-ctest --test-dir build --output-on-failure -j "$jobs"
-
 cmake --preset sanitize
-cmake --build build-sanitize -j "$jobs"
+
+# The sanitizer tree builds while the Release tests run, at the lowest priority: the tests
+# leave part of the cores idle (Slurm's daemons, Xvfb, child processes waited for) and the
+# build takes what they leave, so the tests run as fast as alone.
+build_log=build-sanitize/build.log
+setsid nice -n 19 cmake --build build-sanitize -j "$jobs" >"$build_log" 2>&1 &
+build=$!  # its own process group (setsid), so that a failed test stops the compilers too
+trap 'kill -- -"$build" 2>/dev/null || true' EXIT
+ctest --test-dir build --output-on-failure -j "$jobs"
+if ! wait "$build"; then
+  cat "$build_log"
+  echo "test.sh: the sanitizer build failed (its output above, and in $build_log)" >&2
+  exit 1
+fi
+trap - EXIT
+echo "test.sh: sanitizer tree built while the Release tests ran ($build_log)"
 ctest --test-dir build-sanitize --output-on-failure -j "$jobs"

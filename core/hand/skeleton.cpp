@@ -91,9 +91,9 @@ void forward_kinematics(const Skeleton& skeleton, const HandPose& pose, BoneFram
   f.dof_centre.resize(skeleton.dofs.size());
   for (std::size_t b = 0; b < n; ++b) {
     const Bone& bone = skeleton.bones[b];
-    const Eigen::Matrix3d parent_r =
+    const Eigen::Matrix3d& parent_r =
         bone.parent < 0 ? pose.root_rotation : f.rotation[std::size_t(bone.parent)];
-    const Eigen::Vector3d parent_o =
+    const Eigen::Vector3d& parent_o =
         bone.parent < 0 ? pose.root_position : f.origin[std::size_t(bone.parent)];
     Eigen::Matrix3d r = parent_r * bone.rest;
     const Eigen::Vector3d origin = parent_o + parent_r * bone.offset;
@@ -134,8 +134,15 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> point_jacobian(const Skeleton& skeleton
                                                         const BoneFrames& frames,
                                                         const HandPose& pose, int bone,
                                                         const Eigen::Vector3d& world) {
-  Eigen::Matrix<double, 3, Eigen::Dynamic> j =
-      Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, skeleton.parameter_count());
+  Eigen::Matrix<double, 3, Eigen::Dynamic> j;
+  point_jacobian(skeleton, frames, pose, bone, world, j);
+  return j;
+}
+
+void point_jacobian(const Skeleton& skeleton, const BoneFrames& frames, const HandPose& pose,
+                    int bone, const Eigen::Vector3d& world,
+                    Eigen::Matrix<double, 3, Eigen::Dynamic>& j) {
+  j.setZero(3, skeleton.parameter_count());
   j.leftCols<3>().setIdentity();
   j.middleCols<3>(3) = -skew(world - pose.root_position);  // e_k x r = -[r]x e_k
   for (int b = bone; b >= 0; b = skeleton.bones[std::size_t(b)].parent) {
@@ -144,7 +151,6 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> point_jacobian(const Skeleton& skeleton
       j.col(6 + k) =
           frames.dof_axis[std::size_t(k)].cross(world - frames.dof_centre[std::size_t(k)]);
   }
-  return j;
 }
 
 Eigen::Matrix<double, 3, Eigen::Dynamic> rotation_jacobian(const Skeleton& skeleton,

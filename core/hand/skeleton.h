@@ -81,6 +81,10 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> point_jacobian(const Skeleton& skeleton
                                                         const BoneFrames& frames,
                                                         const HandPose& pose, int bone,
                                                         const Eigen::Vector3d& world);
+// The same into `j`, reusing its storage (no allocation once it is 3 x parameter_count).
+void point_jacobian(const Skeleton& skeleton, const BoneFrames& frames, const HandPose& pose,
+                    int bone, const Eigen::Vector3d& world,
+                    Eigen::Matrix<double, 3, Eigen::Dynamic>& j);
 // Angular velocity of `bone`'s frame per pose parameter, 3 x parameter_count: the
 // rotation's Jacobian in the tangent space, dR = [w]x R.
 Eigen::Matrix<double, 3, Eigen::Dynamic> rotation_jacobian(const Skeleton& skeleton,

@@ -1,10 +1,13 @@
 #include "core/hand/tracked_hand.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <Eigen/Dense>
 
 #include "core/hand/degrees.h"
+#include "core/hand/fit_workspace.h"
 
 namespace handlab::hand {
 namespace {
@@ -108,14 +111,25 @@ Skeleton build_tracked_hand(const HandShape& shape, const MeasuredSkeleton* meas
   return s;
 }
 
+std::array<int, 26> leap_joint_markers(const Skeleton& tracked) {
+  std::array<int, 26> markers;
+  for (int f = 0; f < kFingerCount; ++f)
+    for (int k = 0; k < 5; ++k)
+      markers[std::size_t(5 * f + k)] =
+          tracked.marker_index(std::string(finger_name(f)) + kJointNames[k]);
+  markers[25] = tracked.marker_index("palm_centre");
+  return markers;
+}
+
 LeapJoints to_leap_joints(const Skeleton& tracked, const HandPose& pose) {
   const BoneFrames frames = forward_kinematics(tracked, pose);
+  const std::array<int, 26> markers = leap_joint_markers(tracked);
   LeapJoints out;
   for (int f = 0; f < kFingerCount; ++f)
     for (int k = 0; k < 5; ++k)
-      out.joints[std::size_t(f)][std::size_t(k)] = marker_position(
-          tracked, frames, tracked.marker_index(std::string(finger_name(f)) + kJointNames[k]));
-  out.palm_position = marker_position(tracked, frames, tracked.marker_index("palm_centre"));
+      out.joints[std::size_t(f)][std::size_t(k)] =
+          marker_position(tracked, frames, markers[std::size_t(5 * f + k)]);
+  out.palm_position = marker_position(tracked, frames, markers[25]);
   out.direction = pose.root_rotation.col(1);
   out.palm_normal = pose.root_rotation.col(2);
   out.wrist = pose.root_position;
@@ -130,110 +144,123 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame, int 
 
 FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
                           const FitOptions& options) {
-  const int max_iterations = options.max_iterations;
+  FitWorkspace workspace(tracked);
+  return fit_leap_joints(tracked, frame, options, workspace);
+}
+
+namespace {
+
+// The pose the fit starts from: the previous frame's, or the palm frame the tracker reports.
+HandPose initial_pose(const Skeleton& tracked, const LeapJoints& frame, const FitOptions& options,
+                      int palm_marker) {
+  if (options.initial) return *options.initial;
+  HandPose pose = HandPose::rest(tracked);
+  const Eigen::Vector3d y = frame.direction.normalized();
+  const Eigen::Vector3d z = (frame.palm_normal - frame.palm_normal.dot(y) * y).normalized();
+  pose.root_rotation.col(0) = y.cross(z);
+  pose.root_rotation.col(1) = y;
+  pose.root_rotation.col(2) = z;
+  const Eigen::Vector3d palm_offset = tracked.markers[std::size_t(palm_marker)].local;
+  pose.root_position = frame.palm_position - pose.root_rotation * palm_offset;
+  return pose;
+}
+
+// Rows weighted by the square root of each joint's weight: the cost is the weighted sum.
+double weighted_residual(const Skeleton& tracked, const FitWorkspace& w, const BoneFrames& frames,
+                         Eigen::VectorXd& r) {
+  r.resize(Eigen::Index(3 * w.targets.size()));
+  for (std::size_t t = 0; t < w.targets.size(); ++t)
+    r.segment<3>(Eigen::Index(3 * t)) =
+        w.sqrt_weights[t] *
+        (marker_position(tracked, frames, w.targets[t].first) - w.targets[t].second);
+  return 0.5 * r.squaredNorm();
+}
+
+void weighted_jacobian(const Skeleton& tracked, const HandPose& pose, FitWorkspace& w) {
+  w.j.resize(Eigen::Index(3 * w.targets.size()), tracked.parameter_count());
+  for (std::size_t t = 0; t < w.targets.size(); ++t) {
+    const int marker = w.targets[t].first;
+    point_jacobian(tracked, w.frames, pose, tracked.markers[std::size_t(marker)].bone,
+                   marker_position(tracked, w.frames, marker), w.point_j);
+    w.j.middleRows<3>(Eigen::Index(3 * t)) = w.sqrt_weights[t] * w.point_j;
+  }
+}
+
+// Joints held at a limit the descent pushes them through leave the system: the step moves
+// the others, where clamping after a step into the limit would turn it off the descent
+// direction and the fit would crawl along the limit for all its iterations.
+void hold_joints_at_limits(const Skeleton& tracked, const HandPose& pose, FitWorkspace& w) {
+  for (std::size_t k = 0; k < tracked.dofs.size(); ++k) {
+    const Eigen::Index i = 6 + Eigen::Index(k);
+    const double angle = pose.angles(Eigen::Index(k));
+    if ((angle <= tracked.dofs[k].lower && w.g(i) > 0) ||
+        (angle >= tracked.dofs[k].upper && w.g(i) < 0)) {
+      w.jtj.row(i).setZero();
+      w.jtj.col(i).setZero();
+      w.jtj(i, i) = 1.0;
+      w.g(i) = 0.0;
+    }
+  }
+}
+
+}  // namespace
+
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
+                          const FitOptions& options, FitWorkspace& w) {
+  if (w.marker_count != tracked.markers.size())
+    throw std::logic_error("fit_leap_joints: a workspace made for another skeleton");
   FitResult result;
   HandPose& pose = result.pose;
-  if (options.initial) {
-    pose = *options.initial;  // the previous frame's fit
-  } else {
-    // Start from the palm frame the tracker reports.
-    pose = HandPose::rest(tracked);
-    const Eigen::Vector3d y = frame.direction.normalized();
-    const Eigen::Vector3d z = (frame.palm_normal - frame.palm_normal.dot(y) * y).normalized();
-    pose.root_rotation.col(0) = y.cross(z);
-    pose.root_rotation.col(1) = y;
-    pose.root_rotation.col(2) = z;
-    const Eigen::Vector3d palm_offset =
-        tracked.markers[std::size_t(tracked.marker_index("palm_centre"))].local;
-    pose.root_position = frame.palm_position - pose.root_rotation * palm_offset;
+  pose = initial_pose(tracked, frame, options, w.joint_marker[25]);
+  w.targets.clear();
+  w.sqrt_weights.clear();
+  for (std::size_t joint = 0; joint < 25; ++joint) {
+    const double weight = options.weights[joint];
+    if (weight <= 0) continue;
+    w.targets.emplace_back(w.joint_marker[joint], frame.joints[joint / 5][joint % 5]);
+    w.sqrt_weights.push_back(std::sqrt(weight));
   }
-
-  std::vector<std::pair<int, Eigen::Vector3d>> targets;
-  std::vector<double> sqrt_weights;
-  for (int f = 0; f < kFingerCount; ++f)
-    for (int k = 0; k < 5; ++k) {
-      const double w = options.weights[std::size_t(5 * f + k)];
-      if (w <= 0) continue;
-      targets.emplace_back(tracked.marker_index(std::string(finger_name(f)) + kJointNames[k]),
-                           frame.joints[std::size_t(f)][std::size_t(k)]);
-      sqrt_weights.push_back(std::sqrt(w));
-    }
-  const int n = tracked.parameter_count();
-  const int m = 3 * int(targets.size());
-  // Rows weighted by the square root of each joint's weight: the cost is the weighted sum.
-  auto residual_of = [&](const BoneFrames& frames, Eigen::VectorXd& r) {
-    r.resize(m);
-    for (std::size_t t = 0; t < targets.size(); ++t)
-      r.segment<3>(Eigen::Index(3 * t)) =
-          sqrt_weights[t] *
-          (marker_position(tracked, frames, targets[t].first) - targets[t].second);
-    return 0.5 * r.squaredNorm();
-  };
-  auto jacobian_of = [&](const HandPose& p, const BoneFrames& frames, Eigen::MatrixXd& j) {
-    j.resize(m, n);
-    for (std::size_t t = 0; t < targets.size(); ++t) {
-      const int marker = targets[t].first;
-      j.middleRows<3>(Eigen::Index(3 * t)) =
-          sqrt_weights[t] * point_jacobian(tracked, frames, p,
-                                           tracked.markers[std::size_t(marker)].bone,
-                                           marker_position(tracked, frames, marker));
-    }
-  };
   double lambda = 1e-3;
-  Eigen::VectorXd r, trial_r;
-  Eigen::MatrixXd j, jtj, a;
-  Eigen::VectorXd g;
-  BoneFrames frames = forward_kinematics(tracked, pose);
-  double cost = residual_of(frames, r);
-  jacobian_of(pose, frames, j);
+  forward_kinematics(tracked, pose, w.frames);
+  double cost = weighted_residual(tracked, w, w.frames, w.r);
+  weighted_jacobian(tracked, pose, w);
   result.iterations = 0;
-  for (int it = 0; it < max_iterations; ++it) {
+  for (int it = 0; it < options.max_iterations; ++it) {
     result.iterations = it + 1;
-    jtj.noalias() = j.transpose() * j;
-    g.noalias() = j.transpose() * r;
-    // Joints held at a limit the descent pushes them through leave the system: the step moves
-    // the others, where clamping after a step into the limit would turn it off the descent
-    // direction and the fit would crawl along the limit for all its iterations.
-    for (std::size_t k = 0; k < tracked.dofs.size(); ++k) {
-      const Eigen::Index i = 6 + Eigen::Index(k);
-      const double angle = pose.angles(Eigen::Index(k));
-      if ((angle <= tracked.dofs[k].lower && g(i) > 0) ||
-          (angle >= tracked.dofs[k].upper && g(i) < 0)) {
-        jtj.row(i).setZero();
-        jtj.col(i).setZero();
-        jtj(i, i) = 1.0;
-        g(i) = 0.0;
-      }
-    }
-    if (g.norm() < 1e-14) break;
+    w.jtj.noalias() = w.j.transpose() * w.j;
+    w.g.noalias() = w.j.transpose() * w.r;
+    hold_joints_at_limits(tracked, pose, w);
+    if (w.g.norm() < 1e-14) break;
     bool improved = false, converged = false;
     for (int tries = 0; tries < 10 && !improved; ++tries) {
-      a = jtj;
-      a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
-      const Eigen::VectorXd step = -a.ldlt().solve(g);
+      w.a = w.jtj;
+      w.a.diagonal() += lambda * (w.jtj.diagonal().array() + 1e-9).matrix();
+      w.ldlt.compute(w.a);
+      w.step = w.ldlt.solve(w.g);
+      w.step = -w.step;
       // Converged when the step would move no joint by more than kStepTolerance (rad, or m
       // at the root): far below what a tracker resolves, and where the cost's changes are
       // rounding, which would otherwise spend the remaining iterations and tries.
-      if (step.lpNorm<Eigen::Infinity>() < kStepTolerance) {
+      if (w.step.lpNorm<Eigen::Infinity>() < kStepTolerance) {
         converged = true;
         break;
       }
-      HandPose trial = pose;
-      trial.apply(step);
-      trial.clamp_to_limits(tracked);
-      const BoneFrames trial_frames = forward_kinematics(tracked, trial);
-      const double c2 = residual_of(trial_frames, trial_r);
+      w.trial = pose;
+      w.trial.apply(w.step);
+      w.trial.clamp_to_limits(tracked);
+      forward_kinematics(tracked, w.trial, w.trial_frames);
+      const double c2 = weighted_residual(tracked, w, w.trial_frames, w.trial_r);
       if (c2 < cost) {
         // Converged when the cost's relative drop is below kDropTolerance (the joints then
         // move by nanometres); the Jacobian is needed only for a next iteration.
         converged = cost - c2 < kDropTolerance * cost;
-        pose = trial;
-        frames = trial_frames;
-        r.swap(trial_r);
+        pose = w.trial;
+        std::swap(w.frames, w.trial_frames);
+        w.r.swap(w.trial_r);
         cost = c2;
         improved = true;
         lambda = std::max(lambda * 0.3, 1e-9);
-        if (!converged) jacobian_of(pose, frames, j);
+        if (!converged) weighted_jacobian(tracked, pose, w);
       } else {
         lambda *= 10.0;
       }
@@ -243,12 +270,12 @@ FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
   // Residuals reported unweighted, over the joints that took part.
   double sum = 0.0;
   result.max_residual = 0.0;
-  for (std::size_t t = 0; t < targets.size(); ++t) {
-    const double e = r.segment<3>(Eigen::Index(3 * t)).norm() / sqrt_weights[t];
+  for (std::size_t t = 0; t < w.targets.size(); ++t) {
+    const double e = w.r.segment<3>(Eigen::Index(3 * t)).norm() / w.sqrt_weights[t];
     sum += e * e;
     result.max_residual = std::max(result.max_residual, e);
   }
-  result.rms_residual = std::sqrt(sum / double(std::max<std::size_t>(targets.size(), 1)));
+  result.rms_residual = std::sqrt(sum / double(std::max<std::size_t>(w.targets.size(), 1)));
   return result;
 }
 

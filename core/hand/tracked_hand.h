@@ -35,6 +35,10 @@ struct MeasuredSkeleton {
 // the shape's anthropometric table, or measured ones when given.
 Skeleton build_tracked_hand(const HandShape& shape, const MeasuredSkeleton* measured = nullptr);
 
+// The markers of a Leap frame's 25 joints (digit * 5 + k, k = carp, mcp, pip, dip, tip) and,
+// last, the palm centre.
+std::array<int, 26> leap_joint_markers(const Skeleton& tracked);
+
 LeapJoints to_leap_joints(const Skeleton& tracked, const HandPose& pose);
 
 struct FitResult {
@@ -58,10 +62,16 @@ struct FitOptions {
   }
 };
 
+struct FitWorkspace;  // fit_workspace.h
+
 // Weighted least-squares fit of the skeleton's pose to a frame's 25 joint positions (damped
 // Gauss-Newton, joint angles kept within their limits).
 FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
                           const FitOptions& options);
+// The same in a workspace made for `tracked`, kept from frame to frame (no allocation but the
+// result's pose).
+FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
+                          const FitOptions& options, FitWorkspace& workspace);
 FitResult fit_leap_joints(const Skeleton& tracked, const LeapJoints& frame,
                           int max_iterations = 30);
 

@@ -93,12 +93,18 @@ TrackedHand tracked_hand(const hand::LeapJoints& j, Side side, std::int32_t id) 
   return h;
 }
 
-TrackedHandFitter::TrackedHandFitter(double hand_length, Side side,
-                                     const hand::MeasuredSkeleton* measured) {
+namespace {
+hand::Skeleton tracked_skeleton(double hand_length, Side side,
+                                const hand::MeasuredSkeleton* measured) {
   hand::HandShape shape = hand::HandShape::with_length(hand_length);
   shape.left = side == Side::kLeft;
-  skeleton_ = hand::build_tracked_hand(shape, measured);
+  return hand::build_tracked_hand(shape, measured);
 }
+}  // namespace
+
+TrackedHandFitter::TrackedHandFitter(double hand_length, Side side,
+                                     const hand::MeasuredSkeleton* measured)
+    : skeleton_(tracked_skeleton(hand_length, side, measured)), workspace_(skeleton_) {}
 
 std::optional<TrackedHandFitter> TrackedHandFitter::for_recording(
     const std::vector<TrackedFrame>& frames, Side side) {
@@ -114,7 +120,7 @@ hand::FitResult TrackedHandFitter::fit(const TrackedHand& h) {
   if (h.derived & kDerivedCarp)
     for (int d = 0; d < 5; ++d) options.weights[std::size_t(5 * d)] = 0.0;
   if (previous_) options.initial = &*previous_;
-  hand::FitResult result = hand::fit_leap_joints(skeleton_, leap_joints(h), options);
+  hand::FitResult result = hand::fit_leap_joints(skeleton_, leap_joints(h), options, workspace_);
   previous_ = result.pose;
   return result;
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/hand/fit_workspace.h"
 #include "core/hand/tracked_hand.h"
 #include "core/tracking/tracked_frame.h"
 
@@ -39,6 +40,7 @@ class TrackedHandFitter {
 
  private:
   hand::Skeleton skeleton_;
+  hand::FitWorkspace workspace_;
   std::optional<hand::HandPose> previous_;
 };
 

@@ -10,11 +10,10 @@ namespace {
 
 // The parameters it moves: the root's translation (3) and every joint angle; the rotation's
 // three columns of the skeleton's Jacobian are left out.
-Eigen::MatrixXd moved_columns(const Eigen::Matrix<double, 3, Eigen::Dynamic>& full) {
-  Eigen::MatrixXd j(3, full.cols() - 3);
+void moved_columns(const Eigen::Matrix<double, 3, Eigen::Dynamic>& full, Eigen::MatrixXd& j) {
+  j.resize(3, full.cols() - 3);
   j.leftCols<3>() = full.leftCols<3>();
   j.rightCols(full.cols() - 6) = full.rightCols(full.cols() - 6);
-  return j;
 }
 
 }  // namespace
@@ -25,22 +24,28 @@ PinchIkResult solve_pinch_ik(const hand::Skeleton& skeleton, hand::HandPose& pos
   const int n = 3 + dofs;
   const Eigen::Vector3d root_start = pose.root_position;
   PinchIkResult result;
+  // Storage kept across the iterations.
   hand::BoneFrames frames;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> full;
+  Eigen::MatrixXd j, normal;
+  Eigen::VectorXd gradient, step, scaled;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt(n);
+  std::vector<bool> held(static_cast<std::size_t>(n));
   for (int it = 0; it < options.iterations; ++it) {
     hand::forward_kinematics(skeleton, pose, frames);
-    Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
-    Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
+    normal.setZero(n, n);
+    gradient.setZero(n);
     for (const PointGoal& g : goals) {
       const Eigen::Vector3d p = hand::bone_point(frames, g.bone, g.local);
-      const Eigen::MatrixXd j =
-          moved_columns(hand::point_jacobian(skeleton, frames, pose, g.bone, p));
+      hand::point_jacobian(skeleton, frames, pose, g.bone, p, full);
+      moved_columns(full, j);
       normal.noalias() += g.weight * j.transpose() * j;
       gradient.noalias() += g.weight * j.transpose() * (p - g.target);
     }
     normal.topLeftCorner<3, 3>().diagonal().array() += options.root_weight;
     gradient.head<3>() += options.root_weight * (pose.root_position - root_start);
     // Joints at a limit that the step would push past are held there (a projected step).
-    std::vector<bool> held(std::size_t(n), false);
+    std::fill(held.begin(), held.end(), false);
     for (int k = 0; k < dofs; ++k) {
       const double a = pose.angles(k);
       const hand::Dof& d = skeleton.dofs[std::size_t(k)];
@@ -55,8 +60,10 @@ PinchIkResult solve_pinch_ik(const hand::Skeleton& skeleton, hand::HandPose& pos
       normal(k, k) = 1.0;
       gradient(k) = 0.0;
     }
-    Eigen::VectorXd step = -normal.ldlt().solve(gradient);
-    Eigen::VectorXd scaled = step;
+    ldlt.compute(normal);
+    step = ldlt.solve(gradient);
+    step = -step;
+    scaled = step;
     scaled.head<3>() /= 0.05;
     const double longest = scaled.cwiseAbs().maxCoeff();
     if (longest > options.max_step) step *= options.max_step / longest;

@@ -1,12 +1,15 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
+#include "core/hand/fit_workspace.h"
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/hand/skin.h"
+#include "core/hand/tracked_hand.h"
 #include "core/mesh/self_intersection.h"
 
 namespace handlab::hand {
@@ -160,14 +163,6 @@ TEST(Flesh, ResolutionScalesTheMesh) {
   EXPECT_THROW(build_flesh(s, shape, {7, 0.0015}), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace handlab::hand
-
-#include "core/hand/tracked_hand.h"
-
-namespace handlab::hand {
-namespace {
-
 TEST(TrackedHand, LeapMorphology) {
   const Skeleton s = build_tracked_hand(HandShape::with_length(0.18));
   EXPECT_EQ(s.bones.size(), 21u);  // palm + 4 bones x 5 digits
@@ -278,4 +273,40 @@ TEST(TrackedHand, AJointsWeightPullsTheFitTowardsIt) {
 }
 
 }  // namespace
+// A workspace kept from frame to frame (as a tracker's fitter keeps one) gives each frame the
+// fit a fresh one gives, bit for bit, whatever the frames before it (other weights, other
+// starts); a copy of it fits like a new one; a workspace made for another skeleton is refused.
+TEST(TrackedHand, AWorkspaceKeptFromFrameToFrameFitsAsAFreshOne) {
+  std::mt19937 rng(23);
+  const Skeleton s = build_tracked_hand(HandShape::with_length(0.18));
+  FitWorkspace kept(s);
+  HandPose previous = HandPose::rest(s);
+  for (int frame_index = 0; frame_index < 8; ++frame_index) {
+    const LeapJoints frame = to_leap_joints(s, random_pose(s, rng));
+    FitOptions options;
+    if (frame_index % 2 == 1) options.initial = &previous;
+    if (frame_index % 3 == 2)
+      for (int d = 0; d < 5; ++d) options.weights[std::size_t(5 * d)] = 0.0;  // no carps
+    const FitResult fresh = fit_leap_joints(s, frame, options);
+    const FitResult reused = fit_leap_joints(s, frame, options, kept);
+    // A copy of a used workspace, and of one never used (whose LDLT has no status yet).
+    const FitWorkspace never_used(s);
+    FitWorkspace copy = frame_index % 2 == 0 ? kept : never_used;
+    const FitResult copied = fit_leap_joints(s, frame, options, copy);
+    for (const FitResult* fit : {&reused, &copied}) {
+      EXPECT_EQ(fit->iterations, fresh.iterations) << "frame " << frame_index;
+      EXPECT_EQ(fit->rms_residual, fresh.rms_residual) << "frame " << frame_index;
+      EXPECT_EQ(fit->pose.angles, fresh.pose.angles) << "frame " << frame_index;
+      EXPECT_EQ(fit->pose.root_position, fresh.pose.root_position) << "frame " << frame_index;
+      EXPECT_EQ(fit->pose.root_rotation, fresh.pose.root_rotation) << "frame " << frame_index;
+    }
+    previous = fresh.pose;
+  }
+  Skeleton fewer_markers = s;
+  fewer_markers.markers.pop_back();
+  EXPECT_THROW(
+      fit_leap_joints(fewer_markers, to_leap_joints(s, HandPose::rest(s)), FitOptions{}, kept),
+      std::logic_error);
+}
+
 }  // namespace handlab::hand
