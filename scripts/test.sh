@@ -16,8 +16,13 @@ cmake --preset sanitize
 # leave part of the cores idle (Slurm's daemons, Xvfb, child processes waited for) and the
 # build takes what they leave, so the tests run as fast as alone.
 build_log=build-sanitize/build.log
-setsid nice -n 19 cmake --build build-sanitize -j "$jobs" >"$build_log" 2>&1 &
-build=$!  # its own process group (setsid), so that a failed test stops the compilers too
+# Its own process group (job control on for the launch), so that a failed test stops the
+# compilers too; not its own session (setsid), whose scheduler group would share the cores
+# equally with the tests' whatever its nice value.
+set -m
+nice -n 19 cmake --build build-sanitize -j "$jobs" >"$build_log" 2>&1 &
+build=$!
+set +m
 trap 'kill -- -"$build" 2>/dev/null || true' EXIT
 ctest --test-dir build --output-on-failure -j "$jobs"
 if ! wait "$build"; then
