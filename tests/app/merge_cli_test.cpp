@@ -131,11 +131,11 @@ void refused(const Result& e, const std::string& what) {
 }
 
 TEST(CliMerge, RefusalsSayWhichFileAndWhyAndChangeNothing) {
-  const std::string protocol = short_protocol(2);
+  const std::string protocol = short_protocol(1);
   const std::string a = simulate("merge_a.db", "1/2", protocol, 11, false),
                     b = simulate("merge_b.db", "2/2", protocol, 11, false);
-  // Another protocol (one block), another seed, a text file, a damaged study.
-  const std::string other = simulate("merge_other.db", "2/2", short_protocol(1), 11, false);
+  // Another protocol (with practice trials), another seed, a text file, a damaged study.
+  const std::string other = simulate("merge_other.db", "2/2", short_protocol(1, true), 11, false);
   const std::string reseeded = simulate("merge_reseeded.db", "1/2", protocol, 12, false);
   const std::string not_a_study = fresh_path("merge_not_a_study.db");
   std::ofstream(not_a_study) << "participant,age\nS01,27\n";

@@ -221,9 +221,14 @@ TEST(GroupAssignment, StoredWithTheParticipantExportedAndSummarised) {
   EXPECT_EQ(summary["Factor strategy"], "naive, ours");  // labels that say their method
 }
 
-// The mixed example with a second factor assigned in order of enrolment.
-Protocol with_glove() {
-  const std::string text = read_protocol(kMixed).text;
+// The mixed example with a second factor assigned in order of enrolment; with `one_block`, one
+// block and no practice trials.
+Protocol with_glove(bool one_block = false) {
+  std::string text = read_protocol(kMixed).text;
+  if (one_block) {
+    text = test::with(text, "\"blocks\": 5", "\"blocks\": 1");
+    text = test::with(text, "{\"trials_per_condition\": 1}", "{\"trials_per_condition\": 0}");
+  }
   const std::size_t at = text.find("\"between\": [") + std::string("\"between\": [").size();
   return parse_protocol(
       text.substr(0, at) +
@@ -271,9 +276,10 @@ TEST(GroupAssignment, AnEditKeepsTheEnrolmentGroupAndMovesNoOneWhoseTrialsRan) {
 }
 
 // Shards place each person as the whole study does (the group follows the place, not the
-// shard); merged, the groups are carried.
+// shard); merged, the groups are carried. One block without practice: the groups are all
+// that is looked at.
 TEST(GroupAssignment, ShardsAndTheirMergeHoldTheGroupsOfTheWholeStudy) {
-  const Protocol protocol = with_glove();
+  const Protocol protocol = with_glove(true);
   SimulationOptions options;
   options.participants = 4;
   options.seed = 3;
