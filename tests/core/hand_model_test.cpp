@@ -272,7 +272,6 @@ TEST(TrackedHand, AJointsWeightPullsTheFitTowardsIt) {
   EXPECT_GT(weighted_fit.rms_residual, equal_fit.rms_residual);
 }
 
-}  // namespace
 // A workspace kept from frame to frame (as a tracker's fitter keeps one) gives each frame the
 // fit a fresh one gives, bit for bit, whatever the frames before it (other weights, other
 // starts); a copy of it fits like a new one; a workspace made for another skeleton is refused.
@@ -309,4 +308,5 @@ TEST(TrackedHand, AWorkspaceKeptFromFrameToFrameFitsAsAFreshOne) {
       std::logic_error);
 }
 
+}  // namespace
 }  // namespace handlab::hand
