@@ -75,8 +75,8 @@ void expect_held_at_each_squeeze(double cube, std::initializer_list<double> sque
 // 3 mm, the default, held). The skin within 1 mm: where rounding differs (no fused multiply-add)
 // a squeeze of 3.1 mm reached 0.67 mm, this build 0.22-0.39 mm for all five.
 TEST(PinchRobustness, HoldsTheLightCubeForAnySqueeze) {
-  if (test::kUnderSanitizers)  // the softest and the hardest: the same code as the others
-    expect_held_at_each_squeeze(0.01, {0.0025, 0.0035}, 1.0);
+  if (test::kUnderSanitizers)  // the hardest, the deepest contact: the others' code
+    expect_held_at_each_squeeze(0.01, {0.0035}, 1.0);
   else
     expect_held_at_each_squeeze(0.01, {0.0025, 0.0027, 0.0028, 0.0031, 0.0035}, 1.0);
 }
@@ -86,8 +86,8 @@ TEST(PinchRobustness, HoldsTheLightCubeForAnySqueeze) {
 // its nodes (2.2 mm with contact at the nodes alone), the cube turned out of the pads at the
 // lift for 3.0, 3.2, 3.4 and 3.6 mm of fifteen squeezes from 2.5 to 4 mm.
 TEST(PinchRobustness, HoldsTheHeavyCubeForAnySqueeze) {
-  if (test::kUnderSanitizers)  // the softest and the hardest: the same code as the others
-    expect_held_at_each_squeeze(0.06, {0.0025, 0.0035}, 1.5);
+  if (test::kUnderSanitizers)  // the hardest, the deepest contact: the others' code
+    expect_held_at_each_squeeze(0.06, {0.0035}, 1.5);
   else
     expect_held_at_each_squeeze(0.06, {0.0025, 0.0027, 0.0028, 0.003, 0.0031, 0.0035}, 1.5);
 }
