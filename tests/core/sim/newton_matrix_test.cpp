@@ -2,7 +2,7 @@
 // pinch (approach, closing, grip, lift): every energy's terms as a step finds them; the
 // term-by-term product and diagonal that CG uses, and the matrix written into the
 // factorisation's panels, against the matrix assembled entry by entry from the same terms.
-#include <map>
+#include <array>
 
 #include <gtest/gtest.h>
 
@@ -13,23 +13,15 @@
 namespace handlab::sim {
 namespace {
 
-// The pinch run to `time`, once for all the tests at that moment.
-const test::GraspScene& grasp_at(double time) {
-  static std::map<double, test::GraspScene> scenes;
-  auto it = scenes.find(time);
-  if (it == scenes.end()) it = scenes.emplace(time, test::grasp_scene(time)).first;
-  return it->second;
-}
-
 struct Evaluated {
   const test::GraspScene& grasp;
   NewtonTerms terms;
 };
 
-// Every term of a step's first evaluation at the grasp's state; `layout`, when given, the
-// fixed springs' places in the panels (as the engine passes them).
+// Every term of a step's first evaluation at the pinch's stage at `time`; `layout`, when given,
+// the fixed springs' places in the panels (as the engine passes them).
 Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
-  Evaluated e{grasp_at(time), {}};
+  Evaluated e{test::pinch_stage(time), {}};
   const HandSimModel& model = e.grasp.scene.model;
   HandSimState s = e.grasp.state;
   e.terms = test::empty_terms(model, true);
@@ -37,96 +29,103 @@ Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
   return e;
 }
 
-class NewtonMatrixAt : public ::testing::TestWithParam<double> {};
+// The approach (no contact but the floor's), the closing, the grip, the lift.
+constexpr std::array<double, 4> kStages = {0.7, 1.0, 1.2, 1.7};
 
-TEST_P(NewtonMatrixAt, ProductAndDiagonalEqualTheAssembledMatrix) {
-  const Evaluated e = evaluated(GetParam());
-  const HandSimModel& model = e.grasp.scene.model;
-  const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
-  const Eigen::SparseMatrix<double> magnitude = a.cwiseAbs();
-  for (double phase : {1.0, 2.0, 3.0}) {
-    const Eigen::VectorXd x = test::direction(model, 1.0, 1.0, phase);
-    Eigen::VectorXd y;
-    multiply(model, e.terms, x, y);
-    // Rounding scales with the terms summed, |A| |x|, not with the (cancelling) result.
-    const Eigen::VectorXd bound = 1e-12 * (magnitude * x.cwiseAbs());
-    EXPECT_TRUE(((y - a * x).cwiseAbs().array() <= bound.array()).all()) << "phase " << phase;
+TEST(NewtonMatrixAtPinchStages, ProductAndDiagonalEqualTheAssembledMatrix) {
+  for (double stage : kStages) {
+    SCOPED_TRACE(stage);
+    const Evaluated e = evaluated(stage);
+    const HandSimModel& model = e.grasp.scene.model;
+    const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
+    const Eigen::SparseMatrix<double> magnitude = a.cwiseAbs();
+    for (double phase : {1.0, 2.0, 3.0}) {
+      const Eigen::VectorXd x = test::direction(model, 1.0, 1.0, phase);
+      Eigen::VectorXd y;
+      multiply(model, e.terms, x, y);
+      // Rounding scales with the terms summed, |A| |x|, not with the (cancelling) result.
+      const Eigen::VectorXd bound = 1e-12 * (magnitude * x.cwiseAbs());
+      EXPECT_TRUE(((y - a * x).cwiseAbs().array() <= bound.array()).all()) << "phase " << phase;
+    }
+    NewtonDiagonal cache;
+    const Eigen::VectorXd diagonal_found = diagonal(model, e.terms, cache);
+    EXPECT_TRUE(cache.known);
+    EXPECT_LT((diagonal_found - a.diagonal()).lpNorm<Eigen::Infinity>(),
+              1e-12 * a.diagonal().lpNorm<Eigen::Infinity>());
+    // The kept part found once: the same diagonal again from the cache.
+    EXPECT_EQ(diagonal(model, e.terms, cache), diagonal_found);
   }
-  NewtonDiagonal cache;
-  const Eigen::VectorXd diagonal_found = diagonal(model, e.terms, cache);
-  EXPECT_TRUE(cache.known);
-  EXPECT_LT((diagonal_found - a.diagonal()).lpNorm<Eigen::Infinity>(),
-            1e-12 * a.diagonal().lpNorm<Eigen::Infinity>());
-  // The kept part found once: the same diagonal again from the cache.
-  EXPECT_EQ(diagonal(model, e.terms, cache), diagonal_found);
 }
 
-TEST_P(NewtonMatrixAt, PanelsHoldTheAssembledMatrix) {
-  SolverMemory memory;
-  NewtonLayout layout;
-  analyze_newton_matrix(grasp_at(GetParam()).scene.model, memory, layout);
-  const Evaluated e = evaluated(GetParam(), &layout);
-  const HandSimModel& model = e.grasp.scene.model;
-  const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
-  const SupernodalLdlt& factor = memory.factor;
-  std::vector<double> panels(std::size_t(factor.value_count()), 0.0);
-  write_panels(model, e.terms, layout, factor, panels.data());
-  // Entry by entry, rounding on the scale of the entry's row and column (|A_rc| <=
-  // sqrt(A_rr A_cc), and an entry summed to nearly zero keeps its terms' rounding); the lower
-  // triangle after the ordering holds them all.
-  const Eigen::VectorXd diag = a.diagonal();
-  int compared = 0;
-  for (int col = 0; col < a.outerSize(); ++col)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
-      if (!factor.ordered_after(int(it.row()), col)) continue;
-      const int at = factor.position(int(it.row()), col);
-      ASSERT_GE(at, 0);
-      EXPECT_LE(std::abs(panels[std::size_t(at)] - it.value()),
-                1e-12 * std::sqrt(diag[it.row()] * diag[col]))
-          << it.row() << ", " << col;
-      ++compared;
-    }
-  EXPECT_GT(compared, 50000);
-  // Split between two workers, the same sums bit for bit.
-  std::vector<double> split(panels.size(), 0.0);
-  write_panels(model, e.terms, layout, factor, split.data(), 0);
-  write_panels(model, e.terms, layout, factor, split.data(), 1);
-  EXPECT_EQ(split, panels);
+TEST(NewtonMatrixAtPinchStages, PanelsHoldTheAssembledMatrix) {
+  for (double stage : kStages) {
+    SCOPED_TRACE(stage);
+    SolverMemory memory;
+    NewtonLayout layout;
+    analyze_newton_matrix(test::pinch_stage(stage).scene.model, memory, layout);
+    const Evaluated e = evaluated(stage, &layout);
+    const HandSimModel& model = e.grasp.scene.model;
+    const Eigen::SparseMatrix<double> a = test::assembled(model, e.terms);
+    const SupernodalLdlt& factor = memory.factor;
+    std::vector<double> panels(std::size_t(factor.value_count()), 0.0);
+    write_panels(model, e.terms, layout, factor, panels.data());
+    // Entry by entry, rounding on the scale of the entry's row and column (|A_rc| <=
+    // sqrt(A_rr A_cc), and an entry summed to nearly zero keeps its terms' rounding); the lower
+    // triangle after the ordering holds them all.
+    const Eigen::VectorXd diag = a.diagonal();
+    int compared = 0;
+    for (int col = 0; col < a.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
+        if (!factor.ordered_after(int(it.row()), col)) continue;
+        const int at = factor.position(int(it.row()), col);
+        ASSERT_GE(at, 0);
+        EXPECT_LE(std::abs(panels[std::size_t(at)] - it.value()),
+                  1e-12 * std::sqrt(diag[it.row()] * diag[col]))
+            << it.row() << ", " << col;
+        ++compared;
+      }
+    EXPECT_GT(compared, 50000);
+    // Split between two workers, the same sums bit for bit.
+    std::vector<double> split(panels.size(), 0.0);
+    write_panels(model, e.terms, layout, factor, split.data(), 0);
+    write_panels(model, e.terms, layout, factor, split.data(), 1);
+    EXPECT_EQ(split, panels);
+  }
 }
 
 // The cube's own terms: its inertia and the floor's contacts with its corners.
-TEST_P(NewtonMatrixAt, CubeMatrixIsTheCubesOwnTerms) {
-  const Evaluated e = evaluated(GetParam());
-  const HandSimModel& model = e.grasp.scene.model;
-  NewtonTerms own = e.terms;
-  own.tets.clear();
-  own.springs.clear();
-  for (std::size_t i = e.terms.first_contact_spring; i < e.terms.springs.size(); ++i) {
-    const SpringTerm& t = e.terms.springs[i];
-    bool alone = true;
-    for (int k = 0; k < t.p.count; ++k)
-      alone = alone && t.p.block[std::size_t(k)] >= cube_block(model);
-    if (alone) own.springs.push_back(t);
-  }
-  own.blocks.clear();
-  for (const BlockTerm& t : e.terms.blocks)
-    if (t.block >= cube_block(model)) own.blocks.push_back(t);
-  const Eigen::MatrixXd a =
-      Eigen::MatrixXd(test::assembled(model, own, false)).bottomRightCorner(6, 6);
-  EXPECT_LT((cube_matrix(model, e.terms) - a).lpNorm<Eigen::Infinity>(),
-            1e-12 * a.lpNorm<Eigen::Infinity>());
-  // Contacts on other unknowns are found again bit for bit, and a change is seen.
-  std::vector<SpringTerm> others;
-  other_contacts(model, e.terms, others);
-  EXPECT_TRUE(same_other_contacts(model, e.terms, others));
-  if (!others.empty()) {
-    others.back().k *= 1.0 + 1e-15;
-    EXPECT_FALSE(same_other_contacts(model, e.terms, others));
+TEST(NewtonMatrixAtPinchStages, CubeMatrixIsTheCubesOwnTerms) {
+  for (double stage : kStages) {
+    SCOPED_TRACE(stage);
+    const Evaluated e = evaluated(stage);
+    const HandSimModel& model = e.grasp.scene.model;
+    NewtonTerms own = e.terms;
+    own.tets.clear();
+    own.springs.clear();
+    for (std::size_t i = e.terms.first_contact_spring; i < e.terms.springs.size(); ++i) {
+      const SpringTerm& t = e.terms.springs[i];
+      bool alone = true;
+      for (int k = 0; k < t.p.count; ++k)
+        alone = alone && t.p.block[std::size_t(k)] >= cube_block(model);
+      if (alone) own.springs.push_back(t);
+    }
+    own.blocks.clear();
+    for (const BlockTerm& t : e.terms.blocks)
+      if (t.block >= cube_block(model)) own.blocks.push_back(t);
+    const Eigen::MatrixXd a =
+        Eigen::MatrixXd(test::assembled(model, own, false)).bottomRightCorner(6, 6);
+    EXPECT_LT((cube_matrix(model, e.terms) - a).lpNorm<Eigen::Infinity>(),
+              1e-12 * a.lpNorm<Eigen::Infinity>());
+    // Contacts on other unknowns are found again bit for bit, and a change is seen.
+    std::vector<SpringTerm> others;
+    other_contacts(model, e.terms, others);
+    EXPECT_TRUE(same_other_contacts(model, e.terms, others));
+    if (!others.empty()) {
+      others.back().k *= 1.0 + 1e-15;
+      EXPECT_FALSE(same_other_contacts(model, e.terms, others));
+    }
   }
 }
-
-// The approach (no contact but the floor's), the closing, the grip, the lift.
-INSTANTIATE_TEST_SUITE_P(Pinch, NewtonMatrixAt, ::testing::Values(0.7, 1.0, 1.2, 1.7));
 
 }  // namespace
 }  // namespace handlab::sim

@@ -6,7 +6,10 @@
 // finite differences along a direction.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/SparseCore>
@@ -24,28 +27,51 @@
 namespace handlab::sim::test {
 
 struct GraspScene {
-  PinchScene scene;
+  const PinchScene& scene;
   HandSimState state;              // after the step that reached `time`
   std::vector<RigidPose> targets;  // the bones' targets of the next step
   double time = 0.0;
 };
 
-// The scripted pinch of the cube of `cube_size`, run to `time` s.
-inline GraspScene grasp_scene(double time, double cube_size = 0.01) {
-  GraspScene g{make_pinch_scene(cube_size), {}, {}, time};
-  const PinchScript& script = g.scene.script;
-  run_pinch(g.scene.model, g.scene.skeleton, script, SimOptions{}, time,
-            [&](const HandSimState& s) { g.state = s; });
-  g.targets = bone_targets(g.scene.model, g.scene.skeleton,
-                           script.target(time + g.scene.model.parameters.time_step));
-  return g;
+// The moments of the scripted pinch of the 1 cm cube that the stage tests look at: the approach
+// (0.7 s: no contact but the floor's), the closing (1.0 and 1.2 s), the grip just after the
+// closing ends (1.25 s: both pads settled on the cube, four or more nodes inside) and the lift
+// (1.7 s).
+inline constexpr std::array<double, 5> kPinchStages = {0.7, 1.0, 1.2, 1.25, 1.7};
+
+// The pinch at one of kPinchStages. The script runs once a process, to the last stage, keeping
+// each stage's state: a step depends only on the steps before it, so a stage's state is the one
+// a run to that time alone ends in (the stage tests share one executable for this:
+// tests/CMakeLists.txt).
+inline const GraspScene& pinch_stage(double time) {
+  struct Run {
+    PinchScene scene = make_pinch_scene(0.01);
+    std::vector<GraspScene> stages;
+  };
+  static const std::unique_ptr<const Run> run = [] {
+    auto r = std::make_unique<Run>();
+    const PinchScene& scene = r->scene;
+    const double h = scene.model.parameters.time_step;
+    int steps = 0;
+    run_pinch(scene.model, scene.skeleton, scene.script, SimOptions{}, kPinchStages.back(),
+              [&](const HandSimState& s) {
+                ++steps;
+                for (double t : kPinchStages)  // run_pinch's count of steps to reach t
+                  if (steps == int(std::ceil(t / h - 1e-9)))
+                    r->stages.push_back(
+                        {scene, s,
+                         bone_targets(scene.model, scene.skeleton, scene.script.target(t + h)), t});
+              });
+    return r;
+  }();
+  for (const GraspScene& g : run->stages)
+    if (g.time == time) return g;
+  throw std::invalid_argument("pinch_stage: not one of kPinchStages");
 }
 
-// The hand gripping the 1 cm cube just after the closing ends (1.25 s: both pads settled on it,
-// four or more nodes inside), made once.
+// The hand gripping the 1 cm cube just after the closing ends.
 inline const GraspScene& gripping_fine_cube() {
-  static const GraspScene g = grasp_scene(1.25);
-  return g;
+  return pinch_stage(1.25);
 }
 
 // Every term of a step's first evaluation at `s` (its start and its prediction taken to be the
