@@ -13,10 +13,10 @@ endfunction()
 
 # In the sanitizer tree, a target whose own code runs little under the tests (the tests' own
 # fixtures and assertions, the analysis, the studies' orchestration, the CLI's commands)
-# compiles at -O1, a third faster than the build type's -O2; the simulator, the hands, the
-# retargeting and the participant keep -O2. Measured: a grasp-proxy participant about 4 % slower
-# (the linker may keep an -O1 copy of an Eigen template the targets share), the build's CPU time
-# about 105 s less (docs/development.md).
+# compiles at -O1, a fifth to a third faster than at the build type's -O2; the simulator, the
+# hands, the retargeting and the participant keep -O2. The code under test runs a little slower
+# (the linker may keep an -O1 copy of an Eigen template these targets share with it); the
+# figures: CHANGELOG.md, 2026-11-29 (fourteenth session).
 function(handlab_compile_lightly_under_sanitizers target)
   if(HANDLAB_SANITIZE)
     target_compile_options(${target} PRIVATE -O1)

@@ -17,8 +17,8 @@ set(handlab_slow_tests
   "PinchSkin.TheCubesEdgesDoNotSinkIntoTheSkinBetweenNodes=34"
   "CliSim.ReplayDrivesTheSoftHandByARecording=33"
   "CrashTest.SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder=32"
-  "PinchRobustness.HoldsTheHeavyCubeForAnySqueeze=30"
-  "PinchRobustness.HoldsTheLightCubeForAnySqueeze=30"
+  "PinchRobustness.HoldsTheHeavyCubeForAnySqueeze=22"
+  "PinchRobustness.HoldsTheLightCubeForAnySqueeze=17"
   "PinchDeterminism.TheSameRunGivesTheSameStates=30"
   "CliMerge.RefusalsSayWhichFileAndWhyAndChangeNothing=30")
 foreach(entry IN LISTS handlab_slow_tests)

@@ -186,6 +186,10 @@ void PinchMeter::finish(const HandSimState& state, double duration, bool flesh_o
   report.released = duration >= script_.end && lowest < 0.001 && !flesh_on_cube;
 }
 
+int pinch_step_count(double duration, double time_step) {
+  return int(std::ceil(duration / time_step - 1e-9));
+}
+
 PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
                       const PinchScript& script, const SimOptions& options, double duration,
                       const std::function<void(const HandSimState&)>& observer) {
@@ -195,7 +199,7 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
   HandSimState state = initial_state(model, skeleton, script.start_root(), cube);
   HandSimulator simulator(model, options);
   const double h = model.parameters.time_step;
-  const int steps = int(std::ceil(duration / h - 1e-9));
+  const int steps = pinch_step_count(duration, h);
   PinchReport report;
   PinchMeter meter(model, script);
   for (int i = 0; i < steps; ++i) {

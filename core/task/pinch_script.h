@@ -72,6 +72,9 @@ class PinchMeter {
   double lift_ = 0.0, slip_mm_ = 0.0, max_penetration_mm_ = 0.0;
 };
 
+// The steps run_pinch takes to reach `duration` seconds, steps of `time_step`.
+int pinch_step_count(double duration, double time_step);
+
 // Runs the script up to `duration` seconds (its end when 0). `observer`, if given, sees the
 // state after every step.
 PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,

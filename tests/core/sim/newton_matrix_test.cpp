@@ -2,8 +2,6 @@
 // pinch (approach, closing, grip, lift): every energy's terms as a step finds them; the
 // term-by-term product and diagonal that CG uses, and the matrix written into the
 // factorisation's panels, against the matrix assembled entry by entry from the same terms.
-#include <array>
-
 #include <gtest/gtest.h>
 
 #include "core/sim/linear_solve.h"
@@ -29,11 +27,8 @@ Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
   return e;
 }
 
-// The approach (no contact but the floor's), the closing, the grip, the lift.
-constexpr std::array<double, 4> kStages = {0.7, 1.0, 1.2, 1.7};
-
 TEST(NewtonMatrixAtPinchStages, ProductAndDiagonalEqualTheAssembledMatrix) {
-  for (double stage : kStages) {
+  for (double stage : test::kPinchStages) {
     SCOPED_TRACE(stage);
     const Evaluated e = evaluated(stage);
     const HandSimModel& model = e.grasp.scene.model;
@@ -58,7 +53,7 @@ TEST(NewtonMatrixAtPinchStages, ProductAndDiagonalEqualTheAssembledMatrix) {
 }
 
 TEST(NewtonMatrixAtPinchStages, PanelsHoldTheAssembledMatrix) {
-  for (double stage : kStages) {
+  for (double stage : test::kPinchStages) {
     SCOPED_TRACE(stage);
     SolverMemory memory;
     NewtonLayout layout;
@@ -78,7 +73,8 @@ TEST(NewtonMatrixAtPinchStages, PanelsHoldTheAssembledMatrix) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
         if (!factor.ordered_after(int(it.row()), col)) continue;
         const int at = factor.position(int(it.row()), col);
-        ASSERT_GE(at, 0);
+        EXPECT_GE(at, 0);
+        if (at < 0) continue;
         EXPECT_LE(std::abs(panels[std::size_t(at)] - it.value()),
                   1e-12 * std::sqrt(diag[it.row()] * diag[col]))
             << it.row() << ", " << col;
@@ -95,7 +91,7 @@ TEST(NewtonMatrixAtPinchStages, PanelsHoldTheAssembledMatrix) {
 
 // The cube's own terms: its inertia and the floor's contacts with its corners.
 TEST(NewtonMatrixAtPinchStages, CubeMatrixIsTheCubesOwnTerms) {
-  for (double stage : kStages) {
+  for (double stage : test::kPinchStages) {
     SCOPED_TRACE(stage);
     const Evaluated e = evaluated(stage);
     const HandSimModel& model = e.grasp.scene.model;

@@ -6,6 +6,7 @@
 // finite differences along a direction.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -27,17 +28,17 @@
 namespace handlab::sim::test {
 
 struct GraspScene {
-  const PinchScene& scene;
+  const PinchScene& scene;         // the run's, kept for the process (pinch_stage)
   HandSimState state;              // after the step that reached `time`
   std::vector<RigidPose> targets;  // the bones' targets of the next step
   double time = 0.0;
 };
 
 // The moments of the scripted pinch of the 1 cm cube that the stage tests look at: the approach
-// (0.7 s: no contact but the floor's), the closing (1.0 and 1.2 s), the grip just after the
-// closing ends (1.25 s: both pads settled on the cube, four or more nodes inside) and the lift
-// (1.7 s).
+// (0.7 s: no contact but the floor's), the closing (1.0 and 1.2 s), the grip near the closing's
+// end (1.25 s: both pads settled on the cube, four or more nodes inside) and the lift (1.7 s).
 inline constexpr std::array<double, 5> kPinchStages = {0.7, 1.0, 1.2, 1.25, 1.7};
+static_assert(std::ranges::is_sorted(kPinchStages));  // the run ends at the last
 
 // The pinch at one of kPinchStages. The script runs once a process, to the last stage, keeping
 // each stage's state: a step depends only on the steps before it, so a stage's state is the one
@@ -56,8 +57,8 @@ inline const GraspScene& pinch_stage(double time) {
     run_pinch(scene.model, scene.skeleton, scene.script, SimOptions{}, kPinchStages.back(),
               [&](const HandSimState& s) {
                 ++steps;
-                for (double t : kPinchStages)  // run_pinch's count of steps to reach t
-                  if (steps == int(std::ceil(t / h - 1e-9)))
+                for (double t : kPinchStages)
+                  if (steps == pinch_step_count(t, h))
                     r->stages.push_back(
                         {scene, s,
                          bone_targets(scene.model, scene.skeleton, scene.script.target(t + h)), t});
@@ -69,7 +70,7 @@ inline const GraspScene& pinch_stage(double time) {
   throw std::invalid_argument("pinch_stage: not one of kPinchStages");
 }
 
-// The hand gripping the 1 cm cube just after the closing ends.
+// The hand gripping the 1 cm cube near the closing's end.
 inline const GraspScene& gripping_fine_cube() {
   return pinch_stage(1.25);
 }
