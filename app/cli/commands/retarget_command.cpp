@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/retarget_picture.h"
@@ -27,13 +28,10 @@ struct Stats {
     for (double v : values) s += v;
     return values.empty() ? NAN : s / double(values.size());
   }
-  double quantile(double p) const {
-    if (values.empty()) return NAN;
+  double quantile(double p) const {  // NaN for none
     std::vector<double> v = values;
     std::sort(v.begin(), v.end());
-    const double h = (double(v.size()) - 1) * p;
-    const auto lo = std::size_t(std::floor(h));
-    return v[lo] + (h - double(lo)) * (v[std::min(lo + 1, v.size() - 1)] - v[lo]);
+    return stats::quantile_type7(v, p);
   }
 };
 
