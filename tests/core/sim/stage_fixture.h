@@ -1,9 +1,9 @@
-// What the simulator's stage tests share: the study hand gripping the fine cube in the middle
-// of the scripted pinch (stiffened tets, bones turned, flesh pressed on the cube, the cube's
-// corners on the floor), the increment's map (positions plus dq, rotations turned by the
-// rotation vector in the world, as the step moves them), the Newton matrix assembled as a sparse
-// matrix from its terms (the reference the term-by-term operations are checked against), and
-// finite differences along a direction.
+// What the simulator's stage tests share: states of the scripted pinch of the fine cube, one
+// run of it a process (pinch_stage; among them the hand gripping the cube: stiffened tets,
+// bones turned, flesh pressed on the cube, the cube's corners on the floor), the increment's map
+// (positions plus dq, rotations turned by the rotation vector in the world, as the step moves
+// them), the Newton matrix assembled as a sparse matrix from its terms (the reference the
+// term-by-term operations are checked against), and finite differences along a direction.
 #pragma once
 
 #include <algorithm>
