@@ -11,7 +11,9 @@ const std::vector<Command>& all_commands() {
        run_hand},
       {"retarget", "retarget a recording onto the simulated hand (naive or ours) and report errors",
        run_retarget},
-      {"sim", "the soft-hand simulator: time its steps, pinch and lift a cube (bench, pinch)",
+      {"sim",
+       "the soft-hand simulator: time its steps, pinch and lift a cube, kick one (bench, pinch, "
+       "replay, settle)",
        run_sim},
       {"tracking", "read Leap Motion recordings: info, convert to CSV or .hlrec", run_tracking},
       {"render", "draw the task scene, or a moment of a stored trial, into a PNG (no display)",

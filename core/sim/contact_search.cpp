@@ -35,7 +35,7 @@ double contact_stiffness(const HandSimModel& model, const Contact& c) {
 
 double contact_stiffening(const HandSimModel& model, const Contact& c) {
   const SimParameters& p = model.parameters;
-  if (c.kind == Contact::kCornerFloor) return 0.0;
+  if (c.kind == Contact::kCornerFloor) return p.cube_floor_stiffening;
   return on_cube(c) ? model.cube_contact_share * p.contact_stiffening : p.contact_stiffening;
 }
 

@@ -219,6 +219,34 @@ TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   EXPECT_EQ(run_cli("sim replay /nonexistent.json.lz").status, 1);
 }
 
+// A kicked cube alone on the floor: the grid's table and its summary, one kick's JSON (rest
+// as null when it never came to rest), the bounds refused.
+TEST(CliSim, SettleFollowsAKickedCube) {
+  const Result grid = run_cli("sim settle --duration 1");
+  ASSERT_EQ(grid.status, 0) << grid.out;
+  EXPECT_NE(grid.out.find("energy allows mm"), std::string::npos) << grid.out;
+  EXPECT_NE(grid.out.find("40 kicks: "), std::string::npos) << grid.out;
+  EXPECT_EQ(std::count(grid.out.begin(), grid.out.end(), '\n'), 3 + 40 + 2) << grid.out;
+  const std::string json = test::fresh_path("sim_settle.json");
+  ASSERT_EQ(run_cli("sim settle --cube 0.06 --speed 0.5 --spin 0 --json " + json).status, 0);
+  const std::string text = test::file_bytes(json);
+  for (const char* key :
+       {"\"cube_m\": 0.06", "\"floor_stiffness_n_m\": 10000", "\"time_step_s\"",
+        "\"speed_m_s\": 0.5", "\"spin_rad_s\": 0", "\"rest_time_s\": 0.", "\"travelled_m\"",
+        "\"slide_bound_m\"", "\"highest_rise_m\"", "\"start_energy_j\"", "\"highest_energy_j\"",
+        "\"kicks_gaining_energy\": 0"})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
+  ASSERT_EQ(run_cli("sim settle --speed 0.5 --spin 0 --duration 0.1 --json " + json).status, 0);
+  EXPECT_NE(test::file_bytes(json).find("\"rest_time_s\": null"), std::string::npos)
+      << "still sliding at 0.1 s";
+  EXPECT_EQ(run_cli("sim settle --cube 0.5").status, 2);
+  EXPECT_EQ(run_cli("sim settle --spin -1").status, 2);
+  EXPECT_EQ(run_cli("sim settle --speed 0 --spin 0").status, 2);
+  EXPECT_EQ(run_cli("sim settle --duration 0.05").status, 2);
+  EXPECT_EQ(run_cli("sim settle --newton-iterations 0").status, 2);
+  EXPECT_EQ(run_cli("sim settle extra").status, 2);
+}
+
 TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string json = test::fresh_path("sim_bench.json");
   const std::string steps = test::fresh_path("sim_steps.csv");

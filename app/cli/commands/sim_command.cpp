@@ -1,7 +1,8 @@
 // handlab-cli sim: the soft-hand simulator on its scripted pinch-and-lift. `bench` measures the
 // step time (the study mesh, or 4x and 16x finer ones); `pinch` runs the whole script and says
 // whether the cube was held, how far it slipped and how deep the flesh went into it; `replay`
-// (sim_replay.cpp) drives the hand by a real recording.
+// (sim_replay.cpp) drives the hand by a real recording; `settle` (sim_settle.cpp) kicks the cube
+// alone on the floor.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/sim_replay.h"
+#include "app/cli/commands/sim_settle.h"
 #include "app/cli/output_file.h"
 #include "core/hand/flesh.h"
 #include "core/hand/hand_shape.h"
@@ -386,15 +388,18 @@ int run_sim(const std::vector<std::string>& argv) {
     std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n"
                  "       handlab-cli sim pinch --cube 0.01|0.06 [--json OUT] [--frames DIR]\n"
                  "       handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
+                 "[--json OUT]\n"
+                 "       handlab-cli sim settle [--cube SIDE] [--speed M/S] [--spin RAD/S] "
                  "[--json OUT]\n";
     return 0;
   }
-  if (argv.empty()) throw UsageError("sim needs a command: bench, pinch or replay");
+  if (argv.empty()) throw UsageError("sim needs a command: bench, pinch, replay or settle");
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
   if (argv[0] == "bench") return sim_bench(rest);
   if (argv[0] == "pinch") return sim_pinch(rest);
   if (argv[0] == "replay") return sim_replay(rest);
-  throw UsageError("unknown sim command '" + argv[0] + "' (bench, pinch, replay)");
+  if (argv[0] == "settle") return sim_settle(rest);
+  throw UsageError("unknown sim command '" + argv[0] + "' (bench, pinch, replay, settle)");
 }
 
 }  // namespace handlab::cli

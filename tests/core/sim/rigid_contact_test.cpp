@@ -1,17 +1,19 @@
 // The simulator's rigid bodies and contact against known answers: inertia of solids, the
 // box distance, a dropped cube (free fall at g, then rest on the floor), a cube on a tilted
 // floor (sticks below atan(mu), slides above), a pushed cube sliding to a stop, and a spinning
-// cube tumbling to rest.
+// cube tumbling to rest; settle_cube's measures of a kicked cube.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/sim/box_distance.h"
 #include "core/sim/hand_simulator.h"
 #include "core/sim/rigid_body.h"
+#include "core/task/cube_settle.h"
 
 namespace handlab::sim {
 namespace {
@@ -200,18 +202,11 @@ TEST_P(SpinningCube, TumblesToRestWithoutRunningAway) {
   HandSimState s = initial_state(m, {}, Eigen::Isometry3d::Identity(), start);
   s.cube_velocity.linear = Eigen::Vector3d(1.0, 0, 0.3);
   s.cube_velocity.angular = Eigen::Vector3d(0, 0, GetParam());  // rad/s, rolling along x
-  auto energy = [&] {
-    const Eigen::Vector3d w = s.cube_velocity.angular;
-    const Eigen::Matrix3d r = s.cube_pose.rotation.toRotationMatrix();
-    return 0.5 * m.cube.mass * s.cube_velocity.linear.squaredNorm() +
-           0.5 * w.dot(r * m.cube.inertia * r.transpose() * w) +
-           m.cube.mass * 9.81 * s.cube_pose.position.y();
-  };
-  const double initial = energy();
+  const double initial = cube_energy(m, s);
   double highest = initial;
   for (int i = 0; i < 180; ++i) {
     sim.step(s, {});
-    highest = std::max(highest, energy());
+    highest = std::max(highest, cube_energy(m, s));
   }
   EXPECT_LE(highest, 1.25 * initial) << "the cube gained energy";
   EXPECT_LT(s.cube_velocity.linear.norm(), 1e-3) << "still moving after 1.5 s";
@@ -220,6 +215,40 @@ TEST_P(SpinningCube, TumblesToRestWithoutRunningAway) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Spins, SpinningCube, testing::Values(20.0, 100.0, 150.0));
+
+// settle_cube's measures where they can be worked out. A flat push (0.5 m/s, no spin): its
+// energy, the slide that energy allows, the slide backward Euler with Coulomb gives (mu g h
+// off the speed every step; along the kick's heading, a little across x, the corners'
+// friction takes the 1 cm cube 10 % further: 15.3 against 13.9 mm) and, by the rule for rest
+// (within 0.1 mm of the end), the step at which that slide comes within 0.1 mm of its end;
+// its centre stays on the floor (twice the 6 cm cube's rest depth of 26 um would be a hop).
+// A spin alone: E0 is the rotational energy. A run too short to see it still: no rest.
+TEST(CubeSettle, MeasuresWhatCanBeWorkedOut) {
+  for (double size : {0.01, 0.06}) {
+    SimParameters p;
+    p.cube_size = size;
+    const double v0 = 0.5, h = p.time_step, decrement = p.friction * 9.81 * h;
+    const CubeSettleReport r = settle_cube(p, {v0, 0.0}, {}, 1.0);
+    std::vector<double> path = {0.0};  // backward Euler's slide, step by step
+    for (int k = 1; v0 - k * decrement > 0; ++k)
+      path.push_back(path.back() + h * (v0 - k * decrement));
+    int near_end = 0;
+    while (path.back() - path[std::size_t(near_end)] > 1e-4) ++near_end;
+    const double mass = p.cube_density * size * size * size;
+    EXPECT_NEAR(r.start_energy, 0.5 * mass * v0 * v0, 1e-9 * r.start_energy);
+    EXPECT_NEAR(r.slide_bound, v0 * v0 / (2 * p.friction * 9.81), 1e-9);
+    EXPECT_LE(r.travelled, r.slide_bound) << size;
+    EXPECT_NEAR(r.travelled, path.back(), 0.15 * path.back()) << size;
+    EXPECT_NEAR(r.rest_time, near_end * h, 0.5 * h) << size;
+    EXPECT_LT(r.highest_rise, 5e-5) << size;
+    EXPECT_LE(r.highest_energy, r.start_energy * (1 + 1e-9)) << size;
+  }
+  SimParameters p;
+  const double w = 3.0, inertia = p.cube_density * std::pow(p.cube_size, 5) / 6;
+  EXPECT_NEAR(settle_cube(p, {0.0, w}, {}, 0.5).start_energy, 0.5 * inertia * w * w,
+              1e-9 * inertia * w * w);
+  EXPECT_EQ(settle_cube(p, {0.2, 0.0}, {}, 0.05).rest_time, -1.0) << "0.05 s: never 0.1 s still";
+}
 
 TEST(HandSimulator, RejectsTargetsThatAreNotFinite) {
   const HandSimModel m = make_cube_sim_model();
