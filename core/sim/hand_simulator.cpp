@@ -2,7 +2,8 @@
 // up to kFrictionPasses passes, evaluate the energy (flesh_energy.h, body_energies.h,
 // contact.h) into the Newton terms (newton_terms.h), solve for the increment (linear_solve.h),
 // search along it, and check the contacts the pass assumed (contact.h); velocities; friction
-// anchors for the next step.
+// anchors for the next step; a cube that no flesh touches, not resting, again alone in
+// substeps (free_cube.h).
 #include "core/sim/hand_simulator.h"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include "core/sim/body_energies.h"
 #include "core/sim/contact.h"
 #include "core/sim/flesh_energy.h"
+#include "core/sim/free_cube.h"
 #include "core/sim/increment.h"
 #include "core/sim/linear_solve.h"
 #include "core/sim/newton_matrix.h"
@@ -121,6 +123,7 @@ struct HandSimulator::Impl {
   // the tets' rotations as it found them, and only their contacts differ.
   Eigen::VectorXd kept_gradient;
   double kept_energy = 0.0;
+  std::unique_ptr<FreeCubeStepper> free_cube;  // made when first needed (a hand's model only)
 
   Impl(const HandSimModel& m, const SimOptions& o) : model(m), options(o), pool(o.threads) {
     analyze_newton_matrix(model, memory, layout);
@@ -221,6 +224,13 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   }
   finish(model, start, iterate);
   report.max_penetration = update_anchors(model, sim.contacts, iterate.state);
+  // `curved`: inside the cube at the prediction, or carried inside by a pass.
+  const bool flesh_touching = std::any_of(sim.contacts.begin(), sim.contacts.end(),
+                                          [](const Contact& c) { return on_cube(c) && c.curved; });
+  if (model.node_count() > 0 && FreeCubeStepper::applies(start, flesh_touching)) {
+    if (!sim.free_cube) sim.free_cube = std::make_unique<FreeCubeStepper>(model.parameters);
+    sim.free_cube->step(start, iterate.state);
+  }
   const HandSimState& r = iterate.state;
   report.contacts =
       int(r.node_cube.size() + r.sample_cube.size() + r.node_floor.size() + r.corner_floor.size());

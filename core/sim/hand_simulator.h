@@ -2,9 +2,10 @@
 // stiffening, joints, coupling, tracking, contact and friction, gravity) summed with the
 // kinetic term into E(q) = 1/(2h^2) |q - q_pred|^2_M + U(q), minimised by Newton (one
 // iteration by default, as Verschoor et al. do). Contacts are found at the predicted state;
-// after the step each friction anchor sticks, or slides to the edge of Coulomb's cone. The
-// stages are in their own files; hand_simulator.cpp lists them, docs/simulator.md explains
-// them.
+// after the step each friction anchor sticks, or slides to the edge of Coulomb's cone; a cube
+// that no flesh touches and that is not resting is stepped again alone, in substeps
+// (free_cube.h). The stages are in their own files; hand_simulator.cpp lists them,
+// docs/simulator.md explains them.
 #pragma once
 
 #include <memory>

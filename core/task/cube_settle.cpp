@@ -31,11 +31,18 @@ double cube_energy(const HandSimModel& model, const HandSimState& s) {
 CubeSettleReport settle_cube(const SimParameters& parameters, const CubeKick& kick,
                              const SimOptions& options, double duration) {
   const HandSimModel model = make_cube_sim_model(parameters);
+  RigidPose start;
+  start.position =
+      (parameters.floor_height + parameters.cube_size / 2) * parameters.floor_normal.normalized();
+  return settle_cube(model, initial_state(model, {}, Eigen::Isometry3d::Identity(), start), kick,
+                     options, duration);
+}
+
+CubeSettleReport settle_cube(const HandSimModel& model, HandSimState s, const CubeKick& kick,
+                             const SimOptions& options, double duration) {
+  const SimParameters& parameters = model.parameters;
   HandSimulator simulator(model, options);
   const Eigen::Vector3d up = parameters.floor_normal.normalized();
-  RigidPose start;
-  start.position = (parameters.floor_height + parameters.cube_size / 2) * up;
-  HandSimState s = initial_state(model, {}, Eigen::Isometry3d::Identity(), start);
   const double h = parameters.time_step;
   for (int i = 0; i * h < 0.25; ++i) simulator.step(s, {});
   const Eigen::Vector3d rest = s.cube_pose.position;

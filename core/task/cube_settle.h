@@ -32,10 +32,14 @@ struct CubeSettleReport {
 // The cube's kinetic energy, translational and rotational, plus gravity's above the floor (J).
 double cube_energy(const HandSimModel& model, const HandSimState& state);
 
-// The model's cube, resting flat on the floor (settled for 0.25 s), kicked, then stepped for
+// The cube alone, resting flat on the floor (settled for 0.25 s), kicked, then stepped for
 // `duration` seconds. At rest from the first moment after which it stays within 0.1 mm and
 // 0.01 rad of where it ends (for at least the run's last 0.1 s; else it has not come to rest).
 CubeSettleReport settle_cube(const SimParameters& parameters, const CubeKick& kick,
+                             const SimOptions& options = {}, double duration = 5.0);
+// The same for the cube of `state` in any model without bones (a free body of flesh beside
+// it, say), flat on the floor.
+CubeSettleReport settle_cube(const HandSimModel& model, HandSimState state, const CubeKick& kick,
                              const SimOptions& options = {}, double duration = 5.0);
 
 }  // namespace handlab::sim

@@ -1,0 +1,48 @@
+#include "core/sim/free_cube.h"
+
+#include "core/sim/hand_simulator.h"
+
+namespace handlab::sim {
+namespace {
+
+SimParameters substepped(SimParameters p) {
+  p.time_step /= FreeCubeStepper::kSubsteps;
+  return p;
+}
+
+SimOptions one_thread() {
+  SimOptions o;
+  o.threads = 1;
+  return o;
+}
+
+}  // namespace
+
+FreeCubeStepper::FreeCubeStepper(const SimParameters& parameters)
+    : model_(make_cube_sim_model(substepped(parameters))),
+      simulator_(std::make_unique<HandSimulator>(model_, one_thread())) {}
+
+FreeCubeStepper::~FreeCubeStepper() = default;
+
+bool FreeCubeStepper::applies(const HandSimState& start, bool flesh_touching) {
+  // Flat on its four corners and slower than this, it rests: a step with the hand keeps it
+  // there. On fewer corners a full step could launch it off the floor.
+  constexpr double kResting = 1e-3, kRestingSpin = 0.1;  // m/s, rad/s
+  const bool resting = start.corner_floor.size() == 4 &&
+                       start.cube_velocity.linear.norm() < kResting &&
+                       start.cube_velocity.angular.norm() < kRestingSpin;
+  return !flesh_touching && !resting;
+}
+
+void FreeCubeStepper::step(const HandSimState& start, HandSimState& result) {
+  HandSimState cube = initial_state(model_, {}, Eigen::Isometry3d::Identity(), start.cube_pose);
+  cube.time = start.time;
+  cube.cube_velocity = start.cube_velocity;
+  cube.corner_floor = start.corner_floor;
+  for (int i = 0; i < kSubsteps; ++i) simulator_->step(cube, {});
+  result.cube_pose = cube.cube_pose;
+  result.cube_velocity = cube.cube_velocity;
+  result.corner_floor = cube.corner_floor;
+}
+
+}  // namespace handlab::sim
