@@ -80,7 +80,7 @@ const std::vector<TableCopy>& participant_tables() {
   return tables;
 }
 
-constexpr const char* kParticipantColumns =
+constexpr const char* kStoredParticipantColumns =
     "id, age, sex, handedness, hand_length, vr_experience, notes, created_at, simulated, "
     "between_levels";
 
@@ -106,7 +106,8 @@ std::string participant_digest(Database& db, const std::string& id) {
     }
     text += '\x1d';
   };
-  add_rows(std::string("SELECT ") + kParticipantColumns + " FROM participant WHERE id = ?1", {});
+  add_rows(std::string("SELECT ") + kStoredParticipantColumns + " FROM participant WHERE id = ?1",
+           {});
   // The rows without their ids; the foreign keys as the referred row's place among the
   // participant's own rows.
   for (const TableCopy& table : participant_tables()) {
@@ -143,12 +144,13 @@ std::int64_t mapped_id(const IdMap& map, std::int64_t id, const Database& from,
 
 void copy_participant(Database& from, Database& to, const std::string& id, int enrolment) {
   {
-    Statement s = from.prepare(std::string("SELECT ") + kParticipantColumns +
+    Statement s = from.prepare(std::string("SELECT ") + kStoredParticipantColumns +
                                " FROM participant WHERE id = ?");
     s.bind(1, id);
     if (!s.step()) throw StoreError(from.path() + " has no participant " + id);
-    Statement insert = to.prepare(std::string("INSERT INTO participant (") + kParticipantColumns +
-                                  ", enrolment) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    Statement insert =
+        to.prepare(std::string("INSERT INTO participant (") + kStoredParticipantColumns +
+                   ", enrolment) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (int c = 0; c < 10; ++c) insert.bind_column(c + 1, s, c);
     insert.bind(11, std::int64_t(enrolment)).run();
   }
