@@ -44,6 +44,41 @@ const char* SimulatedParticipant::phase_name() const {
   return names[int(phase_)];
 }
 
+Activity SimulatedParticipant::activity() const {
+  switch (phase_) {
+    case Phase::kReact:
+      return Activity::kReact;
+    case Phase::kReach:
+    case Phase::kCheckReach:
+      return Activity::kReach;
+    case Phase::kDescend:
+    case Phase::kCheckDescent:
+      return Activity::kDescend;
+    case Phase::kClose:
+    case Phase::kSlowClose:
+    case Phase::kConfirm:
+      return Activity::kClose;
+    case Phase::kLift:
+    case Phase::kCheckLift:
+      return Activity::kLift;
+    case Phase::kTransport:
+    case Phase::kCheckTransport:
+      return Activity::kTransport;
+    case Phase::kLower:
+    case Phase::kRelease:
+    case Phase::kWaitRest:
+      return Activity::kSetDown;
+    case Phase::kWithdraw:
+    case Phase::kIdle:
+      return Activity::kWithdraw;
+    case Phase::kReopen:
+      return Activity::kReopen;
+    case Phase::kFreeCube:
+      return Activity::kFreeCube;
+  }
+  return Activity::kReact;
+}
+
 ParticipantMemory SimulatedParticipant::memory_after() const {
   return remember(memory_, experience_, person_.motor.contact_rates);
 }
@@ -195,6 +230,7 @@ void SimulatedParticipant::start_regrasp(bool slipped) {
   // Westling 1984); a closing that missed or a cube that came to rest outside B says nothing
   // of the grip.
   if (slipped) {
+    ++experience_.time.slips;
     extra_squeeze_ += person_.motor.regrasp_squeeze;
     experience_.squeeze_added += person_.motor.regrasp_squeeze;
   }
@@ -323,6 +359,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   if (phase_ != Phase::kSlowClose) return;
   const double now = aperture_to_;
   if (now <= hand_.min_aperture(pinch_) + 1e-4) {
+    ++experience_.time.missed_closings;
     start_regrasp(false);
     return;
   }
@@ -574,6 +611,7 @@ tracking::TrackedFrame SimulatedParticipant::act(const Observation& shown) {
   // Keep what a delay (and the one before, for speeds) still needs.
   while (shown_.size() > 3 && shown_[2].time <= time_ - m.visual_delay) shown_.pop_front();
   update(delayed());
+  experience_.time[activity()] += dt_;
 
   const double aperture = aperture_now();
   const Eigen::Vector3d grip = grip_.at(time_) + servo_;

@@ -78,6 +78,7 @@ class SimulatedParticipant {
     Eigen::Vector3d cube = Eigen::Vector3d::Zero();
   };
 
+  Activity activity() const;           // what the phase it is in is part of
   const Observation* delayed() const;  // the newest observation at least one delay old
   Seen see(const Observation& o) const;
   OwnState own_at(double time) const;

@@ -3,6 +3,8 @@
 // from the condition.
 #pragma once
 
+#include "studies/participant/activity_time.h"
+
 namespace handlab::studies {
 
 struct TrialExperience {
@@ -18,6 +20,8 @@ struct TrialExperience {
   // m: how much further past contact its failed grasps made it close in this trial, beyond
   // the grip margin it started with: what the trial showed it needed.
   double squeeze_added = 0.0;
+  // Where the trial's time went (one trial; counting only: nothing it does depends on it).
+  ActivityTime time{1};
 };
 
 }  // namespace handlab::studies

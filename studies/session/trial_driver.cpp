@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <thread>
 
@@ -382,6 +383,7 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   for (const task::TaskEvent& e : task.events()) run.events.emplace_back(e.time, e.kind);
   if (participant) {
     run.experience = participant->experience();
+    participant_time_[std::round(run.experience->cube_size * 1e3) / 1e3] += run.experience->time;
     run.participant_memory = memory_to_json(participant->memory_after());
   }
   return run;

@@ -18,6 +18,7 @@
 #include "core/task/hand_cube_world.h"
 #include "core/task/scene_layout.h"
 #include "core/tracking/frame_source.h"
+#include "studies/participant/activity_time.h"
 #include "studies/participant/observation.h"
 #include "studies/participant/participant_model.h"
 #include "studies/participant/seen_trial.h"
@@ -160,6 +161,9 @@ class PipelineTrialDriver : public TrialDriver {
   const std::map<std::string, sim::StepTotals>& simulator_totals() const {
     return simulator_totals_;
   }
+  // Where the simulated participants' time went in every trial run so far, by the cube they
+  // saw (its side in m, to the millimetre).
+  const std::map<double, ActivityTime>& participant_time() const { return participant_time_; }
 
  private:
   // The simulated participant of a trial: from who it is, what it sees of the trial and what
@@ -182,6 +186,7 @@ class PipelineTrialDriver : public TrialDriver {
   struct SoftHand;  // the soft hand's flesh and model for a simulated hand and cube
   std::vector<std::unique_ptr<SoftHand>> soft_hands_;  // built once each, kept
   std::map<std::string, sim::StepTotals> simulator_totals_;
+  std::map<double, ActivityTime> participant_time_;
 };
 
 }  // namespace handlab::studies

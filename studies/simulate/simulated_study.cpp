@@ -89,6 +89,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   std::exception_ptr failure;
   int trials_done = 0;
   std::map<std::string, sim::StepTotals> simulator;  // per condition label
+  std::map<double, ActivityTime> participant_time;   // per cube seen
 
   auto work = [&] {
     for (int i = next++; i < n && !stop; i = next++) {
@@ -105,6 +106,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
         });
         const std::lock_guard lock(mutex);
         for (const auto& [label, t] : driver.simulator_totals()) simulator[label] += t;
+        for (const auto& [cube, t] : driver.participant_time()) participant_time[cube] += t;
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();
@@ -166,6 +168,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   report.conditions = condition_outcomes(study, protocol);
   for (const Condition& c : protocol.conditions())
     report.simulator.emplace_back(c.label, simulator[c.label]);
+  report.participant_time.assign(participant_time.begin(), participant_time.end());
   for (const store::Participant& p : people)
     for (const store::TrialRow& t : study.trials(p.id)) {
       ++report.trials;

@@ -41,6 +41,9 @@ struct SimulationReport {
   // The soft hand's steps per condition, in the protocol's order (practice included; all
   // zero on the grasp proxy): where the study's time went.
   std::vector<std::pair<std::string, sim::StepTotals>> simulator;
+  // Where the participants' time went, by the cube they saw (m, smallest first; every trial,
+  // practice included): pooled over what they can tell apart, never by condition.
+  std::vector<std::pair<double, ActivityTime>> participant_time;
 };
 
 struct SimulationProgress {

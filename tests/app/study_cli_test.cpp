@@ -216,6 +216,17 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
     EXPECT_GE(c["success_rate"].as_number(), 0.0);
     EXPECT_LE(c["success_rate"].as_number(), 1.0);
   }
+  // Where the participants' time went, a record per cube seen, never per condition.
+  const auto& time = doc["participant_time"].as_array();
+  ASSERT_EQ(time.size(), 2u);
+  for (const auto& t : time) {
+    EXPECT_EQ(t["trials"].as_number(), 8);
+    EXPECT_GT(t["seconds"]["reach"].as_number(), 0.0);
+    EXPECT_GE(t["missed_closings"].as_number(), 0.0);
+    EXPECT_GE(t["slips"].as_number(), 0.0);
+  }
+  EXPECT_EQ(time[0]["cube_m"].as_number(), 0.01);
+  EXPECT_EQ(time[1]["cube_m"].as_number(), 0.06);
   r = run_cli("study status --db " + db + " --json -");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("S01"), std::string::npos) << r.out;

@@ -560,6 +560,10 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
               << person.participant.id << " world " << int(world_kind) << " cube " << cube
               << " frame " << k;
         EXPECT_EQ(memory_to_json(second->memory_after()), memory_to_json(first->memory_after()));
+        EXPECT_EQ(second->experience().time.seconds, first->experience().time.seconds);
+        EXPECT_EQ(second->experience().time.missed_closings,
+                  first->experience().time.missed_closings);
+        EXPECT_EQ(second->experience().time.slips, first->experience().time.slips);
         TrialRun a, b;
         a.experience = first->experience();
         b.experience = second->experience();
@@ -587,7 +591,8 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
 
 // The grip margin moves with what the participant saw: a cube that dropped from the lifted
 // pads is gripped 3 mm harder on the next grasp (and that is what the trial teaches its
-// memory); a closing that ended without contact is tried again with the same grip.
+// memory); a closing that ended without contact is tried again with the same grip. Its
+// account of where the time went holds every frame it sent, and names each re-grasp's cause.
 TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) {
   const StudyPerson p(2);
   const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.06, 4, p.calibration)[0];
@@ -598,10 +603,18 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
   {
     SeenOtherwiseWorld dropped(sim, layout, SeenOtherwiseWorld::Twist::kDropOnce);
     auto participant = participant_for(setup, 5, p.own, {});
-    drive(*participant, dropped, setup, strategy, 12.0);
+    const ClosedLoop loop = drive(*participant, dropped, setup, strategy, 12.0);
     const TrialExperience e = participant->experience();
     ASSERT_GE(e.losses, 1);
     EXPECT_NEAR(e.squeeze_added, e.losses * p.person.motor.regrasp_squeeze, 1e-12);
+    EXPECT_EQ(e.time.trials, 1);
+    EXPECT_NEAR(e.time.total(), double(loop.sent.size()) / 120.0, 1e-9);
+    EXPECT_EQ(e.time.slips, e.losses);
+    EXPECT_EQ(e.time.missed_closings, 0);
+    for (Activity a : {Activity::kReact, Activity::kReach, Activity::kDescend, Activity::kClose,
+                       Activity::kLift, Activity::kReopen})
+      EXPECT_GT(e.time[a], 0.0) << activity_name(a);
+    EXPECT_EQ(e.time[Activity::kFreeCube], 0.0);
     EXPECT_GT(participant->memory_after().cube(0.06)->grip.correction(), 0.0);
   }
   {
@@ -610,10 +623,15 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
     layout.cube_size = 0.01;
     SeenOtherwiseWorld hidden(sim, layout, SeenOtherwiseWorld::Twist::kHideContact);
     auto participant = participant_for(fine, 5, p.own, {});
-    drive(*participant, hidden, fine, fine.condition.strategy.method, 30.0);
+    const ClosedLoop loop = drive(*participant, hidden, fine, fine.condition.strategy.method, 30.0);
     const TrialExperience e = participant->experience();
     ASSERT_GE(e.grasp_attempts, 2);  // the closing missed, and it closed again
     EXPECT_EQ(e.losses, 0);
+    EXPECT_NEAR(e.time.total(), double(loop.sent.size()) / 120.0, 1e-9);
+    EXPECT_EQ(e.time.missed_closings, e.grasp_attempts - 1);
+    EXPECT_EQ(e.time.slips, 0);
+    EXPECT_GT(e.time[Activity::kReopen], 0.0);
+    EXPECT_GT(e.time[Activity::kSetDown], 0.0);  // then it carried the cube to B
     EXPECT_EQ(e.squeeze_added, 0.0);
     EXPECT_EQ(participant->memory_after().cube(0.01)->grip.correction(), 0.0);
   }

@@ -66,6 +66,24 @@ std::string motor_data(const std::string& path) {
   return rows + "frames " + util::sha256_hex(frames) + "\n";
 }
 
+// The study's protocol with one block (the questionnaire in the last, as in the study).
+Protocol one_block_study() {
+  std::string text = read_protocol(kStudy).text;
+  const std::string five = "\"blocks\": 5";
+  text.replace(text.find(five), five.size(), "\"blocks\": 1");
+  return parse_protocol(text, "one block");
+}
+
+// Two people on the grasp proxy, side by side: quick.
+SimulationOptions two_on_the_proxy() {
+  SimulationOptions options;
+  options.participants = 2;
+  options.seed = 4;
+  options.world = WorldKind::kGraspProxy;
+  options.jobs = 2;
+  return options;
+}
+
 // `text` with `from` (present) replaced by `to`.
 using test::with;
 
@@ -98,17 +116,8 @@ TEST(SimulatedStudy, LabelsAreForPeopleEveryLabelRenamedTheSameMotorData) {
 }
 
 TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {
-  // The study's protocol with one block (the questionnaire in the last, as in the study).
-  std::string text = read_protocol(kStudy).text;
-  const std::string five = "\"blocks\": 5";
-  ASSERT_NE(text.find(five), std::string::npos);
-  text.replace(text.find(five), five.size(), "\"blocks\": 1");
-  const Protocol protocol = parse_protocol(text, "one block");
-  SimulationOptions options;
-  options.participants = 2;
-  options.seed = 4;
-  options.world = WorldKind::kGraspProxy;
-  options.jobs = 2;
+  const Protocol protocol = one_block_study();
+  SimulationOptions options = two_on_the_proxy();
   const std::string a = test::fresh_path("simulated_a.db");
   int calls = 0, last_done = -1;
   const SimulationReport report =
@@ -157,6 +166,31 @@ TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {
   // An existing file is refused, untouched.
   EXPECT_THROW(simulate_study(protocol, a, options), std::runtime_error);
   EXPECT_EQ(content(a), content(b));
+}
+
+// Where the participants' time went, by the cube they saw: every trial once, every frame it
+// ran once (the database's frame counts), each activity of a trial that carries a cube.
+TEST(SimulatedStudy, AccountsForEveryFrameOfItsParticipantsTimeByCube) {
+  const Protocol protocol = one_block_study();
+  SimulationOptions options = two_on_the_proxy();
+  options.frames = true;  // a trial's frame count is then the frames it ran
+  const std::string path = test::fresh_path("simulated_time.db");
+  const SimulationReport report = simulate_study(protocol, path, options);
+  ASSERT_EQ(report.participant_time.size(), 2u);
+  EXPECT_EQ(report.participant_time[0].first, 0.01);
+  EXPECT_EQ(report.participant_time[1].first, 0.06);
+  double seconds = 0.0;
+  for (const auto& [cube, t] : report.participant_time) {
+    EXPECT_EQ(t.trials, 8) << cube;  // each person: 2 practice and 2 scheduled with each cube
+    seconds += t.total();
+    for (Activity a : {Activity::kReact, Activity::kReach, Activity::kDescend, Activity::kClose,
+                       Activity::kLift, Activity::kTransport, Activity::kSetDown})
+      EXPECT_GT(t[a], 0.0) << cube << " " << activity_name(a);
+  }
+  store::StudyStore study(path);
+  const double frames =
+      std::stod(study.database().query_text("SELECT sum(frames) FROM trial").value());
+  EXPECT_NEAR(seconds, frames / 120.0, 1e-6);
 }
 
 }  // namespace

@@ -41,6 +41,38 @@ studies::ParticipantModel model_with_changes(const std::vector<std::string>& set
   }
 }
 
+// Where the participants' time went: seconds a trial in each activity, and the re-grasps'
+// causes a trial, a column per cube they saw (never per condition: what they can tell apart).
+void print_participant_time(const studies::SimulationReport& report) {
+  if (report.participant_time.empty()) return;
+  std::cout << "\n" << std::left << std::setw(20) << "participants' time" << std::right;
+  for (const auto& [cube, t] : report.participant_time)
+    std::cout << std::setw(7) << std::setprecision(1) << 100.0 * cube << " cm";
+  std::cout << "   (s a trial, every trial, by the cube seen)\n";
+  auto row = [&](const char* name, auto value) {
+    std::cout << std::left << std::setw(20) << name << std::right << std::setprecision(2);
+    for (const auto& [cube, t] : report.participant_time)
+      std::cout << std::setw(10) << value(t) / std::max(1, t.trials);
+    std::cout << "\n";
+  };
+  for (std::size_t k = 0; k < studies::kActivityCount; ++k)
+    row(studies::activity_name(studies::Activity(k)), [k](const auto& t) { return t.seconds[k]; });
+  row("total", [](const auto& t) { return t.total(); });
+  row("missed closings", [](const auto& t) { return double(t.missed_closings); });
+  row("slips", [](const auto& t) { return double(t.slips); });
+}
+
+void write_participant_time(util::JsonWriter& w, const studies::SimulationReport& report) {
+  w.key("participant_time").begin_array();
+  for (const auto& [cube, t] : report.participant_time) {
+    w.begin_object().field("cube_m", cube).field("trials", t.trials).key("seconds").begin_object();
+    for (std::size_t k = 0; k < studies::kActivityCount; ++k)
+      w.field(studies::activity_name(studies::Activity(k)), t.seconds[k]);
+    w.end_object().field("missed_closings", t.missed_closings).field("slips", t.slips).end_object();
+  }
+  w.end_array();
+}
+
 // The participants' indices (0-based) that --shard K/M or --only ID,... name (empty: all).
 std::vector<int> shard_members(const Arguments& args, int participants) {
   std::vector<int> members;
@@ -208,6 +240,7 @@ int run_simulate(const std::vector<std::string>& argv) {
                 << (c.planned ? 100.0 * c.completed / c.planned : 0.0) << "%" << std::setw(9)
                 << c.timeouts << std::setw(10) << std::setprecision(2) << c.mean_time_s << " s"
                 << std::setw(7) << c.drops << "\n";
+    print_participant_time(report);
     sim::StepTotals all;
     for (const auto& [label, t] : report.simulator) all += t;
     if (all.steps > 0) {
@@ -265,7 +298,9 @@ int run_simulate(const std::vector<std::string>& argv) {
             .field("halvings", static_cast<long long>(t.halvings))
             .field("seconds", t.seconds)
             .end_object();
-      w.end_array().end_object();
+      w.end_array();
+      write_participant_time(w, report);
+      w.end_object();
       out << "\n";
     });
   }
