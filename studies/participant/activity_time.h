@@ -23,6 +23,7 @@ enum class Activity {
   kFreeCube,   // a cube caught on the hand: opening wide, wiping it off on the floor
 };
 inline constexpr std::size_t kActivityCount = 10;
+static_assert(std::size_t(Activity::kFreeCube) + 1 == kActivityCount);
 
 // The column's name in tables and JSON ("react", "reach", ..., "free_cube").
 inline const char* activity_name(Activity a) {

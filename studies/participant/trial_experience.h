@@ -21,7 +21,7 @@ struct TrialExperience {
   // the grip margin it started with: what the trial showed it needed.
   double squeeze_added = 0.0;
   // Where the trial's time went (one trial; counting only: nothing it does depends on it).
-  ActivityTime time{1};
+  ActivityTime time{.trials = 1};
 };
 
 }  // namespace handlab::studies

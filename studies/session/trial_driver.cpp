@@ -383,7 +383,8 @@ TrialRun PipelineTrialDriver::run(const TrialSetup& setup, const FrameSink& sink
   for (const task::TaskEvent& e : task.events()) run.events.emplace_back(e.time, e.kind);
   if (participant) {
     run.experience = participant->experience();
-    participant_time_[std::round(run.experience->cube_size * 1e3) / 1e3] += run.experience->time;
+    if (!run.aborted)
+      participant_time_[std::round(run.experience->cube_size * 1e3) / 1e3] += run.experience->time;
     run.participant_memory = memory_to_json(participant->memory_after());
   }
   return run;

@@ -161,8 +161,8 @@ class PipelineTrialDriver : public TrialDriver {
   const std::map<std::string, sim::StepTotals>& simulator_totals() const {
     return simulator_totals_;
   }
-  // Where the simulated participants' time went in every trial run so far, by the cube they
-  // saw (its side in m, to the millimetre).
+  // Where the simulated participants' time went in every trial run so far to its result (not
+  // those stopped by the experimenter), by the cube they saw (its side in m, to the millimetre).
   const std::map<double, ActivityTime>& participant_time() const { return participant_time_; }
 
  private:

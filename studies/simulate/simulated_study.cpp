@@ -89,7 +89,9 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   std::exception_ptr failure;
   int trials_done = 0;
   std::map<std::string, sim::StepTotals> simulator;  // per condition label
-  std::map<double, ActivityTime> participant_time;   // per cube seen
+  // Per participant and cube seen, summed in enrolment order when all are done: the totals'
+  // last digits do not depend on which session ended first.
+  std::vector<std::map<double, ActivityTime>> participant_time(static_cast<std::size_t>(n));
 
   auto work = [&] {
     for (int i = next++; i < n && !stop; i = next++) {
@@ -106,7 +108,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
         });
         const std::lock_guard lock(mutex);
         for (const auto& [label, t] : driver.simulator_totals()) simulator[label] += t;
-        for (const auto& [cube, t] : driver.participant_time()) participant_time[cube] += t;
+        participant_time[std::size_t(i)] = driver.participant_time();
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();
@@ -168,7 +170,10 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   report.conditions = condition_outcomes(study, protocol);
   for (const Condition& c : protocol.conditions())
     report.simulator.emplace_back(c.label, simulator[c.label]);
-  report.participant_time.assign(participant_time.begin(), participant_time.end());
+  std::map<double, ActivityTime> by_cube;
+  for (const auto& person : participant_time)
+    for (const auto& [cube, t] : person) by_cube[cube] += t;
+  report.participant_time.assign(by_cube.begin(), by_cube.end());
   for (const store::Participant& p : people)
     for (const store::TrialRow& t : study.trials(p.id)) {
       ++report.trials;

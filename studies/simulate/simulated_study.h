@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "studies/analysis/condition_outcomes.h"
+#include "studies/participant/activity_time.h"
 #include "studies/participant/participant_model.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/trial_driver.h"

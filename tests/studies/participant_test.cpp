@@ -610,7 +610,10 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
     EXPECT_EQ(e.time.trials, 1);
     EXPECT_NEAR(e.time.total(), double(loop.sent.size()) / 120.0, 1e-9);
     EXPECT_EQ(e.time.slips, e.losses);
-    EXPECT_EQ(e.time.missed_closings, 0);
+    // Every closing but the last ended in a slip or, with the dropped cube's contact hidden
+    // for good, a closing that saw none.
+    EXPECT_GE(e.time.slips + e.time.missed_closings, e.grasp_attempts - 1);
+    EXPECT_LE(e.time.slips + e.time.missed_closings, e.grasp_attempts);
     for (Activity a : {Activity::kReact, Activity::kReach, Activity::kDescend, Activity::kClose,
                        Activity::kLift, Activity::kReopen})
       EXPECT_GT(e.time[a], 0.0) << activity_name(a);
