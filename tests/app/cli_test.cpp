@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/render/image.h"
+#include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/test_files.h"
 
@@ -294,6 +295,13 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(run_cli("sim bench --runs 0").status, 2);
   EXPECT_EQ(run_cli("sim bench --halfway-gap -1").status, 2);
   EXPECT_EQ(run_cli("sim bench --scale 3").status, 2);
+  // With --json -, standard output is the JSON alone.
+  const Result piped = run_cli("sim bench --duration 0.4 --json -");
+  ASSERT_EQ(piped.status, 0) << piped.out;
+  EXPECT_EQ(util::JsonValue::parse(piped.out)["steps"].as_number(), 48) << piped.out;
+  const Result pinch = run_cli("sim pinch --cube 0.06 --json -");
+  ASSERT_EQ(pinch.status, 0) << pinch.out;
+  EXPECT_TRUE(util::JsonValue::parse(pinch.out)["held"].as_bool()) << pinch.out;
   EXPECT_EQ(run_cli("sim pinch --cube 2").status, 2);
   EXPECT_EQ(run_cli("sim pinch --skin-samples 3").status, 2);
   EXPECT_EQ(run_cli("sim bench --skin-samples -1").status, 2);

@@ -246,7 +246,7 @@ int sim_bench(const std::vector<std::string>& argv) {
     for (std::size_t i = 0; i < report.step_ms.size(); ++i)
       report.step_ms[i] = std::min(report.step_ms[i], again.step_ms[i]);
   }
-  print_timing(setup, report);
+  if (args.text("json") != "-") print_timing(setup, report);  // else the JSON alone
   if (args.has("steps")) {
     write_output(args.text("steps"), [&](std::ostream& out) {
       out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
@@ -357,13 +357,16 @@ int sim_pinch(const std::vector<std::string>& argv) {
   }
   const sim::PinchReport r =
       sim::run_pinch(setup.model, setup.skeleton, setup.script, {}, 0.0, observer);
-  std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
-            << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
-            << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
-            << " mm, " << (r.released ? "released" : "NOT released")
-            << " (the scripted pads miss their "
-            << "targets by " << setup.script.pinch_error * 1000 << " mm)\n";
-  print_timing(setup, r);
+  // With --json - standard output is the JSON alone.
+  if (args.text("json") != "-") {
+    std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
+              << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
+              << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
+              << " mm, " << (r.released ? "released" : "NOT released")
+              << " (the scripted pads miss their "
+              << "targets by " << setup.script.pinch_error * 1000 << " mm)\n";
+    print_timing(setup, r);
+  }
   if (args.has("json")) {
     write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
