@@ -19,13 +19,13 @@ struct Behaviour {
   double max_corrections = 3;     // corrective submovements per aimed movement
   // The cube looks at rest when it stays within rest_travel of where it was for rest_look: a
   // person sees whether it still slides or tumbles, not a fingertip's tremor nudging it.
-  double rest_travel = 0.002;           // m
-  double rest_look = 0.2;               // s
-  double pre_contact_margin = 0.015;    // m each side of the cube before the closing
+  double rest_travel = 0.002;            // m
+  double rest_look = 0.2;                // s
+  double pre_contact_margin = 0.015;     // m each side of the cube before the closing
   double closing_past_contact = 0.0015;  // m the closing aims past the seen size
   double grip_loading = 0.0015;          // m it closes on after seeing contact (loading phase)
-  double tip_pinch_below = 0.02;        // m: a cube this small is picked with the tips
-  double pad_on_face = 0.007;           // m: a pad's bone this close (surface) is on the cube
+  double tip_pinch_below = 0.02;         // m: a cube this small is picked with the tips
+  double pad_on_face = 0.007;            // m: a pad's bone this close (surface) is on the cube
   // A cube seen this high for this long without both pads on it is caught on the hand (a
   // dropped cube falls from the lift's height in a seventh of a second).
   double caught_height = 0.02;  // m

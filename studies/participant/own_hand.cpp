@@ -13,10 +13,15 @@ namespace {
 
 // The postures' fixed angles (rad), chosen by looking at the own hand and its virtual hand
 // holding each cube (docs/simulated-participants.md), never against a strategy comparison.
-constexpr double kTipRoll = 0.3;           // tip pinch: the palm nearly flat ...
-constexpr double kTipPitch = 0.5;          // ... and the fingers pointing down
-constexpr double kTipTilt = 0.6;           // the distal phalanges from the vertical, in a tip pinch
-constexpr double kOtherFingersCurl = 0.7;  // middle, ring, little: of their flexion range
+constexpr double kTipRoll = 0.3;   // tip pinch: the palm nearly flat ...
+constexpr double kTipPitch = 0.5;  // ... and the fingers pointing down
+constexpr double kTipTilt = 0.6;   // the distal phalanges from the vertical, in a tip pinch
+// Middle, ring and little fingers, of their flexion range: curled out of the way in a closed
+// pinch, opening with it (the first postural synergy opens and closes all the digits
+// together: Santello, Flanders & Soechting 1998), extended at an aperture of 10 cm.
+constexpr double kOtherFingersCurlClosed = 0.7;
+constexpr double kOtherFingersCurlOpen = 0.1;
+constexpr double kOtherFingersOpenAt = 0.10;  // m between the pads
 
 // Palm down, fingers along the A-B line (+x), rolled 60 degrees towards the thumb so that
 // thumb and index oppose across that line: the posture the simulator's pinch script holds
@@ -56,13 +61,18 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
   };
   hand::HandPose pose = hand::HandPose::rest(skeleton_);
   pose.root_rotation = rotation;
-  for (std::size_t k = 0; k < skeleton_.dofs.size(); ++k) {
-    const hand::Dof& dof = skeleton_.dofs[k];
-    const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
-                       dof.name.rfind("pinky", 0) == 0;
-    if (other && dof.name.find("flexion") != std::string::npos)
-      pose.angles(Eigen::Index(k)) = kOtherFingersCurl * dof.upper;
-  }
+  auto curl_others = [&](double gap) {
+    const double c = kOtherFingersCurlClosed + (kOtherFingersCurlOpen - kOtherFingersCurlClosed) *
+                                                   std::clamp(gap / kOtherFingersOpenAt, 0.0, 1.0);
+    for (std::size_t k = 0; k < skeleton_.dofs.size(); ++k) {
+      const hand::Dof& dof = skeleton_.dofs[k];
+      const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
+                         dof.name.rfind("pinky", 0) == 0;
+      if (other && dof.name.find("flexion") != std::string::npos)
+        pose.angles(Eigen::Index(k)) = c * dof.upper;
+    }
+  };
+  curl_others(0.0);
   auto point = [&](const hand::BoneFrames& f, int bone, const Eigen::Vector3d& local) {
     return hand::bone_point(f, bone, local);
   };
@@ -77,6 +87,7 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
   const double index_reach = 0.7 * skeleton_.bones[std::size_t(index)].length;
   Table table{rotation, {}};
   for (double gap = 0.14; gap > -1e-9; gap -= 0.005) {
+    curl_others(gap);
     const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose);
     const Eigen::Vector3d centre =
         0.5 * (point(frames, thumb, contact(thumb)) + point(frames, index, contact(index)));

@@ -41,6 +41,10 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
   // change of what the object needs both ways within a few lifts (Delhaye et al. 2024): more
   // after the failures that needed more, less again as lifts hold.
   cube->grip = adapt(cube->grip, rates, trial.squeeze_added);
+  // People slow down after an error (Rabbitt 1966), and set their speed by what their own
+  // speed-accuracy trade-off costs them (Dean, Wu & Maloney 2007): the caution a failed grasp
+  // raised is carried, and relaxes as grasps hold.
+  cube->caution = adapt(cube->caution, rates, trial.caution_added);
   return next;
 }
 
@@ -56,6 +60,8 @@ std::string memory_to_json(const ParticipantMemory& m) {
         .field("contact_slow", c.contact.slow)
         .field("grip_fast", c.grip.fast)
         .field("grip_slow", c.grip.slow)
+        .field("caution_fast", c.caution.fast)
+        .field("caution_slow", c.caution.slow)
         .end_object();
   w.end_array().end_object();
   return out.str();
@@ -66,11 +72,17 @@ ParticipantMemory memory_from_json(const std::string& text) {
     const util::JsonValue v = util::JsonValue::parse(text);
     ParticipantMemory m;
     m.trials = int(v["trials"].as_number());
+    // Models before 2.3 kept no caution: a record of theirs reads with none.
+    auto optional = [](const util::JsonValue& c, const char* key) {
+      const util::JsonValue* found = c.find(key);
+      return found ? found->as_number() : 0.0;
+    };
     for (const util::JsonValue& c : v["cubes"].as_array())
       m.cubes.push_back({c["cube_size"].as_number(),
                          int(c["trials"].as_number()),
                          {c["contact_fast"].as_number(), c["contact_slow"].as_number()},
-                         {c["grip_fast"].as_number(), c["grip_slow"].as_number()}});
+                         {c["grip_fast"].as_number(), c["grip_slow"].as_number()},
+                         {optional(c, "caution_fast"), optional(c, "caution_slow")}});
     return m;
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("not a simulated participant's memory: ") + e.what());

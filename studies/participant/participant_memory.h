@@ -19,6 +19,7 @@ struct CubeMemory {
   int trials = 0;          // trials done with it
   TwoRateState contact;    // m: learnt correction of where its aperture meets the cube
   TwoRateState grip;       // m: learnt closing past contact beyond the first grasp's aim
+  TwoRateState caution;    // share of practice's speed-up of the grasp given back
 };
 
 struct ParticipantMemory {
@@ -31,8 +32,9 @@ struct ParticipantMemory {
 };
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by the
-// contact error it saw (or only forgetting, without one), the grip margin adapted by what its
-// failed grasps added (a trial whose first grasp held only forgets), both at `rates`.
+// contact error it saw (or only forgetting, without one), the grip margin and the grasp's
+// caution adapted by what its failed grasps added (a trial whose first grasp held only
+// forgets), all at `rates`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
                            const TwoRateRates& rates);
 

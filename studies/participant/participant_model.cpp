@@ -15,7 +15,7 @@
 
 namespace handlab::studies {
 
-const char* const kParticipantModelVersion = "handlab participant model 2.2";
+const char* const kParticipantModelVersion = "handlab participant model 2.3";
 
 namespace {
 
@@ -40,6 +40,7 @@ constexpr std::pair<const char*, double MotorParameters::*> kMotorFields[] = {
     {"practice_floor", &MotorParameters::practice_floor},
     {"confirm_dwell", &MotorParameters::confirm_dwell},
     {"regrasp_squeeze", &MotorParameters::regrasp_squeeze},
+    {"post_error_caution", &MotorParameters::post_error_caution},
 };
 
 // The behaviour's constants by name, every one in declaration order (checked against the
@@ -83,6 +84,8 @@ constexpr std::pair<const char*, double Behaviour::*> kBehaviourFields[] = {
 };
 static_assert(std::size(kBehaviourFields) * sizeof(double) == sizeof(Behaviour),
               "every behaviour constant is named");
+static_assert((std::size(kMotorFields) + 4) * sizeof(double) == sizeof(MotorParameters),
+              "every motor parameter is named (the four rates apart)");
 
 void write_motor(util::JsonWriter& w, const MotorParameters& m) {
   w.begin_object();

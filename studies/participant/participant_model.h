@@ -31,6 +31,9 @@ struct MotorParameters {
   double practice_floor = 0.60;    // the share of a duration practice leaves
   double confirm_dwell = 0.15;     // s seeing both pads on the cube before lifting
   double regrasp_squeeze = 0.003;  // m more closing past the faces after each slip under load
+  // The share of practice's speed-up of the grasp (closing, loading, lift) each failed grasp
+  // gives back: 1, the next grasp at its unpractised pace.
+  double post_error_caution = 1.0;
   // Trial-by-trial adaptation of where it expects its pads to meet the cube.
   TwoRateRates contact_rates{0.59, 0.21, 0.992, 0.02};
 };

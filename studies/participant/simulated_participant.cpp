@@ -180,6 +180,24 @@ double SimulatedParticipant::peak_aperture(double cube_size) const {
          m.aperture_slope * cube_size;
 }
 
+double SimulatedParticipant::grasp_paced(double duration, double practice) const {
+  return duration * (practice + std::min(caution_, 1.0) * (1 - practice));
+}
+
+double SimulatedParticipant::lift_time() const {
+  const double height = behaviour().lift_height;
+  return grasp_paced(fitts_time(person_.motor.fitts_a, person_.motor.fitts_b, height, height),
+                     practised_movement_);
+}
+
+void SimulatedParticipant::grasp_failed() {
+  // Post-error slowing (Rabbitt 1966): the grasps after a failed one give back practice's
+  // speed-up, as people trade speed for accuracy by what errors cost them (Dean, Wu &
+  // Maloney 2007).
+  caution_ += person_.motor.post_error_caution;
+  experience_.caution_added += person_.motor.post_error_caution;
+}
+
 double SimulatedParticipant::fitts(double distance, double width) const {
   return practised(fitts_time(person_.motor.fitts_a, person_.motor.fitts_b, distance, width));
 }
@@ -230,6 +248,7 @@ void SimulatedParticipant::start_regrasp(bool slipped) {
   // Westling 1984); a closing that missed or a cube that came to rest outside B says nothing
   // of the grip.
   if (slipped) {
+    grasp_failed();
     ++experience_.time.slips;
     extra_squeeze_ += person_.motor.regrasp_squeeze;
     experience_.squeeze_added += person_.motor.regrasp_squeeze;
@@ -317,15 +336,21 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
 }
 
 void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
-  // The fingers straddle the cube: are they centred on it? A corrective submovement if not
-  // (the precision the closing needs: a share of the cube's side).
-  const Eigen::Vector3d error = grasp_point(o) - s.grip;
-  const double tolerance =
-      std::max(behaviour().min_tolerance, behaviour().centring_tolerance_share * o.cube_size);
-  if (s.hand && error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections) {
+  // The fingers straddle the cube: are they centred on it, and low enough on its faces? A
+  // corrective submovement if not (the precision the closing needs: a share of the room the
+  // pads have, the cube's side across, the grasp's depth below the top edge up and down).
+  const Eigen::Vector3d target = grasp_point(o);
+  const Eigen::Vector3d error = target - s.grip;
+  const double share = behaviour().centring_tolerance_share;
+  const double across = std::max(behaviour().min_tolerance, share * o.cube_size);
+  const double depth = o.cube_position.y() + 0.5 * o.cube_size - target.y();
+  const double vertical = std::max(behaviour().min_tolerance, share * depth);
+  if (s.hand && (horizontal(error).norm() > across || std::abs(error.y()) > vertical) &&
+      corrections_this_move_ < behaviour().max_corrections) {
     ++corrections_this_move_;
     ++experience_.corrections;
-    move_grip(grip_.at(time_) + servo_ + error, correction(error.norm(), 2 * tolerance), true);
+    move_grip(grip_.at(time_) + servo_ + error,
+              correction(error.norm(), 2 * std::min(across, vertical)), true);
     phase_ = Phase::kDescend;
     return;
   }
@@ -335,7 +360,7 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   expected_contact_ =
       o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_correction_;
   move_aperture(expected_contact_ - behaviour().closing_past_contact - extra_squeeze_,
-                practised(person_.motor.closing_time));
+                grasp_paced(person_.motor.closing_time, practised_movement_));
   phase_ = Phase::kClose;
 }
 
@@ -349,7 +374,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
     }
     // Build up the grip (the loading phase) from where the hand is.
     move_aperture(aperture_now() - behaviour().grip_loading - extra_squeeze_,
-                  practised_general_ * person_.motor.confirm_dwell);
+                  grasp_paced(person_.motor.confirm_dwell, practised_general_));
     touching_since_ = time_;
     phase_ = Phase::kConfirm;
     return;
@@ -360,6 +385,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   const double now = aperture_to_;
   if (now <= hand_.min_aperture(pinch_) + 1e-4) {
     ++experience_.time.missed_closings;
+    grasp_failed();
     start_regrasp(false);
     return;
   }
@@ -374,10 +400,10 @@ void SimulatedParticipant::confirm(const Observation* o, const Seen& s) {
     phase_ = Phase::kSlowClose;
     return;
   }
-  if (time_ - touching_since_ < practised_general_ * person_.motor.confirm_dwell) return;
+  if (time_ - touching_since_ < grasp_paced(person_.motor.confirm_dwell, practised_general_))
+    return;
   servo_on_ = false;
-  move_grip(grip_.at(time_) + servo_ + up(behaviour().lift_height),
-            fitts(behaviour().lift_height, behaviour().lift_height), false);
+  move_grip(grip_.at(time_) + servo_ + up(behaviour().lift_height), lift_time(), false);
   phase_ = Phase::kLift;
 }
 
@@ -588,6 +614,7 @@ void SimulatedParticipant::start(const Observation& first) {
   if (cube) {
     contact_correction_ = cube->contact.correction();
     extra_squeeze_ = std::max(0.0, cube->grip.correction());
+    caution_ = std::max(0.0, cube->caution.correction());
   }
   // What it expects the trial to take: its own plan without errors.
   const double cube_size = first.cube_size;
@@ -596,8 +623,8 @@ void SimulatedParticipant::start(const Observation& first) {
       fitts((first.zone_a - home).norm(),
             std::max(peak_aperture(cube_size) - cube_size, behaviour().min_clearance)) +
       fitts(behaviour().approach_height, peak_aperture(cube_size) - cube_size) +
-      practised(m.closing_time) + practised_general_ * m.confirm_dwell +
-      fitts(behaviour().lift_height, behaviour().lift_height) +
+      grasp_paced(m.closing_time, practised_movement_) +
+      grasp_paced(m.confirm_dwell, practised_general_) + lift_time() +
       fitts((first.zone_b - first.zone_a).norm(), first.zone_size) +
       fitts(behaviour().lift_height, behaviour().lift_height);
 }

@@ -92,6 +92,13 @@ class SimulatedParticipant {
   void start(const Observation& first);
   // A movement's duration with practice (trials with the cube it sees).
   double practised(double duration) const { return duration * practised_movement_; }
+  // A part of the grasp (closing, loading, lift) at the pace its caution lets practice give:
+  // `practice` the factor practice alone would apply.
+  double grasp_paced(double duration, double practice) const;
+  // A grasp that failed (a closing that missed the cube, a cube lost under load): the grasps
+  // after it slow down.
+  void grasp_failed();
+  double lift_time() const;  // the lift off the floor, one bit of Fitts' law, grasp-paced
   double peak_aperture(double cube_size) const;
   double fitts(double distance, double width) const;
   double correction(double distance, double width) const;
@@ -145,6 +152,7 @@ class SimulatedParticipant {
   double gain_estimate_ = 1.0;  // seen aperture per own aperture, learnt while open
   int gain_samples_ = 0;
   double extra_squeeze_ = 0.0;
+  double caution_ = 0.0;           // share of practice's speed-up of the grasp given back
   double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
   bool caught_ = false;            // the cube seen caught on the hand
   int wipes_ = 0;                  // of a caught cube on the floor, since it was seen caught

@@ -20,6 +20,10 @@ struct TrialExperience {
   // m: how much further past contact its failed grasps made it close in this trial, beyond
   // the grip margin it started with: what the trial showed it needed.
   double squeeze_added = 0.0;
+  // How much of practice's speed-up of the grasp its failed grasps (closings that missed the
+  // cube, cubes that slipped under load) gave back in this trial: what the trial showed of
+  // its speed against its accuracy.
+  double caution_added = 0.0;
   // Where the trial's time went (one trial; counting only: nothing it does depends on it).
   ActivityTime time{.trials = 1};
 };

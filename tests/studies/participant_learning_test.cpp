@@ -56,6 +56,7 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   fine.contact_seen = true;
   fine.contact_error = 0.004;
   fine.squeeze_added = 0.006;  // two failed grasps before one held
+  fine.caution_added = 2.0;
   TrialExperience gross;
   gross.cube_size = 0.06;  // no contact seen, first grasp held: only forgetting
   ParticipantMemory m = remember({}, fine, r);
@@ -68,12 +69,14 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   EXPECT_EQ(f->trials, 2);
   EXPECT_DOUBLE_EQ(f->contact.fast, adapt(adapt({}, r, 0.004), r, 0.004).fast);
   EXPECT_DOUBLE_EQ(f->grip.slow, adapt(adapt({}, r, 0.006), r, 0.006).slow);
+  EXPECT_DOUBLE_EQ(f->caution.fast, adapt(adapt({}, r, 2.0), r, 2.0).fast);
   // The grip margin rises with the failures and falls back as lifts hold (Delhaye et al. 2024):
   // it stays bounded however many trials needed more.
   ParticipantMemory held = m;
   for (int k = 0; k < 3; ++k) held = remember(held, TrialExperience{.cube_size = 0.01}, r);
   EXPECT_LT(held.cube(0.01)->grip.correction(), f->grip.correction());
   EXPECT_GT(held.cube(0.01)->grip.correction(), 0.0);
+  EXPECT_LT(held.cube(0.01)->caution.correction(), f->caution.correction());
   ParticipantMemory slipping = m;
   TrialExperience slips = fine;  // every trial needing 6 mm more
   for (int k = 0; k < 500; ++k) slipping = remember(slipping, slips, r);
@@ -83,10 +86,17 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   ASSERT_NE(g, nullptr);
   EXPECT_EQ(g->trials, 1);
   EXPECT_EQ(g->contact.correction(), 0.0);
+  EXPECT_EQ(g->caution.correction(), 0.0);
   EXPECT_EQ(m.cube(0.03), nullptr);
   const std::string json = memory_to_json(m);
   EXPECT_EQ(memory_to_json(memory_from_json(json)), json);
   EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->contact.slow, f->contact.slow);
+  EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->caution.slow, f->caution.slow);
+  // A record of a model before 2.3 holds no caution: it reads as none.
+  const ParticipantMemory old =
+      memory_from_json(R"({"trials":1,"cubes":[{"cube_size":0.01,"trials":1,"contact_fast":0.001,)"
+                       R"("contact_slow":0.0,"grip_fast":0.0,"grip_slow":0.0}]})");
+  EXPECT_EQ(old.cube(0.01)->caution.correction(), 0.0);
   EXPECT_THROW(memory_from_json("{\"trials\": 1}"), std::runtime_error);
 }
 

@@ -619,6 +619,10 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
       EXPECT_GT(e.time[a], 0.0) << activity_name(a);
     EXPECT_EQ(e.time[Activity::kFreeCube], 0.0);
     EXPECT_GT(participant->memory_after().cube(0.06)->grip.correction(), 0.0);
+    // Each failed grasp gave back practice's speed-up of the grasp (post-error slowing).
+    EXPECT_DOUBLE_EQ(e.caution_added,
+                     (e.time.slips + e.time.missed_closings) * p.person.motor.post_error_caution);
+    EXPECT_GT(participant->memory_after().cube(0.06)->caution.correction(), 0.0);
   }
   {
     // The small cube: the slow closing shuts the hand before the hidden contact shows.
@@ -637,7 +641,39 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
     EXPECT_GT(e.time[Activity::kSetDown], 0.0);  // then it carried the cube to B
     EXPECT_EQ(e.squeeze_added, 0.0);
     EXPECT_EQ(participant->memory_after().cube(0.01)->grip.correction(), 0.0);
+    // A missed closing is a failed grasp all the same: it slows the grasps after it.
+    EXPECT_DOUBLE_EQ(e.caution_added, e.time.missed_closings * p.person.motor.post_error_caution);
   }
+}
+
+// A practised grasp is fast; a person who has just failed grasps gives that speed back
+// (post-error slowing), and only the grasp: the reach is as practised as before.
+TEST(SimulatedParticipantGrip, CautionAfterFailuresSlowsTheGraspNotTheReach) {
+  const StudyPerson p(2);
+  const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.06, 9, p.calibration)[0];
+  ParticipantMemory practised;
+  practised.trials = 8;
+  CubeMemory cube;
+  cube.cube_size = 0.06;
+  cube.trials = 8;
+  practised.cubes.push_back(cube);
+  ParticipantMemory cautious = practised;
+  cautious.cubes[0].caution.fast = 1.0;
+  auto quick = participant_for(setup, 5, p.own, practised);
+  auto careful = participant_for(setup, 5, p.own, cautious);
+  ASSERT_TRUE(run_closed_loop(*quick, setup).success);
+  ASSERT_TRUE(run_closed_loop(*careful, setup).success);
+  const ActivityTime& q = quick->experience().time;
+  const ActivityTime& c = careful->experience().time;
+  EXPECT_DOUBLE_EQ(c[Activity::kReach], q[Activity::kReach]);
+  // The closing, loading and dwell at the unpractised pace: practice had taken 1 - f(9) of it.
+  const double f = practice_factor(9, p.person.motor.practice_rate, p.person.motor.practice_floor);
+  EXPECT_GT(c[Activity::kClose],
+            q[Activity::kClose] +
+                0.5 * (1 - f) * (p.person.motor.closing_time + p.person.motor.confirm_dwell));
+  EXPECT_GT(c[Activity::kLift], q[Activity::kLift]);
+  EXPECT_EQ(careful->memory_after().cube(0.06)->caution.correction(),
+            adapt({1.0, 0.0}, p.person.motor.contact_rates, 0.0).correction());
 }
 
 // A cube stuck to the virtual thumb does not make it chase the cube upwards (each reach for
