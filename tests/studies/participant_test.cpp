@@ -749,6 +749,22 @@ TEST(OwnHand, PinchPosturesSpanTheApertures) {
     const auto& ja = fa.hands.at(0).joints;
     const auto& jb = fb.hands.at(0).joints;
     EXPECT_LT((ja[0][4] - ja[1][4]).norm(), (jb[0][4] - jb[1][4]).norm());
+    // Middle, ring and little fingers open with the pinch (a postural synergy): less flexed
+    // at every joint with the pads 9 cm apart than 1 cm apart, curled out of the way when
+    // closed.
+    const hand::HandPose closed = own.pose(pinch, grip, 0.01), open = own.pose(pinch, grip, 0.09);
+    int others = 0;
+    for (std::size_t k = 0; k < own.skeleton().dofs.size(); ++k) {
+      const hand::Dof& dof = own.skeleton().dofs[k];
+      const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
+                         dof.name.rfind("pinky", 0) == 0;
+      if (!other || dof.name.find("flexion") == std::string::npos) continue;
+      ++others;
+      const Eigen::Index i = Eigen::Index(k);
+      EXPECT_LT(open.angles(i), closed.angles(i) - 0.3 * dof.upper) << dof.name;
+      EXPECT_GT(closed.angles(i), 0.6 * dof.upper) << dof.name;
+    }
+    EXPECT_GE(others, 6);
   }
 }
 
