@@ -1,6 +1,7 @@
 #include "app/report/sensitivity_figure.h"
 
 #include "app/report/figure_file.h"
+#include "app/report/figure_labels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 
 #include <QFont>
+#include <QFontMetrics>
 #include <QPainter>
 
 namespace handlab::report {
@@ -76,6 +78,7 @@ void panel(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return finite_or_zero(m[a].mu_star) > finite_or_zero(m[b].mu_star);
   });
+  std::vector<QRectF> taken;  // the named points' markers and the labels placed so far
   for (std::size_t rank = 0; rank < order.size(); ++rank) {
     const studies::MorrisIndex& i = m[order[rank]];
     if (!std::isfinite(i.mu_star)) continue;
@@ -84,14 +87,16 @@ void panel(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
     p.setPen(QPen(named ? QColor(0, 90, 181) : QColor(120, 120, 120), 1.0));
     p.setBrush(named ? QBrush(QColor(0, 90, 181)) : QBrush(Qt::white));
     p.drawEllipse(at, 0.28 * em, 0.28 * em);
-    if (named) {
-      p.setPen(Qt::black);
-      const bool left = at.x() > plot.center().x();
-      p.drawText(QRectF(left ? at.x() - 12.4 * em : at.x() + 0.4 * em, at.y() - 0.75 * em, 12 * em,
-                        1.5 * em),
-                 (left ? Qt::AlignRight : Qt::AlignLeft) | Qt::AlignVCenter,
-                 QString::fromStdString(r.parameters[order[rank]].name));
-    }
+    if (named) taken.emplace_back(at.x() - 0.3 * em, at.y() - 0.3 * em, 0.6 * em, 0.6 * em);
+  }
+  for (int rank = 0; rank < std::min<int>(kNamed, int(order.size())); ++rank) {
+    const studies::MorrisIndex& i = m[order[std::size_t(rank)]];
+    if (!std::isfinite(i.mu_star)) continue;
+    const QPointF at(x(i.mu_star), y(finite_or_zero(i.sigma)));
+    const QString name = QString::fromStdString(r.parameters[order[std::size_t(rank)]].name);
+    p.setPen(Qt::black);
+    p.drawText(place_label(at, p.fontMetrics().horizontalAdvance(name), em, area, taken),
+               Qt::AlignCenter, name);
   }
 }
 
