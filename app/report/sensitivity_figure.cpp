@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include <QFont>
-#include <QFontMetrics>
+#include <QFontMetricsF>
 #include <QPainter>
 
 namespace handlab::report {
@@ -94,9 +94,16 @@ void panel(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
     if (!std::isfinite(i.mu_star)) continue;
     const QPointF at(x(i.mu_star), y(finite_or_zero(i.sigma)));
     const QString name = QString::fromStdString(r.parameters[order[std::size_t(rank)]].name);
+    const QRectF label = place_label(
+        at, QFontMetricsF(p.font(), p.device()).horizontalAdvance(name), em, area, taken);
+    // A label moved off its point's height is tied to it by a line.
+    if (std::abs(label.center().y() - at.y()) > 0.1 * em) {
+      const bool right = label.center().x() > at.x();
+      p.setPen(QPen(QColor(120, 120, 120), 0.8));
+      p.drawLine(at, QPointF(right ? label.left() : label.right(), label.center().y()));
+    }
     p.setPen(Qt::black);
-    p.drawText(place_label(at, p.fontMetrics().horizontalAdvance(name), em, area, taken),
-               Qt::AlignCenter, name);
+    p.drawText(label, Qt::AlignCenter, name);
   }
 }
 

@@ -4,13 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <numeric>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/store/sqlite_database.h"
+#include "core/util/json_value.h"
 #include "core/util/json_writer.h"
 #include "studies/analysis/study_database_analysis.h"
 #include "studies/analysis/study_tests.h"
@@ -198,6 +201,44 @@ void write_sensitivity_json(const SensitivityReport& r, std::ostream& out) {
   }
   w.end_array().end_object();
   out << "\n";
+}
+
+SensitivityReport read_sensitivity_json(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    const util::JsonValue v = util::JsonValue::parse(text.str());
+    const auto number = [](const util::JsonValue& x) {
+      return x.is_null() ? std::numeric_limits<double>::quiet_NaN() : x.as_number();
+    };
+    SensitivityReport r;
+    r.seconds = v["seconds"].as_number();
+    r.design.levels = int(v["levels"].as_number());
+    for (const util::JsonValue& p : v["parameters"].as_array())
+      r.parameters.push_back({p["name"].as_string(), p["low"].as_number(), p["high"].as_number(),
+                              p["basis"].as_string()});
+    r.design.parameters = int(r.parameters.size());
+    for (const util::JsonValue& o : v["outputs"].as_array()) {
+      r.outputs.push_back(o["test"].as_string());
+      std::vector<MorrisIndex>& indices = r.indices.emplace_back();
+      for (const SensitivityParameter& p : r.parameters) {
+        const util::JsonValue& i = o["indices"][p.name];
+        indices.push_back({number(i["mu"]), number(i["mu_star"]), number(i["sigma"]),
+                           int(i["effects"].as_number())});
+      }
+    }
+    for (const util::JsonValue& point : v["points"].as_array()) {
+      std::vector<double>& unit = r.design.points.emplace_back();
+      for (const util::JsonValue& x : point["unit"].as_array()) unit.push_back(x.as_number());
+      std::vector<double>& values = r.values.emplace_back();
+      for (const util::JsonValue& x : point["values"].as_array()) values.push_back(number(x));
+    }
+    return r;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + " is not a sensitivity analysis: " + e.what());
+  }
 }
 
 }  // namespace handlab::studies

@@ -69,5 +69,9 @@ SensitivityReport run_model_sensitivity(
 // Per output, the parameters by mu* (largest first): mu*, mu, sigma.
 void write_sensitivity_markdown(const SensitivityReport& report, std::ostream& out);
 void write_sensitivity_json(const SensitivityReport& report, std::ostream& out);
+// The report write_sensitivity_json wrote to the file `path` (the design's points, not its
+// steps: what the tables and the figure need). Throws std::runtime_error naming the file
+// when it cannot be read or is not such a report.
+SensitivityReport read_sensitivity_json(const std::string& path);
 
 }  // namespace handlab::studies

@@ -643,4 +643,22 @@ TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
   one_line_error(run_cli("sensitivity --protocol " + two_blocks + " --work " + work +
                          " --parameter no_such_thing"),
                  "no parameter no_such_thing");
+  // An analysis run before, printed, drawn and written again from its JSON: the same tables
+  // and the same JSON, byte for byte, without running a study.
+  const std::string saved = handlab::test::fresh_path("cli_sensitivity_analysis.json");
+  {
+    std::ofstream out(saved, std::ios::binary);
+    out << r.out;
+  }
+  const Result tables = run_cli("sensitivity --protocol " + two_blocks + " --from " + saved);
+  ASSERT_EQ(tables.status, 0) << tables.out;
+  EXPECT_NE(tables.out.find("| fitts_a |"), std::string::npos) << tables.out;
+  const Result again =
+      run_cli("sensitivity --protocol " + two_blocks + " --from " + saved + " --json -");
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_EQ(again.out, r.out);
+  one_line_error(run_cli("sensitivity --protocol " + two_blocks + " --from " + two_blocks),
+                 "is not a sensitivity analysis");
+  one_line_error(run_cli("sensitivity --protocol " + two_blocks + " --from " + saved + ".none"),
+                 "cannot read");
 }

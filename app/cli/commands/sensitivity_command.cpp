@@ -17,6 +17,41 @@
 #endif
 
 namespace handlab::cli {
+namespace {
+
+// Runs the analysis the options ask for, its progress on standard error.
+studies::SensitivityReport run_analysis(const Arguments& args, const studies::Protocol& protocol) {
+  args.require({"work"});
+  studies::SensitivityOptions options;
+  options.work_dir = args.text("work");
+  options.participants = int(args.integer("participants"));
+  if (options.participants < 2) throw UsageError("--participants must be 2 or more");
+  options.seed = args.seed("seed");
+  options.trajectories = int(args.integer("trajectories"));
+  options.levels = int(args.integer("levels"));
+  if (options.trajectories < 2) throw UsageError("--trajectories must be 2 or more");
+  if (options.levels < 2 || options.levels % 2) throw UsageError("--levels must be even");
+  options.design_seed = args.seed("design-seed");
+  options.jobs = int(args.integer("jobs"));
+  if (options.jobs <= 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string world = args.text("world");
+  if (world != "soft" && world != "proxy") throw UsageError("--world must be proxy or soft");
+  options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
+  if (!args.all("output").empty()) options.outputs = args.all("output");
+  options.only = args.all("parameter");
+  const bool quiet = args.text("json") == "-";
+  try {
+    return studies::run_model_sensitivity(
+        protocol, options, [&](const studies::SensitivityProgress& p) {
+          if (!quiet)
+            std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
+        });
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace
 
 int run_sensitivity(const std::vector<std::string>& argv) {
   const studies::SensitivityOptions defaults;
@@ -39,13 +74,17 @@ int run_sensitivity(const std::vector<std::string>& argv) {
        "vary only this parameter (the others stay at the model's values); repeatable "
        "(default: every parameter of docs/simulated-participants.md's sensitivity table)",
        "", true},
+      {"from", "JSON",
+       "instead of running the analysis, take one run before (its --json) to print, draw or "
+       "write again"},
       {"plot", "FILE", "draw mu* against sigma per output (.svg or .png)"},
       {"json", "OUT", "write every index and every point as JSON (- for standard output)"},
   };
   const Arguments args(specs, argv);
   if (args.help_requested()) {
     std::cout << "Usage: handlab-cli sensitivity --protocol FILE --work DIR [--trajectories R] "
-                 "[--plot FILE] [--json OUT]\n\n"
+                 "[--plot FILE] [--json OUT]\n"
+                 "       handlab-cli sensitivity --protocol FILE --from JSON [--plot FILE]\n\n"
                  "How the simulated studies' conclusions hang on the participant model's "
                  "parameters: a Morris design over the parameters' ranges "
                  "(docs/simulated-participants.md), a whole simulated study at each point (the "
@@ -55,36 +94,11 @@ int run_sensitivity(const std::vector<std::string>& argv) {
               << format_options_help(specs);
     return 0;
   }
-  args.require({"protocol", "work"});
-  studies::SensitivityOptions options;
-  options.work_dir = args.text("work");
-  options.participants = int(args.integer("participants"));
-  if (options.participants < 2) throw UsageError("--participants must be 2 or more");
-  options.seed = args.seed("seed");
-  options.trajectories = int(args.integer("trajectories"));
-  options.levels = int(args.integer("levels"));
-  if (options.trajectories < 2) throw UsageError("--trajectories must be 2 or more");
-  if (options.levels < 2 || options.levels % 2) throw UsageError("--levels must be even");
-  options.design_seed = args.seed("design-seed");
-  options.jobs = int(args.integer("jobs"));
-  if (options.jobs <= 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
-  const std::string world = args.text("world");
-  if (world != "soft" && world != "proxy") throw UsageError("--world must be proxy or soft");
-  options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
-  if (!args.all("output").empty()) options.outputs = args.all("output");
-  options.only = args.all("parameter");
+  args.require({"protocol"});
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
-  const bool quiet = args.text("json") == "-";
-  studies::SensitivityReport report;
-  try {
-    report = studies::run_model_sensitivity(
-        protocol, options, [&](const studies::SensitivityProgress& p) {
-          if (!quiet)
-            std::fprintf(stderr, "point %d/%d  %.0f s\n", p.points_done, p.points, p.seconds);
-        });
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const studies::SensitivityReport report = args.has("from")
+                                                ? studies::read_sensitivity_json(args.text("from"))
+                                                : run_analysis(args, protocol);
   if (args.text("json") != "-") studies::write_sensitivity_markdown(report, std::cout);
 #ifdef HANDLAB_WITH_REPORT
   if (args.has("plot")) {
