@@ -19,7 +19,7 @@ struct CubeMemory {
   int trials = 0;          // trials done with it
   TwoRateState contact;    // m: learnt correction of where its aperture meets the cube
   TwoRateState grip;       // m: learnt closing past contact beyond the first grasp's aim
-  TwoRateState caution;    // share of practice's speed-up of the grasp given back
+  TwoRateState caution;    // share of practice's speed-up of the grasp given back (used up to 1)
 };
 
 struct ParticipantMemory {
