@@ -22,6 +22,11 @@ const CubeMemory* ParticipantMemory::cube(double size) const {
   return nullptr;
 }
 
+TwoRateState after_closing(const TwoRateState& contact, const std::optional<double>& error,
+                           const TwoRateRates& rates) {
+  return error ? adapt(contact, rates, *error) : forget(contact, rates);
+}
+
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
                            const TwoRateRates& rates) {
   ParticipantMemory next = memory;
@@ -35,8 +40,8 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
     cube = &next.cubes.back();
   }
   ++cube->trials;
-  cube->contact = trial.contact_seen ? adapt(cube->contact, rates, trial.contact_error)
-                                     : forget(cube->contact, rates);
+  for (const std::optional<double>& error : trial.contact_errors)
+    cube->contact = after_closing(cube->contact, error, rates);
   // A lift's grip is programmed from the lifts before (Johansson & Westling 1988) and follows a
   // change of what the object needs both ways within a few lifts (Delhaye et al. 2024): more
   // after the failures that needed more, less again as lifts hold.

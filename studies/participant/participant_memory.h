@@ -6,6 +6,7 @@
 // so that a resumed session goes on with what it learnt.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,8 +32,13 @@ struct ParticipantMemory {
   const CubeMemory* cube(double size) const;
 };
 
-// The memory after a trial: its counts advanced, the closing's correction adapted by the
-// contact error it saw (or only forgetting, without one), the grip margin and the grasp's
+// Where it expects a pad to meet the cube after one closing: each closing is a movement of the
+// two-state model, adapted by its contact error, or only forgetting when no pad touched.
+TwoRateState after_closing(const TwoRateState& contact, const std::optional<double>& error,
+                           const TwoRateRates& rates);
+
+// The memory after a trial: its counts advanced, the closing's correction adapted by each
+// closing's contact error (after_closing), the grip margin and the grasp's
 // caution adapted by what its failed grasps added (a trial whose first grasp held only
 // forgets), all at `rates`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,

@@ -129,8 +129,9 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
   };
   s.thumb_gap = gap(thumb, g.thumb_distal);
   s.index_gap = gap(index, g.index_distal);
-  s.both_touching = s.both_touching && s.thumb_gap < behaviour().pad_on_face &&
-                    s.index_gap < behaviour().pad_on_face;
+  s.thumb_on = o.thumb_touching && s.thumb_gap < behaviour().pad_on_face;
+  s.index_on = o.index_touching && s.index_gap < behaviour().pad_on_face;
+  s.both_touching = s.thumb_on && s.index_on;
   s.hand = true;
   s.grip = 0.5 * (thumb + index);
   s.aperture = (thumb - index).norm() - g.bone_radius[std::size_t(g.thumb_distal)] -
@@ -355,23 +356,30 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
     return;
   }
   ++experience_.grasp_attempts;
-  // Where it expects its pads to meet the cube: the seen size through its estimate of how the
-  // seen fingers follow its own, with what it learnt in earlier trials; it aims past that.
+  // Where it expects a pad to meet the cube: the seen size through its estimate of how the
+  // seen fingers follow its own, with what its earlier closings taught it; it aims just past
+  // that, so that the digits arrive at the cube as their movement ends (Smeets & Brenner 1999).
   expected_contact_ =
-      o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_correction_;
+      o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_.correction();
+  closing_touched_ = false;
   move_aperture(expected_contact_ - behaviour().closing_past_contact - extra_squeeze_,
                 grasp_paced(person_.motor.closing_time, practised_movement_));
   phase_ = Phase::kClose;
 }
 
+void SimulatedParticipant::closing_contact(const std::optional<double>& error) {
+  experience_.contact_errors.push_back(error);
+  contact_ = after_closing(contact_, error, person_.motor.contact_rates);
+}
+
 void SimulatedParticipant::close(const Observation* o, const Seen& s) {
+  // The first pad seen on the cube: what its own aperture was there tells it how far off its
+  // expectation was, for its next closing.
+  if (o && !closing_touched_ && (s.thumb_on || s.index_on)) {
+    closing_touched_ = true;
+    closing_contact(own_at(o->time).aperture - expected_contact_);
+  }
   if (o && s.both_touching) {
-    // Seen contact: what its own aperture was there tells it how far off its expectation was
-    // (the first contact of the trial is its error signal for the next).
-    if (!experience_.contact_seen) {
-      experience_.contact_seen = true;
-      experience_.contact_error = own_at(o->time).aperture - expected_contact_;
-    }
     // Build up the grip (the loading phase) from where the hand is.
     move_aperture(aperture_now() - behaviour().grip_loading - extra_squeeze_,
                   grasp_paced(person_.motor.confirm_dwell, practised_general_));
@@ -385,6 +393,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   const double now = aperture_to_;
   if (now <= hand_.min_aperture(pinch_) + 1e-4) {
     ++experience_.time.missed_closings;
+    if (!closing_touched_) closing_contact(std::nullopt);
     grasp_failed();
     start_regrasp(false);
     return;
@@ -612,7 +621,7 @@ void SimulatedParticipant::start(const Observation& first) {
   practised_movement_ =
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
   if (cube) {
-    contact_correction_ = cube->contact.correction();
+    contact_ = cube->contact;
     extra_squeeze_ = std::max(0.0, cube->grip.correction());
     caution_ = std::max(0.0, cube->caution.correction());
   }

@@ -73,6 +73,7 @@ class SimulatedParticipant {
     bool hand = false;
     Eigen::Vector3d grip = Eigen::Vector3d::Zero();  // the virtual pads' midpoint
     double aperture = 0.0;                           // between the virtual pads' surfaces
+    bool thumb_on = false, index_on = false;         // each pad seen on the cube
     bool both_touching = false;                      // thumb and index pads on the cube
     double thumb_gap = 1.0, index_gap = 1.0;         // m from each pad's surface to the cube
     Eigen::Vector3d cube = Eigen::Vector3d::Zero();
@@ -107,6 +108,9 @@ class SimulatedParticipant {
   void plan_reach(const Observation& o, const Seen& s);
   // Opens and goes for the cube again; `slipped`: it was lost from the pads under load.
   void start_regrasp(bool slipped);
+  // The end of a closing's look for contact: the aperture where it first saw a pad on the
+  // cube against where it expected one (none: no pad touched), which it adapts to at once.
+  void closing_contact(const std::optional<double>& error);
   void update(const Observation* o);
   // What it sees beyond the phase it is in.
   void learn_gain(const Observation& o, const Seen& s);
@@ -132,8 +136,9 @@ class SimulatedParticipant {
   SeenTrial trial_;
   ParticipantMemory memory_;
   double practised_movement_ = 1.0, practised_general_ = 1.0;
-  double contact_correction_ = 0.0;  // m: learnt, added to where it expects contact
-  double expected_contact_ = 0.0;    // m: own aperture where it expects the pads to meet the cube
+  TwoRateState contact_;           // m: learnt correction of where it expects a pad to touch
+  double expected_contact_ = 0.0;  // m: own aperture where it expects a pad to meet the cube
+  bool closing_touched_ = false;   // a pad seen on the cube since the closing began
   MotorRandom random_;
   double dt_;
   double time_ = 0.0;

@@ -3,6 +3,9 @@
 // from the condition.
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include "studies/participant/activity_time.h"
 
 namespace handlab::studies {
@@ -13,10 +16,10 @@ struct TrialExperience {
   int losses = 0;              // slips, drops and misplacements it saw
   double expected_time = 0.0;  // s: its own plan's nominal duration
   double cube_size = 0.0;      // m: the cube it saw
-  // Where it first saw both pads on the cube: its own aperture there minus where it expected
-  // them to meet the cube (m; > 0: sooner than expected). Only when it saw contact.
-  bool contact_seen = false;
-  double contact_error = 0.0;
+  // Each closing's contact error, in order: its own aperture where it first saw a pad on the
+  // cube minus where it expected a pad to meet it (m; > 0: sooner than expected); none for a
+  // closing in which it saw no pad touch the cube.
+  std::vector<std::optional<double>> contact_errors{};
   // m: how much further past contact its failed grasps made it close in this trial, beyond
   // the grip margin it started with: what the trial showed it needed.
   double squeeze_added = 0.0;

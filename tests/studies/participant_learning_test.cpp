@@ -53,12 +53,13 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   const TwoRateRates r{0.59, 0.21, 0.992, 0.02};
   TrialExperience fine;
   fine.cube_size = 0.01;
-  fine.contact_seen = true;
-  fine.contact_error = 0.004;
+  // A closing in which no pad touched the cube (only forgetting), then one whose first pad
+  // touched it 4 mm sooner than expected: each closing is a movement of the two-state model.
+  fine.contact_errors = {std::nullopt, 0.004};
   fine.squeeze_added = 0.006;  // two failed grasps before one held
   fine.caution_added = 2.0;
   TrialExperience gross;
-  gross.cube_size = 0.06;  // no contact seen, first grasp held: only forgetting
+  gross.cube_size = 0.06;  // no closing recorded, first grasp held: nothing to adapt
   ParticipantMemory m = remember({}, fine, r);
   m = remember(m, gross, r);
   m = remember(m, fine, r);
@@ -67,7 +68,9 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   const CubeMemory* f = m.cube(0.0102);  // told apart to the millimetre
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(f->trials, 2);
-  EXPECT_DOUBLE_EQ(f->contact.fast, adapt(adapt({}, r, 0.004), r, 0.004).fast);
+  const TwoRateState one_trial = adapt(forget({}, r), r, 0.004);
+  EXPECT_DOUBLE_EQ(f->contact.fast, adapt(forget(one_trial, r), r, 0.004).fast);
+  EXPECT_DOUBLE_EQ(f->contact.slow, adapt(forget(one_trial, r), r, 0.004).slow);
   EXPECT_DOUBLE_EQ(f->grip.slow, adapt(adapt({}, r, 0.006), r, 0.006).slow);
   EXPECT_DOUBLE_EQ(f->caution.fast, adapt(adapt({}, r, 2.0), r, 2.0).fast);
   // The grip margin rises with the failures and falls back as lifts hold (Delhaye et al. 2024):
