@@ -661,4 +661,7 @@ TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
                  "is not a sensitivity analysis");
   one_line_error(run_cli("sensitivity --protocol " + two_blocks + " --from " + saved + ".none"),
                  "cannot read");
+  one_line_error(
+      run_cli("sensitivity --protocol " + two_blocks + " --from " + saved + " --work " + work),
+      "it takes no --work");
 }

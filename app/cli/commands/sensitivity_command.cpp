@@ -95,6 +95,8 @@ int run_sensitivity(const std::vector<std::string>& argv) {
     return 0;
   }
   args.require({"protocol"});
+  if (args.has("from") && args.has("work"))
+    throw UsageError("--from reads an analysis run before: it takes no --work");
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const studies::SensitivityReport report = args.has("from")
                                                 ? studies::read_sensitivity_json(args.text("from"))
