@@ -15,7 +15,7 @@
 
 namespace handlab::studies {
 
-const char* const kParticipantModelVersion = "handlab participant model 2.4";
+const char* const kParticipantModelVersion = "handlab participant model 2.5";
 
 namespace {
 

@@ -359,10 +359,12 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   // Where it expects a pad to meet the cube: the seen size through its estimate of how the
   // seen fingers follow its own, with what its earlier closings taught it; it aims just past
   // that, so that the digits arrive at the cube as their movement ends (Smeets & Brenner 1999).
+  // The grip a slip taught it is added once the pads touch (the loading phase): grip force
+  // builds up after contact (Johansson & Westling 1984), not in the transport of the digits.
   expected_contact_ =
       o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_.correction();
   closing_touched_ = false;
-  move_aperture(expected_contact_ - behaviour().closing_past_contact - extra_squeeze_,
+  move_aperture(expected_contact_ - behaviour().closing_past_contact,
                 grasp_paced(person_.motor.closing_time, practised_movement_));
   phase_ = Phase::kClose;
 }

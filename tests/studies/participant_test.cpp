@@ -646,6 +646,43 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
   }
 }
 
+// The grip a slip taught is added once the pads touch, in the loading phase (grip force builds
+// up after contact: Johansson & Westling 1984), not to where the closing aims: a person with
+// a 6 mm margin moves exactly as one without until it has seen both pads on the cube, then
+// closes further.
+TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsAim) {
+  const StudyPerson p(2);
+  for (const double cube : {0.01, 0.06}) {
+    const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 6, p.calibration)[0];
+    ParticipantMemory plain;
+    plain.trials = 6;
+    CubeMemory remembered;
+    remembered.cube_size = cube;
+    remembered.trials = 3;
+    plain.cubes.push_back(remembered);
+    ParticipantMemory gripping = plain;
+    const double margin = 0.006;
+    gripping.cubes[0].grip.fast = margin;
+    auto without = participant_for(setup, 5, p.own, plain);
+    auto with = participant_for(setup, 5, p.own, gripping);
+    const ClosedLoop a = run_closed_loop(*without, setup);
+    const ClosedLoop b = run_closed_loop(*with, setup);
+    ASSERT_TRUE(a.success && b.success) << cube;
+    std::size_t both_seen = 0;
+    while (both_seen < a.shown.size() &&
+           !(a.shown[both_seen].thumb_touching && a.shown[both_seen].index_touching))
+      ++both_seen;
+    std::size_t apart = 0;
+    while (apart < std::min(a.own_aperture.size(), b.own_aperture.size()) &&
+           a.own_aperture[apart] == b.own_aperture[apart])
+      ++apart;
+    EXPECT_GT(apart, both_seen) << cube << ": the margin moved the closing before contact";
+    const double a_min = *std::min_element(a.own_aperture.begin(), a.own_aperture.end());
+    const double b_min = *std::min_element(b.own_aperture.begin(), b.own_aperture.end());
+    EXPECT_LT(b_min, a_min - 0.5 * margin) << cube;
+  }
+}
+
 // Where a pad first meets the cube is learnt closing by closing, each closing a movement of the
 // two-state model: the closings after one whose pad met the cube sooner than expected end
 // sooner, so that the pads arrive as the closing slows down (Smeets & Brenner 1999).
