@@ -156,7 +156,7 @@ class SimulatedParticipant {
   bool servo_on_ = false;
   double gain_estimate_ = 1.0;  // seen aperture per own aperture, learnt while open
   int gain_samples_ = 0;
-  double extra_squeeze_ = 0.0;
+  double extra_squeeze_ = 0.0;     // m more loading after contact: the grip slips taught
   double caution_ = 0.0;           // share of practice's speed-up of the grasp given back
   double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
   bool caught_ = false;            // the cube seen caught on the hand
