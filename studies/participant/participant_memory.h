@@ -19,7 +19,7 @@ struct CubeMemory {
   double cube_size = 0.0;  // m, as seen
   int trials = 0;          // trials done with it
   TwoRateState contact;    // m: learnt correction of where a pad first meets the cube
-  TwoRateState grip;       // m: learnt closing past contact beyond the first grasp's aim
+  TwoRateState grip;       // m: learnt closing on after contact (the loading), from slips
   TwoRateState caution;    // share of practice's speed-up of the grasp given back (used up to 1)
 };
 

@@ -618,7 +618,7 @@ void SimulatedParticipant::start(const Observation& first) {
   experience_.cube_size = first.cube_size;
   // What it remembers of this cube: practice with it, where its pads met it (an offset, which
   // people carry over; a changed gain between seen and felt size they do not: Safstrom & Edin
-  // 2005), the grip that last held it.
+  // 2005), the grip margin its slips taught it.
   const CubeMemory* cube = memory_.cube(first.cube_size);
   practised_movement_ =
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
