@@ -649,7 +649,7 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
 // The grip a slip taught is added once the pads touch, in the loading phase (grip force builds
 // up after contact: Johansson & Westling 1984), not to where the closing aims: a person with
 // a 6 mm margin moves exactly as one without until it has seen both pads on the cube, then
-// closes further.
+// closes further before it lifts.
 TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsAim) {
   const StudyPerson p(2);
   for (const double cube : {0.01, 0.06}) {
@@ -677,6 +677,10 @@ TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsA
            a.own_aperture[apart] == b.own_aperture[apart])
       ++apart;
     EXPECT_GT(apart, both_seen) << cube << ": the margin moved the closing before contact";
+    // ... and as it starts loading, one visual delay after the contact was shown (the lift
+    // comes a confirmation dwell later).
+    const auto seen_then = std::size_t(std::ceil(p.person.motor.visual_delay * 120.0));
+    EXPECT_LE(apart, both_seen + seen_then + 2) << cube;
     const double a_min = *std::min_element(a.own_aperture.begin(), a.own_aperture.end());
     const double b_min = *std::min_element(b.own_aperture.begin(), b.own_aperture.end());
     EXPECT_LT(b_min, a_min - 0.5 * margin) << cube;
