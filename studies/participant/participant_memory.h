@@ -1,8 +1,8 @@
 // What a simulated person carries from one trial to the next, built only from what it saw and
 // did (its TrialExperience): how many trials it has done, and per cube size it has seen (the
 // one cue that tells its trials apart: it never knows the strategy) how often it has handled
-// that cube, where it learnt to expect its fingers to meet it, and how far past contact it
-// closes. Stored as JSON with each trial's result,
+// that cube, where it learnt to expect its fingers to meet it and to aim its pads, and how
+// far past contact it closes. Stored as JSON with each trial's result,
 // so that a resumed session goes on with what it learnt.
 #pragma once
 
@@ -21,6 +21,9 @@ struct CubeMemory {
   TwoRateState contact;    // m: learnt correction of where a pad first meets the cube
   TwoRateState grip;       // m: learnt closing on after contact (the loading), from slips
   TwoRateState caution;    // share of practice's speed-up of the grasp given back (used up to 1)
+  // m: learnt shift of where it aims its pads' midpoint across the floor (x, z), against
+  // where the pads were when one first touched the cube
+  TwoRateState approach_x, approach_z;
 };
 
 struct ParticipantMemory {
@@ -38,7 +41,8 @@ TwoRateState after_closing(const TwoRateState& contact, const std::optional<doub
                            const TwoRateRates& rates);
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by each
-// closing's contact error (after_closing), the grip margin and the grasp's
+// closing's contact error (after_closing), the aim by each closing's approach error, the grip
+// margin and the grasp's
 // caution adapted by what its failed grasps added (a trial whose first grasp held only
 // forgets), all at `rates`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,

@@ -15,7 +15,7 @@
 
 namespace handlab::studies {
 
-const char* const kParticipantModelVersion = "handlab participant model 2.5";
+const char* const kParticipantModelVersion = "handlab participant model 2.6";
 
 namespace {
 

@@ -139,14 +139,16 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
   return s;
 }
 
-// Where it aims the contact points' midpoint: over the cube's centre; in a pad pinch near the
-// top of the (large) cube so that the curled fingers clear it, in a tip pinch at the (small)
-// cube's mid-height, where the fingertips press on its faces and not under its edges.
+// Where it aims the contact points' midpoint: over the cube's centre, shifted by what its
+// earlier closings taught it of where its pads end up; in a pad pinch near the top of the
+// (large) cube so that the curled fingers clear it, in a tip pinch at the (small) cube's
+// mid-height, where the fingertips press on its faces and not under its edges.
 Eigen::Vector3d SimulatedParticipant::grasp_point(const Observation& o) const {
   const double side = o.cube_size;
   const double bottom = o.cube_position.y() - 0.5 * side;
   const double height = pinch_ == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012);
-  return Eigen::Vector3d(o.cube_position.x(), bottom + height, o.cube_position.z());
+  return Eigen::Vector3d(o.cube_position.x() - approach_x_.correction(), bottom + height,
+                         o.cube_position.z() - approach_z_.correction());
 }
 
 bool SimulatedParticipant::cube_at_rest(const Seen& s) {
@@ -374,12 +376,19 @@ void SimulatedParticipant::closing_contact(const std::optional<double>& error) {
   contact_ = after_closing(contact_, error, person_.motor.contact_rates);
 }
 
+void SimulatedParticipant::closing_approach(const Eigen::Vector3d& error) {
+  experience_.approach_errors.push_back({error.x(), error.z()});
+  approach_x_ = adapt(approach_x_, person_.motor.contact_rates, error.x());
+  approach_z_ = adapt(approach_z_, person_.motor.contact_rates, error.z());
+}
+
 void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   // The first pad seen on the cube: what its own aperture was there tells it how far off its
   // expectation was, for its next closing.
   if (o && !closing_touched_ && (s.thumb_on || s.index_on)) {
     closing_touched_ = true;
     closing_contact(own_at(o->time).aperture - expected_contact_);
+    if (s.hand) closing_approach(s.grip - s.cube);
   }
   if (o && s.both_touching) {
     // Build up the grip (the loading phase) from where the hand is.
@@ -616,14 +625,16 @@ void SimulatedParticipant::start(const Observation& first) {
   grip_ = MinimumJerkMove{home, home, 0.0, dt_};
   aperture_from_ = aperture_to_ = behaviour().rest_aperture;
   experience_.cube_size = first.cube_size;
-  // What it remembers of this cube: practice with it, where its pads met it (an offset, which
-  // people carry over; a changed gain between seen and felt size they do not: Safstrom & Edin
-  // 2005), the grip margin its slips taught it.
+  // What it remembers of this cube: practice with it, where its pads met it and where they
+  // ended up against it (offsets, which people carry over; a changed gain between seen and
+  // felt size they do not: Safstrom & Edin 2005), the grip margin its slips taught it.
   const CubeMemory* cube = memory_.cube(first.cube_size);
   practised_movement_ =
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
   if (cube) {
     contact_ = cube->contact;
+    approach_x_ = cube->approach_x;
+    approach_z_ = cube->approach_z;
     extra_squeeze_ = std::max(0.0, cube->grip.correction());
     caution_ = std::max(0.0, cube->caution.correction());
   }

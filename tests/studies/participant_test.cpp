@@ -2,6 +2,7 @@
 // (measured from the Leap recordings), its blindness to the condition, what it does with a cube
 // caught on its hand, and its questionnaire.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -713,6 +714,47 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereAPadFirstMeetsTheCube) {
   // has only begun (a constant error e gives the fast state 0.21 e / 0.41).
   EXPECT_GT(first_errors.front(), 0.0);
   EXPECT_LT(std::abs(first_errors.back()), 0.7 * first_errors.front());
+}
+
+// Where its pads end up against the cube is learnt closing by closing too (an offset of the
+// visuomotor map of grasping, Safstrom & Edin 2005): the memory holds the two-state fold of the
+// approach errors its closings saw, and a person who remembers its pads ending up 4 mm along x
+// aims them 4 mm short of that, so that they meet the cube that much further back.
+TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube) {
+  const StudyPerson p(2);
+  ParticipantMemory memory;
+  TwoRateState x, z;
+  for (int position = 0; position < 4; ++position) {
+    const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.01, position, p.calibration)[0];
+    auto participant = participant_for(setup, 5, p.own, memory);
+    ASSERT_TRUE(run_closed_loop(*participant, setup).success);
+    const TrialExperience& e = participant->experience();
+    ASSERT_FALSE(e.approach_errors.empty());
+    for (const std::array<double, 2>& error : e.approach_errors) {
+      x = adapt(x, p.person.motor.contact_rates, error[0]);
+      z = adapt(z, p.person.motor.contact_rates, error[1]);
+    }
+    memory = participant->memory_after();
+    EXPECT_DOUBLE_EQ(memory.cube(0.01)->approach_x.correction(), x.correction());
+    EXPECT_DOUBLE_EQ(memory.cube(0.01)->approach_z.correction(), z.correction());
+  }
+  for (const double cube : {0.01, 0.06}) {
+    const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 5, p.calibration)[0];
+    ParticipantMemory plain;
+    CubeMemory remembered;
+    remembered.cube_size = cube;
+    remembered.trials = 3;
+    plain.cubes.push_back(remembered);
+    ParticipantMemory shifted = plain;
+    shifted.cubes[0].approach_x.fast = 0.004;
+    auto as_before = participant_for(setup, 5, p.own, plain);
+    auto aiming_back = participant_for(setup, 5, p.own, shifted);
+    ASSERT_TRUE(run_closed_loop(*as_before, setup).success) << cube;
+    ASSERT_TRUE(run_closed_loop(*aiming_back, setup).success) << cube;
+    const double before = as_before->experience().approach_errors.front()[0];
+    const double after = aiming_back->experience().approach_errors.front()[0];
+    EXPECT_NEAR(after - before, -0.004, 0.0015) << cube;
+  }
 }
 
 // A practised grasp is fast; a person who has just failed grasps gives that speed back
