@@ -42,9 +42,8 @@ TwoRateState after_closing(const TwoRateState& contact, const std::optional<doub
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by each
 // closing's contact error (after_closing), the aim by each closing's approach error, the grip
-// margin and the grasp's
-// caution adapted by what its failed grasps added (a trial whose first grasp held only
-// forgets), all at `rates`.
+// margin and the grasp's caution adapted by what its failed grasps added (a trial whose first
+// grasp held only forgets), all at `rates`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
                            const TwoRateRates& rates);
 
