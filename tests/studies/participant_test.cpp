@@ -243,6 +243,17 @@ struct StudyPerson {
 // that differ only in the strategy (its label and its flag), fed the same observations, send
 // the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
 // the participant but what seen_trial_of gives (SeenTrial).
+// A memory of `trials` trials, all with one cube.
+ParticipantMemory memory_of_cube(double cube, int trials) {
+  ParticipantMemory memory;
+  memory.trials = trials;
+  CubeMemory remembered;
+  remembered.cube_size = cube;
+  remembered.trials = trials;
+  memory.cubes.push_back(remembered);
+  return memory;
+}
+
 TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy) {
   const StudyPerson p(3);
   for (double cube : {0.06, 0.01}) {
@@ -719,7 +730,7 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereAPadFirstMeetsTheCube) {
 // Where its pads end up against the cube is learnt closing by closing too (an offset of the
 // visuomotor map of grasping, Safstrom & Edin 2005): the memory holds the two-state fold of the
 // approach errors its closings saw, and a person who remembers its pads ending up 4 mm along x
-// aims them 4 mm short of that, so that they meet the cube that much further back.
+// aims them 4 mm short of that, so that they meet the cube 2 to 6 mm further back.
 TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube) {
   const StudyPerson p(2);
   ParticipantMemory memory;
@@ -740,20 +751,20 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube)
   }
   for (const double cube : {0.01, 0.06}) {
     const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 5, p.calibration)[0];
-    ParticipantMemory plain;
-    CubeMemory remembered;
-    remembered.cube_size = cube;
-    remembered.trials = 3;
-    plain.cubes.push_back(remembered);
+    const ParticipantMemory plain = memory_of_cube(cube, 3);
     ParticipantMemory shifted = plain;
-    shifted.cubes[0].approach_x.fast = 0.004;
+    const double shift = 0.004;
+    shifted.cubes[0].approach_x.fast = shift;
     auto as_before = participant_for(setup, 5, p.own, plain);
     auto aiming_back = participant_for(setup, 5, p.own, shifted);
     ASSERT_TRUE(run_closed_loop(*as_before, setup).success) << cube;
     ASSERT_TRUE(run_closed_loop(*aiming_back, setup).success) << cube;
     const double before = as_before->experience().approach_errors.front()[0];
     const double after = aiming_back->experience().approach_errors.front()[0];
-    EXPECT_NEAR(after - before, -0.004, 0.0015) << cube;
+    // It meets the cube that much further back, give or take what the closing's own servo
+    // and timing make of the new aim.
+    EXPECT_LT(after - before, -0.5 * shift) << cube;
+    EXPECT_GT(after - before, -1.5 * shift) << cube;
   }
 }
 
@@ -762,12 +773,7 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube)
 TEST(SimulatedParticipantGrip, CautionAfterFailuresSlowsTheGraspNotTheReach) {
   const StudyPerson p(2);
   const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.06, 9, p.calibration)[0];
-  ParticipantMemory practised;
-  practised.trials = 8;
-  CubeMemory cube;
-  cube.cube_size = 0.06;
-  cube.trials = 8;
-  practised.cubes.push_back(cube);
+  const ParticipantMemory practised = memory_of_cube(0.06, 8);
   ParticipantMemory cautious = practised;
   cautious.cubes[0].caution.fast = 1.0;
   auto quick = participant_for(setup, 5, p.own, practised);
