@@ -78,6 +78,8 @@ void panel(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return finite_or_zero(m[a].mu_star) > finite_or_zero(m[b].mu_star);
   });
+  // Labels stay right of the y axis, clear of its numbers and title.
+  const QRectF labels(plot.left(), plot.top(), area.right() - plot.left(), plot.height());
   std::vector<QRectF> taken;  // the named points' markers and the labels placed so far
   for (std::size_t rank = 0; rank < order.size(); ++rank) {
     const studies::MorrisIndex& i = m[order[rank]];
@@ -95,7 +97,7 @@ void panel(QPainter& p, const QRectF& area, const studies::SensitivityReport& r,
     const QPointF at(x(i.mu_star), y(finite_or_zero(i.sigma)));
     const QString name = QString::fromStdString(r.parameters[order[std::size_t(rank)]].name);
     const QRectF label = place_label(
-        at, QFontMetricsF(p.font(), p.device()).horizontalAdvance(name), em, area, taken);
+        at, QFontMetricsF(p.font(), p.device()).horizontalAdvance(name), em, labels, taken);
     // A label moved off its point's height is tied to it by a line.
     if (std::abs(label.center().y() - at.y()) > 0.1 * em) {
       const bool right = label.center().x() > at.x();
