@@ -45,9 +45,9 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
   // An offset of the map from the hand it moves to the hand it sees is adapted from trial to
   // trial in grasping (Safstrom & Edin 2005): each closing whose pad touched the cube is a
   // movement of the two-state model along each axis.
-  for (const std::array<double, 2>& error : trial.approach_errors) {
-    cube->approach_x = adapt(cube->approach_x, rates, error[0]);
-    cube->approach_z = adapt(cube->approach_z, rates, error[1]);
+  for (const std::array<double, 2>& error : trial.aim_errors) {
+    cube->aim_x = adapt(cube->aim_x, rates, error[0]);
+    cube->aim_z = adapt(cube->aim_z, rates, error[1]);
   }
   // A lift's grip is programmed from the lifts before (Johansson & Westling 1988) and follows a
   // change of what the object needs both ways within a few lifts (Delhaye et al. 2024): more
@@ -70,14 +70,14 @@ std::string memory_to_json(const ParticipantMemory& m) {
         .field("trials", c.trials)
         .field("contact_fast", c.contact.fast)
         .field("contact_slow", c.contact.slow)
-        .field("approach_x_fast", c.approach_x.fast)
-        .field("approach_x_slow", c.approach_x.slow)
-        .field("approach_z_fast", c.approach_z.fast)
-        .field("approach_z_slow", c.approach_z.slow)
         .field("grip_fast", c.grip.fast)
         .field("grip_slow", c.grip.slow)
         .field("caution_fast", c.caution.fast)
         .field("caution_slow", c.caution.slow)
+        .field("aim_x_fast", c.aim_x.fast)
+        .field("aim_x_slow", c.aim_x.slow)
+        .field("aim_z_fast", c.aim_z.fast)
+        .field("aim_z_slow", c.aim_z.slow)
         .end_object();
   w.end_array().end_object();
   return out.str();
@@ -88,8 +88,7 @@ ParticipantMemory memory_from_json(const std::string& text) {
     const util::JsonValue v = util::JsonValue::parse(text);
     ParticipantMemory m;
     m.trials = int(v["trials"].as_number());
-    // Models before 2.3 kept no caution, before 2.6 no approach: a record of theirs reads with
-    // none.
+    // Models before 2.3 kept no caution, before 2.6 no aim: a record of theirs reads with none.
     auto optional = [](const util::JsonValue& c, const char* key) {
       const util::JsonValue* found = c.find(key);
       return found ? found->as_number() : 0.0;
@@ -100,8 +99,8 @@ ParticipantMemory memory_from_json(const std::string& text) {
                          {c["contact_fast"].as_number(), c["contact_slow"].as_number()},
                          {c["grip_fast"].as_number(), c["grip_slow"].as_number()},
                          {optional(c, "caution_fast"), optional(c, "caution_slow")},
-                         {optional(c, "approach_x_fast"), optional(c, "approach_x_slow")},
-                         {optional(c, "approach_z_fast"), optional(c, "approach_z_slow")}});
+                         {optional(c, "aim_x_fast"), optional(c, "aim_x_slow")},
+                         {optional(c, "aim_z_fast"), optional(c, "aim_z_slow")}});
     return m;
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("not a simulated participant's memory: ") + e.what());

@@ -23,7 +23,7 @@ struct CubeMemory {
   TwoRateState caution;    // share of practice's speed-up of the grasp given back (used up to 1)
   // m: learnt shift of where it aims its pads' midpoint across the floor (x, z), against
   // where the pads were when one first touched the cube
-  TwoRateState approach_x, approach_z;
+  TwoRateState aim_x, aim_z;
 };
 
 struct ParticipantMemory {
@@ -41,7 +41,7 @@ TwoRateState after_closing(const TwoRateState& contact, const std::optional<doub
                            const TwoRateRates& rates);
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by each
-// closing's contact error (after_closing), the aim by each closing's approach error, the grip
+// closing's contact error (after_closing), the aim by where each closing's pads met it, the grip
 // margin and the grasp's caution adapted by what its failed grasps added (a trial whose first
 // grasp held only forgets), all at `rates`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,

@@ -147,8 +147,8 @@ Eigen::Vector3d SimulatedParticipant::grasp_point(const Observation& o) const {
   const double side = o.cube_size;
   const double bottom = o.cube_position.y() - 0.5 * side;
   const double height = pinch_ == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012);
-  return Eigen::Vector3d(o.cube_position.x() - approach_x_.correction(), bottom + height,
-                         o.cube_position.z() - approach_z_.correction());
+  return Eigen::Vector3d(o.cube_position.x() - aim_x_.correction(), bottom + height,
+                         o.cube_position.z() - aim_z_.correction());
 }
 
 bool SimulatedParticipant::cube_at_rest(const Seen& s) {
@@ -339,7 +339,7 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
 }
 
 void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
-  // The fingers straddle the cube: are they centred on it, and low enough on its faces? A
+  // The fingers straddle the cube: are they centred on its aim, and low enough on its faces? A
   // corrective submovement if not (the precision the closing needs: a share of the room the
   // pads have, the cube's side across, the grasp's depth below the top edge up and down).
   const Eigen::Vector3d target = grasp_point(o);
@@ -376,10 +376,10 @@ void SimulatedParticipant::closing_contact(const std::optional<double>& error) {
   contact_ = after_closing(contact_, error, person_.motor.contact_rates);
 }
 
-void SimulatedParticipant::closing_approach(const Eigen::Vector3d& error) {
-  experience_.approach_errors.push_back({error.x(), error.z()});
-  approach_x_ = adapt(approach_x_, person_.motor.contact_rates, error.x());
-  approach_z_ = adapt(approach_z_, person_.motor.contact_rates, error.z());
+void SimulatedParticipant::closing_aim(const Eigen::Vector3d& error) {
+  experience_.aim_errors.push_back({error.x(), error.z()});
+  aim_x_ = adapt(aim_x_, person_.motor.contact_rates, error.x());
+  aim_z_ = adapt(aim_z_, person_.motor.contact_rates, error.z());
 }
 
 void SimulatedParticipant::close(const Observation* o, const Seen& s) {
@@ -388,7 +388,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   if (o && !closing_touched_ && (s.thumb_on || s.index_on)) {
     closing_touched_ = true;
     closing_contact(own_at(o->time).aperture - expected_contact_);
-    if (s.hand) closing_approach(s.grip - s.cube);
+    closing_aim(s.grip - s.cube);
   }
   if (o && s.both_touching) {
     // Build up the grip (the loading phase) from where the hand is.
@@ -633,8 +633,8 @@ void SimulatedParticipant::start(const Observation& first) {
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
   if (cube) {
     contact_ = cube->contact;
-    approach_x_ = cube->approach_x;
-    approach_z_ = cube->approach_z;
+    aim_x_ = cube->aim_x;
+    aim_z_ = cube->aim_z;
     extra_squeeze_ = std::max(0.0, cube->grip.correction());
     caution_ = std::max(0.0, cube->caution.correction());
   }

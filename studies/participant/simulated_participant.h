@@ -112,8 +112,9 @@ class SimulatedParticipant {
   // cube against where it expected one (none: no pad touched), which it adapts to at once.
   void closing_contact(const std::optional<double>& error);
   // Where it saw its pads' midpoint against the cube's centre as a pad first touched it: the
-  // aim's error, adapted closing by closing as the contact is.
-  void closing_approach(const Eigen::Vector3d& error);
+  // aim's error, which it adapts to at once (a closing in which no pad touched leaves the aim
+  // as it was). The servo follows the new aim for the rest of this closing too.
+  void closing_aim(const Eigen::Vector3d& error);
   void update(const Observation* o);
   // What it sees beyond the phase it is in.
   void learn_gain(const Observation& o, const Seen& s);
@@ -139,10 +140,10 @@ class SimulatedParticipant {
   SeenTrial trial_;
   ParticipantMemory memory_;
   double practised_movement_ = 1.0, practised_general_ = 1.0;
-  TwoRateState contact_;                  // m: learnt correction of where it expects a pad to touch
-  TwoRateState approach_x_, approach_z_;  // m: learnt shift of its aim across the floor
-  double expected_contact_ = 0.0;         // m: own aperture where it expects a pad to meet the cube
-  bool closing_touched_ = false;          // a pad seen on the cube since the closing began
+  TwoRateState contact_;           // m: learnt correction of where it expects a pad to touch
+  TwoRateState aim_x_, aim_z_;     // m: learnt shift of its aim across the floor
+  double expected_contact_ = 0.0;  // m: own aperture where it expects a pad to meet the cube
+  bool closing_touched_ = false;   // a pad seen on the cube since the closing began
   MotorRandom random_;
   double dt_;
   double time_ = 0.0;

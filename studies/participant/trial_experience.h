@@ -21,10 +21,10 @@ struct TrialExperience {
   // cube minus where it expected a pad to meet it (m; > 0: sooner than expected); none for a
   // closing in which it saw no pad touch the cube.
   std::vector<std::optional<double>> contact_errors{};
-  // Each closing's approach error, for the closings in which it saw a pad touch the cube:
+  // Each closing's aim error, for the closings in which it saw a pad touch the cube:
   // where it saw its pads' midpoint when the first pad touched, minus the cube's centre,
   // across the floor (x, z; m).
-  std::vector<std::array<double, 2>> approach_errors{};
+  std::vector<std::array<double, 2>> aim_errors{};
   // m: how much further past contact its failed grasps made it close in this trial, beyond
   // the grip margin it started with: what the trial showed it needed.
   double squeeze_added = 0.0;

@@ -57,8 +57,8 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   // touched it 4 mm sooner than expected: each closing is a movement of the two-state model.
   fine.contact_errors = {std::nullopt, 0.004};
   // Where it saw its pads' midpoint against the cube as the pad touched: 3 mm along x, 1 mm
-  // back along z. A closing in which no pad touched has no approach error.
-  fine.approach_errors = {{0.003, -0.001}};
+  // back along z. A closing in which no pad touched has no aim error.
+  fine.aim_errors = {{0.003, -0.001}};
   fine.squeeze_added = 0.006;  // two failed grasps before one held
   fine.caution_added = 2.0;
   TrialExperience gross;
@@ -74,8 +74,8 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   const TwoRateState one_trial = adapt(forget({}, r), r, 0.004);
   EXPECT_DOUBLE_EQ(f->contact.fast, adapt(forget(one_trial, r), r, 0.004).fast);
   EXPECT_DOUBLE_EQ(f->contact.slow, adapt(forget(one_trial, r), r, 0.004).slow);
-  EXPECT_DOUBLE_EQ(f->approach_x.fast, adapt(adapt({}, r, 0.003), r, 0.003).fast);
-  EXPECT_DOUBLE_EQ(f->approach_z.slow, adapt(adapt({}, r, -0.001), r, -0.001).slow);
+  EXPECT_DOUBLE_EQ(f->aim_x.fast, adapt(adapt({}, r, 0.003), r, 0.003).fast);
+  EXPECT_DOUBLE_EQ(f->aim_z.slow, adapt(adapt({}, r, -0.001), r, -0.001).slow);
   EXPECT_DOUBLE_EQ(f->grip.slow, adapt(adapt({}, r, 0.006), r, 0.006).slow);
   EXPECT_DOUBLE_EQ(f->caution.fast, adapt(adapt({}, r, 2.0), r, 2.0).fast);
   // The grip margin rises with the failures and falls back as lifts hold (Delhaye et al. 2024):
@@ -95,19 +95,19 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   EXPECT_EQ(g->trials, 1);
   EXPECT_EQ(g->contact.correction(), 0.0);
   EXPECT_EQ(g->caution.correction(), 0.0);
-  EXPECT_EQ(g->approach_x.correction(), 0.0);
+  EXPECT_EQ(g->aim_x.correction(), 0.0);
   EXPECT_EQ(m.cube(0.03), nullptr);
   const std::string json = memory_to_json(m);
   EXPECT_EQ(memory_to_json(memory_from_json(json)), json);
   EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->contact.slow, f->contact.slow);
   EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->caution.slow, f->caution.slow);
-  EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->approach_z.fast, f->approach_z.fast);
+  EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->aim_z.fast, f->aim_z.fast);
   // A record of a model before 2.3 holds no caution, before 2.6 no approach: they read as none.
   const ParticipantMemory old =
       memory_from_json(R"({"trials":1,"cubes":[{"cube_size":0.01,"trials":1,"contact_fast":0.001,)"
                        R"("contact_slow":0.0,"grip_fast":0.0,"grip_slow":0.0}]})");
   EXPECT_EQ(old.cube(0.01)->caution.correction(), 0.0);
-  EXPECT_EQ(old.cube(0.01)->approach_x.correction(), 0.0);
+  EXPECT_EQ(old.cube(0.01)->aim_x.correction(), 0.0);
   EXPECT_THROW(memory_from_json("{\"trials\": 1}"), std::runtime_error);
 }
 

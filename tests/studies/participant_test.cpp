@@ -239,10 +239,6 @@ struct StudyPerson {
   const retarget::Calibration calibration;
 };
 
-// The blinding test: participants built for the same person and trial place in conditions
-// that differ only in the strategy (its label and its flag), fed the same observations, send
-// the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
-// the participant but what seen_trial_of gives (SeenTrial).
 // A memory of `trials` trials, all with one cube.
 ParticipantMemory memory_of_cube(double cube, int trials) {
   ParticipantMemory memory;
@@ -254,6 +250,10 @@ ParticipantMemory memory_of_cube(double cube, int trials) {
   return memory;
 }
 
+// The blinding test: participants built for the same person and trial place in conditions
+// that differ only in the strategy (its label and its flag), fed the same observations, send
+// the same frames, bit for bit. The model cannot branch on the label: nothing of it reaches
+// the participant but what seen_trial_of gives (SeenTrial).
 TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy) {
   const StudyPerson p(3);
   for (double cube : {0.06, 0.01}) {
@@ -729,7 +729,7 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereAPadFirstMeetsTheCube) {
 
 // Where its pads end up against the cube is learnt closing by closing too (an offset of the
 // visuomotor map of grasping, Safstrom & Edin 2005): the memory holds the two-state fold of the
-// approach errors its closings saw, and a person who remembers its pads ending up 4 mm along x
+// aim errors its closings saw, and a person who remembers its pads ending up 4 mm along x
 // aims them 4 mm short of that, so that they meet the cube 2 to 6 mm further back.
 TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube) {
   const StudyPerson p(2);
@@ -740,32 +740,36 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube)
     auto participant = participant_for(setup, 5, p.own, memory);
     ASSERT_TRUE(run_closed_loop(*participant, setup).success);
     const TrialExperience& e = participant->experience();
-    ASSERT_FALSE(e.approach_errors.empty());
-    for (const std::array<double, 2>& error : e.approach_errors) {
+    ASSERT_FALSE(e.aim_errors.empty());
+    for (const std::array<double, 2>& error : e.aim_errors) {
       x = adapt(x, p.person.motor.contact_rates, error[0]);
       z = adapt(z, p.person.motor.contact_rates, error[1]);
     }
     memory = participant->memory_after();
-    EXPECT_DOUBLE_EQ(memory.cube(0.01)->approach_x.correction(), x.correction());
-    EXPECT_DOUBLE_EQ(memory.cube(0.01)->approach_z.correction(), z.correction());
+    EXPECT_DOUBLE_EQ(memory.cube(0.01)->aim_x.correction(), x.correction());
+    EXPECT_DOUBLE_EQ(memory.cube(0.01)->aim_z.correction(), z.correction());
   }
-  for (const double cube : {0.01, 0.06}) {
-    const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 5, p.calibration)[0];
-    const ParticipantMemory plain = memory_of_cube(cube, 3);
-    ParticipantMemory shifted = plain;
-    const double shift = 0.004;
-    shifted.cubes[0].approach_x.fast = shift;
-    auto as_before = participant_for(setup, 5, p.own, plain);
-    auto aiming_back = participant_for(setup, 5, p.own, shifted);
-    ASSERT_TRUE(run_closed_loop(*as_before, setup).success) << cube;
-    ASSERT_TRUE(run_closed_loop(*aiming_back, setup).success) << cube;
-    const double before = as_before->experience().approach_errors.front()[0];
-    const double after = aiming_back->experience().approach_errors.front()[0];
-    // It meets the cube that much further back, give or take what the closing's own servo
-    // and timing make of the new aim.
-    EXPECT_LT(after - before, -0.5 * shift) << cube;
-    EXPECT_GT(after - before, -1.5 * shift) << cube;
-  }
+  // A remembered shift along x, then along z: the pads meet the cube that much further back
+  // on that axis, give or take what the servo (3 /s) makes of the new aim before contact.
+  const double shift = 0.004;
+  for (const double cube : {0.01, 0.06})
+    for (const int axis : {0, 1}) {
+      const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 5, p.calibration)[0];
+      const ParticipantMemory plain = memory_of_cube(cube, 3);
+      ParticipantMemory shifted = plain;
+      (axis == 0 ? shifted.cubes[0].aim_x : shifted.cubes[0].aim_z).fast = shift;
+      auto as_before = participant_for(setup, 5, p.own, plain);
+      auto aiming_back = participant_for(setup, 5, p.own, shifted);
+      ASSERT_TRUE(run_closed_loop(*as_before, setup).success) << cube;
+      ASSERT_TRUE(run_closed_loop(*aiming_back, setup).success) << cube;
+      // Both first errors are of the first closing (a pad touched in it).
+      ASSERT_TRUE(as_before->experience().contact_errors.front().has_value()) << cube;
+      ASSERT_TRUE(aiming_back->experience().contact_errors.front().has_value()) << cube;
+      const double before = as_before->experience().aim_errors.front()[std::size_t(axis)];
+      const double after = aiming_back->experience().aim_errors.front()[std::size_t(axis)];
+      EXPECT_LT(after - before, -0.5 * shift) << cube << " axis " << axis;
+      EXPECT_GT(after - before, -1.5 * shift) << cube << " axis " << axis;
+    }
 }
 
 // A practised grasp is fast; a person who has just failed grasps gives that speed back
