@@ -42,8 +42,8 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
   ++cube->trials;
   for (const std::optional<double>& error : trial.contact_errors)
     cube->contact = after_closing(cube->contact, error, rates);
-  // An offset of the map from the hand it moves to the hand it sees is adapted from trial to
-  // trial in grasping (Safstrom & Edin 2005): each closing whose pad touched the cube is a
+  // The visuomotor map of grasping adapts by offsets (Safstrom & Edin 2005, shown for the grip
+  // aperture; for the aim, an assumption): each closing whose pad touched the cube is a
   // movement of the two-state model along each axis.
   for (const std::array<double, 2>& error : trial.aim_errors) {
     cube->aim_x = adapt(cube->aim_x, rates, error[0]);

@@ -102,7 +102,7 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->contact.slow, f->contact.slow);
   EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->caution.slow, f->caution.slow);
   EXPECT_DOUBLE_EQ(memory_from_json(json).cube(0.01)->aim_z.fast, f->aim_z.fast);
-  // A record of a model before 2.3 holds no caution, before 2.6 no approach: they read as none.
+  // A record of a model before 2.3 holds no caution, before 2.6 no aim: they read as none.
   const ParticipantMemory old =
       memory_from_json(R"({"trials":1,"cubes":[{"cube_size":0.01,"trials":1,"contact_fast":0.001,)"
                        R"("contact_slow":0.0,"grip_fast":0.0,"grip_slow":0.0}]})");

@@ -729,8 +729,8 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereAPadFirstMeetsTheCube) {
 
 // Where its pads end up against the cube is learnt closing by closing too (an offset of the
 // visuomotor map of grasping, Safstrom & Edin 2005): the memory holds the two-state fold of the
-// aim errors its closings saw, and a person who remembers its pads ending up 4 mm along x
-// aims them 4 mm short of that, so that they meet the cube 2 to 6 mm further back.
+// aim errors its closings saw, and a person who remembers its pads ending up 4 mm along x (or
+// z) aims them 4 mm short of that, so that they meet the cube 2 to 6 mm further back.
 TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube) {
   const StudyPerson p(2);
   ParticipantMemory memory;
