@@ -139,6 +139,15 @@ NewtonLayout make_newton_layout(const HandSimModel& m, const SupernodalLdlt& fac
   std::nth_element(places.begin(), places.begin() + std::ptrdiff_t(places.size() / 2),
                    places.end());
   layout.panel_split = places.empty() ? 0 : factor.panel_start(places[places.size() / 2]);
+  const int tets = int(layout.tet_blocks.size());
+  for (int k = 0; k * kTetBatch < tets; ++k)
+    for (int share = 0; share < 2; ++share) {
+      bool owned = false;
+      for (int t = kTetBatch * k; t < std::min(tets, kTetBatch * (k + 1)); ++t)
+        for (const PanelBlock& p : layout.tet_blocks[std::size_t(t)])
+          owned = owned || (p.at >= 0 && (p.at >= layout.panel_split) == (share == 1));
+      if (owned) layout.share_batches[std::size_t(share)].push_back(k);
+    }
   return layout;
 }
 
@@ -274,7 +283,11 @@ void write_panels(const HandSimModel& model, const NewtonTerms& terms, const New
       values[p.at + (p.stride + 1) * c] += model.node_mass[std::size_t(n)];
   }
   const std::size_t count = model.tets.size();
-  for (std::size_t k = 0; k < terms.tets.size(); ++k) {
+  // A worker computes the blocks of the batches that have a place in its panels only.
+  const std::size_t batches =
+      share < 0 ? terms.tets.size() : layout.share_batches[std::size_t(share)].size();
+  for (std::size_t i = 0; i < batches; ++i) {
+    const std::size_t k = share < 0 ? i : std::size_t(layout.share_batches[std::size_t(share)][i]);
     const TetTerms4& t = terms.tets[k];
     // Block (a, b) of the four tets, entry (r, c) at 9 n + r + 3 c for the n-th pair a <= b:
     // vmu r_b[r] r_a[c] + vlambda r_a[r] r_b[c] + q_a[r] q_b[c], and vmu r_a . r_b on its

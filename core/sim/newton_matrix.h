@@ -28,6 +28,8 @@ struct NewtonLayout {
   std::vector<PanelBlock> coupling_blocks, joint_blocks;
   std::vector<PanelBlock> diagonal_blocks;  // each block's (b, b)
   int panel_split = 0;  // the first value of the second worker's panels (write_panels)
+  // The tet batches with a block in each worker's panels (most lie in one worker's alone).
+  std::array<std::vector<int>, 2> share_batches;
 };
 NewtonLayout make_newton_layout(const HandSimModel& model, const SupernodalLdlt& factor);
 

@@ -104,7 +104,7 @@ void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
   gathered_second_.resize(n);
   // A new structure: factorize() waits for analyze() to map a matrix and plan the split.
   matrix_entries_ = -1;
-  top_first_ = int(nodes_.size());
+  top_.clear();
   pattern_outer_.assign(outer, outer + n + 1);
   pattern_inner_.assign(inner, inner + outer[n]);
 }
@@ -235,21 +235,25 @@ void SupernodalLdlt::plan_split() {
     if (parent[std::size_t(t)] >= 0)
       subtree[std::size_t(parent[std::size_t(t)])] += subtree[std::size_t(t)];
   }
-  // The top is a tail of supernodes (a parent comes after its children, so a tail holds its
-  // members' ancestors); the subtrees under it are dealt to two groups, largest first. The
-  // tail is chosen for the least time: its work, then the larger group's.
-  double best = 0.0;
-  for (int t = 0; t < count; ++t) best += work[std::size_t(t)];
-  top_first_ = count;
-  std::vector<int> best_group(std::size_t(count), 2);
-  double top_work = 0.0;
-  for (int first = count - 1; first > 0; --first) {
-    top_work += work[std::size_t(first)];
-    std::vector<int> roots;
-    for (int t = 0; t < first; ++t)
-      if (parent[std::size_t(t)] < 0 || parent[std::size_t(t)] >= first) roots.push_back(t);
-    std::sort(roots.begin(), roots.end(),
-              [&](int a, int b) { return subtree[std::size_t(a)] > subtree[std::size_t(b)]; });
+  // The top: the supernodes factorised after the two groups, closed upwards (with a supernode,
+  // its parent). Starting from the roots, the heaviest subtree under the top is moved into it,
+  // its children then dealt with the other subtrees (Geist & Ng 1989, "Task scheduling for
+  // parallel sparse Cholesky factorization", Int J Parallel Prog 18:291); the subtrees under it
+  // go to two groups, largest first. The top kept is the one of least time: its work, then the
+  // larger group's.
+  std::vector<std::vector<int>> children(static_cast<std::size_t>(count));
+  std::vector<int> roots;
+  for (int t = 0; t < count; ++t)
+    (parent[std::size_t(t)] >= 0 ? children[std::size_t(parent[std::size_t(t)])] : roots)
+        .push_back(t);
+  auto heavier = [&](int a, int b) { return subtree[std::size_t(a)] > subtree[std::size_t(b)]; };
+  std::vector<int> top, best_top, best_group;
+  std::vector<bool> in_top(std::size_t(count), false);
+  double total = 0.0, top_work = 0.0;
+  for (int t = 0; t < count; ++t) total += work[std::size_t(t)];
+  double best = total;
+  while (!roots.empty()) {
+    std::sort(roots.begin(), roots.end(), heavier);
     double load[2] = {0.0, 0.0};
     std::vector<int> group(std::size_t(count), 2);
     for (int r : roots) {
@@ -258,20 +262,40 @@ void SupernodalLdlt::plan_split() {
       group[std::size_t(r)] = g;
     }
     const double time = top_work + std::max(load[0], load[1]);
-    if (time < best) {
+    if (!top.empty() && time < best) {
       best = time;
-      top_first_ = first;
-      // Each supernode in its root's group: parents come later, so go down from the top.
-      for (int t = first - 1; t >= 0; --t)
-        if (group[std::size_t(t)] == 2)
+      best_top = top;
+      // Each supernode in its root's group: parents come later, so go down from the end.
+      for (int t = count - 1; t >= 0; --t)
+        if (group[std::size_t(t)] == 2 && !in_top[std::size_t(t)])
           group[std::size_t(t)] = group[std::size_t(parent[std::size_t(t)])];
       best_group = group;
     }
+    const int heaviest = roots.front();
+    roots.erase(roots.begin());
+    top.push_back(heaviest);
+    in_top[std::size_t(heaviest)] = true;
+    top_work += work[std::size_t(heaviest)];
+    roots.insert(roots.end(), children[std::size_t(heaviest)].begin(),
+                 children[std::size_t(heaviest)].end());
   }
-  group_ = best_group;
-  const int top_values =
-      top_first_ < count ? int(values_.size()) - nodes_[std::size_t(top_first_)].value_begin : 0;
-  top_updates_ = Eigen::VectorXd::Zero(top_values);
+  std::sort(best_top.begin(), best_top.end());
+  top_ = best_top;
+  split_critical_share_ = total > 0.0 ? best / total : 1.0;
+  group_ = best_top.empty() ? std::vector<int>(std::size_t(count), 0) : best_group;
+  // Where the second group's updates to the top go: each top supernode's values, and each of
+  // its columns, in a compact copy.
+  top_value_offset_.assign(std::size_t(count), -1);
+  top_column_offset_.assign(column_node_.size(), -1);
+  int values = 0, columns = 0;
+  for (int t : top_) {
+    const Supernode& n = nodes_[std::size_t(t)];
+    top_value_offset_[std::size_t(t)] = values;
+    values += n.width * (n.width + n.below);
+    for (int c = 0; c < n.width; ++c) top_column_offset_[std::size_t(n.first + c)] = columns++;
+  }
+  top_updates_ = Eigen::VectorXd::Zero(values);
+  top_work_ = Eigen::VectorXd::Zero(columns);
 }
 
 bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, ThreadPool* pool) {
@@ -287,10 +311,9 @@ bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& a, ThreadPool*
 bool SupernodalLdlt::factorize_values(ThreadPool* pool) {
   diagonal_.resize(inverse_diagonal_.size());
   const int count = int(nodes_.size());
-  int first = 0;
-  if (pool && pool->workers() >= 2 && top_first_ < count) {
+  if (pool && pool->workers() >= 2 && splits()) {
     bool definite[2] = {true, true};
-    // Worker 0 updates the top's panels in place, worker 1 into its own copy, added afterwards.
+    // Worker 0 updates the top's panels in place, worker 1 into their copy, added afterwards.
     pool->run([&](int worker) {
       if (worker > 1) return;
       double* top = nullptr;
@@ -299,17 +322,22 @@ bool SupernodalLdlt::factorize_values(ThreadPool* pool) {
         top = top_updates_.data();
       }
       Eigen::MatrixXd& scratch = worker == 0 ? rank_update_ : rank_update_second_;
-      for (int t = 0; t < top_first_ && definite[worker]; ++t)
+      for (int t = 0; t < count && definite[worker]; ++t)
         if (group_[std::size_t(t)] == worker)
           definite[worker] = factorize_node(std::size_t(t), scratch, top);
     });
     if (!definite[0] || !definite[1]) return false;
-    const std::size_t top_begin = std::size_t(nodes_[std::size_t(top_first_)].value_begin);
-    Eigen::Map<Eigen::VectorXd>(values_.data() + top_begin, top_updates_.size()) += top_updates_;
-    first = top_first_;
+    for (int t : top_) {
+      const Supernode& n = nodes_[std::size_t(t)];
+      Eigen::Map<Eigen::VectorXd>(values_.data() + n.value_begin, n.width * (n.width + n.below)) +=
+          top_updates_.segment(top_value_offset_[std::size_t(t)], n.width * (n.width + n.below));
+    }
+    for (int t : top_)
+      if (!factorize_node(std::size_t(t), rank_update_, nullptr)) return false;
+  } else {
+    for (int t = 0; t < count; ++t)
+      if (!factorize_node(std::size_t(t), rank_update_, nullptr)) return false;
   }
-  for (int t = first; t < count; ++t)
-    if (!factorize_node(std::size_t(t), rank_update_, nullptr)) return false;
   inverse_diagonal_ = diagonal_.cwiseInverse();
   trailing_known_ = false;
   return true;
@@ -394,18 +422,15 @@ bool SupernodalLdlt::factorize_node(std::size_t s, Eigen::MatrixXd& scratch, dou
     update.triangularView<Eigen::Lower>().setZero();
     update.selfadjointView<Eigen::Lower>().rankUpdate(below);
     const int* rows = rows_.data() + node.row_begin;
-    const int top_begin =
-        top_first_ < int(nodes_.size()) ? nodes_[std::size_t(top_first_)].value_begin : 0;
     for (int k = update_begin_[s]; k < update_begin_[s + 1]; ++k) {
       const Update& u = updates_[std::size_t(k)];
       const Supernode& target = nodes_[std::size_t(u.target)];
       const int target_height = target.width + target.below;
       const int* relative = relative_.data() + u.relative_begin;  // of rows u.begin, ...
-      double* destination = values_.data();
-      if (top && u.target >= top_first_) destination = top - top_begin;
+      const int in_top = top ? top_value_offset_[std::size_t(u.target)] : -1;
+      double* destination = in_top >= 0 ? top + in_top : values_.data() + target.value_begin;
       for (int j = u.begin; j < u.end; ++j) {
-        double* column =
-            destination + target.value_begin + (rows[j] - target.first) * target_height;
+        double* column = destination + (rows[j] - target.first) * target_height;
         const double* source = update.col(j).data();
         for (int i = j; i < node.below; ++i) column[relative[i - u.begin]] -= source[i];
       }
@@ -431,10 +456,10 @@ void SupernodalLdlt::forward(int t, Eigen::VectorXd& gathered, double* top) {
   auto update = gathered.head(s.below);
   update.noalias() = panel.bottomRows(s.below) * x;
   const int* rows = rows_.data() + s.row_begin;
-  const int top_column = top ? nodes_[std::size_t(top_first_)].first : int(work_.size());
   for (int i = 0; i < s.below; ++i) {
-    if (rows[i] >= top_column)
-      top[rows[i] - top_column] -= update[i];
+    const int in_top = top ? top_column_offset_[std::size_t(rows[i])] : -1;
+    if (in_top >= 0)
+      top[in_top] -= update[i];
     else
       work_[rows[i]] -= update[i];
   }
@@ -460,36 +485,42 @@ void SupernodalLdlt::solve_in_place(Eigen::VectorXd& b, ThreadPool* pool) {
   else
     work_ = b;
   const int count = int(nodes_.size());
-  const bool split = pool && pool->workers() >= 2 && top_first_ < count;
+  const bool split = pool && pool->workers() >= 2 && splits();
   // L y = b, panel by panel: the diagonal block's triangle, then its rows below at once. Split,
   // the two groups of subtrees at once (the second's updates to the top's rows through a copy,
   // added afterwards), then the top.
-  int first = 0;
   if (split) {
-    const int top_column = nodes_[std::size_t(top_first_)].first;
-    top_work_.setZero(work_.size() - top_column);
+    top_work_.setZero();
     pool->run([&](int worker) {
       if (worker > 1) return;
       Eigen::VectorXd& gathered = worker == 0 ? gathered_ : gathered_second_;
-      for (int t = 0; t < top_first_; ++t)
+      for (int t = 0; t < count; ++t)
         if (group_[std::size_t(t)] == worker)
           forward(t, gathered, worker == 1 ? top_work_.data() : nullptr);
     });
-    work_.tail(top_work_.size()) += top_work_;
-    first = top_first_;
+    for (int t : top_) {
+      const Supernode& n = nodes_[std::size_t(t)];
+      work_.segment(n.first, n.width) +=
+          top_work_.segment(top_column_offset_[std::size_t(n.first)], n.width);
+    }
+    for (int t : top_) forward(t, gathered_, nullptr);
+  } else {
+    for (int t = 0; t < count; ++t) forward(t, gathered_, nullptr);
   }
-  for (int t = first; t < count; ++t) forward(t, gathered_, nullptr);
   work_.array() *= inverse_diagonal_.array();
   // L' x = y, panels in reverse: the top, then the two groups at once (each reads its own
   // columns and its ancestors').
-  for (int t = count - 1; t >= (split ? top_first_ : 0); --t) backward(t, gathered_);
-  if (split)
+  if (split) {
+    for (auto t = top_.rbegin(); t != top_.rend(); ++t) backward(*t, gathered_);
     pool->run([&](int worker) {
       if (worker > 1) return;
       Eigen::VectorXd& gathered = worker == 0 ? gathered_ : gathered_second_;
-      for (int t = top_first_ - 1; t >= 0; --t)
+      for (int t = count - 1; t >= 0; --t)
         if (group_[std::size_t(t)] == worker) backward(t, gathered);
     });
+  } else {
+    for (int t = count - 1; t >= 0; --t) backward(t, gathered_);
+  }
   if (p_inverse_.size() > 0)
     b = p_inverse_ * work_;
   else

@@ -73,7 +73,10 @@ class SupernodalLdlt {
   }
   int supernodes() const { return int(nodes_.size()); }
   // Whether factorize() with a pool splits the work (analyze found subtrees to deal out).
-  bool splits() const { return top_first_ < int(nodes_.size()); }
+  bool splits() const { return !top_.empty(); }
+  // The work on the split's longer path (the top's flops and the larger group's) as a share
+  // of a whole factorisation's: 1 unsplit, 1/2 at best.
+  double split_critical_share() const { return split_critical_share_; }
 
  private:
   struct Supernode {
@@ -82,11 +85,10 @@ class SupernodalLdlt {
     int value_begin = 0;           // its (width + below) x width panel, column-major
   };
   void find_structure(const Eigen::SparseMatrix<double>& l);
-  void plan_split();  // group_, top_first_ (see below)
+  void plan_split();  // group_, top_ and their copies' offsets (see below)
   // Supernode s: its diagonal block, the rows below, its part of D, and its rank update to
-  // later supernodes (through `scratch`); the update of a supernode from top_first_ on goes to
-  // `top` (indexed from that supernode's first value) when given. False if the diagonal block
-  // is not positive definite.
+  // later supernodes (through `scratch`); the update of a supernode of the top goes to `top`
+  // (top_updates_'s layout) when given. False if the diagonal block is not positive definite.
   bool factorize_node(std::size_t s, Eigen::MatrixXd& scratch, double* top);
   // Supernode t's part of the forward and the backward solve on work_ (`gathered` a scratch
   // of the worker's; updates to rows of the top's columns into `top` when given).
@@ -120,12 +122,14 @@ class SupernodalLdlt {
   std::vector<int> column_node_;
   int matrix_entries_ = -1;
   Eigen::MatrixXd rank_update_;
-  // The split over two workers: supernodes before top_first_ belong to whole subtrees, each in
-  // group 0 or 1 (group_); group 1's updates to supernodes from top_first_ on go into a copy
-  // of their values (top_updates_), added to them before they are factorised.
-  std::vector<int> group_;
-  int top_first_ = 0;
+  // The split over two workers: the top (top_, ascending; group 2), closed upwards, and under
+  // it whole subtrees in group 0 or 1 (group_). Group 1's updates to the top go into a copy
+  // of its values (top_updates_, each top supernode's from top_value_offset_) and, in the
+  // forward solve, of its columns (top_work_, from top_column_offset_), added before the top
+  // is factorised or solved.
+  std::vector<int> group_, top_, top_value_offset_, top_column_offset_;
   Eigen::VectorXd top_updates_;
+  double split_critical_share_ = 1.0;
   Eigen::MatrixXd rank_update_second_;
   Eigen::VectorXd diagonal_;  // D, as factorize_node finds it
   // The trailing columns' Schur complement in the factor as factorised (modify_trailing), and

@@ -1,11 +1,45 @@
 #include "core/sim/thread_pool.h"
 
+#include <chrono>
 #include <stdexcept>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 namespace handlab::sim {
 namespace {
-constexpr int kSpins = 20000;  // some tens of microseconds of polling before a thread sleeps
+
+// How long a waiting thread polls before it sleeps: longer than the serial stretches between
+// a step's parallel calls (contacts, the line search's bookkeeping, the policy), so that within
+// a step no call waits for a sleeping thread to be woken, which on this class of machine takes
+// tens of microseconds; shorter than the gap between the 120 Hz steps of a live session, so
+// that the thread sleeps between them.
+constexpr auto kPollFor = std::chrono::microseconds(500);
+
+void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
 }
+
+// Polls `waiting` until it turns false or kPollFor has passed; whether it turned false. It
+// yields now and then, so that a thread it waits for that has no core of its own (more
+// threads than cores) gets one.
+template <typename Waiting>
+bool poll(Waiting waiting) {
+  const auto until = std::chrono::steady_clock::now() + kPollFor;
+  for (int spin = 0; waiting(); ++spin) {
+    relax();
+    if (spin % 64 == 63) {
+      if (std::chrono::steady_clock::now() > until) return false;
+      std::this_thread::yield();
+    }
+  }
+  return true;
+}
+
+}  // namespace
 
 ThreadPool::ThreadPool(int workers) : workers_(workers) {
   if (workers < 1) throw std::invalid_argument("ThreadPool: at least one worker");
@@ -35,16 +69,14 @@ void ThreadPool::run(const std::function<void(int worker)>& work) {
   }
   start_.notify_all();
   work(0);
-  for (int spin = 0; running_.load(std::memory_order_acquire) != 0; ++spin)
-    if (spin > kSpins) std::this_thread::yield();
+  auto others_running = [&] { return running_.load(std::memory_order_acquire) != 0; };
+  while (!poll(others_running)) std::this_thread::yield();
 }
 
 void ThreadPool::serve(int worker) {
   long seen = 0;
   for (;;) {
-    int spin = 0;
-    while (generation_.load(std::memory_order_acquire) == seen && !stopping_ && spin < kSpins)
-      ++spin;
+    poll([&] { return generation_.load(std::memory_order_acquire) == seen && !stopping_; });
     if (generation_.load(std::memory_order_acquire) == seen) {
       std::unique_lock lock(mutex_);
       start_.wait(lock, [&] { return stopping_ || generation_.load() != seen; });

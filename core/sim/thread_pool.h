@@ -2,9 +2,9 @@
 // thread and work(1..n-1) on threads that wait between calls, and returns when all have
 // finished. The simulator splits its per-tet loops this way, each worker's share into its own
 // buffers, summed in worker order afterwards, so that results depend on the worker count and
-// never on timing. Calls come a few hundred microseconds apart within a step: a waiting thread
-// spins briefly before it sleeps, and the caller spins for the others to finish, since waking a
-// sleeping thread costs about as much as the work split.
+// never on timing. Calls come up to a few hundred microseconds apart within a step: a waiting
+// thread polls for half a millisecond before it sleeps, and the caller polls for the others to
+// finish, since waking a sleeping thread costs about as much as the work split.
 #pragma once
 
 #include <atomic>

@@ -93,6 +93,17 @@ TEST(NewtonMatrixAtPinchStages, PanelsHoldTheAssembledMatrix) {
   }
 }
 
+// The study hand's factorisation splits over two workers with the work nearly halved: the
+// heaviest subtrees are split under a top that need not be a tail of the supernodes (a tail
+// left 0.79 of the work on the longer worker's path).
+TEST(NewtonMatrixAtPinchStages, TwoWorkersShareTheFactorisation) {
+  SolverMemory memory;
+  NewtonLayout layout;
+  analyze_newton_matrix(test::pinch_stage(test::kPinchStages.front()).scene.model, memory, layout);
+  ASSERT_TRUE(memory.factor.splits());
+  EXPECT_LT(memory.factor.split_critical_share(), 0.62);
+}
+
 // The cube's own terms: its inertia and the floor's contacts with its corners.
 TEST(NewtonMatrixAtPinchStages, CubeMatrixIsTheCubesOwnTerms) {
   for (double stage : test::kPinchStages) {

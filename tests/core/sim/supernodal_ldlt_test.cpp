@@ -101,7 +101,7 @@ TEST(SupernodalLdlt, FactorizesMatricesOfTheAnalysedPattern) {
 }
 
 // Split over two workers (the elimination tree's subtrees at once, then the supernodes above
-// them), the factorisation solves as the serial one does, and gives the same factor bit for
+// them, Geist & Ng's layer), the factorisation solves as the serial one does, and gives the same factor bit for
 // bit from call to call; so does the solve split alike; an indefinite matrix is refused on
 // either lane.
 TEST(SupernodalLdlt, FactorizesOnTwoWorkersAsOnOne) {
