@@ -114,7 +114,7 @@ Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& 
   int iterations = 0;
   bool done = converged(r);
   while (!done && iterations < options.max_linear_iterations) {
-    multiply(model, terms, direction, product);
+    multiply(model, terms, direction, product, &pool, &memory.product_scratch);
     const double curvature = direction.dot(product);
     if (!(curvature > 0)) break;
     const double alpha = rz / curvature;

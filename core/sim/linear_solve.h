@@ -45,6 +45,7 @@ struct SolverMemory {
   std::vector<int> cube_dofs;
   bool cube_trailing = false;
   Matrix6d cube_factorized = Matrix6d::Zero(), cube_applied = Matrix6d::Zero();
+  Eigen::VectorXd product_scratch;  // the second worker's part of a CG product
 };
 
 // The factorisation's structure for the model's Newton matrix, and where its blocks go.

@@ -4,14 +4,16 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/sim/thread_pool.h"
+
 namespace handlab::sim {
 namespace {
 
-// y += (the tets' part of A) x.
+// y += (the tets' part of A) x, the batches [first, last).
 void tet_products(const HandSimModel& model, const NewtonTerms& terms, const Eigen::VectorXd& x,
-                  Eigen::VectorXd& y) {
+                  Eigen::VectorXd& y, std::size_t first, std::size_t last) {
   const std::size_t count = model.tets.size();
-  for (std::size_t k = 0; k < terms.tets.size(); ++k) {
+  for (std::size_t k = first; k < last; ++k) {
     const TetTerms4& t = terms.tets[k];
     const std::size_t e = kTetBatch * k;
     Lane4 p[12];  // x at the tets' nodes
@@ -152,13 +154,24 @@ NewtonLayout make_newton_layout(const HandSimModel& m, const SupernodalLdlt& fac
 }
 
 void multiply(const HandSimModel& model, const NewtonTerms& terms, const Eigen::VectorXd& x,
-              Eigen::VectorXd& y) {
+              Eigen::VectorXd& y, ThreadPool* pool, Eigen::VectorXd* scratch) {
   const int nodes = model.node_count(), dofs = model.dof_count();
   y.resize(dofs);
   y.tail(dofs - 3 * nodes).setZero();
   for (int n = 0; n < nodes; ++n)
     y.segment<3>(3 * n) = model.node_mass[std::size_t(n)] * x.segment<3>(3 * n);
-  tet_products(model, terms, x, y);
+  const std::size_t batches = terms.tets.size();
+  if (pool && pool->workers() >= 2 && scratch) {
+    // Two workers, each half of the batches, the second's into `scratch`, added afterwards.
+    scratch->setZero(3 * nodes);
+    pool->run([&](int worker) {
+      if (worker == 0) tet_products(model, terms, x, y, 0, batches / 2);
+      if (worker == 1) tet_products(model, terms, x, *scratch, batches / 2, batches);
+    });
+    y.head(3 * nodes) += *scratch;
+  } else {
+    tet_products(model, terms, x, y, 0, batches);
+  }
   for (const SpringTerm& t : terms.springs) {
     Eigen::Vector3d u = Eigen::Vector3d::Zero();
     for (int a = 0; a < t.p.count; ++a)

@@ -15,6 +15,8 @@
 
 namespace handlab::sim {
 
+class ThreadPool;
+
 // Every pair of blocks some energy couples (3x3 entries each, values 1), the pattern the
 // factorisation is analysed on.
 Eigen::SparseMatrix<double> newton_pattern(const HandSimModel& model);
@@ -37,8 +39,10 @@ NewtonLayout make_newton_layout(const HandSimModel& model, const SupernodalLdlt&
 PanelBlock panel_block(const SupernodalLdlt& factor, int bi, int bj);
 
 // y = A x, term by term (the node masses, the kinetic Hessian of the flesh, are the model's).
+// With a pool of two workers and a `scratch` vector, the tets' products are split between
+// them (the sums then in another order: the last digits differ from one worker's).
 void multiply(const HandSimModel& model, const NewtonTerms& terms, const Eigen::VectorXd& x,
-              Eigen::VectorXd& y);
+              Eigen::VectorXd& y, ThreadPool* pool = nullptr, Eigen::VectorXd* scratch = nullptr);
 
 // The matrix's diagonal, term by term. The part of the terms before the contacts' is found once
 // per evaluation that found them anew (clear `known` then) and kept here.

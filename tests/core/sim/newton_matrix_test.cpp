@@ -6,6 +6,7 @@
 
 #include "core/sim/linear_solve.h"
 #include "core/sim/newton_matrix.h"
+#include "core/sim/thread_pool.h"
 #include "tests/core/sim/stage_fixture.h"
 
 namespace handlab::sim {
@@ -28,6 +29,7 @@ Evaluated evaluated(double time, const NewtonLayout* layout = nullptr) {
 }
 
 TEST(NewtonMatrixAtPinchStages, ProductAndDiagonalEqualTheAssembledMatrix) {
+  ThreadPool pool(2);
   for (double stage : test::kPinchStages) {
     SCOPED_TRACE(stage);
     const Evaluated e = evaluated(stage);
@@ -36,11 +38,17 @@ TEST(NewtonMatrixAtPinchStages, ProductAndDiagonalEqualTheAssembledMatrix) {
     const Eigen::SparseMatrix<double> magnitude = a.cwiseAbs();
     for (double phase : {1.0, 2.0, 3.0}) {
       const Eigen::VectorXd x = test::direction(model, 1.0, 1.0, phase);
-      Eigen::VectorXd y;
+      Eigen::VectorXd y, split, scratch;
       multiply(model, e.terms, x, y);
       // Rounding scales with the terms summed, |A| |x|, not with the (cancelling) result.
       const Eigen::VectorXd bound = 1e-12 * (magnitude * x.cwiseAbs());
       EXPECT_TRUE(((y - a * x).cwiseAbs().array() <= bound.array()).all()) << "phase " << phase;
+      // Split between two workers: the same product to rounding, the same bits call to call.
+      multiply(model, e.terms, x, split, &pool, &scratch);
+      EXPECT_TRUE(((split - a * x).cwiseAbs().array() <= bound.array()).all()) << "phase " << phase;
+      Eigen::VectorXd again;
+      multiply(model, e.terms, x, again, &pool, &scratch);
+      EXPECT_EQ(again, split);
     }
     NewtonDiagonal cache;
     const Eigen::VectorXd diagonal_found = diagonal(model, e.terms, cache);
