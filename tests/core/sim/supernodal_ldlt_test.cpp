@@ -101,9 +101,9 @@ TEST(SupernodalLdlt, FactorizesMatricesOfTheAnalysedPattern) {
 }
 
 // Split over two workers (the elimination tree's subtrees at once, then the supernodes above
-// them, Geist & Ng's layer), the factorisation solves as the serial one does, and gives the same factor bit for
-// bit from call to call; so does the solve split alike; an indefinite matrix is refused on
-// either lane.
+// them, Geist & Ng's layer), the factorisation solves as the serial one does, and gives the
+// same factor bit for bit from call to call; so does the solve split alike; an indefinite
+// matrix is refused on either lane.
 TEST(SupernodalLdlt, FactorizesOnTwoWorkersAsOnOne) {
   const Sparse a = hand_like_matrix(study_flesh(), 16, 11);
   SupernodalLdlt serial = analysed(a), split = analysed(a);
