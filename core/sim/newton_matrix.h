@@ -30,7 +30,8 @@ struct NewtonLayout {
   std::vector<PanelBlock> coupling_blocks, joint_blocks;
   std::vector<PanelBlock> diagonal_blocks;  // each block's (b, b)
   int panel_split = 0;  // the first value of the second worker's panels (write_panels)
-  // The tet batches with a block in each worker's panels (most lie in one worker's alone).
+  // The tet batches with a block in each worker's panels (a batch with blocks in both is in
+  // both: the mesh's tets lie in no order of the panels).
   std::array<std::vector<int>, 2> share_batches;
 };
 NewtonLayout make_newton_layout(const HandSimModel& model, const SupernodalLdlt& factor);

@@ -105,6 +105,7 @@ void SupernodalLdlt::find_structure(const Eigen::SparseMatrix<double>& l) {
   // A new structure: factorize() waits for analyze() to map a matrix and plan the split.
   matrix_entries_ = -1;
   top_.clear();
+  split_critical_share_ = 1.0;
   pattern_outer_.assign(outer, outer + n + 1);
   pattern_inner_.assign(inner, inner + outer[n]);
 }
@@ -235,21 +236,33 @@ void SupernodalLdlt::plan_split() {
     if (parent[std::size_t(t)] >= 0)
       subtree[std::size_t(parent[std::size_t(t)])] += subtree[std::size_t(t)];
   }
+  choose_top(parent, work, subtree);
+  lay_out_top_copies();
+}
+
+void SupernodalLdlt::choose_top(const std::vector<int>& parent, const std::vector<double>& work,
+                                const std::vector<double>& subtree) {
   // The top: the supernodes factorised after the two groups, closed upwards (with a supernode,
-  // its parent). Starting from the roots, the heaviest subtree under the top is moved into it,
-  // its children then dealt with the other subtrees (Geist & Ng 1989, "Task scheduling for
-  // parallel sparse Cholesky factorization", Int J Parallel Prog 18:291); the subtrees under it
-  // go to two groups, largest first. The top kept is the one of least time: its work, then the
-  // larger group's.
+  // its parent). Starting from the roots, the root supernode of the heaviest subtree under the
+  // top is moved into it, one at a time, its children then dealt with the other subtrees
+  // (Geist & Ng 1989, "Task scheduling for parallel sparse Cholesky factorization", Int J
+  // Parallel Prog 18:291); the subtrees under it go to two groups, largest first. The top kept
+  // is the one of least time: its work, then the larger group's.
+  const int count = int(nodes_.size());
   std::vector<std::vector<int>> children(static_cast<std::size_t>(count));
   std::vector<int> roots;
   for (int t = 0; t < count; ++t)
     (parent[std::size_t(t)] >= 0 ? children[std::size_t(parent[std::size_t(t)])] : roots)
         .push_back(t);
-  auto heavier = [&](int a, int b) { return subtree[std::size_t(a)] > subtree[std::size_t(b)]; };
+  // Ties broken by index: the same plan with every standard library.
+  auto heavier = [&](int a, int b) {
+    return subtree[std::size_t(a)] != subtree[std::size_t(b)]
+               ? subtree[std::size_t(a)] > subtree[std::size_t(b)]
+               : a < b;
+  };
   std::vector<int> top, best_top, best_group;
   std::vector<bool> in_top(std::size_t(count), false);
-  double total = 0.0, top_work = 0.0;
+  double total = 0.0, top_flops = 0.0;
   for (int t = 0; t < count; ++t) total += work[std::size_t(t)];
   double best = total;
   while (!roots.empty()) {
@@ -261,7 +274,7 @@ void SupernodalLdlt::plan_split() {
       load[g] += subtree[std::size_t(r)];
       group[std::size_t(r)] = g;
     }
-    const double time = top_work + std::max(load[0], load[1]);
+    const double time = top_flops + std::max(load[0], load[1]);
     if (!top.empty() && time < best) {
       best = time;
       best_top = top;
@@ -275,17 +288,25 @@ void SupernodalLdlt::plan_split() {
     roots.erase(roots.begin());
     top.push_back(heaviest);
     in_top[std::size_t(heaviest)] = true;
-    top_work += work[std::size_t(heaviest)];
+    top_flops += work[std::size_t(heaviest)];
     roots.insert(roots.end(), children[std::size_t(heaviest)].begin(),
                  children[std::size_t(heaviest)].end());
+  }
+  // Split only where it pays for the workers' hand-over and copies: a tenth off at least.
+  if (best > 0.9 * total) {
+    best = total;
+    best_top.clear();
   }
   std::sort(best_top.begin(), best_top.end());
   top_ = best_top;
   split_critical_share_ = total > 0.0 ? best / total : 1.0;
   group_ = best_top.empty() ? std::vector<int>(std::size_t(count), 0) : best_group;
+}
+
+void SupernodalLdlt::lay_out_top_copies() {
   // Where the second group's updates to the top go: each top supernode's values, and each of
   // its columns, in a compact copy.
-  top_value_offset_.assign(std::size_t(count), -1);
+  top_value_offset_.assign(nodes_.size(), -1);
   top_column_offset_.assign(column_node_.size(), -1);
   int values = 0, columns = 0;
   for (int t : top_) {

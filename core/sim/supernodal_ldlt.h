@@ -86,6 +86,9 @@ class SupernodalLdlt {
   };
   void find_structure(const Eigen::SparseMatrix<double>& l);
   void plan_split();  // group_, top_ and their copies' offsets (see below)
+  void choose_top(const std::vector<int>& parent, const std::vector<double>& work,
+                  const std::vector<double>& subtree);
+  void lay_out_top_copies();
   // Supernode s: its diagonal block, the rows below, its part of D, and its rank update to
   // later supernodes (through `scratch`); the update of a supernode of the top goes to `top`
   // (top_updates_'s layout) when given. False if the diagonal block is not positive definite.

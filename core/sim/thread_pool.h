@@ -3,11 +3,13 @@
 // finished. The simulator splits its per-tet loops this way, each worker's share into its own
 // buffers, summed in worker order afterwards, so that results depend on the worker count and
 // never on timing. Calls come up to a few hundred microseconds apart within a step: a waiting
-// thread polls for half a millisecond before it sleeps, and the caller polls for the others to
-// finish, since waking a sleeping thread costs about as much as the work split.
+// thread polls for half a millisecond before it sleeps (briefly, where the pool's threads have
+// to share cores), and the caller polls for the others to finish, since waking a sleeping
+// thread costs about as much as the work split.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <functional>
 #include <mutex>
@@ -35,8 +37,14 @@ class ThreadPool {
 
  private:
   void serve(int worker);
+  // Workers poll only briefly for a while: the pool's threads were found to share cores.
+  void back_off(std::chrono::steady_clock::time_point now);
 
   int workers_;
+  // Whether each thread can have a core, and from when (steady clock ticks) workers may poll
+  // long again after one was preempted while it polled.
+  bool cores_enough_;
+  std::atomic<long> long_polls_from_{0};
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable start_;

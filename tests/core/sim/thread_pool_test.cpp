@@ -1,7 +1,9 @@
 // The simulator's fork-join thread pool (core/sim/thread_pool.h): every worker runs once a
 // call, on its own share, the call returning only when all have finished; many calls in a row, as a
 // step makes.
+#include <chrono>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -40,6 +42,19 @@ TEST(ThreadPool, WritesAreSeenAcrossTheCall) {
     pool.run([&](int worker) { written[std::size_t(worker)] = before; });
     for (int w : written) ASSERT_EQ(w, call);
   }
+}
+
+// Calls further apart than a worker polls for: each finds the workers asleep and wakes them,
+// and the pool is destroyed with them asleep.
+TEST(ThreadPool, WakesWorkersThatSleptBetweenCalls) {
+  ThreadPool pool(2);
+  std::vector<int> calls(2, 0);
+  for (int call = 1; call <= 5; ++call) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    pool.run([&](int worker) { ++calls[std::size_t(worker)]; });
+    ASSERT_EQ(calls, std::vector<int>(2, call));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(3));
 }
 
 }  // namespace
