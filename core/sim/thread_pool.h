@@ -42,7 +42,7 @@ class ThreadPool {
 
   int workers_;
   // Whether each thread can have a core, and from when (steady clock ticks) workers may poll
-  // long again after one was preempted while it polled.
+  // long again after one of the pool's threads was found preempted.
   bool cores_enough_;
   std::atomic<long> long_polls_from_{0};
   std::vector<std::thread> threads_;
