@@ -405,8 +405,9 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose,
   };
   double current = linearise_at(x, *lin);
 
-  // Levenberg-Marquardt damping, grown when the Gauss-Newton model overshoots and shrunk
-  // when it is trusted; it does not move the solution (a zero step means g + C'lambda = 0).
+  // Levenberg-Marquardt damping: at least the residual's share, grown when the Gauss-Newton
+  // model overshoots and shrunk when it is trusted; it does not move the solution (a zero
+  // step means g + C'lambda = 0).
   double damping = 0.0;
   SolverResult result;
   const int max_iterations = cold_start
@@ -418,6 +419,7 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose,
     // couples two): each takes its step on its own.
     Vector step(size);
     double slope = 0.0;  // g's
+    const double damping_floor = options_.residual_damping * std::sqrt(2.0 * current);
     Vector regulariser_gradient = -anchor_pull;
     regulariser_gradient.noalias() += regulariser_hessian * x;
     for (const std::vector<int>& block : blocks_) {
@@ -444,7 +446,7 @@ SolverResult FingertipSolver::solve(const hand::HandPose& pose,
           ub(i) = upper(vi);
         }
       }
-      hb.diagonal().array() += damping;
+      hb.diagonal().array() += std::max(damping, damping_floor);
       for (int i = 0; i < b; ++i)
         sb_state[std::size_t(i)] = state[std::size_t(block[std::size_t(i)])];
       kkt_step(hb, gb, xb, lb, ub, sb_state.data(), sb, mb);

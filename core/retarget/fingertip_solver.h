@@ -35,10 +35,17 @@ struct SolverOptions {
   // Stop when an iteration lowers the objective by less (m^2, weighted): a step along a
   // flat valley (a palm shift traded for finger angles) moves no tip measurably.
   double decrease_tolerance = 1e-13;
-  // ... or by less than this fraction of itself: the tips then move by well under 0.1% of
-  // their distance to the targets, where the rest is a compromise (a target out of reach)
+  // ... or by less than this fraction of itself: the tips then move by under half a percent
+  // of their distance to the targets, where the rest is a compromise (a target out of reach)
   // that further iterations only slide along a flat valley.
-  double relative_decrease_tolerance = 1e-3;
+  double relative_decrease_tolerance = 1e-2;
+  // Levenberg-Marquardt damping mu |F| on the Gauss-Newton matrix's diagonal, F the weighted
+  // residuals of the tips and the regularisers (Fan & Yuan 2005, delta = 1), in m/rad^2. Far
+  // from a fit it bounds the step where a finger near a straight pose leaves J'WJ nearly
+  // singular (a Gauss-Newton step of radians, then backtracked); it vanishes with the
+  // residual, so an exact fit still converges quadratically (a compromise's last digits
+  // converge linearly, which the relative stop cuts short). 0: Gauss-Newton.
+  double residual_damping = 0.003;
   // The longest step an iteration takes (rad; the root translation counts in units of 5 cm).
   double trust_radius = 0.35;
 };

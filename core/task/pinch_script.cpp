@@ -134,7 +134,8 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
   retarget::SolverOptions options;
   options.root_translation_weight = 1e-3;  // the wrist may move to where both pads reach
   options.max_iterations = options.cold_start_iterations = 200;
-  options.relative_decrease_tolerance = 0.0;
+  // Solved to convergence once: undamped, whose last steps converge fastest.
+  options.relative_decrease_tolerance = options.residual_damping = 0.0;
   const retarget::SolverResult closed =
       retarget::FingertipSolver(ik, features, options).solve(pose, goals(-squeeze), true);
   script.pinch_error = closed.max_feature_error;

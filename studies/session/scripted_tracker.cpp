@@ -43,7 +43,8 @@ hand::HandPose pinch_pose(const hand::Skeleton& s, const Eigen::Matrix3d& rotati
   retarget::SolverOptions options;
   options.spatial_weight = options.temporal_weight = 1e-9;
   options.max_iterations = options.cold_start_iterations = 60;
-  options.decrease_tolerance = options.relative_decrease_tolerance = 0.0;
+  // Solved to convergence once: undamped, whose last steps converge fastest.
+  options.decrease_tolerance = options.relative_decrease_tolerance = options.residual_damping = 0.0;
   retarget::FingertipSolver solver(s, {{thumb, index, 1.0}}, options);
   pose.angles = solver.solve(pose, {gap * direction}).angles;
   return pose;
