@@ -772,6 +772,61 @@ TEST(SimulatedParticipantGrip, EachClosingLearnsWhereItsPadsEndUpAgainstTheCube)
     }
 }
 
+// The aim learnt at a closing's first touch steers the rest of that closing. The same
+// observations replayed with the cube seen 3 mm further along x from the one in which it saw
+// the touch: the aim error it takes in is 3 mm smaller, and the servo carries its own grip
+// after the cube by 3 mm plus (B_fast + B_slow) 3 mm of adapted aim; moved from the next
+// observation on, by the 3 mm alone.
+TEST(SimulatedParticipantGrip, TheAimLearntAtATouchSteersTheRestOfThatClosing) {
+  const StudyPerson p(2);
+  const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.01, 3, p.calibration)[0];
+  auto original = participant_for(setup, 5, p.own);
+  const ClosedLoop loop = run_closed_loop(*original, setup);
+  ASSERT_TRUE(loop.success);
+  const std::array<double, 2> seen_error = original->experience().aim_errors.at(0);
+  const double shift = 0.003;
+  struct Replay {
+    std::vector<Eigen::Vector3d> grip;
+    std::vector<std::string> phase;
+    std::array<double, 2> first_error{};
+  };
+  auto replay = [&](std::size_t from) {
+    auto participant = participant_for(setup, 5, p.own);
+    Replay r;
+    for (std::size_t k = 0; k + 1 < loop.shown.size(); ++k) {
+      Observation o = loop.shown[k];
+      if (k >= from) o.cube_position.x() += shift;
+      participant->act(o);
+      r.grip.push_back(participant->own_grip());
+      r.phase.push_back(participant->phase_name());
+    }
+    r.first_error = participant->experience().aim_errors.at(0);
+    return r;
+  };
+  // The observation it took the touch from: the first with a pad on the cube, or a later one
+  // if that came before its closing; the last from which a shift changes the first aim error.
+  std::size_t touch = loop.shown.size();
+  for (std::size_t k = 0; k < loop.shown.size() && touch == loop.shown.size(); ++k)
+    if (loop.shown[k].thumb_touching || loop.shown[k].index_touching) touch = k;
+  ASSERT_LT(touch, loop.shown.size());
+  while (replay(touch + 1).first_error[0] != seen_error[0]) ++touch;
+  const Replay moved = replay(touch), after = replay(touch + 1);
+  EXPECT_NEAR(moved.first_error[0], seen_error[0] - shift, 1e-12);
+  EXPECT_EQ(after.first_error[0], seen_error[0]);
+  // Up to the end of the loading's dwell, where the servo stops.
+  std::size_t end = touch;
+  while (end < moved.phase.size() && (moved.phase[end] == std::string("close") ||
+                                      moved.phase[end] == std::string("slow close") ||
+                                      moved.phase[end] == std::string("confirm")))
+    ++end;
+  ASSERT_GT(end, touch + 20);
+  const double followed_moved = moved.grip[end - 1].x() - loop.own_grip[end - 1].x();
+  const double followed_after = after.grip[end - 1].x() - loop.own_grip[end - 1].x();
+  const TwoRateRates& r = p.person.motor.contact_rates;
+  EXPECT_GT(followed_after, 0.0);
+  EXPECT_NEAR(followed_moved / followed_after - 1.0, r.learn_fast + r.learn_slow, 0.07);
+}
+
 // A practised grasp is fast; a person who has just failed grasps gives that speed back
 // (post-error slowing), and only the grasp: the reach is as practised as before.
 TEST(SimulatedParticipantGrip, CautionAfterFailuresSlowsTheGraspNotTheReach) {
