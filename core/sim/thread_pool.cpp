@@ -117,7 +117,7 @@ void ThreadPool::run(const std::function<void(int worker)>& work) {
 void ThreadPool::serve(int worker) {
   long seen = 0;
   for (;;) {
-    const long now = std::chrono::steady_clock::now().time_since_epoch().count();
+    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
     const bool alone = cores_enough_ && now >= long_polls_from_.load(std::memory_order_relaxed);
     const Polled polled =
         poll([&] { return generation_.load(std::memory_order_acquire) == seen && !stopping_; },

@@ -44,7 +44,7 @@ class ThreadPool {
   // Whether each thread can have a core, and from when (steady clock ticks) workers may poll
   // long again after one of the pool's threads was found preempted.
   bool cores_enough_;
-  std::atomic<long> long_polls_from_{0};
+  std::atomic<std::chrono::steady_clock::rep> long_polls_from_{0};
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable start_;
