@@ -28,7 +28,7 @@ TwoRateState after_closing(const TwoRateState& contact, const std::optional<doub
 }
 
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
-                           const TwoRateRates& rates) {
+                           const TwoRateRates& rates, double grip_retention) {
   ParticipantMemory next = memory;
   ++next.trials;
   CubeMemory* cube = nullptr;
@@ -49,10 +49,16 @@ ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperienc
     cube->aim_x = adapt(cube->aim_x, rates, error[0]);
     cube->aim_z = adapt(cube->aim_z, rates, error[1]);
   }
-  // A lift's grip is programmed from the lifts before (Johansson & Westling 1988) and follows a
-  // change of what the object needs both ways within a few lifts (Delhaye et al. 2024): more
-  // after the failures that needed more, less again as lifts hold.
-  cube->grip = adapt(cube->grip, rates, trial.squeeze_added);
+  // A lift's grip and digit placement are programmed from the lifts before (Johansson &
+  // Westling 1988; Lukos, Ansuini & Santello 2007): what a slip taught is kept, and decays
+  // slowly over the trials without one, by their count (Witney, Goodbody & Wolpert 2000).
+  if (trial.slips > 0) {
+    cube->grip_margin += trial.squeeze_added;
+    cube->grasp_lower += trial.lowered;
+  } else {
+    cube->grip_margin *= grip_retention;
+    cube->grasp_lower *= grip_retention;
+  }
   // People slow down after an error (Rabbitt 1966), and set their speed by what their own
   // speed-accuracy trade-off costs them (Dean, Wu & Maloney 2007): the caution a failed grasp
   // raised is carried, and relaxes as grasps hold.
@@ -70,8 +76,8 @@ std::string memory_to_json(const ParticipantMemory& m) {
         .field("trials", c.trials)
         .field("contact_fast", c.contact.fast)
         .field("contact_slow", c.contact.slow)
-        .field("grip_fast", c.grip.fast)
-        .field("grip_slow", c.grip.slow)
+        .field("grip_margin", c.grip_margin)
+        .field("grasp_lower", c.grasp_lower)
         .field("caution_fast", c.caution.fast)
         .field("caution_slow", c.caution.slow)
         .field("aim_x_fast", c.aim_x.fast)
@@ -93,11 +99,18 @@ ParticipantMemory memory_from_json(const std::string& text) {
       const util::JsonValue* found = c.find(key);
       return found ? found->as_number() : 0.0;
     };
+    // Models before 2.7 kept the grip margin as two states (their sum was the margin), and
+    // grasped where they first chose.
+    auto grip_margin = [&](const util::JsonValue& c) {
+      return c.find("grip_margin") ? c["grip_margin"].as_number()
+                                   : c["grip_fast"].as_number() + c["grip_slow"].as_number();
+    };
     for (const util::JsonValue& c : v["cubes"].as_array())
       m.cubes.push_back({c["cube_size"].as_number(),
                          int(c["trials"].as_number()),
                          {c["contact_fast"].as_number(), c["contact_slow"].as_number()},
-                         {c["grip_fast"].as_number(), c["grip_slow"].as_number()},
+                         grip_margin(c),
+                         optional(c, "grasp_lower"),
                          {optional(c, "caution_fast"), optional(c, "caution_slow")},
                          {optional(c, "aim_x_fast"), optional(c, "aim_x_slow")},
                          {optional(c, "aim_z_fast"), optional(c, "aim_z_slow")}});

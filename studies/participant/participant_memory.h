@@ -16,11 +16,12 @@
 namespace handlab::studies {
 
 struct CubeMemory {
-  double cube_size = 0.0;  // m, as seen
-  int trials = 0;          // trials done with it
-  TwoRateState contact;    // m: learnt correction of where a pad first meets the cube
-  TwoRateState grip;       // m: learnt closing on after contact (the loading), from slips
-  TwoRateState caution;    // share of practice's speed-up of the grasp given back (used up to 1)
+  double cube_size = 0.0;    // m, as seen
+  int trials = 0;            // trials done with it
+  TwoRateState contact;      // m: learnt correction of where a pad first meets the cube
+  double grip_margin = 0.0;  // m: closing on after contact beyond the loading, from slips
+  double grasp_lower = 0.0;  // m: grasping lower on the cube than its first choice, from slips
+  TwoRateState caution;      // share of practice's speed-up of the grasp given back (used up to 1)
   // m: learnt shift of where it aims its pads' midpoint across the floor (x, z), against
   // where the pads were when one first touched the cube
   TwoRateState aim_x, aim_z;
@@ -41,11 +42,12 @@ TwoRateState after_closing(const TwoRateState& contact, const std::optional<doub
                            const TwoRateRates& rates);
 
 // The memory after a trial: its counts advanced, the closing's correction adapted by each
-// closing's contact error (after_closing), the aim by where each closing's pads met it, the grip
-// margin and the grasp's caution adapted by what its failed grasps added (a trial whose first
-// grasp held only forgets), all at `rates`.
+// closing's contact error (after_closing), the aim by where each closing's pads met it and the
+// grasp's caution by what its failed grasps added (a trial whose first grasp held only
+// forgets), all at `rates`; the grip margin and how much lower it grasps kept as the trial's
+// slips left them, or, in a trial without a slip, decayed by `grip_retention`.
 ParticipantMemory remember(const ParticipantMemory& memory, const TrialExperience& trial,
-                           const TwoRateRates& rates);
+                           const TwoRateRates& rates, double grip_retention);
 
 std::string memory_to_json(const ParticipantMemory& memory);
 // Throws std::runtime_error on text that is not a memory.

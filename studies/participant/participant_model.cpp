@@ -15,7 +15,7 @@
 
 namespace handlab::studies {
 
-const char* const kParticipantModelVersion = "handlab participant model 2.6";
+const char* const kParticipantModelVersion = "handlab participant model 2.7";
 
 namespace {
 
@@ -40,6 +40,8 @@ constexpr std::pair<const char*, double MotorParameters::*> kMotorFields[] = {
     {"practice_floor", &MotorParameters::practice_floor},
     {"confirm_dwell", &MotorParameters::confirm_dwell},
     {"regrasp_squeeze", &MotorParameters::regrasp_squeeze},
+    {"regrasp_lower", &MotorParameters::regrasp_lower},
+    {"grip_retention", &MotorParameters::grip_retention},
     {"post_error_caution", &MotorParameters::post_error_caution},
 };
 

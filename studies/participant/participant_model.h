@@ -27,10 +27,14 @@ struct MotorParameters {
   double closing_time = 0.50;                     // s
   double tremor_hz = 10.0, tremor_rms = 0.00005;  // physiological tremor at the hand
   double tracker_jitter = 0.000063;               // m per axis and joint (measured, data/leap)
-  double practice_rate = 0.35;     // per trial counted: durations' exponential law of practice
-  double practice_floor = 0.60;    // the share of a duration practice leaves
-  double confirm_dwell = 0.15;     // s seeing both pads on the cube before lifting
-  double regrasp_squeeze = 0.003;  // m more loading after contact after each slip under load
+  double practice_rate = 0.35;   // per trial counted: durations' exponential law of practice
+  double practice_floor = 0.60;  // the share of a duration practice leaves
+  double confirm_dwell = 0.15;   // s seeing both pads on the cube before lifting
+  // After each slip under load: m more loading after contact (pads that let the cube go), or
+  // m lower on the cube (pads that slid over it).
+  double regrasp_squeeze = 0.003;
+  double regrasp_lower = 0.0025;
+  double grip_retention = 0.9;  // share of what slips taught kept over a trial without one
   // The share of practice's speed-up of the grasp (closing, loading, lift) each failed grasp
   // gives back: 1, the next grasp at its unpractised pace.
   double post_error_caution = 1.0;

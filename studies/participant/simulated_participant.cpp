@@ -80,7 +80,7 @@ Activity SimulatedParticipant::activity() const {
 }
 
 ParticipantMemory SimulatedParticipant::memory_after() const {
-  return remember(memory_, experience_, person_.motor.contact_rates);
+  return remember(memory_, experience_, person_.motor.contact_rates, person_.motor.grip_retention);
 }
 
 const Observation* SimulatedParticipant::delayed() const {
@@ -146,7 +146,8 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
 Eigen::Vector3d SimulatedParticipant::grasp_point(const Observation& o) const {
   const double side = o.cube_size;
   const double bottom = o.cube_position.y() - 0.5 * side;
-  const double height = pinch_ == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012);
+  const double height =
+      (pinch_ == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012)) - grasp_lower_;
   return Eigen::Vector3d(o.cube_position.x() - aim_x_.correction(), bottom + height,
                          o.cube_position.z() - aim_z_.correction());
 }
@@ -246,16 +247,41 @@ void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
   phase_ = Phase::kReach;
 }
 
-void SimulatedParticipant::start_regrasp(bool slipped) {
-  // A cube that slipped from the pads under load is gripped harder the next time (Johansson &
-  // Westling 1984); a closing that missed or a cube that came to rest outside B says nothing
-  // of the grip.
-  if (slipped) {
-    grasp_failed();
-    ++experience_.time.slips;
-    extra_squeeze_ += person_.motor.regrasp_squeeze;
-    experience_.squeeze_added += person_.motor.regrasp_squeeze;
+void SimulatedParticipant::slipped(const Observation& o, const Seen& s) {
+  ++experience_.losses;
+  ++experience_.slips;
+  ++experience_.time.slips;
+  grasp_failed();
+  // What it saw tells it what went wrong. Pads that came together where the cube was slid
+  // over it: it places them lower on the cube the next time (digit placement is learnt from
+  // the lifts before: Lukos, Ansuini & Santello 2007; Fu, Zhang & Santello 2010). Pads that
+  // stayed apart let it go: it grips harder (Johansson & Westling 1984). A closing that missed
+  // or a cube that came to rest outside B says nothing of either.
+  if (s.hand && s.aperture < o.cube_size) {
+    const double lower = lower_within(grasp_lower_ + person_.motor.regrasp_lower);
+    experience_.lowered += lower - grasp_lower_;
+    grasp_lower_ = lower;
+  } else {
+    const double margin =
+        margin_within(extra_squeeze_ + person_.motor.regrasp_squeeze, o.cube_size);
+    experience_.squeeze_added += margin - extra_squeeze_;
+    extra_squeeze_ = margin;
   }
+  start_regrasp();
+}
+
+// It closes on after contact by at most half the cube's side (a margin carried whole with no
+// bound ran to 236 mm in a draft of model 2.5), and grasps at most one step lower than it
+// first chose.
+double SimulatedParticipant::margin_within(double margin, double cube_size) {
+  return std::clamp(margin, 0.0, 0.5 * cube_size);
+}
+
+double SimulatedParticipant::lower_within(double lower) const {
+  return std::clamp(lower, 0.0, person_.motor.regrasp_lower);
+}
+
+void SimulatedParticipant::start_regrasp() {
   servo_on_ = false;
   const double cube = shown_.empty() ? 0.0 : shown_.back().cube_size;
   move_aperture(peak_aperture(cube), practised(behaviour().reopen_time));
@@ -406,7 +432,7 @@ void SimulatedParticipant::close(const Observation* o, const Seen& s) {
     ++experience_.time.missed_closings;
     if (!closing_touched_) closing_contact(std::nullopt);
     grasp_failed();
-    start_regrasp(false);
+    start_regrasp();
     return;
   }
   aperture_from_ = aperture_to_ =
@@ -429,8 +455,7 @@ void SimulatedParticipant::confirm(const Observation* o, const Seen& s) {
 
 void SimulatedParticipant::check_lift(const Observation& o, const Seen& s) {
   if (loss_seen(&o, s) || s.cube.y() - 0.5 * o.cube_size < 0.5 * behaviour().lift_height) {
-    ++experience_.losses;
-    start_regrasp(true);
+    slipped(o, s);
     return;
   }
   aim_transport(o, s, true);
@@ -465,8 +490,7 @@ void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bo
 
 void SimulatedParticipant::lower(const Observation* o, const Seen& s) {
   if (loss_seen(o, s)) {
-    ++experience_.losses;
-    start_regrasp(true);
+    slipped(*o, s);
   } else if (grip_.done(time_)) {
     // Let go: the hand opens at least to its peak aperture, so that no finger stays hooked
     // on a large cube.
@@ -493,7 +517,7 @@ void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
     phase_ = Phase::kWithdraw;
   } else {
     ++experience_.losses;  // it came to rest outside B: pick it up again
-    start_regrasp(false);
+    start_regrasp();
   }
 }
 
@@ -566,8 +590,7 @@ void SimulatedParticipant::update(const Observation* o) {
     case Phase::kLift:
     case Phase::kTransport:
       if (loss_seen(o, s)) {
-        ++experience_.losses;
-        start_regrasp(true);
+        slipped(*o, s);
       } else if (grip_.done(t)) {
         phase_ = phase_ == Phase::kLift ? Phase::kCheckLift : Phase::kCheckTransport;
       }
@@ -578,8 +601,7 @@ void SimulatedParticipant::update(const Observation* o) {
     case Phase::kCheckTransport:
       if (!looked) break;
       if (loss_seen(o, s)) {
-        ++experience_.losses;
-        start_regrasp(true);
+        slipped(*o, s);
       } else {
         aim_transport(*o, s, false);
       }
@@ -610,7 +632,7 @@ void SimulatedParticipant::update(const Observation* o) {
       // The trial goes on, so the cube it left in B has slid out of it: it goes back for it.
       if (o && cube_at_rest(s) && !in_zone_b(s, *o)) {
         ++experience_.losses;
-        start_regrasp(false);
+        start_regrasp();
       }
       break;
   }
@@ -635,7 +657,8 @@ void SimulatedParticipant::start(const Observation& first) {
     contact_ = cube->contact;
     aim_x_ = cube->aim_x;
     aim_z_ = cube->aim_z;
-    extra_squeeze_ = std::max(0.0, cube->grip.correction());
+    extra_squeeze_ = margin_within(cube->grip_margin, first.cube_size);
+    grasp_lower_ = lower_within(cube->grasp_lower);
     caution_ = std::max(0.0, cube->caution.correction());
   }
   // What it expects the trial to take: its own plan without errors.

@@ -106,8 +106,13 @@ class SimulatedParticipant {
   void move_grip(const Eigen::Vector3d& target, double duration, bool noisy);
   void move_aperture(double target, double duration);
   void plan_reach(const Observation& o, const Seen& s);
-  // Opens and goes for the cube again; `slipped`: it was lost from the pads under load.
-  void start_regrasp(bool slipped);
+  // Opens and goes for the cube again.
+  void start_regrasp();
+  // The cube was lost from the pads under load (lifted, carried or lowered): a failed grasp,
+  // and its grip margin moved the way what it saw shows; then it goes for the cube again.
+  void slipped(const Observation& o, const Seen& s);
+  static double margin_within(double margin, double cube_size);
+  double lower_within(double lower) const;
   // The end of a closing's look for contact: the aperture where it first saw a pad on the
   // cube against where it expected one (none: no pad touched), which it adapts to at once.
   void closing_contact(const std::optional<double>& error);
@@ -162,6 +167,7 @@ class SimulatedParticipant {
   double gain_estimate_ = 1.0;  // seen aperture per own aperture, learnt while open
   int gain_samples_ = 0;
   double extra_squeeze_ = 0.0;     // m more loading after contact: the grip slips taught
+  double grasp_lower_ = 0.0;       // m lower on the cube than its first choice: slips taught
   double caution_ = 0.0;           // share of practice's speed-up of the grasp given back
   double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
   bool caught_ = false;            // the cube seen caught on the hand

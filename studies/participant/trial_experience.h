@@ -25,9 +25,12 @@ struct TrialExperience {
   // where it saw its pads' midpoint when the first pad touched, minus the cube's centre,
   // across the floor (x, z; m).
   std::vector<std::array<double, 2>> aim_errors{};
-  // m: how much further past contact its failed grasps made it close in this trial, beyond
-  // the grip margin it started with: what the trial showed it needed.
+  int slips = 0;  // cubes it saw lost from its pads under load (lifted, carried, lowered)
+  // m: how much further past contact the slips that the pads let go made it close in this
+  // trial, and how much lower on the cube the slips that the pads slid over made it grasp,
+  // against where it started: what the trial showed it needed.
   double squeeze_added = 0.0;
+  double lowered = 0.0;
   // How much of practice's speed-up of the grasp its failed grasps (closings that missed the
   // cube, cubes that slipped under load) gave back in this trial: what the trial showed of
   // its speed against its accuracy.

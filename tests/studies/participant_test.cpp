@@ -445,14 +445,20 @@ class CaughtCubeWorld : public task::HandCubeWorld {
 // The grasp proxy with what the participant sees changed, to force the model's every path:
 // contact hidden until the closing is over (a slow close, then a re-grasp), or the cube shown
 // dropping out of the hand once it is first lifted 4 cm (a lost cube, re-grasps, the trial
-// cut by its time limit).
+// cut by its time limit), the pads closing where it was or, with kDropPadsApart, the thumb
+// shown 3 cm further from the index from then on (pads that stayed apart).
 class SeenOtherwiseWorld : public task::HandCubeWorld {
  public:
-  enum class Twist { kHideContact, kDropOnce };
+  enum class Twist { kHideContact, kDropOnce, kDropPadsApart };
   SeenOtherwiseWorld(const hand::Skeleton& sim, const task::SceneLayout& layout, Twist twist)
       : proxy_(sim, settings(layout.cube_size), task::cube_start_pose(layout).translation()),
         twist_(twist),
-        half_(0.5 * layout.cube_size) {}
+        half_(0.5 * layout.cube_size),
+        thumb_tip_(sim.bone_index("thumb3")),
+        index_tip_(sim.bone_index("index3")) {
+    for (int b = 0; b < int(sim.bones.size()); ++b)
+      if (sim.bones[b].name.rfind("thumb", 0) == 0) thumb_bones_.push_back(b);
+  }
   void step(const hand::HandPose* target, double dt) override {
     proxy_.step(target, dt);
     time_ += dt;
@@ -468,11 +474,17 @@ class SeenOtherwiseWorld : public task::HandCubeWorld {
         hidden_ = true;
       }
     }
+    bones_ = proxy_.bones();
+    if (twist_ == Twist::kDropPadsApart && dropped_at_) {
+      const Eigen::Vector3d apart =
+          (bones_[thumb_tip_].translation() - bones_[index_tip_].translation()).normalized();
+      for (int b : thumb_bones_) bones_[b].pretranslate(0.03 * apart);
+    }
   }
   const task::CubeState& cube() const override { return cube_; }
   bool thumb_contact() const override { return !hidden_ && proxy_.thumb_contact(); }
   bool index_contact() const override { return !hidden_ && proxy_.index_contact(); }
-  const std::vector<Eigen::Isometry3d>& bones() const override { return proxy_.bones(); }
+  const std::vector<Eigen::Isometry3d>& bones() const override { return bones_; }
 
  private:
   static task::GraspProxySettings settings(double cube_size) {
@@ -486,6 +498,9 @@ class SeenOtherwiseWorld : public task::HandCubeWorld {
   bool hidden_ = false;
   std::optional<Eigen::Vector3d> dropped_at_;
   task::CubeState cube_;
+  int thumb_tip_, index_tip_;
+  std::vector<int> thumb_bones_;
+  std::vector<Eigen::Isometry3d> bones_;
 };
 
 // The blinding test through every phase: people at several places of their schedule, each
@@ -601,11 +616,12 @@ TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAn
   EXPECT_EQ(runs, 17);
 }
 
-// The grip margin moves with what the participant saw: a cube that dropped from the lifted
-// pads is gripped 3 mm harder on the next grasp (and that is what the trial teaches its
-// memory); a closing that ended without contact is tried again with the same grip. Its
-// account of where the time went holds every frame it sent, and names each re-grasp's cause.
-TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) {
+// What a slip teaches follows what the participant saw: a cube that dropped from the lifted
+// pads while they stayed apart is gripped 3 mm harder on the next grasp, and one the pads
+// closed over is grasped lower (and that is what the trial teaches its memory); a closing that
+// ended without contact is tried again with the same grip. Its account of where the time went
+// holds every frame it sent, and names each re-grasp's cause.
+TEST(SimulatedParticipantGrip, ASlipGripsHarderOrLowerAsSeenNotAMissedClosing) {
   const StudyPerson p(2);
   const TrialSetup setup = setups_of_cube(p.protocol, p.person, 0.06, 4, p.calibration)[0];
   const hand::Skeleton sim = hand::build_simulated_hand(setup.condition.simulated_hand);
@@ -618,7 +634,11 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
     const ClosedLoop loop = drive(*participant, dropped, setup, strategy, 12.0);
     const TrialExperience e = participant->experience();
     ASSERT_GE(e.losses, 1);
-    EXPECT_NEAR(e.squeeze_added, e.losses * p.person.motor.regrasp_squeeze, 1e-12);
+    // The cube gone from between them, the pads closed where it was: they slid over it, and it
+    // grasps lower (by one step at most), gripping no harder.
+    EXPECT_EQ(e.slips, e.losses);
+    EXPECT_DOUBLE_EQ(e.lowered, p.person.motor.regrasp_lower);
+    EXPECT_EQ(e.squeeze_added, 0.0);
     EXPECT_EQ(e.time.trials, 1);
     EXPECT_NEAR(e.time.total(), double(loop.sent.size()) / 120.0, 1e-9);
     EXPECT_EQ(e.time.slips, e.losses);
@@ -630,11 +650,22 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
                        Activity::kLift, Activity::kReopen})
       EXPECT_GT(e.time[a], 0.0) << activity_name(a);
     EXPECT_EQ(e.time[Activity::kFreeCube], 0.0);
-    EXPECT_GT(participant->memory_after().cube(0.06)->grip.correction(), 0.0);
+    EXPECT_DOUBLE_EQ(participant->memory_after().cube(0.06)->grasp_lower, e.lowered);
     // Each failed grasp gave back practice's speed-up of the grasp (post-error slowing).
     EXPECT_DOUBLE_EQ(e.caution_added,
                      (e.time.slips + e.time.missed_closings) * p.person.motor.post_error_caution);
     EXPECT_GT(participant->memory_after().cube(0.06)->caution.correction(), 0.0);
+  }
+  {
+    SeenOtherwiseWorld apart(sim, layout, SeenOtherwiseWorld::Twist::kDropPadsApart);
+    auto participant = participant_for(setup, 5, p.own, {});
+    drive(*participant, apart, setup, strategy, 12.0);
+    const TrialExperience e = participant->experience();
+    ASSERT_GE(e.slips, 1);
+    EXPECT_NEAR(e.squeeze_added, e.slips * p.person.motor.regrasp_squeeze, 1e-12);
+    EXPECT_EQ(e.lowered, 0.0);
+    EXPECT_DOUBLE_EQ(participant->memory_after().cube(0.06)->grip_margin, e.squeeze_added);
+    EXPECT_EQ(participant->memory_after().cube(0.06)->grasp_lower, 0.0);
   }
   {
     // The small cube: the slow closing shuts the hand before the hidden contact shows.
@@ -652,9 +683,50 @@ TEST(SimulatedParticipantGrip, HarderAfterASlipUnderLoadNotAfterAMissedClosing) 
     EXPECT_GT(e.time[Activity::kReopen], 0.0);
     EXPECT_GT(e.time[Activity::kSetDown], 0.0);  // then it carried the cube to B
     EXPECT_EQ(e.squeeze_added, 0.0);
-    EXPECT_EQ(participant->memory_after().cube(0.01)->grip.correction(), 0.0);
+    EXPECT_EQ(e.lowered, 0.0);
+    EXPECT_EQ(participant->memory_after().cube(0.01)->grip_margin, 0.0);
     // A missed closing is a failed grasp all the same: it slows the grasps after it.
     EXPECT_DOUBLE_EQ(e.caution_added, e.time.missed_closings * p.person.motor.post_error_caution);
+  }
+}
+
+// A person whose pads slid over the cube grasps it lower by the step it learnt (the memory's
+// grasp_lower, kept from trial to trial): its hand goes lower to pick it up, with either cube,
+// and the trial still succeeds.
+TEST(SimulatedParticipantGrip, PadsThatSlidOverTheCubeAreSetLowerNextTime) {
+  const StudyPerson p(2);
+  for (const double cube : {0.01, 0.06}) {
+    const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 6, p.calibration)[0];
+    ParticipantMemory plain;
+    plain.trials = 6;
+    CubeMemory remembered;
+    remembered.cube_size = cube;
+    remembered.trials = 3;
+    plain.cubes.push_back(remembered);
+    ParticipantMemory lowered = plain;
+    const double step = p.person.motor.regrasp_lower;
+    lowered.cubes[0].grasp_lower = step;
+    auto without = participant_for(setup, 5, p.own, plain);
+    auto with = participant_for(setup, 5, p.own, lowered);
+    const ClosedLoop a = run_closed_loop(*without, setup);
+    const ClosedLoop b = run_closed_loop(*with, setup);
+    ASSERT_TRUE(a.success && b.success) << cube;
+    // Where its own grip is as it closes on the cube: the lowest until a quarter second after
+    // both pads are first shown on it (before the lift).
+    auto lowest = [](const ClosedLoop& loop) {
+      std::size_t both_seen = 0;
+      while (both_seen < loop.shown.size() &&
+             !(loop.shown[both_seen].thumb_touching && loop.shown[both_seen].index_touching))
+        ++both_seen;
+      double y = INFINITY;
+      for (std::size_t i = 0; i < std::min(both_seen + 30, loop.own_grip.size()); ++i)
+        y = std::min(y, loop.own_grip[i].y());
+      return y;
+    };
+    // The seen pads are set a step lower; the own hand follows through the mapping and the
+    // descent's corrections (4.4 and 5.3 mm with this person).
+    EXPECT_LT(lowest(b), lowest(a) - 0.5 * step) << cube;
+    EXPECT_GT(lowest(b), lowest(a) - 3.0 * step) << cube;
   }
 }
 
@@ -674,7 +746,7 @@ TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsA
     plain.cubes.push_back(remembered);
     ParticipantMemory gripping = plain;
     const double margin = 0.006;
-    gripping.cubes[0].grip.fast = margin;
+    gripping.cubes[0].grip_margin = margin;
     auto without = participant_for(setup, 5, p.own, plain);
     auto with = participant_for(setup, 5, p.own, gripping);
     const ClosedLoop a = run_closed_loop(*without, setup);
