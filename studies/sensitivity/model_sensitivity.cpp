@@ -45,12 +45,13 @@ const std::vector<SensitivityParameter>& participant_sensitivity_parameters() {
                              "aperture_slope", "peak_aperture_at", "confirm_dwell"})
       p.push_back({name, 0.75 * value(name), 1.25 * value(name), kSourced});
     for (const char* name :
-         {"regrasp_squeeze", "post_error_caution", "approach_height", "pre_contact_margin",
-          "closing_past_contact", "grip_loading", "servo_gain", "reach_tolerance_share",
-          "slow_closing", "placement_margin"})
+         {"regrasp_squeeze", "regrasp_lower", "post_error_caution", "approach_height",
+          "pre_contact_margin", "closing_past_contact", "grip_loading", "servo_gain",
+          "reach_tolerance_share", "slow_closing", "placement_margin"})
       p.push_back({name, 0.5 * value(name), 2.0 * value(name), kAssumed});
-    // A share of a duration cannot pass 1.
+    // A share of a duration, or of what a memory keeps, cannot pass 1.
     p.push_back({"practice_floor", 0.4, 0.8, "an assumption: 0.4 to 0.8"});
+    p.push_back({"grip_retention", 0.7, 0.99, "an assumption: 0.7 to 0.99"});
     return p;
   }();
   return list;
