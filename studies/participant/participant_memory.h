@@ -1,9 +1,9 @@
 // What a simulated person carries from one trial to the next, built only from what it saw and
 // did (its TrialExperience): how many trials it has done, and per cube size it has seen (the
 // one cue that tells its trials apart: it never knows the strategy) how often it has handled
-// that cube, where it learnt to expect its fingers to meet it and to aim its pads, and how
-// far past contact it closes. Stored as JSON with each trial's result,
-// so that a resumed session goes on with what it learnt.
+// that cube, where it learnt to expect its fingers to meet it and to aim its pads, how far
+// past contact it closes and how low on the cube it sets its pads. Stored as JSON with each
+// trial's result, so that a resumed session goes on with what it learnt.
 #pragma once
 
 #include <optional>

@@ -109,7 +109,8 @@ class SimulatedParticipant {
   // Opens and goes for the cube again.
   void start_regrasp();
   // The cube was lost from the pads under load (lifted, carried or lowered): a failed grasp,
-  // and its grip margin moved the way what it saw shows; then it goes for the cube again.
+  // and its grip margin or its pads' height moved as what it saw shows; then it goes for the
+  // cube again.
   void slipped(const Observation& o, const Seen& s);
   static double margin_within(double margin, double cube_size);
   double lower_within(double lower) const;

@@ -25,7 +25,9 @@ struct TrialExperience {
   // where it saw its pads' midpoint when the first pad touched, minus the cube's centre,
   // across the floor (x, z; m).
   std::vector<std::array<double, 2>> aim_errors{};
-  int slips = 0;  // cubes it saw lost from its pads under load (lifted, carried, lowered)
+  // Cubes it saw lost from its pads under load (lifted, carried, lowered): what its memory
+  // learns from (time.slips counts the same for the account of its time only).
+  int slips = 0;
   // m: how much further past contact the slips that the pads let go made it close in this
   // trial, and how much lower on the cube the slips that the pads slid over made it grasp,
   // against where it started: what the trial showed it needed.

@@ -59,8 +59,10 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   // Where it saw its pads' midpoint against the cube as the pad touched: 3 mm along x, 1 mm
   // back along z. A closing in which no pad touched has no aim error.
   fine.aim_errors = {{0.003, -0.001}};
-  fine.slips = 3;  // three cubes lost from its pads before one held: two gripped 3 mm harder,
-  fine.squeeze_added = 0.006;  // one grasped 2.5 mm lower
+  // Three cubes lost from its pads before one held: two gripped 3 mm harder, one grasped
+  // 2.5 mm lower.
+  fine.slips = 3;
+  fine.squeeze_added = 0.006;
   fine.lowered = 0.0025;
   fine.caution_added = 2.0;
   TrialExperience gross;
@@ -81,16 +83,18 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   EXPECT_DOUBLE_EQ(f->grip_margin, 0.012);  // what each trial's slips added, kept whole
   EXPECT_DOUBLE_EQ(f->grasp_lower, 0.005);
   EXPECT_DOUBLE_EQ(f->caution.fast, adapt(adapt({}, r, 2.0), r, 2.0).fast);
-  // The grip margin is kept and decays by the count of trials without a slip (Witney, Goodbody
-  // & Wolpert 2000), 0.9 a trial here; a trial whose slips made it grip less lowers it.
+  // The grip margin and the pads' lowering are kept and decay by the count of trials without a
+  // slip (Witney, Goodbody & Wolpert 2000), 0.9 a trial here; a trial with a slip keeps both
+  // whole, whichever of them it changed.
   ParticipantMemory held = m;
   for (int k = 0; k < 3; ++k) held = remember(held, TrialExperience{.cube_size = 0.01}, r, 0.9);
   EXPECT_NEAR(held.cube(0.01)->grip_margin, 0.012 * 0.9 * 0.9 * 0.9, 1e-15);
   EXPECT_NEAR(held.cube(0.01)->grasp_lower, 0.005 * 0.9 * 0.9 * 0.9, 1e-15);
   EXPECT_LT(held.cube(0.01)->caution.correction(), f->caution.correction());
-  TrialExperience squeezed_out{.cube_size = 0.01, .slips = 1, .squeeze_added = -0.003};
-  EXPECT_NEAR(remember(held, squeezed_out, r, 0.9).cube(0.01)->grip_margin,
-              held.cube(0.01)->grip_margin - 0.003, 1e-15);
+  TrialExperience slid_over{.cube_size = 0.01, .slips = 1, .lowered = 0.0025};
+  const CubeMemory* after = remember(held, slid_over, r, 0.9).cube(0.01);
+  EXPECT_EQ(after->grip_margin, held.cube(0.01)->grip_margin);
+  EXPECT_EQ(after->grasp_lower, held.cube(0.01)->grasp_lower + 0.0025);
   const CubeMemory* g = m.cube(0.06);
   ASSERT_NE(g, nullptr);
   EXPECT_EQ(g->trials, 1);

@@ -727,13 +727,19 @@ TEST(SimulatedParticipantGrip, PadsThatSlidOverTheCubeAreSetLowerNextTime) {
     // descent's corrections (4.4 and 5.3 mm with this person).
     EXPECT_LT(lowest(b), lowest(a) - 0.5 * step) << cube;
     EXPECT_GT(lowest(b), lowest(a) - 3.0 * step) << cube;
+    // Never more than one step: a memory of two moves the hand exactly as one of one.
+    ParticipantMemory twice = plain;
+    twice.cubes[0].grasp_lower = 2 * step;
+    auto bounded = participant_for(setup, 5, p.own, twice);
+    EXPECT_EQ(run_closed_loop(*bounded, setup).own_grip, b.own_grip) << cube;
   }
 }
 
 // The grip a slip taught is added once the pads touch, in the loading phase (grip force builds
 // up after contact: Johansson & Westling 1984), not to where the closing aims: a person with
-// a 6 mm margin moves exactly as one without until it has seen both pads on the cube, then
-// closes further before it lifts.
+// a margin (6 mm, bounded to half the side, 5 mm, on the 1 cm cube) moves exactly as one
+// without until it has seen both pads on the cube, then closes further before it lifts; a
+// remembered margin past the bound moves the hand exactly as the bound.
 TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsAim) {
   const StudyPerson p(2);
   for (const double cube : {0.01, 0.06}) {
@@ -768,6 +774,14 @@ TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsA
     const double a_min = *std::min_element(a.own_aperture.begin(), a.own_aperture.end());
     const double b_min = *std::min_element(b.own_aperture.begin(), b.own_aperture.end());
     EXPECT_LT(b_min, a_min - 0.5 * margin) << cube;
+    ParticipantMemory at_bound = plain, past_bound = plain;
+    at_bound.cubes[0].grip_margin = 0.5 * cube;
+    past_bound.cubes[0].grip_margin = 4 * cube;
+    auto bounded = participant_for(setup, 5, p.own, at_bound);
+    auto past = participant_for(setup, 5, p.own, past_bound);
+    EXPECT_EQ(run_closed_loop(*past, setup).own_aperture,
+              run_closed_loop(*bounded, setup).own_aperture)
+        << cube;
   }
 }
 
