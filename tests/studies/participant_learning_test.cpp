@@ -92,7 +92,8 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
   EXPECT_NEAR(held.cube(0.01)->grasp_lower, 0.005 * 0.9 * 0.9 * 0.9, 1e-15);
   EXPECT_LT(held.cube(0.01)->caution.correction(), f->caution.correction());
   TrialExperience slid_over{.cube_size = 0.01, .slips = 1, .lowered = 0.0025};
-  const CubeMemory* after = remember(held, slid_over, r, 0.9).cube(0.01);
+  const ParticipantMemory lowered = remember(held, slid_over, r, 0.9);
+  const CubeMemory* after = lowered.cube(0.01);
   EXPECT_EQ(after->grip_margin, held.cube(0.01)->grip_margin);
   EXPECT_EQ(after->grasp_lower, held.cube(0.01)->grasp_lower + 0.0025);
   const CubeMemory* g = m.cube(0.06);
