@@ -690,6 +690,18 @@ TEST(SimulatedParticipantGrip, ASlipGripsHarderOrLowerAsSeenNotAMissedClosing) {
   }
 }
 
+// The memory of a person six trials in, three of them with this cube, who has learnt nothing
+// of its grip or its pads' height.
+ParticipantMemory having_handled(double cube) {
+  ParticipantMemory memory;
+  memory.trials = 6;
+  CubeMemory remembered;
+  remembered.cube_size = cube;
+  remembered.trials = 3;
+  memory.cubes.push_back(remembered);
+  return memory;
+}
+
 // A person whose pads slid over the cube grasps it lower by the step it learnt (the memory's
 // grasp_lower, kept from trial to trial): its hand goes lower to pick it up, with either cube,
 // and the trial still succeeds.
@@ -697,12 +709,7 @@ TEST(SimulatedParticipantGrip, PadsThatSlidOverTheCubeAreSetLowerNextTime) {
   const StudyPerson p(2);
   for (const double cube : {0.01, 0.06}) {
     const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 6, p.calibration)[0];
-    ParticipantMemory plain;
-    plain.trials = 6;
-    CubeMemory remembered;
-    remembered.cube_size = cube;
-    remembered.trials = 3;
-    plain.cubes.push_back(remembered);
+    const ParticipantMemory plain = having_handled(cube);
     ParticipantMemory lowered = plain;
     const double step = p.person.motor.regrasp_lower;
     lowered.cubes[0].grasp_lower = step;
@@ -744,12 +751,7 @@ TEST(SimulatedParticipantGrip, TheGripMarginIsAddedAfterContactNotToTheClosingsA
   const StudyPerson p(2);
   for (const double cube : {0.01, 0.06}) {
     const TrialSetup setup = setups_of_cube(p.protocol, p.person, cube, 6, p.calibration)[0];
-    ParticipantMemory plain;
-    plain.trials = 6;
-    CubeMemory remembered;
-    remembered.cube_size = cube;
-    remembered.trials = 3;
-    plain.cubes.push_back(remembered);
+    const ParticipantMemory plain = having_handled(cube);
     ParticipantMemory gripping = plain;
     const double margin = 0.006;
     gripping.cubes[0].grip_margin = margin;
