@@ -49,6 +49,7 @@
 #include "studies/protocol/protocol.h"
 #include "studies/session/enrolment.h"
 #include "studies/session/session_runner.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::gui {
@@ -93,7 +94,9 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   MainWindow window;
   window.show();
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
-  ASSERT_EQ(window.create_study(kProtocol, db), QString());
+  // With practice trials: the session runs them and the exports leave them out.
+  ASSERT_EQ(window.create_study(QString::fromStdString(test::study_with_practice()), db),
+            QString());
   EXPECT_TRUE(window.windowTitle().startsWith("app_session.db"));
   EXPECT_GT(window.home()->summary()->rowCount(), 10) << "the protocol's summary";
 

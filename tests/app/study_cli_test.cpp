@@ -42,12 +42,10 @@ std::string enrol(const std::string& db, const std::string& id, double length) {
          "--hand-length " + std::to_string(length) + " --vr-experience some";
 }
 
-// The study's protocol with two blocks and no practice, written to a fresh file.
+// The study's protocol with two blocks, written to a fresh file.
 std::string two_block_protocol(const std::string& name) {
   std::string protocol = handlab::test::file_bytes(kStudy);
   protocol.replace(protocol.find("\"blocks\": 5"), 11, "\"blocks\": 2");
-  const std::string practice = "\"trials_per_condition\": 1";
-  protocol.replace(protocol.find(practice), practice.size(), "\"trials_per_condition\": 0");
   const std::string path = handlab::test::fresh_path(name);
   std::ofstream(path) << protocol;
   return path;
@@ -62,7 +60,8 @@ void one_line_error(const Result& e, const std::string& what) {
 
 TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
   const std::string db = handlab::test::fresh_path("cli_study.db");
-  Result r = run_cli("study create --protocol " + kStudy + " --db " + db);
+  Result r =
+      run_cli("study create --protocol " + handlab::test::study_with_practice() + " --db " + db);
   ASSERT_EQ(r.status, 0) << r.out;
   for (auto [id, length] :
        {std::pair{"P01", 0.17}, std::pair{"P02", 0.19}, std::pair{"P03", 0.2}}) {
@@ -208,7 +207,7 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
   ASSERT_EQ(r.status, 0) << r.out;
   const auto doc = handlab::util::JsonValue::parse(r.out);
   EXPECT_EQ(doc["participants"].as_number(), 2);
-  EXPECT_EQ(doc["trials"].as_number(), 2 * 8);  // 4 scheduled and 4 practice each
+  EXPECT_EQ(doc["trials"].as_number(), 2 * 4);  // one block of four each
   ASSERT_EQ(doc["conditions"].as_array().size(), 4u);
   for (const auto& c : doc["conditions"].as_array()) {
     EXPECT_EQ(c["trials"].as_number(), 2);
@@ -220,7 +219,7 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
   const auto& time = doc["participant_time"].as_array();
   ASSERT_EQ(time.size(), 2u);
   for (const auto& t : time) {
-    EXPECT_EQ(t["trials"].as_number(), 8);
+    EXPECT_EQ(t["trials"].as_number(), 4);
     EXPECT_GT(t["seconds"]["reach"].as_number(), 0.0);
     EXPECT_GE(t["missed_closings"].as_number(), 0.0);
     EXPECT_GE(t["slips"].as_number(), 0.0);
@@ -488,8 +487,8 @@ TEST(CrashTest, SigkillAtRandomMomentsLosesNoTrialAndResumesInOrder) {
     Database ref(reference, Database::Mode::kReadOnly);
     const auto got = results_of(check, ids[k]);
     const auto want = results_of(ref, ids[k]);
-    ASSERT_EQ(got.size(), 24u) << ids[k];
-    ASSERT_EQ(want.size(), 24u);
+    ASSERT_EQ(got.size(), 20u) << ids[k];
+    ASSERT_EQ(want.size(), 20u);
     auto g = got.begin();
     for (auto w = want.begin(); w != want.end(); ++w, ++g) {
       EXPECT_EQ(g->second.position, w->second.position);

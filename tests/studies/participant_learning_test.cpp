@@ -157,11 +157,11 @@ TEST(ParticipantMemory, ASessionStoppedAndResumedGoesOnWithWhatItLearnt) {
     ASSERT_TRUE(runner.run(id, "simulated", false).schedule_complete);
   }
   const std::vector<std::string> expected = outcome(whole, id);
-  ASSERT_EQ(expected.size(), 24u);
+  ASSERT_EQ(expected.size(), 20u);
   const ParticipantMemory last = memory_from_json(*whole.participant_memory(id));
-  EXPECT_EQ(last.trials, 24);
+  EXPECT_EQ(last.trials, 20);
   ASSERT_EQ(last.cubes.size(), 2u);
-  EXPECT_EQ(last.cubes[0].trials + last.cubes[1].trials, 24);
+  EXPECT_EQ(last.cubes[0].trials + last.cubes[1].trials, 20);
   EXPECT_EQ(whole.simulated_person(id)->model_sha256, model_sha256());
   EXPECT_EQ(whole.simulated_person(id)->model, kParticipantModelVersion);
 

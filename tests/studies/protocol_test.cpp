@@ -32,6 +32,13 @@ TEST(Protocol, TheStudyFileDescribesThePaper) {
   EXPECT_DOUBLE_EQ(conditions[3].cube_size, 0.01);
   EXPECT_DOUBLE_EQ(conditions[3].simulated_hand_length, 0.214);
   EXPECT_EQ(p.blocks, 5);
+  // Five blocks of four trials and nothing before them: a participant's first trial of each
+  // condition is its repetition 1, as in the paper's comparison of "the very first trial".
+  EXPECT_EQ(p.practice_per_condition, 0);
+  const auto schedule = plan_schedule(p, "P01", 0);
+  ASSERT_EQ(schedule.size(), 20u);
+  EXPECT_EQ(schedule.front().block, 1);
+  EXPECT_EQ(schedule.front().repetition, 1);
   EXPECT_EQ(p.questionnaire_timing, QuestionnaireTiming::kLastBlock);
   ASSERT_EQ(p.items.size(), 3u);
   EXPECT_EQ(p.items[0].id, "precision");
@@ -44,7 +51,7 @@ TEST(Protocol, TheStudyFileDescribesThePaper) {
 }
 
 TEST(Protocol, ScheduleIsReproducibleAndEveryBlockHoldsEachConditionOnce) {
-  const Protocol p = read_protocol(kStudy);
+  const Protocol p = read_protocol(test::study_with_practice());
   const auto a = plan_schedule(p, "P01", 0);
   ASSERT_EQ(a.size(), 4u + 20u);  // practice, then 5 blocks of 4
   const auto same = plan_schedule(p, "P01", 0);

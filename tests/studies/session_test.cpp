@@ -141,12 +141,12 @@ TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) 
   std::vector<std::string> lines;
   const SessionReport report =
       runner.run("P01", "scripted", false, [&](const std::string& l) { lines.push_back(l); });
-  EXPECT_EQ(report.trials_run, 24);
+  EXPECT_EQ(report.trials_run, 20);
   EXPECT_TRUE(report.schedule_complete);
-  EXPECT_EQ(lines.size(), 24u);
+  EXPECT_EQ(lines.size(), 20u);
 
   const auto trials = db.trials("P01");
-  ASSERT_EQ(trials.size(), 24u);
+  ASSERT_EQ(trials.size(), 20u);
   for (std::size_t k = 0; k < trials.size(); ++k) {
     EXPECT_EQ(trials[k].position, int(k));
     EXPECT_EQ(trials[k].status, store::TrialStatus::kCompleted);
@@ -174,24 +174,24 @@ TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) 
   // Running again without --resume is refused; with it there is nothing left.
   EXPECT_THROW(runner.run("P01", "scripted", false), std::runtime_error);
   EXPECT_TRUE(runner.run("P01", "scripted", true).schedule_complete);
-  EXPECT_EQ(db.trials("P01").size(), 24u);
+  EXPECT_EQ(db.trials("P01").size(), 20u);
 
   // The experimenter redoes trial 3: the old result stays, marked, and the run repeats it.
   db.redo_trial("P01", 2, "participant sneezed");
   EXPECT_EQ(db.next_trial("P01")->position, 2);
   EXPECT_EQ(runner.run("P01", "scripted", true).trials_run, 1);
   const auto after = db.trials("P01");
-  ASSERT_EQ(after.size(), 25u);
+  ASSERT_EQ(after.size(), 21u);
   EXPECT_EQ(after[2].status, store::TrialStatus::kRedone);
   EXPECT_EQ(after[2].reason, "participant sneezed");
-  EXPECT_EQ(after[24].position, 2);
-  EXPECT_EQ(after[24].attempt, 2);
-  EXPECT_DOUBLE_EQ(after[24].completion_time_s, after[2].completion_time_s) << "deterministic";
+  EXPECT_EQ(after[20].position, 2);
+  EXPECT_EQ(after[20].attempt, 2);
+  EXPECT_DOUBLE_EQ(after[20].completion_time_s, after[2].completion_time_s) << "deterministic";
 
   const auto status = study_status(db);
   ASSERT_EQ(status.size(), 1u);
-  EXPECT_EQ(status[0].trials_planned, 24);
-  EXPECT_EQ(status[0].trials_completed, 24);
+  EXPECT_EQ(status[0].trials_planned, 20);
+  EXPECT_EQ(status[0].trials_completed, 20);
   EXPECT_FALSE(status[0].next);
 }
 

@@ -130,7 +130,7 @@ TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {
   EXPECT_GT(calls, 0);
   EXPECT_EQ(last_done, 2);
   EXPECT_EQ(report.participants, 2);
-  EXPECT_EQ(report.trials, 2 * 8);  // 4 scheduled and 4 practice each
+  EXPECT_EQ(report.trials, 2 * 4);  // one block of four each
   ASSERT_EQ(report.conditions.size(), 4u);
   int scheduled = 0;
   for (const ConditionOutcome& c : report.conditions) {
@@ -181,7 +181,7 @@ TEST(SimulatedStudy, AccountsForEveryFrameOfItsParticipantsTimeByCube) {
   EXPECT_EQ(report.participant_time[1].first, 0.06);
   double seconds = 0.0;
   for (const auto& [cube, t] : report.participant_time) {
-    EXPECT_EQ(t.trials, 8) << cube;  // each person: 2 practice and 2 scheduled with each cube
+    EXPECT_EQ(t.trials, 4) << cube;  // each person: 2 with each cube
     seconds += t.total();
     for (Activity a : {Activity::kReact, Activity::kReach, Activity::kDescend, Activity::kClose,
                        Activity::kLift, Activity::kTransport, Activity::kSetDown})

@@ -97,7 +97,7 @@ TEST(TrialReplay, PlaysBackWhatTheSessionLogged) {
     return std::string("no error");
   };
   EXPECT_EQ(refusal("P09", 0, 0), "no participant 'P09' in this study");
-  EXPECT_EQ(refusal("P01", 24, 0), "P01 has no trial 25 (the schedule has 24)");
+  EXPECT_EQ(refusal("P01", 20, 0), "P01 has no trial 21 (the schedule has 20)");
   EXPECT_EQ(refusal("P01", 0, 2), "trial 1 of P01 has no attempt 2");
   EXPECT_NE(refusal("P01", 10, 0).find("trial 11 of P01 has no logged frames"), std::string::npos);
 }

@@ -2,9 +2,14 @@
 // (a variant of a protocol, written out by a test).
 #pragma once
 
+#include <unistd.h>
+
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "tests/support/test_files.h"
 
 namespace handlab::test {
 
@@ -17,6 +22,17 @@ inline std::string with(std::string text, const std::string& from, const std::st
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
   return text;
+}
+
+// The study with one practice trial per condition before block 1, which the study file, as
+// the paper, does not have: for the tests of what practice trials do. A file under the test
+// directory, one a process, since tests run side by side.
+inline std::string study_with_practice() {
+  const std::string path =
+      fresh_path("study-with-practice-" + std::to_string(::getpid()) + ".json");
+  std::ofstream(path) << with(file_bytes(kStudy), "\"trials_per_condition\": 0",
+                              "\"trials_per_condition\": 1");
+  return path;
 }
 
 }  // namespace handlab::test
