@@ -13,6 +13,13 @@ namespace {
 
 using namespace report_text;
 
+// What came before the blocks: practice trials, which the analysis leaves out, or none.
+std::string practice_clause(const Protocol& p) {
+  if (p.practice_per_condition == 0) return ", with no practice trials";
+  return ", after " + std::to_string(p.practice_per_condition) + " practice trial" +
+         (p.practice_per_condition == 1 ? "" : "s") + " per condition that are not analysed";
+}
+
 class Builder {
  public:
   Builder(const StudyDatabaseAnalysis& a, ReportOptions options) : a_(a) { doc_.options = options; }
@@ -102,13 +109,10 @@ class Builder {
                      sizes + " within-participants design, " + join_all(factors, " × ") + groups +
                      (groups.empty() ? "" : " between participants") + ". Each participant ran " +
                      std::to_string(p.blocks) + " blocks of the " + std::to_string(conditions) +
-                     " conditions, the order within a block " + order + ", after " +
-                     std::to_string(p.practice_per_condition) +
-                     " practice trial(s) per condition that are not analysed. A trial ends when "
-                     "the cube rests in zone B for " +
-                     fixed(p.rest_time_s, 1) + " s, or at the " + fixed(p.timeout_s, 0) +
-                     " s timeout. Simulated hand: " + fixed(100 * p.simulated_hand_length, 1) +
-                     " cm long.")});
+                     " conditions, the order within a block " + order + practice_clause(p) +
+                     ". A trial ends when the cube rests in zone B for " + fixed(p.rest_time_s, 1) +
+                     " s, or at the " + fixed(p.timeout_s, 0) + " s timeout. Simulated hand: " +
+                     fixed(100 * p.simulated_hand_length, 1) + " cm long.")});
     if (p.items.empty() || p.questionnaire_timing == QuestionnaireTiming::kNever) {
       paragraph({words("The protocol asks no questionnaire.")});
       return;

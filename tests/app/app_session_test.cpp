@@ -238,6 +238,8 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   ASSERT_EQ(window.export_report(folder), QString());
   const std::string html = test::file_bytes(folder.toStdString() + "/report.html");
   EXPECT_NE(html.find("data-src=\"/data_quality/planned\">20<"), std::string::npos);
+  EXPECT_NE(html.find("after 1 practice trial per condition that are not analysed."),
+            std::string::npos);
   EXPECT_EQ(test::file_bytes(folder.toStdString() + "/report.pdf").rfind("%PDF", 0), 0u);
   auto* analysis = window.findChild<AnalysisPage*>();
   ASSERT_NE(analysis, nullptr);

@@ -79,8 +79,8 @@ std::string merge(const std::string& name, const std::vector<std::string>& parts
   return out;
 }
 
-// The study's protocol with `blocks` blocks (and its practice trials, or none), written to a
-// fresh file.
+// The study's protocol with `blocks` blocks (and one practice trial per condition, or none),
+// written to a fresh file.
 std::string short_protocol(int blocks, bool practice_trials = false) {
   std::string text = file_bytes(kStudy);
   text.replace(text.find("\"blocks\": 5"), 11, "\"blocks\": " + std::to_string(blocks));
@@ -93,7 +93,7 @@ std::string short_protocol(int blocks, bool practice_trials = false) {
 }
 
 TEST(CliMerge, ShardsMergedEqualTheStudyRunInOneProcess) {
-  // Two blocks of the study's design with its practice trials, to spare the test's time.
+  // Two blocks of the study's design with practice trials, to spare the test's time.
   const std::string protocol = short_protocol(2, true);
   const Outputs whole = outputs(simulate("merge_whole.db", "", protocol));
   ASSERT_GT(std::count(whole.frames.begin(), whole.frames.end(), '\n'), 10000);

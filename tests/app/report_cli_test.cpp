@@ -208,6 +208,9 @@ TEST(ReportCli, EveryNumberInTheHtmlIsTheAnalysisJsons) {
   EXPECT_GT(cells, 200);
   // Levels as the protocol names them, not R's X1.
   EXPECT_EQ(html.find("X1"), std::string::npos);
+  // The paper's schedule: nothing before the five blocks.
+  EXPECT_NE(html.find("for each participant and block, with no practice trials."),
+            std::string::npos);
   // The four figures, inline.
   int figures = 0;
   for (std::size_t at = html.find("<figure"); at != std::string::npos;

@@ -20,8 +20,6 @@
 namespace handlab::studies {
 namespace {
 
-using test::kStudy;
-
 TEST(LawOfPractice, ExponentialFromOneTowardsItsFloor) {
   EXPECT_EQ(practice_factor(1, 0.35, 0.6), 1.0);
   EXPECT_EQ(practice_factor(0, 0.35, 0.6), 1.0);  // before the first counts as the first
@@ -126,7 +124,8 @@ TEST(ParticipantMemory, KeepsEachCubeApartAndRoundTripsItsRecord) {
 // and a session stopped between trials and resumed by a new driver (a new process) goes on
 // with it: every trial's outcome and memory equal the uninterrupted session's.
 TEST(ParticipantMemory, ASessionStoppedAndResumedGoesOnWithWhatItLearnt) {
-  const Protocol protocol = read_protocol(kStudy);
+  // With practice trials, which teach as any other.
+  const Protocol protocol = read_protocol(test::study_with_practice());
   const SimulatedPerson person = draw_person(Population{}, 3, 4);
   auto enrolled = [&](const std::string& name) {
     const std::string path = test::fresh_path(name);
@@ -157,11 +156,11 @@ TEST(ParticipantMemory, ASessionStoppedAndResumedGoesOnWithWhatItLearnt) {
     ASSERT_TRUE(runner.run(id, "simulated", false).schedule_complete);
   }
   const std::vector<std::string> expected = outcome(whole, id);
-  ASSERT_EQ(expected.size(), 20u);
+  ASSERT_EQ(expected.size(), 24u);
   const ParticipantMemory last = memory_from_json(*whole.participant_memory(id));
-  EXPECT_EQ(last.trials, 20);
+  EXPECT_EQ(last.trials, 24);
   ASSERT_EQ(last.cubes.size(), 2u);
-  EXPECT_EQ(last.cubes[0].trials + last.cubes[1].trials, 20);
+  EXPECT_EQ(last.cubes[0].trials + last.cubes[1].trials, 24);
   EXPECT_EQ(whole.simulated_person(id)->model_sha256, model_sha256());
   EXPECT_EQ(whole.simulated_person(id)->model, kParticipantModelVersion);
 

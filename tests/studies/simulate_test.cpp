@@ -66,11 +66,12 @@ std::string motor_data(const std::string& path) {
   return rows + "frames " + util::sha256_hex(frames) + "\n";
 }
 
-// The study's protocol with one block (the questionnaire in the last, as in the study).
+// The study's protocol with one block (the questionnaire in the last, as in the study) and
+// one practice trial per condition before it: practice trials run, count and teach as any.
 Protocol one_block_study() {
   std::string text = read_protocol(kStudy).text;
-  const std::string five = "\"blocks\": 5";
-  text.replace(text.find(five), five.size(), "\"blocks\": 1");
+  text = test::with(text, "\"blocks\": 5", "\"blocks\": 1");
+  text = test::with(text, "\"trials_per_condition\": 0", "\"trials_per_condition\": 1");
   return parse_protocol(text, "one block");
 }
 
@@ -130,7 +131,7 @@ TEST(SimulatedStudy, EnrolsRunsEverySessionAndDependsOnTheSeedAlone) {
   EXPECT_GT(calls, 0);
   EXPECT_EQ(last_done, 2);
   EXPECT_EQ(report.participants, 2);
-  EXPECT_EQ(report.trials, 2 * 4);  // one block of four each
+  EXPECT_EQ(report.trials, 2 * 8);  // 4 scheduled and 4 practice each
   ASSERT_EQ(report.conditions.size(), 4u);
   int scheduled = 0;
   for (const ConditionOutcome& c : report.conditions) {
@@ -181,7 +182,7 @@ TEST(SimulatedStudy, AccountsForEveryFrameOfItsParticipantsTimeByCube) {
   EXPECT_EQ(report.participant_time[1].first, 0.06);
   double seconds = 0.0;
   for (const auto& [cube, t] : report.participant_time) {
-    EXPECT_EQ(t.trials, 4) << cube;  // each person: 2 with each cube
+    EXPECT_EQ(t.trials, 8) << cube;  // each person: 2 practice and 2 scheduled with each cube
     seconds += t.total();
     for (Activity a : {Activity::kReact, Activity::kReach, Activity::kDescend, Activity::kClose,
                        Activity::kLift, Activity::kTransport, Activity::kSetDown})
