@@ -67,7 +67,7 @@ std::string motor_data(const std::string& path) {
 }
 
 // The study's protocol with one block (the questionnaire in the last, as in the study) and
-// one practice trial per condition before it: practice trials run, count and teach as any.
+// one practice trial per condition before it: practice trials run and count as any other.
 Protocol one_block_study() {
   std::string text = read_protocol(kStudy).text;
   text = test::with(text, "\"blocks\": 5", "\"blocks\": 1");
