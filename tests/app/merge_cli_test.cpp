@@ -84,8 +84,7 @@ std::string merge(const std::string& name, const std::vector<std::string>& parts
 std::string short_protocol(int blocks, bool practice_trials = false) {
   std::string text = file_bytes(kStudy);
   text.replace(text.find("\"blocks\": 5"), 11, "\"blocks\": " + std::to_string(blocks));
-  if (practice_trials)
-    text = handlab::test::with(text, "\"trials_per_condition\": 0", "\"trials_per_condition\": 1");
+  if (practice_trials) text = handlab::test::with_practice(text);
   const std::string path = fresh_path("merge_protocol_" + std::to_string(blocks) +
                                       (practice_trials ? "_practice" : "") + ".json");
   std::ofstream(path) << text;

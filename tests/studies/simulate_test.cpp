@@ -71,8 +71,7 @@ std::string motor_data(const std::string& path) {
 Protocol one_block_study() {
   std::string text = read_protocol(kStudy).text;
   text = test::with(text, "\"blocks\": 5", "\"blocks\": 1");
-  text = test::with(text, "\"trials_per_condition\": 0", "\"trials_per_condition\": 1");
-  return parse_protocol(text, "one block");
+  return parse_protocol(test::with_practice(text), "one block");
 }
 
 // Two people on the grasp proxy, side by side: quick.

@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -24,14 +25,18 @@ inline std::string with(std::string text, const std::string& from, const std::st
   return text;
 }
 
-// The study with one practice trial per condition before block 1, which the study file, as
-// the paper, does not have: for the tests of what practice trials do. A file under the test
-// directory, one a process, since tests run side by side.
+// The study's text (or a variant of it) with one practice trial per condition before block 1,
+// which the study file, as the paper, does not have: for the tests of what practice trials do.
+inline std::string with_practice(std::string study_text) {
+  return with(std::move(study_text), "\"trials_per_condition\": 0", "\"trials_per_condition\": 1");
+}
+
+// The study with practice trials as a file under the test directory, one a process, since
+// tests run side by side.
 inline std::string study_with_practice() {
   const std::string path =
       fresh_path("study-with-practice-" + std::to_string(::getpid()) + ".json");
-  std::ofstream(path) << with(file_bytes(kStudy), "\"trials_per_condition\": 0",
-                              "\"trials_per_condition\": 1");
+  std::ofstream(path) << with_practice(file_bytes(kStudy));
   return path;
 }
 
