@@ -39,6 +39,10 @@ const std::vector<Command>& all_commands() {
        run_sensitivity},
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
+      {"grasps",
+       "how the grasps of logged trials met the cube (tip or pad, off centre) and which were "
+       "dropped",
+       run_grasps},
 #ifdef HANDLAB_WITH_REPORT
       {"report", "write a study's results section with tables and figures as HTML and PDF",
        run_report},

@@ -18,6 +18,7 @@ int run_study(const std::vector<std::string>& args);
 int run_participant(const std::vector<std::string>& args);
 int run_session(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);
+int run_grasps(const std::vector<std::string>& args);
 int run_simulate(const std::vector<std::string>& args);
 int run_merge(const std::vector<std::string>& args);
 int run_report(const std::vector<std::string>& args);

@@ -1,0 +1,132 @@
+#include "studies/analysis/grasp_contacts.h"
+
+#include <algorithm>
+
+#include <Eigen/Geometry>
+
+#include "core/hand/simulated_hand.h"
+#include "core/task/cube_task.h"
+
+namespace handlab::studies {
+namespace {
+
+using task::TaskPhase;
+
+TaskPhase phase_of(const store::FrameRecord& f) {
+  return TaskPhase(f.task_phase);
+}
+
+struct Phalanx {
+  int bone = -1;
+  double length = 0.0;
+};
+
+// The point of the phalanx's axis nearest `centre`, and which part of the phalanx that is.
+std::pair<Eigen::Vector3d, PhalanxPart> nearest_part(const store::FrameRecord& f, const Phalanx& p,
+                                                     const Eigen::Vector3d& centre) {
+  const Eigen::Vector3d origin = f.bone_positions.at(std::size_t(p.bone)).cast<double>();
+  const Eigen::Vector3d axis =
+      f.bone_rotations.at(std::size_t(p.bone)).cast<double>().toRotationMatrix().col(1);
+  const double along = axis.dot(centre - origin);
+  const PhalanxPart part = along >= p.length ? PhalanxPart::kTip
+                           : along <= 0.0    ? PhalanxPart::kBase
+                                             : PhalanxPart::kPad;
+  return {origin + std::clamp(along, 0.0, p.length) * axis, part};
+}
+
+// What the phases after a grasp's release tell of it: the next phase other than released.
+GraspOutcome outcome_after(const std::vector<store::FrameRecord>& frames, std::size_t from) {
+  for (std::size_t k = from; k < frames.size(); ++k) {
+    switch (phase_of(frames[k])) {
+      case TaskPhase::kDone:
+        return GraspOutcome::kPlaced;
+      case TaskPhase::kStarted:
+        return GraspOutcome::kDropped;
+      case TaskPhase::kGrasped:
+        return GraspOutcome::kCaughtAgain;
+      default:
+        break;
+    }
+  }
+  return GraspOutcome::kUnfinished;
+}
+
+}  // namespace
+
+const char* phalanx_part_name(PhalanxPart part) {
+  switch (part) {
+    case PhalanxPart::kBase:
+      return "base";
+    case PhalanxPart::kPad:
+      return "pad";
+    case PhalanxPart::kTip:
+      return "tip";
+  }
+  return "?";
+}
+
+const char* grasp_outcome_name(GraspOutcome outcome) {
+  switch (outcome) {
+    case GraspOutcome::kPlaced:
+      return "placed";
+    case GraspOutcome::kDropped:
+      return "dropped";
+    case GraspOutcome::kCaughtAgain:
+      return "caught_again";
+    case GraspOutcome::kUnfinished:
+      return "unfinished";
+  }
+  return "?";
+}
+
+std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
+  const hand::Skeleton hand = hand::build_simulated_hand(replay.simulated_hand);
+  auto phalanx = [&](const char* name) {
+    const int bone = hand.bone_index(name);
+    return Phalanx{bone, hand.bones.at(std::size_t(bone)).length};
+  };
+  const Phalanx thumb = phalanx("thumb3"), index = phalanx("index3");
+  const std::vector<store::FrameRecord>& frames = replay.frames;
+  std::vector<GraspContact> grasps;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const bool starts = phase_of(frames[k]) == TaskPhase::kGrasped &&
+                        (k == 0 || phase_of(frames[k - 1]) != TaskPhase::kGrasped);
+    if (!starts) continue;
+    const store::FrameRecord& f = frames[k];
+    const Eigen::Vector3d centre = f.cube_position.cast<double>();
+    const Eigen::Matrix3d cube_axes = f.cube_rotation.cast<double>().toRotationMatrix();
+    const auto [thumb_at, thumb_part] = nearest_part(f, thumb, centre);
+    const auto [index_at, index_part] = nearest_part(f, index, centre);
+    GraspContact g;
+    g.time = f.time;
+    g.cube_size = replay.layout.cube_size;
+    g.thumb = thumb_part;
+    g.index = index_part;
+    g.pinch_offset = cube_axes.transpose() * (0.5 * (thumb_at + index_at) - centre);
+    std::size_t end = k;
+    while (end < frames.size() && phase_of(frames[end]) == TaskPhase::kGrasped) ++end;
+    g.held = (end < frames.size() ? frames[end].time : frames.back().time) - f.time;
+    g.outcome = end < frames.size() ? outcome_after(frames, end) : GraspOutcome::kUnfinished;
+    grasps.push_back(g);
+  }
+  return grasps;
+}
+
+std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
+                                              const std::string& participant) {
+  std::vector<TrialGrasps> out;
+  for (const store::Participant& p : store.participants()) {
+    if (!participant.empty() && p.id != participant) continue;
+    for (const store::TrialRow& row : store.trials(p.id)) {
+      const bool result = row.status == store::TrialStatus::kCompleted ||
+                          row.status == store::TrialStatus::kTimeout;
+      if (!result || store.frame_count(row.id) == 0) continue;
+      const TrialReplay replay = load_trial_replay(store, p.id, row.position, row.attempt);
+      out.push_back({p.id, replay.condition, row.position, row.attempt, replay.layout.cube_size,
+                     grasp_contacts(replay)});
+    }
+  }
+  return out;
+}
+
+}  // namespace handlab::studies

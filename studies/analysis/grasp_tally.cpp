@@ -1,0 +1,113 @@
+#include "studies/analysis/grasp_tally.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace handlab::studies {
+namespace {
+
+std::string cube_group(double size) {
+  const double cm = std::round(size * 1e3) / 10.0;
+  char text[32];
+  std::snprintf(text, sizeof text, "%g cm", cm);
+  return text;
+}
+
+int offset_bin(const GraspContact& g) {
+  const double share = std::hypot(g.pinch_offset.x(), g.pinch_offset.z()) / g.cube_size;
+  int bin = 0;
+  for (double bound : kPinchOffsetBounds) bin += share >= bound ? 1 : 0;
+  return bin;
+}
+
+void count(GraspCount& c, bool dropped) {
+  ++c.grasps;
+  c.dropped += dropped ? 1 : 0;
+}
+
+void add(GraspTally& t, const GraspContact& g) {
+  const bool dropped = g.outcome == GraspOutcome::kDropped;
+  ++t.grasps;
+  t.placed += g.outcome == GraspOutcome::kPlaced ? 1 : 0;
+  t.dropped += dropped ? 1 : 0;
+  t.caught_again += g.outcome == GraspOutcome::kCaughtAgain ? 1 : 0;
+  t.unfinished += g.outcome == GraspOutcome::kUnfinished ? 1 : 0;
+  count(t.by_thumb[std::size_t(g.thumb)], dropped);
+  count(t.by_index[std::size_t(g.index)], dropped);
+  count(t.by_offset[std::size_t(offset_bin(g))], dropped);
+}
+
+void write_counts(util::JsonWriter& w, const std::array<GraspCount, 3>& by_part) {
+  w.begin_object();
+  for (PhalanxPart part : {PhalanxPart::kBase, PhalanxPart::kPad, PhalanxPart::kTip}) {
+    const GraspCount& c = by_part[std::size_t(part)];
+    w.key(phalanx_part_name(part)).begin_object();
+    w.field("grasps", c.grasps).field("dropped", c.dropped).end_object();
+  }
+  w.end_object();
+}
+
+}  // namespace
+
+std::vector<GraspTally> tally_grasps(const std::vector<TrialGrasps>& trials,
+                                     GraspGrouping grouping) {
+  std::vector<GraspTally> tallies;
+  for (const TrialGrasps& trial : trials) {
+    const std::string group =
+        grouping == GraspGrouping::kCondition ? trial.condition : cube_group(trial.cube_size);
+    auto it = std::find_if(tallies.begin(), tallies.end(),
+                           [&](const GraspTally& t) { return t.group == group; });
+    if (it == tallies.end()) {
+      tallies.push_back({group, trial.cube_size});
+      it = tallies.end() - 1;
+    }
+    ++it->trials;
+    for (const GraspContact& g : trial.grasps) add(*it, g);
+  }
+  return tallies;
+}
+
+void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& trials,
+                       const std::vector<GraspTally>& tallies) {
+  w.begin_object().field("trials", trials.size()).key("groups").begin_array();
+  for (const GraspTally& t : tallies) {
+    w.begin_object().field("group", t.group).field("cube_size_m", t.cube_size);
+    w.field("trials", t.trials).field("grasps", t.grasps).field("placed", t.placed);
+    w.field("dropped", t.dropped).field("caught_again", t.caught_again);
+    w.field("unfinished", t.unfinished);
+    w.key("by_thumb");
+    write_counts(w, t.by_thumb);
+    w.key("by_index");
+    write_counts(w, t.by_index);
+    w.key("by_pinch_offset").begin_array();
+    for (std::size_t bin = 0; bin < t.by_offset.size(); ++bin) {
+      w.begin_object();
+      w.key("from_share").value(bin == 0 ? 0.0 : kPinchOffsetBounds[bin - 1]);
+      w.key("to_share");
+      if (bin < kPinchOffsetBounds.size())
+        w.value(kPinchOffsetBounds[bin]);
+      else
+        w.null();
+      w.field("grasps", t.by_offset[bin].grasps).field("dropped", t.by_offset[bin].dropped);
+      w.end_object();
+    }
+    w.end_array().end_object();
+  }
+  w.end_array().key("grasps").begin_array();
+  for (const TrialGrasps& trial : trials)
+    for (const GraspContact& g : trial.grasps) {
+      w.begin_object().field("participant", trial.participant);
+      w.field("trial", trial.position + 1).field("attempt", trial.attempt);
+      w.field("condition", trial.condition).field("cube_size_m", g.cube_size);
+      w.field("time_s", g.time).field("held_s", g.held);
+      w.field("outcome", grasp_outcome_name(g.outcome));
+      w.field("thumb", phalanx_part_name(g.thumb)).field("index", phalanx_part_name(g.index));
+      w.key("pinch_offset_m").begin_array();
+      for (int axis = 0; axis < 3; ++axis) w.value(g.pinch_offset[axis]);
+      w.end_array().end_object();
+    }
+  w.end_array().end_object();
+}
+
+}  // namespace handlab::studies
