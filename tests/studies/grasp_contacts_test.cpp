@@ -35,6 +35,10 @@ class GraspLog {
   float length(const char* bone) const {
     return float(hand_.bones[std::size_t(hand_.bone_index(bone))].length);
   }
+  // The joint of a bone pointing up whose middle is at height `y`, at `x`, `z`.
+  Eigen::Vector3f mid_at(const char* bone, float x, float y, float z) const {
+    return {x, y - length(bone) / 2, z};
+  }
   const TrialReplay& replay() const { return replay_; }
 
  private:
@@ -45,13 +49,13 @@ class GraspLog {
 TEST(GraspContacts, TellsEachPhalanxPartThePinchOffsetAndWhatBecameOfEachGrasp) {
   GraspLog log;
   const Eigen::Vector3f cube(0.0f, 0.05f, 0.0f);
-  const float lt = log.length("thumb3"), li = log.length("index3");
+  const float li = log.length("index3");
   // The thumb's joint above the cube's centre (the bone points away from it: its base is
   // nearest), the index's a whole bone and more below it (its tip is nearest).
   const Eigen::Vector3f thumb_above(0.0f, 0.06f, -0.035f), index_below(0.004f, 0.04f - li, 0.035f);
   // Then both joints half a bone below the centre (the pads are nearest), 5 mm along x.
-  const Eigen::Vector3f thumb_pad(0.005f, 0.05f - lt / 2, -0.035f),
-      index_pad(0.005f, 0.05f - li / 2, 0.035f);
+  const Eigen::Vector3f thumb_pad = log.mid_at("thumb3", 0.005f, 0.05f, -0.035f),
+                        index_pad = log.mid_at("index3", 0.005f, 0.05f, 0.035f);
   log.add(TaskPhase::kStarted, cube, thumb_above, index_below);
   for (int k = 0; k < 3; ++k) log.add(TaskPhase::kGrasped, cube, thumb_above, index_below);
   log.add(TaskPhase::kReleased, cube, thumb_above, index_below);
@@ -101,10 +105,9 @@ TEST(GraspContacts, TellsEachPhalanxPartThePinchOffsetAndWhatBecameOfEachGrasp) 
 TEST(GraspContacts, AGraspHeldToTheTrialsEndIsUnfinishedAndFarPinchesCountApart) {
   GraspLog log;
   const Eigen::Vector3f cube(0.0f, 0.05f, 0.0f);
-  const float lt = log.length("thumb3"), li = log.length("index3");
   // Pads 15 mm across the floor from the centre: a quarter of the 6 cm side.
-  const Eigen::Vector3f thumb(0.015f, 0.05f - lt / 2, -0.035f),
-      index(0.015f, 0.05f - li / 2, 0.035f);
+  const Eigen::Vector3f thumb = log.mid_at("thumb3", 0.015f, 0.05f, -0.035f),
+                        index = log.mid_at("index3", 0.015f, 0.05f, 0.035f);
   log.add(TaskPhase::kStarted, cube, thumb, index);
   log.add(TaskPhase::kGrasped, cube, thumb, index);
   log.add(TaskPhase::kGrasped, cube, thumb, index);
