@@ -1,6 +1,8 @@
 #include "studies/analysis/grasp_contacts.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -24,9 +26,9 @@ struct Phalanx {
 // The point of the phalanx's axis nearest `centre`, and which part of the phalanx that is.
 std::pair<Eigen::Vector3d, PhalanxPart> nearest_part(const store::FrameRecord& f, const Phalanx& p,
                                                      const Eigen::Vector3d& centre) {
-  const Eigen::Vector3d origin = f.bone_positions.at(std::size_t(p.bone)).cast<double>();
+  const Eigen::Vector3d origin = f.bone_positions[std::size_t(p.bone)].cast<double>();
   const Eigen::Vector3d axis =
-      f.bone_rotations.at(std::size_t(p.bone)).cast<double>().toRotationMatrix().col(1);
+      f.bone_rotations[std::size_t(p.bone)].cast<double>().toRotationMatrix().col(1);
   const double along = axis.dot(centre - origin);
   const PhalanxPart part = along >= p.length ? PhalanxPart::kTip
                            : along <= 0.0    ? PhalanxPart::kBase
@@ -93,6 +95,9 @@ std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
                         (k == 0 || phase_of(frames[k - 1]) != TaskPhase::kGrasped);
     if (!starts) continue;
     const store::FrameRecord& f = frames[k];
+    if (f.bone_positions.size() != hand.bones.size())
+      throw std::runtime_error("the frame at " + std::to_string(f.time) +
+                               " s holds no simulated hand of this condition's size");
     const Eigen::Vector3d centre = f.cube_position.cast<double>();
     const Eigen::Matrix3d cube_axes = f.cube_rotation.cast<double>().toRotationMatrix();
     const auto [thumb_at, thumb_part] = nearest_part(f, thumb, centre);
