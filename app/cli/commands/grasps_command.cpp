@@ -1,7 +1,9 @@
 // handlab-cli grasps: how the grasps of a study's logged trials met the cube, and which were
 // dropped, from the frame logs.
+#include <array>
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
@@ -40,12 +42,16 @@ void print_tally(const studies::GraspTally& t) {
   print_by_part("thumb", t.by_thumb);
   print_by_part("index", t.by_index);
   const auto& b = studies::kPinchOffsetBounds;
-  std::printf(
-      "  dropped, by the pinch's distance from the cube's centre along the floor (share of the "
-      "side): below %.1f %s, %.1f-%.1f %s, %.1f and more %s\n",
-      b[0], share(t.by_offset[0]).c_str(), b[0], b[1], share(t.by_offset[1]).c_str(), b[1],
-      share(t.by_offset[2]).c_str());
-  std::cout.flush();
+  auto bound = [](double x) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.1f", x);
+    return std::string(text);
+  };
+  std::cout << "  dropped, by the pinch's distance from the cube's centre along the floor "
+               "(share of the side): below "
+            << bound(b[0]) << " " << share(t.by_offset[0]) << ", " << bound(b[0]) << "-"
+            << bound(b[1]) << " " << share(t.by_offset[1]) << ", " << bound(b[1]) << " and more "
+            << share(t.by_offset[2]) << "\n";
 }
 
 }  // namespace
