@@ -36,8 +36,17 @@ std::pair<Eigen::Vector3d, PhalanxPart> nearest_part(const store::FrameRecord& f
   return {origin + std::clamp(along, 0.0, p.length) * axis, part};
 }
 
-// What the phases after a grasp's release tell of it: the next phase other than released.
-GraspOutcome outcome_after(const std::vector<store::FrameRecord>& frames, std::size_t from) {
+// The height of the cube's lowest corner over the floor.
+double lowest_corner(const store::FrameRecord& f, double side) {
+  const Eigen::Matrix3d axes = f.cube_rotation.cast<double>().toRotationMatrix();
+  return double(f.cube_position.y()) - 0.5 * side * axes.row(1).cwiseAbs().sum();
+}
+
+// What became of the grasp whose pinch let the cube go at frame `from`: the next phase other
+// than released, and whether the cube reached the floor before a new grasp.
+GraspOutcome outcome_after(const std::vector<store::FrameRecord>& frames, std::size_t from,
+                           double side) {
+  bool landed = false;
   for (std::size_t k = from; k < frames.size(); ++k) {
     switch (phase_of(frames[k])) {
       case TaskPhase::kDone:
@@ -45,12 +54,21 @@ GraspOutcome outcome_after(const std::vector<store::FrameRecord>& frames, std::s
       case TaskPhase::kStarted:
         return GraspOutcome::kDropped;
       case TaskPhase::kGrasped:
-        return GraspOutcome::kCaughtAgain;
-      default:
+        return landed ? GraspOutcome::kLanded : GraspOutcome::kCaughtAgain;
+      case TaskPhase::kReleased:
+        landed = landed || lowest_corner(frames[k], side) <= kOnFloorHeight;
         break;
+      default:  // the trial timed out
+        return GraspOutcome::kUnfinished;
     }
   }
   return GraspOutcome::kUnfinished;
+}
+
+Phalanx phalanx(const hand::Skeleton& hand, const char* name) {
+  const int bone = hand.bone_index(name);
+  if (bone < 0) throw std::runtime_error(std::string("the simulated hand has no bone ") + name);
+  return {bone, hand.bones[std::size_t(bone)].length};
 }
 
 }  // namespace
@@ -73,6 +91,8 @@ const char* grasp_outcome_name(GraspOutcome outcome) {
       return "placed";
     case GraspOutcome::kDropped:
       return "dropped";
+    case GraspOutcome::kLanded:
+      return "landed";
     case GraspOutcome::kCaughtAgain:
       return "caught_again";
     case GraspOutcome::kUnfinished:
@@ -81,13 +101,14 @@ const char* grasp_outcome_name(GraspOutcome outcome) {
   return "?";
 }
 
+bool lost(GraspOutcome outcome) {
+  return outcome == GraspOutcome::kDropped || outcome == GraspOutcome::kLanded;
+}
+
 std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
   const hand::Skeleton hand = hand::build_simulated_hand(replay.simulated_hand);
-  auto phalanx = [&](const char* name) {
-    const int bone = hand.bone_index(name);
-    return Phalanx{bone, hand.bones.at(std::size_t(bone)).length};
-  };
-  const Phalanx thumb = phalanx("thumb3"), index = phalanx("index3");
+  const Phalanx thumb = phalanx(hand, "thumb3"), index = phalanx(hand, "index3");
+  const double side = replay.layout.cube_size;
   const std::vector<store::FrameRecord>& frames = replay.frames;
   std::vector<GraspContact> grasps;
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -95,23 +116,24 @@ std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
                         (k == 0 || phase_of(frames[k - 1]) != TaskPhase::kGrasped);
     if (!starts) continue;
     const store::FrameRecord& f = frames[k];
-    if (f.bone_positions.size() != hand.bones.size())
-      throw std::runtime_error("the frame at " + std::to_string(f.time) +
-                               " s holds no simulated hand of this condition's size");
+    if (f.bone_positions.size() != hand.bones.size() ||
+        f.bone_rotations.size() != hand.bones.size())
+      throw std::runtime_error("the frame at " + std::to_string(f.time) + " s holds " +
+                               std::to_string(f.bone_positions.size()) +
+                               " bones, the condition's hand " + std::to_string(hand.bones.size()));
     const Eigen::Vector3d centre = f.cube_position.cast<double>();
-    const Eigen::Matrix3d cube_axes = f.cube_rotation.cast<double>().toRotationMatrix();
     const auto [thumb_at, thumb_part] = nearest_part(f, thumb, centre);
     const auto [index_at, index_part] = nearest_part(f, index, centre);
     GraspContact g;
     g.time = f.time;
-    g.cube_size = replay.layout.cube_size;
+    g.cube_size = side;
     g.thumb = thumb_part;
     g.index = index_part;
-    g.pinch_offset = cube_axes.transpose() * (0.5 * (thumb_at + index_at) - centre);
+    g.pinch_offset = 0.5 * (thumb_at + index_at) - centre;
     std::size_t end = k;
     while (end < frames.size() && phase_of(frames[end]) == TaskPhase::kGrasped) ++end;
     g.held = (end < frames.size() ? frames[end].time : frames.back().time) - f.time;
-    g.outcome = end < frames.size() ? outcome_after(frames, end) : GraspOutcome::kUnfinished;
+    g.outcome = outcome_after(frames, end, side);
     grasps.push_back(g);
   }
   return grasps;
@@ -127,8 +149,13 @@ std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
                           row.status == store::TrialStatus::kTimeout;
       if (!result || store.frame_count(row.id) == 0) continue;
       const TrialReplay replay = load_trial_replay(store, p.id, row.position, row.attempt);
-      out.push_back({p.id, replay.condition, row.position, row.attempt, replay.layout.cube_size,
-                     grasp_contacts(replay)});
+      try {
+        out.push_back({p.id, replay.condition, row.position, row.attempt, replay.layout.cube_size,
+                       grasp_contacts(replay)});
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(p.id + "'s trial " + std::to_string(row.position + 1) +
+                                 ", attempt " + std::to_string(row.attempt) + ": " + e.what());
+      }
     }
   }
   return out;

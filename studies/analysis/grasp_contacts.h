@@ -20,10 +20,17 @@ namespace handlab::studies {
 enum class PhalanxPart { kBase, kPad, kTip };
 const char* phalanx_part_name(PhalanxPart part);
 
-// What became of a grasp: the cube was set down in B, came to rest outside B (a drop), was
-// caught again before it landed, or the trial ended while it was held or falling.
-enum class GraspOutcome { kPlaced, kDropped, kCaughtAgain, kUnfinished };
+// What became of a grasp once the pinch let the cube go: it was set down in B (placed), came
+// to rest outside B (dropped), came down onto the floor and was grasped again before it rested
+// (landed), was grasped again before it touched the floor (caught_again), or the trial ended
+// first (unfinished). The task counts a drop only for the second; `landed` is lost all the same.
+enum class GraspOutcome { kPlaced, kDropped, kLanded, kCaughtAgain, kUnfinished };
 const char* grasp_outcome_name(GraspOutcome outcome);
+// Whether the pinch lost the cube: it came down onto the floor out of B.
+bool lost(GraspOutcome outcome);
+
+// m: a cube whose lowest corner is this close to the floor is on it (the task's lift height).
+inline constexpr double kOnFloorHeight = 0.002;
 
 struct GraspContact {
   double time = 0.0;  // s since the trial started, the first frame with the cube grasped
@@ -31,7 +38,7 @@ struct GraspContact {
   GraspOutcome outcome = GraspOutcome::kUnfinished;
   PhalanxPart thumb = PhalanxPart::kPad, index = PhalanxPart::kPad;
   // m: the midpoint of the two phalanges' nearest points minus the cube's centre, in the
-  // cube's frame (y up the cube)
+  // scene's axes (x and z along the floor, y up)
   Eigen::Vector3d pinch_offset = Eigen::Vector3d::Zero();
   double cube_size = 0.0;  // m
 };
@@ -41,8 +48,9 @@ std::vector<GraspContact> grasp_contacts(const TrialReplay& replay);
 
 struct TrialGrasps {
   std::string participant, condition;
-  int position = 0, attempt = 0;  // 0-based place in the schedule
-  double cube_size = 0.0;         // m, the condition's
+  int position = 0;        // 0-based place in the schedule
+  int attempt = 0;         // from 1
+  double cube_size = 0.0;  // m, the condition's
   std::vector<GraspContact> grasps;
 };
 

@@ -17,25 +17,26 @@ std::string cube_group(double size) {
 int offset_bin(const GraspContact& g) {
   const double share = std::hypot(g.pinch_offset.x(), g.pinch_offset.z()) / g.cube_size;
   int bin = 0;
-  for (double bound : kPinchOffsetBounds) bin += share >= bound ? 1 : 0;
+  for (double edge : kPinchOffsetEdges) bin += share >= edge ? 1 : 0;
   return bin;
 }
 
-void count(GraspCount& c, bool dropped) {
+void count(GraspCount& c, bool was_lost) {
   ++c.grasps;
-  c.dropped += dropped ? 1 : 0;
+  c.lost += was_lost ? 1 : 0;
 }
 
 void add(GraspTally& t, const GraspContact& g) {
-  const bool dropped = g.outcome == GraspOutcome::kDropped;
+  const bool was_lost = lost(g.outcome);
   ++t.grasps;
   t.placed += g.outcome == GraspOutcome::kPlaced ? 1 : 0;
-  t.dropped += dropped ? 1 : 0;
+  t.dropped += g.outcome == GraspOutcome::kDropped ? 1 : 0;
+  t.landed += g.outcome == GraspOutcome::kLanded ? 1 : 0;
   t.caught_again += g.outcome == GraspOutcome::kCaughtAgain ? 1 : 0;
   t.unfinished += g.outcome == GraspOutcome::kUnfinished ? 1 : 0;
-  count(t.by_thumb[std::size_t(g.thumb)], dropped);
-  count(t.by_index[std::size_t(g.index)], dropped);
-  count(t.by_offset[std::size_t(offset_bin(g))], dropped);
+  count(t.by_thumb[std::size_t(g.thumb)], was_lost);
+  count(t.by_index[std::size_t(g.index)], was_lost);
+  count(t.by_offset[std::size_t(offset_bin(g))], was_lost);
 }
 
 void write_counts(util::JsonWriter& w, const std::array<GraspCount, 3>& by_part) {
@@ -43,7 +44,7 @@ void write_counts(util::JsonWriter& w, const std::array<GraspCount, 3>& by_part)
   for (PhalanxPart part : {PhalanxPart::kBase, PhalanxPart::kPad, PhalanxPart::kTip}) {
     const GraspCount& c = by_part[std::size_t(part)];
     w.key(phalanx_part_name(part)).begin_object();
-    w.field("grasps", c.grasps).field("dropped", c.dropped).end_object();
+    w.field("grasps", c.grasps).field("lost", c.lost).end_object();
   }
   w.end_object();
 }
@@ -74,8 +75,9 @@ void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& tria
   for (const GraspTally& t : tallies) {
     w.begin_object().field("group", t.group).field("cube_size_m", t.cube_size);
     w.field("trials", t.trials).field("grasps", t.grasps).field("placed", t.placed);
-    w.field("dropped", t.dropped).field("caught_again", t.caught_again);
-    w.field("unfinished", t.unfinished);
+    w.field("dropped", t.dropped).field("landed", t.landed);
+    w.field("caught_again", t.caught_again).field("unfinished", t.unfinished);
+    w.field("lost", t.lost());
     w.key("by_thumb");
     write_counts(w, t.by_thumb);
     w.key("by_index");
@@ -83,13 +85,13 @@ void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& tria
     w.key("by_pinch_offset").begin_array();
     for (std::size_t bin = 0; bin < t.by_offset.size(); ++bin) {
       w.begin_object();
-      w.key("from_share").value(bin == 0 ? 0.0 : kPinchOffsetBounds[bin - 1]);
+      w.key("from_share").value(bin == 0 ? 0.0 : kPinchOffsetEdges[bin - 1]);
       w.key("to_share");
-      if (bin < kPinchOffsetBounds.size())
-        w.value(kPinchOffsetBounds[bin]);
+      if (bin < kPinchOffsetEdges.size())
+        w.value(kPinchOffsetEdges[bin]);
       else
         w.null();
-      w.field("grasps", t.by_offset[bin].grasps).field("dropped", t.by_offset[bin].dropped);
+      w.field("grasps", t.by_offset[bin].grasps).field("lost", t.by_offset[bin].lost);
       w.end_object();
     }
     w.end_array().end_object();

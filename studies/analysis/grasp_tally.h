@@ -1,7 +1,8 @@
-// The grasps of a study's logged trials counted by what they met the cube with: how many were
-// dropped of those whose thumb (or index) met it with its tip, its pad or its base, and of
-// those pinched near or far from the cube's centre; per cube size (what a participant sees)
-// or per condition. `handlab-cli grasps` prints and writes them.
+// The grasps of a study's logged trials counted by how they met the cube: how many lost it (it
+// came down onto the floor out of B) of those whose thumb (or index) had its tip, its pad or
+// its base nearest the cube's centre, and of those pinched near or far from that centre; per
+// cube size (what a participant sees) or per condition. `handlab-cli grasps` prints and
+// writes them.
 #pragma once
 
 #include <array>
@@ -14,18 +15,21 @@
 namespace handlab::studies {
 
 struct GraspCount {
-  int grasps = 0, dropped = 0;
+  int grasps = 0, lost = 0;
 };
 
-// The pinch's distance from the cube's centre along the floor, as a share of the cube's side.
-inline constexpr std::array<double, 2> kPinchOffsetBounds = {0.2, 0.4};
+// The edges of the bins of the pinch's distance from the cube's centre along the floor, as
+// shares of the cube's side: below the first, between, from the second.
+inline constexpr std::array<double, 2> kPinchOffsetEdges = {0.2, 0.4};
 
 struct GraspTally {
   std::string group;  // "6 cm" (by cube) or the condition's label
   double cube_size = 0.0;
-  int trials = 0, grasps = 0, placed = 0, dropped = 0, caught_again = 0, unfinished = 0;
+  int trials = 0, grasps = 0;
+  int placed = 0, dropped = 0, landed = 0, caught_again = 0, unfinished = 0;  // GraspOutcome
   std::array<GraspCount, 3> by_thumb{}, by_index{};  // indexed by PhalanxPart
-  std::array<GraspCount, 3> by_offset{};             // below, between and above kPinchOffsetBounds
+  std::array<GraspCount, 3> by_offset{};             // by the bins of kPinchOffsetEdges
+  int lost() const { return dropped + landed; }
 };
 
 enum class GraspGrouping { kCube, kCondition };

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include "app/cli/arguments.h"
@@ -16,14 +17,20 @@ namespace {
 
 std::string share(const studies::GraspCount& c) {
   char text[64];
-  if (c.grasps == 0) return "0 of 0";
-  std::snprintf(text, sizeof text, "%d of %d (%.0f %%)", c.dropped, c.grasps,
-                100.0 * c.dropped / c.grasps);
+  if (c.grasps == 0) return "none";
+  std::snprintf(text, sizeof text, "%d of %d (%.0f %%)", c.lost, c.grasps,
+                100.0 * c.lost / c.grasps);
+  return text;
+}
+
+std::string edge(double x) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%.1f", x);
   return text;
 }
 
 void print_by_part(const char* digit, const std::array<studies::GraspCount, 3>& by_part) {
-  std::cout << "  dropped, by the part of the " << digit << " nearest the cube:";
+  std::cout << "    " << digit << ":";
   const char* sep = " ";
   for (auto part :
        {studies::PhalanxPart::kPad, studies::PhalanxPart::kTip, studies::PhalanxPart::kBase}) {
@@ -36,21 +43,18 @@ void print_by_part(const char* digit, const std::array<studies::GraspCount, 3>& 
 }
 
 void print_tally(const studies::GraspTally& t) {
-  std::cout << t.group << ": " << t.grasps << " grasps in " << t.trials << " trials; placed "
-            << t.placed << ", dropped " << share({t.grasps, t.dropped}) << ", caught again "
+  std::cout << t.group << ": " << t.grasps << " grasps in " << t.trials << " trials; lost "
+            << share({t.grasps, t.lost()}) << " (dropped " << t.dropped << ", landed and grasped "
+            << "again " << t.landed << "); placed " << t.placed << ", caught in the air "
             << t.caught_again << ", unfinished " << t.unfinished << "\n";
+  std::cout << "  lost, by the part of the distal phalanx nearest the cube's centre:\n";
   print_by_part("thumb", t.by_thumb);
   print_by_part("index", t.by_index);
-  const auto& b = studies::kPinchOffsetBounds;
-  auto bound = [](double x) {
-    char text[16];
-    std::snprintf(text, sizeof text, "%.1f", x);
-    return std::string(text);
-  };
-  std::cout << "  dropped, by the pinch's distance from the cube's centre along the floor "
-               "(share of the side): below "
-            << bound(b[0]) << " " << share(t.by_offset[0]) << ", " << bound(b[0]) << "-"
-            << bound(b[1]) << " " << share(t.by_offset[1]) << ", " << bound(b[1]) << " and more "
+  const auto& e = studies::kPinchOffsetEdges;
+  std::cout << "  lost, by the pinch's distance from the cube's centre along the floor (share "
+               "of the side):\n    < "
+            << edge(e[0]) << ": " << share(t.by_offset[0]) << ", " << edge(e[0]) << "-"
+            << edge(e[1]) << ": " << share(t.by_offset[1]) << ", >= " << edge(e[1]) << ": "
             << share(t.by_offset[2]) << "\n";
 }
 
@@ -68,13 +72,17 @@ int run_grasps(const std::vector<std::string>& argv) {
     std::cout
         << "Usage: handlab-cli grasps --db DB [--participant ID] [--by cube|condition] "
            "[--json OUT]\n\nHow each grasp of the study's trials met the cube, from their "
-           "frame logs (trials with a result whose attempt logged frames: a session's, or a "
-           "simulated study run with --frames): at the first frame the task saw the cube "
-           "lifted between thumb and index, the part of each distal phalanx nearest the cube's "
-           "centre (tip, pad or base of the bone), the pinch's midpoint against the cube's "
-           "centre, and what became of the grasp (placed in B, dropped outside it, caught "
-           "again, or unfinished when the trial ended). Prints per group how many grasps were "
-           "dropped, by each of those (docs/study.md).\n\nOptions:\n"
+           "frame logs (trials with a result whose attempt logged frames, practice included: a "
+           "session's, or a simulated study run with --frames). At the first frame the task saw "
+           "the cube lifted between thumb and index: on each distal phalanx, the point of the "
+           "bone nearest the cube's centre (the fingertip's end: tip; the joint: base; between: "
+           "pad), and the pinch's midpoint against the cube's centre. Then what became of the "
+           "grasp: placed in B, dropped (it came to rest outside B), landed (it came down onto "
+           "the floor and was grasped again before it rested), caught again in the air, or "
+           "unfinished at the trial's end. Prints per group how many grasps lost the cube "
+           "(dropped or landed) by the part of each phalanx and by the pinch's distance from the "
+           "centre; --json writes the same and every grasp, and with - replaces the printout "
+           "(docs/study.md).\n\nOptions:\n"
         << format_options_help(specs);
     return 0;
   }
