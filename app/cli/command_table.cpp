@@ -40,8 +40,7 @@ const std::vector<Command>& all_commands() {
       {"export", "write a study's trials and questionnaires as CSV for R, JASP, jamovi",
        run_export},
       {"grasps",
-       "how the grasps of logged trials met the cube (tip or pad, off centre) and which were "
-       "dropped",
+       "how the grasps of logged trials met the cube (tip or pad, off centre) and which lost it",
        run_grasps},
 #ifdef HANDLAB_WITH_REPORT
       {"report", "write a study's results section with tables and figures as HTML and PDF",

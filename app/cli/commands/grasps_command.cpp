@@ -1,5 +1,5 @@
-// handlab-cli grasps: how the grasps of a study's logged trials met the cube, and which were
-// dropped, from the frame logs.
+// handlab-cli grasps: how the grasps of a study's logged trials met the cube, and which lost
+// it, from the frame logs.
 #include <array>
 #include <cstdio>
 #include <iostream>
