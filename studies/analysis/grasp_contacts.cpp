@@ -43,9 +43,11 @@ double lowest_corner(const store::FrameRecord& f, double side) {
 }
 
 // What became of the grasp whose pinch let the cube go at frame `from`: the next phase other
-// than released, and whether the cube reached the floor before a new grasp.
+// than released, and whether the cube reached the floor before a new grasp (its lowest corner
+// below the height at which the task counts a cube lifted).
 GraspOutcome outcome_after(const std::vector<store::FrameRecord>& frames, std::size_t from,
                            double side) {
+  const double on_floor = task::TaskSettings{}.lift_height;
   bool landed = false;
   for (std::size_t k = from; k < frames.size(); ++k) {
     switch (phase_of(frames[k])) {
@@ -56,7 +58,7 @@ GraspOutcome outcome_after(const std::vector<store::FrameRecord>& frames, std::s
       case TaskPhase::kGrasped:
         return landed ? GraspOutcome::kLanded : GraspOutcome::kCaughtAgain;
       case TaskPhase::kReleased:
-        landed = landed || lowest_corner(frames[k], side) <= kOnFloorHeight;
+        landed = landed || lowest_corner(frames[k], side) <= on_floor;
         break;
       default:  // the trial timed out
         return GraspOutcome::kUnfinished;
@@ -147,7 +149,7 @@ std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
     for (const store::TrialRow& row : store.trials(p.id)) {
       const bool result = row.status == store::TrialStatus::kCompleted ||
                           row.status == store::TrialStatus::kTimeout;
-      if (!result || store.frame_count(row.id) == 0) continue;
+      if (!result || row.frames == 0) continue;
       const TrialReplay replay = load_trial_replay(store, p.id, row.position, row.attempt);
       try {
         out.push_back({p.id, replay.condition, row.position, row.attempt, replay.layout.cube_size,

@@ -29,9 +29,6 @@ const char* grasp_outcome_name(GraspOutcome outcome);
 // Whether the pinch lost the cube: it came down onto the floor out of B.
 bool lost(GraspOutcome outcome);
 
-// m: a cube whose lowest corner is this close to the floor is on it (the task's lift height).
-inline constexpr double kOnFloorHeight = 0.002;
-
 struct GraspContact {
   double time = 0.0;  // s since the trial started, the first frame with the cube grasped
   double held = 0.0;  // s until the pinch let it go (to the trial's last frame if never)
