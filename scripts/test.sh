@@ -7,6 +7,16 @@ jobs=$(nproc)
 
 scripts/install-deps.sh
 
+# No test may replace a device: /dev/null as it was before the suite, checked at the end.
+null_before=$(stat -c '%F %t:%T %i' /dev/null)
+check_dev_null() {
+  if [ "$(stat -c '%F %t:%T %i' /dev/null)" != "$null_before" ]; then
+    echo "test.sh: /dev/null is no longer the device it was ($(stat -c '%F' /dev/null))" >&2
+    exit 1
+  fi
+  echo "test.sh: /dev/null is still the character device it was"
+}
+
 # The Release tree is scripts/run.sh's (the same preset): after run.sh nothing is rebuilt.
 cmake --preset release
 cmake --build build -j "$jobs"
@@ -33,3 +43,4 @@ fi
 trap - EXIT
 echo "test.sh: sanitizer tree built while the Release tests ran ($build_log)"
 ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+check_dev_null

@@ -119,18 +119,45 @@ LongTable LongTable::without(const std::string& name,
   out.source_ = source_;
   out.columns_ = columns_;
   out.columns_data_.resize(columns_.size());
-  std::vector<std::unordered_map<int, int>> kept(columns_.size());
   for (std::size_t r = 0; r < rows(); ++r) {
     if (std::find(values.begin(), values.end(), cell(r, dropped)) != values.end()) continue;
-    for (std::size_t k = 0; k < columns_.size(); ++k) {
-      const int id = columns_data_[k].ids[r];
-      const auto [at, fresh] = kept[k].emplace(id, int(out.columns_data_[k].values.size()));
-      if (fresh) out.columns_data_[k].values.push_back(columns_data_[k].values[std::size_t(id)]);
-      out.columns_data_[k].ids.push_back(at->second);
-    }
+    for (std::size_t k = 0; k < columns_.size(); ++k)
+      out.columns_data_[k].ids.push_back(columns_data_[k].ids[r]);
     out.lines_.push_back(lines_[r]);
   }
+  // Keep the values some row still has, in their order.
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    const Column& from = columns_data_[k];
+    Column& to = out.columns_data_[k];
+    std::vector<int> renumbered(from.values.size(), -1);
+    for (int id : to.ids) renumbered[std::size_t(id)] = 0;
+    for (std::size_t v = 0; v < from.values.size(); ++v) {
+      if (renumbered[v] < 0) continue;
+      renumbered[v] = int(to.values.size());
+      to.values.push_back(from.values[v]);
+    }
+    for (int& id : to.ids) id = renumbered[std::size_t(id)];
+  }
   return out;
+}
+
+void LongTable::order_levels(const std::string& name, const std::vector<std::string>& order) {
+  Column& c = columns_data_[column(name)];
+  std::vector<std::size_t> sequence;  // old value indices in their new order
+  for (const std::string& level : order) {
+    const auto at = std::find(c.values.begin(), c.values.end(), level);
+    if (at != c.values.end()) sequence.push_back(std::size_t(at - c.values.begin()));
+  }
+  for (std::size_t v = 0; v < c.values.size(); ++v)
+    if (std::find(sequence.begin(), sequence.end(), v) == sequence.end()) sequence.push_back(v);
+  std::vector<int> renumbered(c.values.size());
+  std::vector<std::string> values;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    renumbered[sequence[i]] = int(i);
+    values.push_back(c.values[sequence[i]]);
+  }
+  c.values = std::move(values);
+  for (int& id : c.ids) id = renumbered[std::size_t(id)];
 }
 
 std::vector<double> LongTable::numbers(const std::string& name) const {

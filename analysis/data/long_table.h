@@ -41,8 +41,11 @@ class LongTable {
   Codes factor_codes(const std::string& name) const;
   const std::string& source() const { return source_; }
   // The table without the rows whose cell in `column` is one of `values` (levels that no
-  // row keeps are gone from its factors).
+  // row keeps are gone from its factors; the others keep their order).
   LongTable without(const std::string& column, const std::vector<std::string>& values) const;
+  // Puts the levels of `column` in `order` (a design's own order, which no row order may
+  // change); levels it does not name follow in order of first appearance.
+  void order_levels(const std::string& column, const std::vector<std::string>& order);
 
  private:
   // Each column's distinct values in order of first appearance and each row's index into

@@ -65,11 +65,8 @@ void run_nonparametric(const LongTable& table, const AnalysisRequest& request,
   const auto& spec = request.design;
   std::vector<stats::Factor> factors;
   for (const auto& name : spec.within) {
-    stats::Factor f{name, {}};
-    const std::size_t col = table.column(name);
-    for (std::size_t r = 0; r < table.rows(); ++r)
-      if (std::find(f.levels.begin(), f.levels.end(), table.cell(r, col)) == f.levels.end())
-        f.levels.push_back(table.cell(r, col));
+    // The table's order of the levels: the data's, or the design's (LongTable::order_levels).
+    stats::Factor f{name, table.factor_codes(name).levels};
     if (f.levels.size() < 2)
       throw DataError(table.source() + ", column '" + name +
                       "': a factor needs at least two levels");
@@ -180,19 +177,30 @@ void run_nonparametric(const LongTable& table, const AnalysisRequest& request,
 
 }  // namespace
 
-AnalysisReport run_analysis(const LongTable& table, const AnalysisRequest& request) {
+AnalysisReport run_analysis(const LongTable& given, const AnalysisRequest& request) {
   AnalysisReport report;
   report.request = request;
-  report.source = table.source();
+  report.source = given.source();
   if (request.design.within.empty()) throw DataError("name at least one within factor (--within)");
   if (report.nonparametric()) {
-    run_nonparametric(table, request, &report);
+    run_nonparametric(given, request, &report);
     return report;
   }
+  // A missing observation (NA or an empty cell, as R reads them; a skipped trial in handlab's
+  // export) is left out before a cell's observations are averaged; a participant who then
+  // lacks a whole cell is dropped, as afex drops one with a missing cell.
+  const LongTable table = given.without(request.design.dv, {"NA", ""});
+  if (table.rows() == 0)
+    throw DataError(given.source() + ": no row has a value of '" + request.design.dv +
+                    "' (every one is NA or empty)");
   const stats::RmData data = stats::prepare_rm_data(table, request.design);
   report.n_subjects = int(data.subjects.size());
   report.dropped_subjects = data.dropped_subjects;
-  report.warnings = data.warnings;
+  if (table.rows() < given.rows())
+    report.warnings.push_back(std::to_string(given.rows() - table.rows()) +
+                              (given.rows() - table.rows() == 1 ? " row" : " rows") + " with no " +
+                              request.design.dv + " (NA) left out before the cells were averaged");
+  report.warnings.insert(report.warnings.end(), data.warnings.begin(), data.warnings.end());
   report.covariate_means = data.covariate_means;
   report.anova = stats::rm_anova(data);
   std::vector<std::string> effects = request.posthoc;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "app/cli/nearest_word.h"
+
 namespace handlab::cli {
 
 Arguments::Arguments(std::vector<OptionSpec> specs, std::vector<std::string> argv,
@@ -46,8 +48,24 @@ Arguments::Arguments(std::vector<OptionSpec> specs, std::vector<std::string> arg
 const OptionSpec& Arguments::spec(const std::string& name) const {
   const auto it = std::find_if(specs_.begin(), specs_.end(),
                                [&](const OptionSpec& s) { return s.name == name; });
-  if (it == specs_.end()) throw UsageError("unknown option --" + name + " (see --help)");
+  if (it == specs_.end()) {
+    std::vector<std::string> names;
+    for (const OptionSpec& s : specs_) names.push_back(s.name);
+    const std::string hint = did_you_mean(name, names, "--");
+    throw UsageError("unknown option --" + name + (hint.empty() ? " (see --help)" : hint));
+  }
   return *it;
+}
+
+std::string Arguments::choice(const std::string& name,
+                              const std::vector<std::string>& choices) const {
+  const std::string value = text(name);
+  if (std::find(choices.begin(), choices.end(), value) != choices.end()) return value;
+  std::string list;
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
+  throw UsageError("--" + name + " must be " + list + ", not '" + value + "'" +
+                   did_you_mean(value, choices));
 }
 
 bool Arguments::flag(const std::string& name) const {

@@ -43,6 +43,9 @@ class Arguments {
   // Throws UsageError naming the first of these options that was not given.
   void require(std::initializer_list<const char*> names) const;
   std::string text(const std::string& name) const;  // the value or the declared default
+  // text(), which must be one of `choices`; else UsageError listing them, with a hint for a
+  // misspelling ("did you mean soft?").
+  std::string choice(const std::string& name, const std::vector<std::string>& choices) const;
   std::vector<std::string> all(const std::string& name) const;
   double number(const std::string& name) const;
   long integer(const std::string& name) const;

@@ -1,6 +1,6 @@
 #include "app/gui/live_measurement.h"
 
-#include <fstream>
+#include <cstdio>
 #include <sstream>
 
 #include <QTimer>
@@ -9,6 +9,7 @@
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::gui {
 namespace {
@@ -33,9 +34,14 @@ LiveMeasurement::LiveMeasurement(SessionPage* page, double seconds, QString json
       emit done(false);
       return;
     }
-    std::ofstream out(json_path_.toStdString());
-    out << figures_.toStdString();
-    emit done(bool(out));
+    try {
+      util::write_output_bytes(json_path_.toStdString(), figures_.toStdString());
+    } catch (const util::OutputError& e) {
+      std::fprintf(stderr, "handlab: %s\n", e.what());
+      emit done(false);
+      return;
+    }
+    emit done(true);
   });
 }
 

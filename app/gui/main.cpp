@@ -25,6 +25,7 @@
 #include "app/gui/session_page.h"
 #include "app/gui/study_home.h"
 #include "app/live/leap_replay_server.h"
+#include "app/report/figure_file.h"
 #include "core/tracking/recording_io.h"
 #include "handlab/version.h"
 
@@ -273,15 +274,20 @@ int main(int argc, char** argv) {
         painter.drawPixmap(dialog->frameGeometry().topLeft() - window.frameGeometry().topLeft(),
                            dialog->grab());
       }
-      bool saved = picture.save(parser.value(screenshot));
-      if (window.participant_window()) {  // beside it: NAME-participant.png
-        QString path = parser.value(screenshot);
-        path.replace(QRegularExpression("\\.png$"), "");
-        saved = saved && handlab::gui::grab_with_views(window.participant_window())
-                             .save(path + "-participant.png");
+      bool saved = true;
+      try {
+        handlab::report::write_png_file(parser.value(screenshot).toStdString(), picture);
+        if (window.participant_window()) {  // beside it: NAME-participant.png
+          QString path = parser.value(screenshot);
+          path.replace(QRegularExpression("\\.png$"), "");
+          handlab::report::write_png_file(
+              (path + "-participant.png").toStdString(),
+              handlab::gui::grab_with_views(window.participant_window()));
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "handlab: %s\n", e.what());
+        saved = false;
       }
-      if (!saved)
-        std::fprintf(stderr, "handlab: cannot write %s\n", qPrintable(parser.value(screenshot)));
       app.exit(saved ? 0 : 1);
     };
     const QString when = parser.value(options.screenshot_at);

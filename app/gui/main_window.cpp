@@ -2,8 +2,6 @@
 
 #include "app/report/report_files.h"
 
-#include <fstream>
-
 #include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
@@ -36,9 +34,11 @@
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
 #include "app/gui/study_home.h"
+#include "app/report/figure_file.h"
 #include "app/report/report_files.h"
 #include "core/store/study_store.h"
 #include "core/util/csv.h"
+#include "core/util/output_file.h"
 #include "handlab/version.h"
 #include "studies/export/study_export.h"
 #include "studies/session/enrolment.h"
@@ -323,20 +323,19 @@ QString MainWindow::export_table(const QString& path, Table table) {
   });
   try {
     store::StudyStore store(study_.toStdString());
-    std::ofstream out(path.toStdString(), std::ios::binary);
-    if (!out) return tr("Cannot write %1.").arg(path);
-    switch (table) {
-      case Table::kTrials:
-        studies::write_trials_csv(store, out);
-        break;
-      case Table::kQuestionnaire:
-        studies::write_questionnaire_csv(store, out);
-        break;
-      case Table::kFrames:
-        studies::write_frames_csv(store, out);
-        break;
-    }
-    if (!out) return tr("Cannot write %1.").arg(path);
+    util::write_output(path.toStdString(), [&](std::ostream& out) {
+      switch (table) {
+        case Table::kTrials:
+          studies::write_trials_csv(store, out);
+          break;
+        case Table::kQuestionnaire:
+          studies::write_questionnaire_csv(store, out);
+          break;
+        case Table::kFrames:
+          studies::write_frames_csv(store, out);
+          break;
+      }
+    });
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
   }
@@ -511,8 +510,11 @@ void MainWindow::save_view_image() {
   const QString path =
       QFileDialog::getSaveFileName(this, tr("Save View"), "view.png", tr("PNG images (*.png)"));
   if (path.isEmpty()) return;
-  if (!scene_view()->grab_picture().save(path))
-    QMessageBox::warning(this, tr("Save View"), tr("Could not write %1.").arg(path));
+  try {
+    report::write_png_file(path.toStdString(), scene_view()->grab_picture());
+  } catch (const std::exception& e) {
+    QMessageBox::warning(this, tr("Save View"), QString::fromStdString(e.what()));
+  }
 }
 
 void MainWindow::set_cube_size(double metres) {

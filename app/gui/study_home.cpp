@@ -115,6 +115,12 @@ void StudyHome::set_study(const QString& database, const QString& own_session) {
   }
   add(tr("Participants"),
       tr("%1 enrolled, %2 of %3 trials done").arg(status.size()).arg(done).arg(planned));
+  const store::StudyCompleteness completeness = store.completeness();
+  if (completeness.partial())
+    add(tr("Partial study"),
+        tr("%1: merged from only some of its parts; merge the rest in (handlab-cli merge "
+           "--update) before reading its results as the study's")
+            .arg(QString::fromStdString(completeness.describe())));
   summary_->resizeColumnToContents(0);
   summary_->resizeRowsToContents();
   interrupted_label_->setVisible(!interrupted_.isEmpty());

@@ -1,21 +1,18 @@
 #include "app/report/report_files.h"
 
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "app/report/report_figures.h"
 #include "app/report/report_pdf.h"
+#include "core/util/output_file.h"
 
 namespace handlab::report {
 
 ReportFiles write_report(const ReportRequest& request) {
   const studies::StudyDatabaseAnalysis analysis = studies::analyze_study_database(request.database);
   const studies::ReportDocument document = studies::build_report(analysis, request.options);
-  std::error_code error;
-  std::filesystem::create_directories(request.folder, error);
-  if (error)
-    throw std::runtime_error("cannot make the folder " + request.folder + ": " + error.message());
+  util::make_output_folder(request.folder);
   ReportFiles files;
   if (!analysis.completion_time_not_computed.empty())
     files.not_computed.push_back("completion time: " + analysis.completion_time_not_computed);
@@ -26,12 +23,11 @@ ReportFiles write_report(const ReportRequest& request) {
   const std::filesystem::path folder(request.folder);
   if (request.html) {
     files.html = (folder / "report.html").string();
-    std::ofstream out(files.html, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write " + files.html);
-    studies::write_report_html(
-        document, [&](const studies::ReportFigure& f) { return figure_svg(f, analysis, document); },
-        out);
-    if (!out.flush()) throw std::runtime_error("cannot write " + files.html);
+    util::write_output(files.html, [&](std::ostream& out) {
+      studies::write_report_html(
+          document,
+          [&](const studies::ReportFigure& f) { return figure_svg(f, analysis, document); }, out);
+    });
   }
   if (request.pdf) {
     files.pdf = (folder / "report.pdf").string();

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include <QFileInfo>
+#include <QBuffer>
 #include <QPageSize>
 #include <QPainter>
 #include <QPdfWriter>
 
 #include "app/report/report_figures.h"
+#include "core/util/output_file.h"
 
 namespace handlab::report {
 namespace {
@@ -245,19 +246,28 @@ class PdfLayout {
 
 int write_report_pdf(const studies::ReportDocument& doc, const studies::StudyDatabaseAnalysis& a,
                      const QString& path) {
-  QPdfWriter writer(path);
-  writer.setPageSize(QPageSize(QPageSize::A4));
-  writer.setPageMargins(QMarginsF(0, 0, 0, 0));
-  writer.setResolution(72);
-  writer.setTitle(QString::fromStdString(doc.title));
-  writer.setCreator("handlab");
-  QPainter p;
-  if (!p.begin(&writer))
-    throw std::runtime_error("cannot write " + QFileInfo(path).absoluteFilePath().toStdString());
-  // The first pass only measures, to know the page count for the footers.
-  const int pages = PdfLayout(p, nullptr, doc, a, 0).run();
-  PdfLayout(p, &writer, doc, a, pages).run();
-  p.end();
+  // Drawn into memory, then written by the one output rule (a temporary file renamed over
+  // the output, or through a device or pipe).
+  QByteArray bytes;
+  QBuffer buffer(&bytes);
+  buffer.open(QIODevice::WriteOnly);
+  int pages = 0;
+  {
+    QPdfWriter writer(&buffer);
+    writer.setPageSize(QPageSize(QPageSize::A4));
+    writer.setPageMargins(QMarginsF(0, 0, 0, 0));
+    writer.setResolution(72);
+    writer.setTitle(QString::fromStdString(doc.title));
+    writer.setCreator("handlab");
+    QPainter p;
+    if (!p.begin(&writer)) throw util::OutputError("cannot write " + path.toStdString());
+    // The first pass only measures, to know the page count for the footers.
+    pages = PdfLayout(p, nullptr, doc, a, 0).run();
+    PdfLayout(p, &writer, doc, a, pages).run();
+    p.end();
+  }
+  util::write_output_bytes(path.toStdString(),
+                           std::string_view(bytes.constData(), std::size_t(bytes.size())));
   return pages;
 }
 

@@ -6,6 +6,8 @@
 
 #include <zlib.h>
 
+#include "core/util/output_file.h"
+
 namespace handlab::render {
 namespace {
 
@@ -60,9 +62,8 @@ void write_png(const Image& image, const std::string& path) {
   put_chunk(file, "IDAT", packed);
   put_chunk(file, "IEND", {});
 
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(file.data()), std::streamsize(file.size()));
-  if (!out) throw std::runtime_error("cannot write " + path);
+  util::write_output_bytes(
+      path, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
 }
 
 bool read_png_size(const std::string& path, int* width, int* height) {

@@ -7,10 +7,47 @@
 namespace handlab::store {
 namespace {
 
+// What a failure of SQLite means to the person whose file it is, for the failures a file
+// can cause; empty for the others (a program error), which keep SQLite's words.
+std::string what_happened(int code, const std::string& file) {
+  switch (code & 0xff) {
+    case SQLITE_CORRUPT:
+      return file +
+             " is damaged: it is not a whole SQLite database (cut short, or overwritten "
+             "in part); restore it from a copy";
+    case SQLITE_NOTADB:
+      return file + " is not a study database (not an SQLite file)";
+    case SQLITE_FULL:
+      return "the disk holding " + file + " is full: free some space and run again";
+    case SQLITE_READONLY:
+      return file + " cannot be written: it, or its folder, is read-only";
+    case SQLITE_CANTOPEN:
+      return file + " cannot be opened: its folder is missing or not readable";
+    case SQLITE_PERM:
+    case SQLITE_AUTH:
+      return "no permission to use " + file;
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      return file + " is locked by another program writing it: try again when it is done";
+    case SQLITE_IOERR:
+      return file + " could not be read or written (an input/output error of its disk)";
+    default:
+      return {};
+  }
+}
+
+std::string failure_message(sqlite3* db, int code, const std::string& what,
+                            const std::string& file) {
+  const std::string sqlite = db ? sqlite3_errmsg(db) : sqlite3_errstr(code);
+  const std::string plain = what_happened(code, file.empty() ? "the study database" : file);
+  if (!plain.empty()) return plain + " (SQLite: " + sqlite + ")";
+  return what + ": " + sqlite + (file.empty() ? std::string() : " (" + file + ")");
+}
+
 [[noreturn]] void fail(sqlite3* db, const std::string& what) {
   const char* file = db ? sqlite3_db_filename(db, "main") : nullptr;
-  throw StoreError(what + ": " + (db ? sqlite3_errmsg(db) : "out of memory") +
-                   (file && *file ? std::string(" (") + file + ")" : std::string()));
+  throw StoreError(failure_message(db, db ? sqlite3_extended_errcode(db) : SQLITE_NOMEM, what,
+                                   file ? file : ""));
 }
 
 }  // namespace
@@ -108,10 +145,11 @@ namespace {
 
 sqlite3* open_connection(const std::string& path, const std::string& shown, int flags) {
   sqlite3* db = nullptr;
-  if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
-    const std::string message = db ? sqlite3_errmsg(db) : "out of memory";
+  const int code = sqlite3_open_v2(path.c_str(), &db, flags, nullptr);
+  if (code != SQLITE_OK) {
+    const std::string message = failure_message(db, code, "cannot open " + shown, shown);
     sqlite3_close(db);
-    throw StoreError("cannot open " + shown + ": " + message);
+    throw StoreError(message);
   }
   return db;
 }
@@ -128,9 +166,9 @@ void copy_into(sqlite3* memory, const std::string& path) {
     done = sqlite3_backup_step(backup, -1);
   }
   sqlite3_backup_finish(backup);
-  const std::string message = sqlite3_errstr(done);
+  const std::string message = failure_message(nullptr, done, "cannot read " + path, path);
   sqlite3_close(source);
-  if (done != SQLITE_DONE) throw StoreError("cannot read " + path + ": " + message);
+  if (done != SQLITE_DONE) throw StoreError(message);
 }
 
 }  // namespace
@@ -177,9 +215,13 @@ Database::~Database() {
 void Database::exec(std::string_view sql) {
   char* error = nullptr;
   if (sqlite3_exec(db_, std::string(sql).c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
-    const std::string message = error ? error : sqlite3_errmsg(db_);
+    const int code = sqlite3_extended_errcode(db_);
+    const std::string plain = what_happened(code, path_);
+    const std::string message =
+        plain.empty() ? std::string(error ? error : sqlite3_errmsg(db_)) + " (" + path_ + ")"
+                      : plain + " (SQLite: " + (error ? error : sqlite3_errmsg(db_)) + ")";
     sqlite3_free(error);
-    throw StoreError(message + " (" + path_ + ")");
+    throw StoreError(message);
   }
 }
 

@@ -7,8 +7,10 @@
 #include <memory>
 #include <set>
 
+#include "core/store/study_schema.h"
 #include "core/store/study_store.h"
 #include "core/util/sha256.h"
+#include "core/util/temporary_files.h"
 
 namespace handlab::store {
 namespace {
@@ -176,21 +178,27 @@ void copy_participant(Database& from, Database& to, const std::string& id, int e
 }
 
 StudyDefinition definition_of(const StudyInfo& info) {
-  return {info.name, info.protocol_text, info.seed, info.factors, info.conditions};
+  return {info.name,    info.protocol_text, info.seed,
+          info.factors, info.conditions,    info.planned_participants};
 }
 
 // A part opened read-only, after checking that it is an intact handlab study.
 std::unique_ptr<StudyStore> open_part(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw StoreError(path + ": no such file");
+  refuse_unfinished_file(path);
+  checked_study_file(path);  // says what the file is when it is no study
   std::string integrity;
   try {
     Database db(path, Database::Mode::kQueryOnly);
     integrity = db.query_text("PRAGMA integrity_check").value_or("");
-  } catch (const StoreError& e) {
-    throw StoreError(path + " is not a handlab study: " + e.what());
+  } catch (const StoreError&) {
+    integrity = "unreadable";
   }
-  if (integrity != "ok") throw StoreError(path + " fails SQLite's integrity check: " + integrity);
+  if (integrity != "ok")
+    throw StoreError(
+        path + " is damaged (cut short or overwritten; SQLite's integrity check: " + integrity +
+        "): copy the part again from where it was made, or run its task again");
   try {
     return std::make_unique<StudyStore>(path, StudyStore::Access::kReadOnly);
   } catch (const StoreError& e) {
@@ -206,11 +214,22 @@ void remove_database(const std::string& path) {
 
 }  // namespace
 
-MergeResult merge_studies(const std::vector<std::string>& parts, const std::string& out) {
+MergeResult merge_studies(const std::vector<std::string>& named_parts, const std::string& out,
+                          const MergeOptions& options) {
   std::error_code ec;
-  if (parts.empty()) throw StoreError("merge: name the parts to merge");
-  if (std::filesystem::exists(out, ec))
-    throw StoreError(out + " exists: a merge writes a new study");
+  if (named_parts.empty()) throw StoreError("merge: name the parts to merge");
+  std::vector<std::string> parts = named_parts;
+  if (std::filesystem::exists(out, ec)) {
+    if (!options.update) throw StoreError(out + " exists: a merge writes a new study");
+    const StudyCompleteness before = open_part(out)->completeness();
+    if (!before.partial()) {
+      MergeResult whole;
+      whole.whole_already = true;
+      whole.participants = before.planned;
+      return whole;
+    }
+    parts.insert(parts.begin(), out);  // what it holds is merged again with the new parts
+  }
   std::vector<std::unique_ptr<StudyStore>> stores;
   for (const std::string& path : parts) stores.push_back(open_part(path));
   const StudyInfo first = stores.front()->study();
@@ -232,6 +251,12 @@ MergeResult merge_studies(const std::vector<std::string>& parts, const std::stri
       throw StoreError(parts[k] + " is a study of another protocol (sha256 " + sha.substr(0, 12) +
                        "…; " + parts.front() + " has " + first.protocol_sha256.substr(0, 12) +
                        "…)");
+    if (info.planned_participants != first.planned_participants || info.seed != first.seed)
+      throw StoreError(parts[k] + " is a part of another study (" +
+                       std::to_string(info.planned_participants) + " planned participants, seed " +
+                       std::to_string(info.seed) + "; " + parts.front() + " has " +
+                       std::to_string(first.planned_participants) + ", seed " +
+                       std::to_string(first.seed) + ")");
     for (const Participant& p : stores[k]->participants()) {
       const auto seen = member_of.find(p.id);
       if (seen == member_of.end()) {
@@ -258,11 +283,23 @@ MergeResult merge_studies(const std::vector<std::string>& parts, const std::stri
     std::sort(members.begin(), members.end(),
               [](const Member& a, const Member& b) { return a.enrolment < b.enrolment; });
 
+  StudyCompleteness completeness;
+  completeness.planned = first.planned_participants;
+  for (int place = 0; place < completeness.planned; ++place)
+    if (!places.count(place)) completeness.missing_places.push_back(place);
+  if (completeness.partial() && !options.partial)
+    throw StoreError("the parts hold " + completeness.describe() +
+                     ": merge every part, or give --partial to write a study that says it is "
+                     "partial until the rest are merged in (merge --update)");
+
   const std::string partial = out + ".partial";
   remove_database(partial);
+  // Removed if the merge fails or is stopped (Ctrl-C, scancel): no stray file, and nothing
+  // under the output's name that looks like a study.
+  util::TemporaryFile unfinished(partial), wal(partial + "-wal"), shm(partial + "-shm");
   StudyStore::create(partial, definition_of(first));
   {
-    StudyStore merged(partial);
+    StudyStore merged(partial, StudyStore::Access::kUnfinished);
     Database& db = merged.database();
     Transaction t(db);
     db.prepare("UPDATE study SET created_at = ?").bind(1, created_at).run();
@@ -276,7 +313,9 @@ MergeResult merge_studies(const std::vector<std::string>& parts, const std::stri
   }
   std::filesystem::rename(partial, out, ec);
   if (ec) throw StoreError("merge: cannot rename " + partial + " to " + out + ": " + ec.message());
+  unfinished.keep();
   result.participants = int(members.size());
+  result.completeness = completeness;
   return result;
 }
 

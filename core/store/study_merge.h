@@ -8,12 +8,25 @@
 #include <string>
 #include <vector>
 
+#include "core/store/study_store.h"
+
 namespace handlab::store {
 
+struct MergeOptions {
+  // Write the study though its parts lack participants its plan names; it then says it is
+  // partial (StudyStore::completeness) until merged again with the rest.
+  bool partial = false;
+  // An existing `out` that is partial is merged again with the parts (and replaced); one that
+  // is whole is left as it is. Without it, an existing `out` is refused.
+  bool update = false;
+};
+
 struct MergeResult {
-  int participants = 0;     // in the merged study
-  int duplicates = 0;       // participants found in two parts with the same data, taken once
-  bool renumbered = false;  // places in the enrolment order clashed: renumbered in part order
+  int participants = 0;        // in the merged study
+  int duplicates = 0;          // participants found in two parts with the same data, taken once
+  bool renumbered = false;     // places in the enrolment order clashed: renumbered in part order
+  bool whole_already = false;  // update: `out` was whole, nothing was written
+  StudyCompleteness completeness;  // of the merged study
 };
 
 // Writes the study `out` (which must not exist) from `parts`, each opened read-only and
@@ -22,8 +35,10 @@ struct MergeResult {
 // order. `out` appears only when complete: it is written as OUT.partial (a stale one, left by
 // a merge that was killed, is replaced) and renamed at the end. Throws StoreError naming the
 // file and the reason: `out` exists; a part is missing, not a handlab study, or fails
-// SQLite's integrity check; a part's protocol differs from the first part's; a participant is
-// in two parts with different data.
-MergeResult merge_studies(const std::vector<std::string>& parts, const std::string& out);
+// SQLite's integrity check; a part's protocol or plan differs from the first part's; a
+// participant is in two parts with different data; the parts lack planned participants and
+// `options.partial` is not set.
+MergeResult merge_studies(const std::vector<std::string>& parts, const std::string& out,
+                          const MergeOptions& options = {});
 
 }  // namespace handlab::store

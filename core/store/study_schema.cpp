@@ -130,6 +130,11 @@ CREATE TABLE simulated_memory (
     R"sql(
 ALTER TABLE participant ADD COLUMN between_levels TEXT NOT NULL DEFAULT '{}';
 )sql",
+    // 5 -> 6: how many participants a simulated study plans (NULL: a study of people, whose
+    // size the experimenter decides), so that a part or a partial merge knows it is one.
+    R"sql(
+ALTER TABLE study ADD COLUMN planned_participants INTEGER CHECK (planned_participants > 0);
+)sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 
@@ -138,6 +143,19 @@ static_assert(std::size(kMigrations) == kSchemaVersion);
 std::int64_t pragma_int(Database& db, const char* pragma) {
   Statement s = db.prepare(std::string("PRAGMA ") + pragma);
   return s.step() ? s.column_int64(0) : 0;
+}
+
+// The names under which a study is written before it is complete (StudyStore::create,
+// merge_studies, a Slurm task's part): a file left under one was stopped midway.
+void refuse_unfinished_file(const std::string& path) {
+  if (path.ends_with(".partial"))
+    throw StoreError(path +
+                     " is an unfinished merge (stopped before it ended): run the merge "
+                     "again, which replaces it, and open the study it writes");
+  if (path.ends_with(".creating"))
+    throw StoreError(path +
+                     " is a study database whose creation was stopped before it ended: "
+                     "delete it and create the study again");
 }
 
 // Inspects the file through a read-only connection before anything may write to it; its

@@ -18,6 +18,9 @@ std::int64_t pragma_int(Database& db, const char* pragma);
 // its schema version. Throws StoreError saying what the file is when it is not a study this
 // build reads.
 std::int64_t checked_study_file(const std::string& path);
+// Throws StoreError saying what the file is when `path` names a study written under an
+// unfinished name (OUT.partial of a merge, PATH.creating of a new study) that was stopped.
+void refuse_unfinished_file(const std::string& path);
 // Runs the migrations from schema `from` to `to` and records `to`.
 void apply_migrations(Database& db, int from, int to);
 // A trial's status as the trial table stores it; throws StoreError on another word.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include <sqlite3.h>
@@ -13,6 +14,7 @@
 #include "core/util/json_value.h"
 #include "core/util/json_writer.h"
 #include "core/util/sha256.h"
+#include "core/util/temporary_files.h"
 
 namespace handlab::store {
 namespace {
@@ -89,8 +91,13 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
   if (std::filesystem::exists(path, ec))
     throw StoreError(path + " already exists: a study database is created once");
   if (d.conditions.empty()) throw StoreError("a study needs at least one condition");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+    throw StoreError("cannot create " + path + ": the folder " + folder.string() +
+                     " does not exist");
   const std::filesystem::path partial = path + ".creating";
   std::filesystem::remove(partial, ec);
+  util::TemporaryFile unfinished(partial.string());
   {
     Database db(partial.string(), Database::Mode::kReadWriteCreate);
     Transaction t(db);
@@ -101,16 +108,20 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
       util::JsonWriter w(factors, 0);
       w.string_array(d.factors);
     }
-    db.prepare(
-          "INSERT INTO study (id, name, protocol_text, protocol_sha256, seed, factors, "
-          "created_at) VALUES (1, ?, ?, ?, ?, ?, ?)")
-        .bind(1, d.name)
+    Statement study = db.prepare(
+        "INSERT INTO study (id, name, protocol_text, protocol_sha256, seed, factors, "
+        "created_at, planned_participants) VALUES (1, ?, ?, ?, ?, ?, ?, ?)");
+    study.bind(1, d.name)
         .bind(2, d.protocol_text)
         .bind(3, util::sha256_hex(d.protocol_text))
         .bind(4, std::int64_t(d.seed))
         .bind(5, factors.str())
-        .bind(6, utc_timestamp())
-        .run();
+        .bind(6, utc_timestamp());
+    if (d.planned_participants > 0)
+      study.bind(7, std::int64_t(d.planned_participants));
+    else
+      study.bind_null(7);
+    study.run();
     Statement insert = db.prepare("INSERT INTO condition (id, label, levels) VALUES (?, ?, ?)");
     for (std::size_t c = 0; c < d.conditions.size(); ++c) {
       if (d.conditions[c].second.size() != d.factors.size())
@@ -126,13 +137,16 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
     db.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   }
   // Appears under its name only once complete.
-  std::filesystem::rename(partial, path);
+  std::filesystem::rename(partial, path, ec);
+  if (ec) throw StoreError("cannot create " + path + ": " + ec.message());
+  unfinished.keep();
   for (const char* side : {"-wal", "-shm"}) std::filesystem::remove(partial.string() + side, ec);
 }
 
 StudyStore::Opening StudyStore::opening(const std::string& path, Access access) {
+  if (access != Access::kUnfinished) refuse_unfinished_file(path);
   const bool current = checked_study_file(path) == kSchemaVersion;
-  if (access == Access::kReadWrite) return {path, Database::Mode::kReadWrite, true};
+  if (access != Access::kReadOnly) return {path, Database::Mode::kReadWrite, true};
   return {path, current ? Database::Mode::kQueryOnly : Database::Mode::kMemoryCopy, !current};
 }
 
@@ -159,7 +173,8 @@ void StudyStore::migrate() {
 StudyInfo StudyStore::study() {
   StudyInfo info;
   Statement s = db_.prepare(
-      "SELECT name, protocol_text, protocol_sha256, seed, created_at, factors FROM study");
+      "SELECT name, protocol_text, protocol_sha256, seed, created_at, factors, "
+      "IFNULL(planned_participants, 0) FROM study");
   if (!s.step()) throw StoreError(db_.path() + " has no study row");
   info.name = s.column_text(0);
   info.protocol_text = s.column_text(1);
@@ -168,6 +183,7 @@ StudyInfo StudyStore::study() {
   info.created_at = s.column_text(4);
   const util::JsonValue factors = util::JsonValue::parse(s.column_text(5));
   for (const auto& f : factors.as_array()) info.factors.push_back(f.as_string());
+  info.planned_participants = int(s.column_int64(6));
   info.schema_version = int(pragma_int(db_, "user_version"));
   Statement c = db_.prepare("SELECT label, levels FROM condition ORDER BY id");
   while (c.step()) {
@@ -177,6 +193,31 @@ StudyInfo StudyStore::study() {
     info.conditions.emplace_back(c.column_text(0), std::move(levels));
   }
   return info;
+}
+
+StudyCompleteness StudyStore::completeness() {
+  StudyCompleteness c;
+  c.planned = study().planned_participants;
+  std::set<int> places;
+  Statement s = db_.prepare("SELECT enrolment FROM participant");
+  while (s.step()) places.insert(int(s.column_int64(0)));
+  for (int place = 0; place < c.planned; ++place)
+    if (!places.count(place)) c.missing_places.push_back(place);
+  return c;
+}
+
+std::string StudyCompleteness::describe() const {
+  if (!partial()) return {};
+  std::string text = std::to_string(present()) + " of " + std::to_string(planned) +
+                     " planned participants (missing enrolment places";
+  for (std::size_t i = 0; i < missing_places.size(); ++i) {
+    if (i == 8) {
+      text += " and " + std::to_string(missing_places.size() - i) + " more";
+      break;
+    }
+    text += (i ? ", " : " ") + std::to_string(missing_places[i] + 1);
+  }
+  return text + ")";
 }
 
 void StudyStore::add_participant(Participant p, const std::vector<PlannedTrialRow>& plan,
@@ -342,7 +383,16 @@ bool StudyStore::has_running_session(const std::string& participant_id) {
 }
 
 bool StudyStore::has_started(const std::string& participant_id) {
-  return has_running_session(participant_id) || !trials(participant_id).empty();
+  if (has_running_session(participant_id)) return true;
+  // A trial that ran: its result, or an attempt that began (a skip, or a skip redone, ran
+  // nothing: redone results keep their completion time).
+  Statement s = db_.prepare(
+      "SELECT EXISTS (SELECT 1 FROM trial JOIN planned_trial ON trial.planned_id = "
+      "planned_trial.id WHERE planned_trial.participant_id = ? AND (trial.status IN ('running', "
+      "'aborted', 'completed', 'timeout') OR trial.completion_time_s IS NOT NULL))");
+  s.bind(1, participant_id);
+  s.step();
+  return s.column_int64(0) != 0;
 }
 
 void StudyStore::update_participant(const Participant& p) {
@@ -479,8 +529,17 @@ void StudyStore::skip_trial(const std::string& participant_id, int position,
       db_.prepare("SELECT id FROM planned_trial WHERE participant_id = ? AND position = ?");
   planned.bind(1, participant_id).bind(2, std::int64_t(position));
   if (!planned.step())
-    throw StoreError(participant_id + " has no planned trial " + std::to_string(position));
+    throw StoreError(participant_id + " has no trial " + std::to_string(position + 1) +
+                     " in the schedule (trials are numbered from 1, as study status shows them)");
   const std::int64_t planned_id = planned.column_int64(0);
+  Statement result = db_.prepare(
+      "SELECT status FROM trial WHERE planned_id = ? AND status IN ('completed', 'timeout', "
+      "'skipped')");
+  result.bind(1, planned_id);
+  if (result.step())
+    throw StoreError(participant_id + "'s trial " + std::to_string(position + 1) +
+                     " has a result (" + result.column_text(0) +
+                     "): redo it first (session redo) if it should not count, then skip it");
   Statement attempt =
       db_.prepare("SELECT coalesce(max(attempt), 0) + 1 FROM trial WHERE planned_id = ?");
   attempt.bind(1, planned_id);
@@ -512,8 +571,9 @@ void StudyStore::redo_trial(const std::string& participant_id, int position,
       .bind(3, std::int64_t(position))
       .run();
   if (db_.changes() != 1)
-    throw StoreError(participant_id + "'s trial " + std::to_string(position) +
-                     " has no result to redo");
+    throw StoreError(participant_id + "'s trial " + std::to_string(position + 1) +
+                     " has no result to redo (it has not run or was redone already; run the "
+                     "session to run it)");
   t.commit();
 }
 

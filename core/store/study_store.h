@@ -18,7 +18,7 @@
 
 namespace handlab::store {
 
-constexpr int kSchemaVersion = 5;
+constexpr int kSchemaVersion = 6;
 
 struct StudyDefinition {
   std::string name;
@@ -27,6 +27,9 @@ struct StudyDefinition {
   std::vector<std::string> factors;
   // Per condition: its label and its level of every factor (same order as `factors`).
   std::vector<std::pair<std::string, std::vector<std::string>>> conditions;
+  // A simulated study's size, S01 to SNN at enrolment places 0 to N - 1, whether this file
+  // holds all of them or a shard (0: no plan, a study of people).
+  int planned_participants = 0;
 };
 
 struct StudyInfo {
@@ -35,6 +38,18 @@ struct StudyInfo {
   int schema_version = 0;
   std::vector<std::string> factors;
   std::vector<std::pair<std::string, std::vector<std::string>>> conditions;
+  int planned_participants = 0;  // as StudyDefinition's
+};
+
+// Whether a study holds every participant its plan names: a shard, or a merge of only some
+// shards (merge --partial), is partial until the rest are merged in.
+struct StudyCompleteness {
+  int planned = 0;                  // 0: no plan (a study of people): never partial
+  std::vector<int> missing_places;  // enrolment places 0 .. planned - 1 with no participant
+  bool partial() const { return !missing_places.empty(); }
+  int present() const { return planned - int(missing_places.size()); }
+  // "3 of 4 planned participants (missing S02)"; empty when whole.
+  std::string describe() const;
 };
 
 struct Participant {
@@ -110,11 +125,16 @@ class StudyStore {
   // kReadOnly: a query-only connection (analyses, exports, replays; safe beside a session
   // writing the file): no change to the study is made, an older schema is migrated in a copy
   // in memory, and a file with a rollback journal gets nothing made beside it.
-  enum class Access { kReadWrite, kReadOnly };
+  // kUnfinished: read-write on a file this process is still building under an unfinished
+  // name (a merge's OUT.partial); every other access refuses such a name (a study whose
+  // writing was stopped midway).
+  enum class Access { kReadWrite, kReadOnly, kUnfinished };
   // Opens an existing study file, migrating an older schema forward.
   explicit StudyStore(const std::string& path, Access access = Access::kReadWrite);
 
   StudyInfo study();
+  // The participants the study's plan names and which of them it lacks.
+  StudyCompleteness completeness();
   // Enrols a participant with the planned schedule, in one transaction, next in the study's
   // order or at `enrolment` (a shard of a simulated study keeps the whole study's places).
   // Throws StoreError on a duplicate id or place, or a value the schema's constraints reject.

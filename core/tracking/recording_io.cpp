@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/tracking/lz_string.h"
+#include "core/util/output_file.h"
 
 namespace handlab::tracking {
 namespace {
@@ -150,9 +151,8 @@ void write_hlrec(const std::vector<TrackedFrame>& frames, const std::string& pat
     out.resize(at + record.size());
     std::memcpy(out.data() + at, record.data(), record.size());
   }
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  file.write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
-  if (!file) throw std::runtime_error("cannot write " + path);
+  util::write_output_bytes(path,
+                           std::string_view(reinterpret_cast<const char*>(out.data()), out.size()));
 }
 
 Recording read_recording(const std::string& path) {

@@ -274,12 +274,42 @@ void write_summary(util::JsonWriter& json, const CellSummary& c,
   json.field("min", c.min).field("max", c.max).end_object();
 }
 
+// A table of the study's exports with every factor's levels in the protocol's order, so a
+// contrast reads the same way in every study of the protocol, whoever ran first.
+analysis::LongTable in_protocol_order(const std::string& csv, const std::string& name,
+                                      const Protocol& protocol) {
+  analysis::LongTable table = analysis::LongTable::parse_csv(csv, name);
+  const std::vector<std::string>& columns = table.columns();
+  auto has = [&](const std::string& c) {
+    return std::find(columns.begin(), columns.end(), c) != columns.end();
+  };
+  for (const Factor& f : protocol.factors) {
+    if (!has(f.name)) continue;
+    std::vector<std::string> order;
+    for (const Level& l : f.levels) order.push_back(l.name);
+    table.order_levels(f.name, order);
+  }
+  if (has("repetition")) {  // 1, 2, ... as numbers, not as text in order of appearance
+    std::vector<std::string> order;
+    for (int r = 1; r <= protocol.blocks; ++r) order.push_back(std::to_string(r));
+    table.order_levels("repetition", order);
+  }
+  for (const BetweenFactor& f : protocol.between) {
+    if (!has(f.name)) continue;
+    std::vector<std::string> order;
+    for (const BetweenLevel& l : f.levels) order.push_back(l.name);
+    table.order_levels(f.name, order);
+  }
+  return table;
+}
+
 }  // namespace
 
 StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
   store::StudyStore store(path, store::StudyStore::Access::kReadOnly);
   StudyDatabaseAnalysis result;
   result.study = store.study();
+  result.completeness = store.completeness();
   result.protocol = stored_protocol(store);
   const store::StudyInfo& info = result.study;
   const std::vector<store::Participant> people = store.participants();
@@ -301,7 +331,8 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
     result.time_without_timeouts.not_computed = result.completion_time_not_computed;
     result.success.not_computed = result.completion_time_not_computed;
   } else {
-    const analysis::LongTable trial_table = analysis::LongTable::parse_csv(trial_text, "trials");
+    const analysis::LongTable trial_table =
+        in_protocol_order(trial_text, "trials", result.protocol);
     std::vector<std::string> between;
     for (const BetweenFactor& f : result.protocol.between) between.push_back(f.name);
     result.time_without_timeouts = time_without_timeouts(trial_table, info.factors, between);
@@ -386,7 +417,8 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
   } else if (!has_rows(answer_text)) {
     result.questionnaire_not_computed = "no questionnaire has been answered yet";
   } else {
-    const analysis::LongTable items = analysis::LongTable::parse_csv(answer_text, "questionnaire");
+    const analysis::LongTable items =
+        in_protocol_order(answer_text, "questionnaire", result.protocol);
     analysis::AnalysisRequest request;
     request.design.subject = "participant";
     request.design.within = info.factors;
@@ -416,7 +448,11 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path) {
 
 void write_study_analysis_text(const StudyDatabaseAnalysis& a, const std::string& path,
                                std::ostream& out) {
-  out << "Study " << a.study.name << " (" << path << ")\n\nScheduled trials (practice excluded)\n";
+  out << "Study " << a.study.name << " (" << path << ")\n";
+  if (a.completeness.partial())
+    out << "Partial study: " << a.completeness.describe()
+        << "; its results are not the study's until the missing parts are merged in\n";
+  out << "\nScheduled trials (practice excluded)\n";
   auto outcome_line = [&](const std::string& what, int planned, int completed, int timeouts,
                           int skipped, int not_run) {
     out << "  " << what << ": " << planned << " planned, " << completed << " completed, "
@@ -466,6 +502,11 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
     json.field("blocks", a.protocol.blocks)
         .field("practice_per_condition", a.protocol.practice_per_condition)
         .field("timeout_s", a.protocol.timeout_s);
+    json.field("partial", a.completeness.partial())
+        .field("planned_participants", a.completeness.planned);
+    json.key("missing_places").begin_array();
+    for (int place : a.completeness.missing_places) json.value(place + 1);
+    json.end_array();
     json.end_object();
   }
   out << ",\n\"participants\": ";

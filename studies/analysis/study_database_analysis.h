@@ -70,6 +70,8 @@ struct ParticipantVariableAnalysis {
 
 struct StudyDatabaseAnalysis {
   store::StudyInfo study;
+  // A simulated study merged from only some of its parts says so (partial()).
+  store::StudyCompleteness completeness;
   Protocol protocol;
   ParticipantSummary participants;
   DataQuality quality;
@@ -98,10 +100,10 @@ StudyDatabaseAnalysis analyze_study_database(const std::string& path);
 
 void write_study_analysis_text(const StudyDatabaseAnalysis& analysis, const std::string& path,
                                std::ostream& out);
-// Keys: study, participants, data_quality, completion_time (null with
-// completion_time_not_computed), completion_time_without_timeouts and success (each null with
-// its *_not_computed), condition_descriptives, participant_variables, questionnaire (null with
-// questionnaire_not_computed).
+// Keys: study (with partial, planned_participants, missing_places), participants, data_quality,
+// completion_time (null with completion_time_not_computed), completion_time_without_timeouts and
+// success (each null with its *_not_computed), condition_descriptives, participant_variables,
+// questionnaire (null with questionnaire_not_computed).
 void write_study_analysis_json(const StudyDatabaseAnalysis& analysis, std::ostream& out);
 
 }  // namespace handlab::studies

@@ -69,8 +69,9 @@ OutcomeAnalysis success_rates(const analysis::LongTable& trials,
   request.design.within = factors;
   request.nonparametric_items = {"success_rate"};
   try {
-    out.result =
-        analysis::run_analysis(analysis::LongTable::parse_csv(csv.str(), "success rates"), request);
+    analysis::LongTable rates = analysis::LongTable::parse_csv(csv.str(), "success rates");
+    for (const std::string& f : factors) rates.order_levels(f, trials.factor_codes(f).levels);
+    out.result = analysis::run_analysis(rates, request);
   } catch (const analysis::DataError& e) {
     out.not_computed = e.what();
   }

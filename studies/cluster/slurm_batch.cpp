@@ -6,8 +6,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/store/study_store.h"
 #include "core/util/json_value.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::studies {
 namespace {
@@ -27,13 +29,7 @@ std::string read_file(const std::string& path) {
 }
 
 void write_file(const std::string& path, const std::string& text, bool executable) {
-  const std::string partial = path + ".writing";
-  {
-    std::ofstream out(partial, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write " + path);
-  }
-  std::filesystem::rename(partial, path);
+  util::write_output_bytes(path, text);
   if (executable)
     std::filesystem::permissions(path,
                                  std::filesystem::perms::owner_exec |
@@ -188,15 +184,15 @@ std::string merge_script(const SlurmSeries& s) {
   std::ostringstream out;
   out << "#!/bin/bash\n"
       << "# Joins each study's parts once they are all there (handlab-cli merge); a study "
-         "merged\n# already is left as it is. Written by handlab-cli (docs/cluster.md).\n"
+         "merged\n# whole already is left as it is, a partial one (merge --partial) is merged "
+         "again\n# with its parts. Written by handlab-cli (docs/cluster.md).\n"
       << "#SBATCH --job-name=handlab-merge\n"
       << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n"
       << "#SBATCH --output=" << s.dir << "/logs/merge.out\n"
       << site_directives(s) << "set -euo pipefail\n"
       << "merge_study() {\n"
       << "  local out=$1; shift\n"
-      << "  if [ -e \"$out\" ]; then echo \"$out: merged already\"; return; fi\n"
-      << "  " << quoted(s.cli) << " merge --out \"$out\" \"$@\"\n"
+      << "  " << quoted(s.cli) << " merge --update --out \"$out\" \"$@\"\n"
       << "}\n";
   for (const SlurmStudy& study : s.studies) {
     out << "merge_study " << quoted(study_path(s.dir, study));
@@ -280,7 +276,12 @@ SeriesStatus series_status(const SlurmSeries& s) {
     SeriesStatus::Study st;
     st.study = study;
     st.path = study_path(s.dir, study);
-    st.merged = std::filesystem::exists(st.path);
+    if (std::filesystem::exists(st.path)) {
+      const bool partial =
+          store::StudyStore(st.path, store::StudyStore::Access::kReadOnly).completeness().partial();
+      st.merged = !partial;
+      st.merged_partial = partial;
+    }
     for (int shard = 1; shard <= shards_of(s, study); ++shard, ++task) {
       const std::string part = part_path(s, study, shard);
       const PartState state = std::filesystem::exists(part)                ? PartState::kDone

@@ -73,7 +73,8 @@ struct SeriesStatus {
   struct Study {
     SlurmStudy study;
     std::string path;
-    bool merged = false;
+    bool merged = false;           // the merged study is there and whole
+    bool merged_partial = false;   // it is there without every participant (merge --partial)
     std::vector<PartState> parts;  // per shard
   };
   std::vector<Study> studies;
@@ -82,6 +83,7 @@ struct SeriesStatus {
 // From the files alone: a part is done when it is there; stopped when its task left a note that
 // it ended without it (a failure, scancel, the time limit: rerun its index); running while its
 // temporary file is there without that note (or its node died under it); missing otherwise.
+// A study is merged when its merged study is there and holds every planned participant.
 SeriesStatus series_status(const SlurmSeries& series);
 
 }  // namespace handlab::studies

@@ -22,12 +22,8 @@ using util::JsonValue;
 // protocol of a study made before that rule).
 double cube_size(const ProtocolReader& r, const JsonValue& object, const std::string& where,
                  std::optional<double> fallback) {
-  const double side = r.number(object, "cube_size", where, 0.0, 10.0, fallback);
-  if (r.stored() && side >= 0.002 && side <= 0.2) return side;
-  if (!(side >= 0.005 && side <= 0.15))
-    r.fail(where + ".cube_size", "a cube's side is 5-150 mm (0.005-0.15 m), is " +
-                                     std::to_string(int(std::lround(side * 1000))) + " mm");
-  return side;
+  if (r.stored()) return r.length(object, "cube_size", where, 0.002, 0.2, fallback);
+  return r.length(object, "cube_size", where, 0.005, 0.15, fallback);
 }
 
 // "blocks": the blocks whose trials ask the questionnaire, with "when": "blocks" only.
@@ -67,7 +63,7 @@ Level parse_level(const ProtocolReader& r, const std::string& factor, const Json
   } else if (factor == "hand_length") {
     r.check_keys(v, where, {"name", "length"});
     level.name = r.text(v, "name", where);
-    level.hand_length = r.number(v, "length", where, 0.10, 0.30);
+    level.hand_length = r.length(v, "length", where, 0.10, 0.30);
   }
   return level;
 }
@@ -284,7 +280,7 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
                  {"zone_a", "zone_b", "zone_size", "cube_size", "cube_density", "rest_time_s"});
     p.scene.zone_a = r.point(*scene, "zone_a", "scene", p.scene.zone_a);
     p.scene.zone_b = r.point(*scene, "zone_b", "scene", p.scene.zone_b);
-    p.scene.zone_size = r.number(*scene, "zone_size", "scene", 0.01, 1.0, p.scene.zone_size);
+    p.scene.zone_size = r.length(*scene, "zone_size", "scene", 0.01, 1.0, p.scene.zone_size);
     p.scene.cube_size = cube_size(r, *scene, "scene", p.scene.cube_size);
     p.cube_density = r.number(*scene, "cube_density", "scene", 10, 20000, p.cube_density);
     p.rest_time_s = r.number(*scene, "rest_time_s", "scene", 0.0, 10.0, p.rest_time_s);
@@ -293,8 +289,8 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
   }
   if (const JsonValue* hand = root.find("simulated_hand")) {
     r.check_keys(*hand, "simulated_hand", {"length", "breadth", "tissue"});
-    p.simulated_hand_length = r.number(*hand, "length", "simulated_hand", 0.10, 0.30);
-    p.simulated_hand_breadth = r.number(*hand, "breadth", "simulated_hand", 0.0, 0.2, 0.0);
+    p.simulated_hand_length = r.length(*hand, "length", "simulated_hand", 0.10, 0.30);
+    p.simulated_hand_breadth = r.length(*hand, "breadth", "simulated_hand", 0.0, 0.2, 0.0);
     p.simulated_hand_tissue = r.number(*hand, "tissue", "simulated_hand", 0.5, 2.0, 1.0);
   }
   if (root.find("strategy")) {

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include "core/util/csv.h"
 
 namespace handlab::studies {
 
@@ -34,12 +37,24 @@ double ProtocolReader::number(const JsonValue& object, const char* key, const st
   }
   if (!v->is_number()) fail(where + "." + key, "must be a number");
   const double x = v->as_number();
-  if (!(x >= lo && x <= hi)) {
-    std::ostringstream range;
-    range << "must be in [" << lo << ", " << hi << "], is " << x;
-    fail(where + "." + key, range.str());
-  }
+  if (!(x >= lo && x <= hi))
+    fail(where + "." + key, "must be from " + util::format_number(lo) + " to " +
+                                util::format_number(hi) + ", is " + util::format_number(x));
   return x;
+}
+
+double ProtocolReader::length(const JsonValue& object, const char* key, const std::string& where,
+                              double lo, double hi, std::optional<double> fallback) const {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double x = number(object, key, where, -inf, inf, fallback);
+  if (x >= lo && x <= hi) return x;
+  auto mm = [](double metres) { return util::format_number(metres * 1000.0) + " mm"; };
+  std::string why = "a length in metres from " + util::format_number(lo) + " to " +
+                    util::format_number(hi) + " (" + mm(lo) + " to " + mm(hi) + "), is " +
+                    util::format_number(x) + " m (" + mm(x) + ")";
+  if (x / 1000.0 >= lo && x / 1000.0 <= hi)
+    why += ": in metres, " + util::format_number(x) + " mm is " + util::format_number(x / 1000.0);
+  fail(where + "." + key, why);
 }
 
 int ProtocolReader::integer(const JsonValue& object, const char* key, const std::string& where,

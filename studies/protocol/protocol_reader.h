@@ -36,6 +36,10 @@ class ProtocolReader {
   // The value of `key` in [lo, hi]; `fallback` when absent, else an error.
   double number(const util::JsonValue& object, const char* key, const std::string& where, double lo,
                 double hi, std::optional<double> fallback = std::nullopt) const;
+  // A length in metres in [lo, hi]: a value out of range is refused in metres and millimetres
+  // as given, with a hint when it reads as millimetres written where metres are asked.
+  double length(const util::JsonValue& object, const char* key, const std::string& where, double lo,
+                double hi, std::optional<double> fallback = std::nullopt) const;
   int integer(const util::JsonValue& object, const char* key, const std::string& where, int lo,
               int hi, std::optional<int> fallback = std::nullopt) const;
   std::string text(const util::JsonValue& object, const char* key, const std::string& where,

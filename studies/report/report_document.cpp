@@ -27,6 +27,11 @@ class Builder {
   ReportDocument build() {
     doc_.title = a_.protocol.title.empty() ? a_.study.name : a_.protocol.title;
     doc_.subtitle = "Study “" + a_.study.name + "”: results from its database";
+    if (a_.completeness.partial())
+      paragraph({words("Partial study: it holds " + a_.completeness.describe() +
+                       ", merged from only some of its parts. The results below are of these "
+                       "participants alone, not of the study; merge the missing parts in "
+                       "(handlab-cli merge --update) and make the report again.")});
     protocol();
     participants();
     data_quality();

@@ -41,7 +41,8 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   if (std::filesystem::exists(db_path))
     throw std::runtime_error(db_path + " exists; a simulated study is written to a new file");
   const auto start = std::chrono::steady_clock::now();
-  const store::StudyDefinition definition = study_definition(protocol);
+  store::StudyDefinition definition = study_definition(protocol);
+  definition.planned_participants = options.participants;
 
   // Everyone drawn and placed in their groups before the file exists: a person the protocol
   // has no group for stops the study before it starts.

@@ -88,8 +88,9 @@ cmp -s <(untimed "$work/power/power.json") <(untimed "$work/power-reference.json
   fail "the power from Slurm differs from the one computed here"
 echo "power: the power from $(wc -l <"$work/power/tasks.tsv") array tasks equals the one computed here"
 
-# 3. A task cancelled midway: the series stays unfinished, its merge never runs; the task
-# rerun finishes it.
+# 3. A task cancelled midway: the series stays unfinished, its merge never runs; what is there
+# merged by hand is a partial study, reported as one until the task is rerun and the merge
+# job merges the rest in.
 "$cli" simulate --protocol "$protocol" --participants 4 --seed 23 --world proxy --frames \
   --per-task 2 --slurm "$work/cut" --time 0:10:00 >/dev/null
 read -r array merge < <(jobs_of "$work/cut" | tr ',' ' ')
@@ -106,6 +107,16 @@ status=$("$cli" simulate --status "$work/cut" --json - | tr -d ' \n')
 echo "$status" | grep -q '"parts":\["done","stopped"\]' || fail "status after the cancel: $status"
 echo "$status" | grep -q '"unfinished_tasks":\[1\]' || fail "status after the cancel: $status"
 [ ! -e "$work/cut/study-n4-seed23.db" ] || fail "a study was merged with a part missing"
+"$cli" merge --out "$work/cut/study-n4-seed23.db" "$work/cut/parts/n4-seed23/shard-1-of-2.db" \
+  >/dev/null 2>&1 && fail "merge accepted one of two parts without --partial"
+"$cli" merge --partial --out "$work/cut/study-n4-seed23.db" \
+  "$work/cut/parts/n4-seed23/shard-1-of-2.db" >/dev/null
+status=$("$cli" simulate --status "$work/cut" --json - | tr -d ' \n')
+echo "$status" | grep -q '"merged":false,"merged_partial":true' ||
+  fail "status after a partial merge: $status"
+echo "$status" | grep -q '"unfinished_tasks":\[1\]' || fail "status after a partial merge: $status"
+"$cli" study status --db "$work/cut/study-n4-seed23.db" | grep -q "partial study: 2 of 4" ||
+  fail "study status does not say the merged study is partial"
 # The rerun as `status` tells it, its JOB the id of the line before.
 mapfile -t rerun_lines < <("$cli" simulate --status "$work/cut" | sed -n 's/^  sbatch //p')
 [ "${#rerun_lines[@]}" = 2 ] || fail "status's rerun commands: ${rerun_lines[*]}"
@@ -113,6 +124,9 @@ rerun=$(eval "sbatch --parsable ${rerun_lines[0]}")
 merge=$(eval "sbatch --parsable ${rerun_lines[1]/JOB/$rerun}")
 wait_for_jobs "$rerun,$merge" 600
 "$cli" simulate --status "$work/cut" | grep -q "every part is done" || fail "the rerun left parts"
+status=$("$cli" simulate --status "$work/cut" --json - | tr -d ' \n')
+echo "$status" | grep -q '"merged":true,"merged_partial":false' ||
+  fail "the merge job did not complete the partial study: $status"
 "$cli" simulate --protocol "$protocol" --participants 4 --seed 23 --world proxy --frames --jobs 2 \
   --quiet --db "$work/cut-reference.db" >/dev/null
 same_study "$work/cut/study-n4-seed23.db" "$work/cut-reference.db" cut

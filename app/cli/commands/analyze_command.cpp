@@ -8,8 +8,8 @@
 #include "analysis/report/analysis_output.h"
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
 #include "core/store/study_store.h"
+#include "core/util/output_file.h"
 #include "studies/analysis/study_database_analysis.h"
 
 namespace handlab::cli {
@@ -32,8 +32,8 @@ int analyze_database(const std::string& path, const std::string& json_out) {
   const studies::StudyDatabaseAnalysis analysis = studies::analyze_study_database(path);
   if (json_out != "-") studies::write_study_analysis_text(analysis, path, std::cout);
   if (!json_out.empty())
-    write_output(json_out,
-                 [&](std::ostream& out) { studies::write_study_analysis_json(analysis, out); });
+    util::write_output(
+        json_out, [&](std::ostream& out) { studies::write_study_analysis_json(analysis, out); });
   return 0;
 }
 
@@ -104,7 +104,7 @@ int run_analyze(const std::vector<std::string>& argv) {
   const std::string json_out = args.text("json");
   if (json_out != "-") analysis::write_text(report, std::cout);
   if (!json_out.empty()) {
-    write_output(json_out, [&](std::ostream& out) { analysis::write_json(report, out); });
+    util::write_output(json_out, [&](std::ostream& out) { analysis::write_json(report, out); });
   }
   return 0;
 }

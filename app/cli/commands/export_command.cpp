@@ -4,8 +4,8 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
 #include "core/store/study_store.h"
+#include "core/util/output_file.h"
 #include "studies/export/study_export.h"
 
 namespace handlab::cli {
@@ -32,16 +32,16 @@ int run_export(const std::vector<std::string>& argv) {
   args.require({"db", "out"});
   store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
   const std::filesystem::path dir = args.text("out");
-  std::filesystem::create_directories(dir);
-  write_output((dir / "trials.csv").string(),
-               [&](std::ostream& out) { studies::write_trials_csv(store, out); });
-  write_output((dir / "questionnaire.csv").string(),
-               [&](std::ostream& out) { studies::write_questionnaire_csv(store, out); });
+  util::make_output_folder(dir.string());
+  util::write_output((dir / "trials.csv").string(),
+                     [&](std::ostream& out) { studies::write_trials_csv(store, out); });
+  util::write_output((dir / "questionnaire.csv").string(),
+                     [&](std::ostream& out) { studies::write_questionnaire_csv(store, out); });
   std::cout << "wrote " << (dir / "trials.csv").string() << " and "
             << (dir / "questionnaire.csv").string();
   if (args.flag("frames")) {
-    write_output((dir / "frames.csv").string(),
-                 [&](std::ostream& out) { studies::write_frames_csv(store, out); });
+    util::write_output((dir / "frames.csv").string(),
+                       [&](std::ostream& out) { studies::write_frames_csv(store, out); });
     std::cout << " and " << (dir / "frames.csv").string();
   }
   std::cout << "\n";

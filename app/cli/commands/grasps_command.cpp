@@ -8,8 +8,8 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
 #include "core/store/study_store.h"
+#include "core/util/output_file.h"
 #include "studies/analysis/grasp_tally.h"
 
 namespace handlab::cli {
@@ -87,8 +87,7 @@ int run_grasps(const std::vector<std::string>& argv) {
     return 0;
   }
   args.require({"db"});
-  const std::string by = args.text("by");
-  if (by != "cube" && by != "condition") throw UsageError("--by must be cube or condition");
+  const std::string by = args.choice("by", {"cube", "condition"});
   store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
   const std::string participant = args.text("participant");
   if (!participant.empty() && !store.participant(participant))
@@ -106,7 +105,7 @@ int run_grasps(const std::vector<std::string>& argv) {
     for (const studies::GraspTally& t : tallies) print_tally(t);
   }
   if (args.has("json"))
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter w(out);
       studies::write_grasps_json(w, trials, tallies);
       out << "\n";

@@ -5,7 +5,7 @@
 #include <optional>
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
+#include "core/util/output_file.h"
 
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
@@ -94,7 +94,7 @@ int run_hand(const std::vector<std::string>& argv) {
       render::write_png(render_hands(list), args.text("png"));
     }
     if (args.has("json")) {
-      write_output(args.text("json"), [&](std::ostream& out) {
+      util::write_output(args.text("json"), [&](std::ostream& out) {
         util::JsonWriter json(out);
         json.begin_object().field("length_m", shape.length).field("bones", tracked.bones.size());
         json.field("dofs", tracked.dofs.size()).key("joints_m").begin_object();
@@ -146,7 +146,7 @@ int run_hand(const std::vector<std::string>& argv) {
     render::write_png(render_hands(list, pair), args.text("png"));
   }
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object()
           .field("length_m", shape.length)

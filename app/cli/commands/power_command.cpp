@@ -10,8 +10,11 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/simulate_slurm.h"
-#include "app/cli/output_file.h"
+#include "app/cli/nearest_word.h"
+#include "app/cli/progress_line.h"
+#include "app/cli/world_option.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 #include "studies/power/pilot_model.h"
 #include "studies/power/pipeline_power.h"
 #include "studies/protocol/protocol.h"
@@ -105,7 +108,8 @@ power::SphericityCorrection sphericity_correction(const std::string& option) {
   if (option == "none") return power::SphericityCorrection::kNone;
   if (option == "gg") return power::SphericityCorrection::kGreenhouseGeisser;
   if (option == "hf") return power::SphericityCorrection::kHuynhFeldt;
-  throw UsageError("--correction must be auto, none, gg or hf");
+  throw UsageError("--correction must be auto, none, gg or hf, not '" + option + "'" +
+                   did_you_mean(option, {"auto", "none", "gg", "hf"}));
 }
 
 namespace {
@@ -173,8 +177,7 @@ int run_power(const std::vector<std::string>& argv) {
       {"pipeline", "",
        "answer with whole simulated studies (simulated participants, retargeting, physics, "
        "task, study database) instead of a model; slow: use a small --sims (default 5)"},
-      {"world", "soft|proxy", "with --pipeline: the soft-hand simulator or the grasp proxy",
-       "soft"},
+      world_option(),
       {"exact", "",
        "the ANOVA effects and contrasts from the noncentral F and t of data with "
        "exactly the model's moments, instead of simulating"},
@@ -224,8 +227,7 @@ int run_power(const std::vector<std::string>& argv) {
     throw UsageError("--per-task, --partition, --time, --mem and --dry-run go with --slurm");
   if (!pipeline && args.has("model") == args.has("pilot"))
     throw UsageError("give one of --model FILE or --pilot DB (or --pipeline)");
-  const std::string world = args.text("world");
-  if (world != "soft" && world != "proxy") throw UsageError("--world must be soft or proxy");
+  const std::string world = args.choice("world", {"proxy", "soft"});
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   const power::PowerDesign design = studies::power_design(protocol);
   power::PowerModel model;
@@ -246,7 +248,9 @@ int run_power(const std::vector<std::string>& argv) {
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   options.correction = sphericity_correction(args.text("correction"));
   const bool exact = args.flag("exact");
-  const bool quiet = args.flag("quiet") || args.text("json") == "-";
+  // An output on standard output is all that is printed there.
+  const bool to_stdout = args.text("json") == "-" || args.text("plot") == "-";
+  const bool quiet = args.flag("quiet") || to_stdout;
   if (args.has("slurm")) {
     submit_slurm_series(power_series(args, options), args.flag("dry-run"));
     return 0;
@@ -260,35 +264,36 @@ int run_power(const std::vector<std::string>& argv) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   power::PowerReport report;
+  ProgressLine progress(quiet || exact);
   if (exact) {
     report = power::exact_power(model, options);
   } else if (pipeline) {
     studies::PipelinePowerOptions po;
     po.power = options;
     if (args.has("from")) po.from_dir = args.text("from");
-    po.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
+    po.world = world_kind(args);
     report = studies::pipeline_power(protocol, po, [&](int done, int total) {
-      if (quiet) return;
-      std::fprintf(stderr, "\rsimulated studies %d/%d  %.0f s ", done, total, elapsed());
-      std::fflush(stderr);
+      char text[120];
+      std::snprintf(text, sizeof text, "simulated studies %d/%d  %.0f s", done, total, elapsed());
+      progress.show(done, text);
     });
   } else {
     report = power::simulate_power(model, options, [&](int done, int total) {
-      if (quiet) return;
-      std::fprintf(stderr, "\rN %d/%d  %d simulations  %.1f s ", done, total, done * options.sims,
-                   elapsed());
-      std::fflush(stderr);
+      char text[120];
+      std::snprintf(text, sizeof text, "N %d/%d  %d simulations  %.1f s", done, total,
+                    done * options.sims, elapsed());
+      progress.show(done, text);
     });
   }
+  progress.finish();
   const double seconds = elapsed();
-  if (!quiet && !exact) std::fprintf(stderr, "\n");
   if (!protocol.between.empty() && !pipeline)  // the model is of the within cells alone
     report.notes.insert(report.notes.begin(),
                         "the protocol's between-participants factors are not in the power "
                         "model: its groups are pooled, and the powers are of the within "
                         "effects");
 
-  if (args.text("json") != "-") {
+  if (!to_stdout) {
     if (args.has("pilot"))
       std::cout << "Note: these powers are for the pilot's own observed effects (observed power), "
                    "which says nothing the pilot's p values do not; the power of the design is "
@@ -327,7 +332,7 @@ int run_power(const std::vector<std::string>& argv) {
   }
 #endif
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter w(out);
       w.begin_object();
       w.key("n").begin_array();

@@ -4,7 +4,7 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
+#include "core/util/output_file.h"
 #include "studies/analysis/study_series.h"
 
 namespace handlab::cli {
@@ -50,7 +50,8 @@ int run_replications(const std::vector<std::string>& argv) {
   const std::string json_out = args.text("json");
   if (json_out != "-") studies::write_series_markdown(series, std::cout);
   if (!json_out.empty())
-    write_output(json_out, [&](std::ostream& out) { studies::write_series_json(series, out); });
+    util::write_output(json_out,
+                       [&](std::ostream& out) { studies::write_series_json(series, out); });
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // handlab-cli report: the study's results section, tables and figures from its database, as
 // one self-contained HTML file and an A4 PDF, with no display (Qt's offscreen platform).
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -65,7 +66,7 @@ int run_report(const std::vector<std::string>& argv) {
   if (!files.pdf.empty())
     std::cout << "wrote " << files.pdf << " (" << files.pdf_pages << " pages)\n";
   for (const std::string& what : files.not_computed) std::cout << "not computed: " << what << "\n";
-  std::cout << "in " << seconds << " s\n";
+  std::printf("in %.1f s\n", seconds);
   return 0;
 }
 

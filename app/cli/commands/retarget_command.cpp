@@ -11,12 +11,12 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/retarget_picture.h"
-#include "app/cli/output_file.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/retargeter.h"
 #include "core/tracking/degraded_recording.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
@@ -76,10 +76,8 @@ int run_retarget(const std::vector<std::string>& argv) {
     return 0;
   }
   if (args.positional().empty()) throw UsageError("name a recording");
-  const std::string strategy_name = args.text("strategy"), side_name = args.text("hand");
-  if (strategy_name != "naive" && strategy_name != "ours")
-    throw UsageError("--strategy must be naive or ours");
-  if (side_name != "right" && side_name != "left") throw UsageError("--hand must be right or left");
+  const std::string strategy_name = args.choice("strategy", {"naive", "ours"});
+  const std::string side_name = args.choice("hand", {"right", "left"});
   const double sim_length = args.number("sim-length");
   if (sim_length < 0.1 || sim_length > 0.3)
     throw UsageError("--sim-length must be between 0.1 and 0.3 m");
@@ -202,7 +200,8 @@ int run_retarget(const std::vector<std::string>& argv) {
       pinch_gap.values.push_back(std::abs(gap - target_gap));
     }
   }
-  if (args.has("csv")) write_output(args.text("csv"), [&](std::ostream& out) { out << csv.str(); });
+  if (args.has("csv"))
+    util::write_output(args.text("csv"), [&](std::ostream& out) { out << csv.str(); });
 
   auto mean_p95 = [](util::JsonWriter& json, const Stats& s) {
     json.begin_object().field("mean", s.mean()).field("p95", s.quantile(0.95)).end_object();
@@ -230,7 +229,7 @@ int run_retarget(const std::vector<std::string>& argv) {
               << violation << " rad\n";
   }
   if (!json_out.empty()) {
-    write_output(json_out, [&](std::ostream& out) {
+    util::write_output(json_out, [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object()
           .field("source", recording.source)

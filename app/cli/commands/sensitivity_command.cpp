@@ -9,7 +9,8 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
+#include "app/cli/world_option.h"
+#include "core/util/output_file.h"
 #include "studies/sensitivity/model_sensitivity.h"
 #ifdef HANDLAB_WITH_REPORT
 #include "app/cli/gui_application.h"
@@ -34,12 +35,11 @@ studies::SensitivityReport run_analysis(const Arguments& args, const studies::Pr
   options.design_seed = args.seed("design-seed");
   options.jobs = int(args.integer("jobs"));
   if (options.jobs <= 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
-  const std::string world = args.text("world");
-  if (world != "soft" && world != "proxy") throw UsageError("--world must be proxy or soft");
-  options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
+  options.world = world_kind(args);
   if (!args.all("output").empty()) options.outputs = args.all("output");
   options.only = args.all("parameter");
-  const bool quiet = args.text("json") == "-";
+  // An output on standard output is all that is printed there.
+  const bool quiet = args.text("json") == "-" || args.text("plot") == "-";
   try {
     return studies::run_model_sensitivity(
         protocol, options, [&](const studies::SensitivityProgress& p) {
@@ -64,7 +64,7 @@ int run_sensitivity(const std::vector<std::string>& argv) {
       {"levels", "P", "grid levels of each parameter's range (even)", "4"},
       {"design-seed", "D", "the seed of the trajectories", "1"},
       {"jobs", "J", "sessions run side by side (threads; default: the machine's cores)", "0"},
-      {"world", "proxy|soft", "the hand-cube physics", "proxy"},
+      world_option(),
       {"output", "TEST",
        "a test whose statistic is analysed, as replications names it; repeatable (default: "
        "the within factors' interaction F, the repetition F, and the t of the first factor's "
@@ -101,7 +101,9 @@ int run_sensitivity(const std::vector<std::string>& argv) {
   const studies::SensitivityReport report = args.has("from")
                                                 ? studies::read_sensitivity_json(args.text("from"))
                                                 : run_analysis(args, protocol);
-  if (args.text("json") != "-") studies::write_sensitivity_markdown(report, std::cout);
+  // An output on standard output is all that is printed there.
+  if (args.text("json") != "-" && args.text("plot") != "-")
+    studies::write_sensitivity_markdown(report, std::cout);
 #ifdef HANDLAB_WITH_REPORT
   if (args.has("plot")) {
     ensure_gui_application();
@@ -112,8 +114,8 @@ int run_sensitivity(const std::vector<std::string>& argv) {
   if (args.has("plot")) throw UsageError("--plot needs the report (built with Qt)");
 #endif
   if (args.has("json"))
-    write_output(args.text("json"),
-                 [&](std::ostream& out) { studies::write_sensitivity_json(report, out); });
+    util::write_output(args.text("json"),
+                       [&](std::ostream& out) { studies::write_sensitivity_json(report, out); });
   return 0;
 }
 

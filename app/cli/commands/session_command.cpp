@@ -1,12 +1,17 @@
 // handlab-cli session: run a participant's session headless; redo or skip a trial.
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
+#include "app/cli/nearest_word.h"
+#include "app/cli/world_option.h"
 #include "core/store/study_store.h"
+#include "core/util/count_text.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 
@@ -26,10 +31,7 @@ int session_run(const std::vector<std::string>& argv) {
       {"resume", "",
        "continue a started schedule (after a crash: the interrupted trial is "
        "kept as aborted and run again)"},
-      {"world", "proxy|soft",
-       "the hand-cube physics: the grasp proxy (the cube attaches to a pinch) or the soft-hand "
-       "simulator (contact and friction only; slower)",
-       "proxy"},
+      world_option(),
       {"quiet", "", "no line per trial"},
       {"json", "OUT", "write a summary as JSON (- for standard output)"},
   };
@@ -45,17 +47,17 @@ int session_run(const std::vector<std::string>& argv) {
   }
   args.require({"db", "participant"});
   const std::string tracker = args.text("tracker");
-  const std::string world = args.text("world");
-  if (world != "proxy" && world != "soft") throw UsageError("--world must be proxy or soft");
+  const std::string world = args.choice("world", {"proxy", "soft"});
+  if (tracker != "scripted" && tracker != "simulated" && !std::filesystem::exists(tracker))
+    throw UsageError("--tracker must be scripted, simulated or a recording file; '" + tracker +
+                     "' is none of them" + did_you_mean(tracker, {"scripted", "simulated"}));
   store::StudyStore store(args.text("db"));
   const std::uint64_t seed = args.seed("seed");
   const studies::TrackerKind kind = tracker == "scripted" ? studies::TrackerKind::scripted()
                                     : tracker == "simulated"
                                         ? studies::TrackerKind::simulated(seed)
                                         : studies::TrackerKind::recording(tracker);
-  studies::PipelineTrialDriver driver(
-      kind, 120.0,
-      world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy);
+  studies::PipelineTrialDriver driver(kind, 120.0, world_kind(args));
   studies::SessionRunner runner(
       store, driver,
       kind.is_simulated() ? studies::simulated_responder(seed) : studies::fixed_responder());
@@ -70,13 +72,16 @@ int session_run(const std::vector<std::string>& argv) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (args.text("json") != "-") {
     if (report.aborted_before)
-      std::cout << report.aborted_before << " interrupted trial(s) marked aborted, run again\n";
-    std::cout << args.text("participant") << ": " << report.trials_run << " trials run in "
-              << seconds << " s; schedule " << (report.schedule_complete ? "complete" : "open")
-              << "\n";
+      std::cout << util::count_text(report.aborted_before, "interrupted trial")
+                << " marked aborted, run again\n";
+    char duration[32];
+    std::snprintf(duration, sizeof duration, "%.1f s", seconds);
+    std::cout << args.text("participant") << ": " << util::count_text(report.trials_run, "trial")
+              << " run in " << duration << "; schedule "
+              << (report.schedule_complete ? "complete" : "open") << "\n";
   }
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter w(out);
       w.begin_object()
           .field("participant", args.text("participant"))

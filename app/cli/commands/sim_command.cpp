@@ -19,7 +19,6 @@
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/sim_replay.h"
 #include "app/cli/commands/sim_settle.h"
-#include "app/cli/output_file.h"
 #include "core/hand/flesh.h"
 #include "core/hand/hand_shape.h"
 #include "core/hand/simulated_hand.h"
@@ -28,6 +27,7 @@
 #include "core/render/sim_drawing.h"
 #include "core/task/pinch_scene.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
@@ -248,7 +248,7 @@ int sim_bench(const std::vector<std::string>& argv) {
   }
   if (args.text("json") != "-") print_timing(setup, report);  // else the JSON alone
   if (args.has("steps")) {
-    write_output(args.text("steps"), [&](std::ostream& out) {
+    util::write_output(args.text("steps"), [&](std::ostream& out) {
       out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
              "halvings,direct_solves\n";
       const double h = setup.model.parameters.time_step;
@@ -260,7 +260,7 @@ int sim_bench(const std::vector<std::string>& argv) {
     });
   }
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
       json.field("duration_s", duration).field("threads", options.threads).field("runs", int(runs));
@@ -368,7 +368,7 @@ int sim_pinch(const std::vector<std::string>& argv) {
     print_timing(setup, r);
   }
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object()
           .field("cube_size_m", setup.script.cube_size)

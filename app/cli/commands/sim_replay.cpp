@@ -14,13 +14,13 @@
 
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
-#include "app/cli/output_file.h"
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/retargeter.h"
 #include "core/sim/hand_simulator.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
@@ -53,9 +53,7 @@ int sim_replay(const std::vector<std::string>& argv) {
     return 0;
   }
   if (args.positional().size() != 1) throw UsageError("name one recording");
-  const std::string strategy_name = args.text("strategy");
-  if (strategy_name != "naive" && strategy_name != "ours")
-    throw UsageError("--strategy must be naive or ours");
+  const std::string strategy_name = args.choice("strategy", {"naive", "ours"});
   const int threads = int(args.integer("threads"));
   if (threads < 1 || threads > 64) throw UsageError("--threads must be 1 to 64");
 
@@ -140,7 +138,7 @@ int sim_replay(const std::vector<std::string>& argv) {
               << fastest_at_end * 1000 << " mm/s\n";
   }
   if (args.has("json")) {
-    write_output(json_out, [&](std::ostream& out) {
+    util::write_output(json_out, [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object()
           .field("recording", recording.source)

@@ -12,9 +12,9 @@
 
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
-#include "app/cli/output_file.h"
 #include "core/task/cube_settle.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
@@ -197,7 +197,8 @@ int sim_settle(const std::vector<std::string>& argv) {
   const std::string json_out = args.text("json");
   if (json_out != "-") print_table(settings, rows, summary);
   if (args.has("json"))
-    write_output(json_out, [&](std::ostream& out) { write_json(out, settings, rows, summary); });
+    util::write_output(json_out,
+                       [&](std::ostream& out) { write_json(out, settings, rows, summary); });
   return 0;
 }
 

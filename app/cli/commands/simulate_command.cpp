@@ -12,8 +12,10 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/simulate_slurm.h"
-#include "app/cli/output_file.h"
+#include "app/cli/progress_line.h"
+#include "app/cli/world_option.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 #include "studies/analysis/condition_outcomes.h"
 #include "studies/protocol/protocol.h"
 #include "studies/simulate/simulated_study.h"
@@ -113,10 +115,7 @@ int run_simulate(const std::vector<std::string>& argv) {
       {"seed", "S", "the population seed: the same seed gives the same database content", "0"},
       {"db", "OUT", "the study database to create (must not exist)"},
       {"jobs", "J", "sessions run side by side (threads; default: the machine's cores)", "0"},
-      {"world", "soft|proxy",
-       "the hand-cube physics: the soft-hand simulator (contact and friction) or the grasp "
-       "proxy (the cube attaches to a pinch)",
-       "soft"},
+      world_option(),
       {"shard", "K/M",
        "run only the K-th of M shards (participants K, K+M, K+2M, ...), each at its place in "
        "the whole study; `merge` joins the shards into the study a single run makes"},
@@ -146,7 +145,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   const Arguments args(all_specs, argv);
   if (args.help_requested()) {
     std::cout << "Usage: handlab-cli simulate --protocol FILE --participants N --seed S --db OUT "
-                 "[--jobs J] [--world soft|proxy] [--shard K/M | --only ID,...]\n"
+                 "[--jobs J] [--world proxy|soft] [--shard K/M | --only ID,...]\n"
                  "       handlab-cli simulate --protocol FILE --participants N --seed S --slurm "
                  "DIR [--studies K] [--per-task K] [--dry-run]\n"
                  "       handlab-cli simulate --status DIR\n\nEnrols N participants drawn from the "
@@ -185,9 +184,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   options.jobs = int(args.integer("jobs"));
   if (options.jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
   if (options.jobs == 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  options.world = world_kind(args);
   const std::string world = args.text("world");
-  if (world != "soft" && world != "proxy") throw UsageError("--world must be soft or proxy");
-  options.world = world == "soft" ? studies::WorldKind::kSoftHand : studies::WorldKind::kGraspProxy;
   options.frames = args.flag("frames");
   options.model = model_with_changes(args.all("set"));
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
@@ -207,21 +205,17 @@ int run_simulate(const std::vector<std::string>& argv) {
     return 0;
   }
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
-  // On a terminal one line rewritten in place; into a log a line each time a participant is
-  // done.
-  const bool terminal = isatty(fileno(stderr)) == 1;
-  int participants_shown = -1;
-
-  const studies::SimulationReport report = studies::simulate_study(
-      protocol, args.text("db"), options, [&](const studies::SimulationProgress& p) {
-        if (quiet || (!terminal && p.participants_done == participants_shown)) return;
-        participants_shown = p.participants_done;
-        std::fprintf(stderr, "%sparticipants %d/%d  trials %d/%d  %.0f s%s", terminal ? "\r" : "",
-                     p.participants_done, p.participants, p.trials_done, p.trials, p.seconds,
-                     terminal ? " " : "\n");
-        std::fflush(stderr);
-      });
-  if (!quiet && terminal) std::fprintf(stderr, "\n");
+  studies::SimulationReport report;
+  {
+    ProgressLine progress(quiet);
+    report = studies::simulate_study(
+        protocol, args.text("db"), options, [&](const studies::SimulationProgress& p) {
+          char text[160];
+          std::snprintf(text, sizeof text, "participants %d/%d  trials %d/%d  %.0f s",
+                        p.participants_done, p.participants, p.trials_done, p.trials, p.seconds);
+          progress.show(p.participants_done, text);
+        });
+  }
 
   if (args.text("json") != "-") {
     std::cout << report.participants << " simulated participants, " << report.trials << " trials ("
@@ -262,7 +256,7 @@ int run_simulate(const std::vector<std::string>& argv) {
     }
   }
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter w(out);
       w.begin_object()
           .field("db", args.text("db"))

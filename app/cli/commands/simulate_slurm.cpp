@@ -9,8 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "app/cli/output_file.h"
+#include "core/util/count_text.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
@@ -155,7 +156,7 @@ void submit_slurm_series(const studies::SlurmSeries& series, bool dry_run) {
   if (!series.then.empty())
     then_job = job_id(
         run_command("sbatch --parsable --dependency=afterok:" + merge_job + " '" + then + "'"));
-  write_output(series.dir + "/jobs.txt", [&](std::ostream& out) {
+  util::write_output(series.dir + "/jobs.txt", [&](std::ostream& out) {
     for (const std::string& id : arrays) out << "array " << id << "\n";
     out << "merge " << merge_job << "\n";
     if (!then_job.empty()) out << "then " << then_job << "\n";
@@ -190,13 +191,20 @@ void print_series_status(const std::string& dir, const std::string& json) {
       if (n <= 20)
         std::printf("%-4d %-22llu %6d %8d %8d %8d  %s\n", s.study.participants,
                     static_cast<unsigned long long>(s.study.seed), count[0], count[1], count[2],
-                    count[3], s.merged ? "yes" : "no");
+                    count[3],
+                    s.merged           ? "yes"
+                    : s.merged_partial ? "partial"
+                                       : "no");
     }
     if (n > 20)
       std::printf("%-27s %6d %8d %8d %8d  %d of %zu\n", "all", total[0], total[1], total[2],
                   total[3], merged, n);
     if (status.unfinished_tasks.empty()) {
-      std::cout << "every part is done\n";
+      std::cout << "every part is done";
+      if (merged < int(n))
+        std::cout << "; " << util::count_text(int(n) - merged, "study", "studies")
+                  << " not merged whole: sbatch " << series.dir << "/merge.sh (or bash it)";
+      std::cout << "\n";
     } else {
       std::cout << "unfinished array tasks: " << studies::index_ranges(status.unfinished_tasks)
                 << "\n";
@@ -209,7 +217,7 @@ void print_series_status(const std::string& dir, const std::string& json) {
     }
   }
   if (json.empty()) return;
-  write_output(json, [&](std::ostream& out) {
+  util::write_output(json, [&](std::ostream& out) {
     util::JsonWriter w(out);
     w.begin_object().field("dir", series.dir).key("studies").begin_array();
     for (const auto& s : status.studies) {
@@ -218,6 +226,7 @@ void print_series_status(const std::string& dir, const std::string& json) {
           .field("seed", std::to_string(s.study.seed))
           .field("path", s.path)
           .field("merged", s.merged)
+          .field("merged_partial", s.merged_partial)
           .key("parts")
           .begin_array();
       for (studies::PartState p : s.parts) w.value(state_name(p));

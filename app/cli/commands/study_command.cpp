@@ -3,9 +3,10 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
 #include "core/store/study_store.h"
+#include "core/util/count_text.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 #include "studies/export/study_export.h"
 #include "studies/session/session_runner.h"
 
@@ -52,10 +53,14 @@ int study_status(const std::vector<std::string>& argv) {
   store::StudyStore store(args.text("db"));
   const store::StudyInfo info = store.study();
   const std::vector<studies::ParticipantStatus> status = studies::study_status(store);
+  const store::StudyCompleteness completeness = store.completeness();
   const std::string json = args.text("json");
   if (json != "-") {
-    std::cout << "study " << info.name << " (" << args.text("db") << "), " << status.size()
-              << " participants\n";
+    std::cout << "study " << info.name << " (" << args.text("db") << "), "
+              << util::count_text(int(status.size()), "participant") << "\n";
+    if (completeness.partial())
+      std::cout << "partial study: " << completeness.describe()
+                << "; merge the missing parts in (merge --update, docs/cluster.md)\n";
     for (const auto& p : status) {
       std::cout << "  " << p.id << ": " << p.trials_completed << "/" << p.trials_planned
                 << " completed, " << p.trials_skipped << " skipped, " << p.trials_aborted
@@ -70,9 +75,14 @@ int study_status(const std::vector<std::string>& argv) {
     }
   }
   if (!json.empty()) {
-    write_output(json, [&](std::ostream& out) {
+    util::write_output(json, [&](std::ostream& out) {
       util::JsonWriter w(out);
       w.begin_object().field("study", info.name).field("protocol_sha256", info.protocol_sha256);
+      w.field("partial", completeness.partial())
+          .field("planned_participants", completeness.planned);
+      w.key("missing_places").begin_array();
+      for (int place : completeness.missing_places) w.value(place + 1);
+      w.end_array();
       w.key("participants").begin_array();
       for (const auto& p : status) {
         w.begin_object()

@@ -7,10 +7,10 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/output_file.h"
 #include "core/tracking/hand_fitting.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
+#include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
@@ -88,7 +88,7 @@ int tracking_info(const std::vector<std::string>& argv) {
                 << f.max * 1000 << " mm over " << f.frames << " frames\n";
   }
   if (args.has("json")) {
-    write_output(args.text("json"), [&](std::ostream& out) {
+    util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object().field("source", r.source).field("format_version", r.format_version);
       json.field("frames", r.frames_in_file)
@@ -143,7 +143,7 @@ int tracking_convert(const std::vector<std::string>& argv) {
   if (out_path.size() > 6 && out_path.compare(out_path.size() - 6, 6, ".hlrec") == 0) {
     tracking::write_hlrec(r.frames, out_path);
   } else {
-    write_output(out_path, [&](std::ostream& out) {
+    util::write_output(out_path, [&](std::ostream& out) {
       out << std::setprecision(17);
       static const char* digits[5] = {"thumb", "index", "middle", "ring", "pinky"};
       static const char* joints[5] = {"carp", "mcp", "pip", "dip", "tip"};
