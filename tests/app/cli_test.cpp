@@ -344,8 +344,9 @@ TEST(CliAnalyze, BadInputGivesOneClearLine) {
        "--subject id --dv y --within cond", "line 3, column 'y'"},
       {"inf_value", "id,cond,y\ns1,a,1\ns1,b,2\ns2,a,inf\ns2,b,3\n",
        "--subject id --dv y --within cond", "line 4, column 'y'"},
+      // NA is a missing observation: s1 then lacks a cell and is dropped.
       {"na_value", "id,cond,y\ns1,a,1\ns1,b,NA\ns2,a,1\ns2,b,3\n",
-       "--subject id --dv y --within cond", "line 3, column 'y'"},
+       "--subject id --dv y --within cond", "fewer than two participants have every within cell"},
       {"empty", "", "--subject id --dv y --within cond", "empty"},
       {"header_only", "id,cond,y\n", "--subject id --dv y --within cond", "no data rows"},
       {"ragged", "id,cond,y\ns1,a,1\ns1,b\n", "--subject id --dv y --within cond", "line 3"},

@@ -2,6 +2,7 @@
 // studies/examples simulated on the grasp proxy, exported, analysed and reported, and its
 // completion-time ANOVA equal to R's afex on the same data (tests/data/oracle/designs: the
 // study's export and R's numbers, made by afex_design.R as tests/data/oracle/README.md says).
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -101,6 +102,27 @@ std::string simulate_analyse_export_report(const Example& e) {
       expect_same(m[ours], effect[theirs], e.protocol + " " + name + " " + ours);
   }
   EXPECT_EQ(compared, mine.size());
+
+  // What export wrote, analyze --csv reads back to the same ANOVA (the design --db used).
+  const JsonValue& design = analysis["completion_time"]["design"];
+  std::string within, between;
+  for (const JsonValue& f : design["within"].as_array())
+    within += (within.empty() ? "" : ",") + f.as_string();
+  for (const JsonValue& f : design["between"].as_array())
+    between += (between.empty() ? "" : ",") + f.as_string();
+  r = test::run_cli("analyze --csv " + exported +
+                    "/trials.csv --subject participant --dv completion_time_s --within " + within +
+                    (between.empty() ? "" : " --between " + between) + " --json -");
+  EXPECT_EQ(r.status, 0) << r.out;
+  const JsonValue again = JsonValue::parse(r.out);
+  EXPECT_EQ(again["anova"].size(), mine.size());
+  for (std::size_t i = 0; i < std::min(mine.size(), again["anova"].size()); ++i)
+    for (const char* key : {"effect", "df_num", "df_den", "F", "p", "ges"})
+      if (mine[i][key].is_number())  // the same to rounding: cells summed in another order
+        expect_same(again["anova"][i][key], mine[i][key],
+                    e.protocol + " " + mine[i]["effect"].dump() + " " + key + " from the export");
+      else
+        EXPECT_EQ(again["anova"][i][key].dump(), mine[i][key].dump()) << e.protocol << " " << key;
 
   // Tukey over every pair of the protocol's cells.
   std::set<std::string> pairs;

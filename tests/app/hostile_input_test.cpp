@@ -34,7 +34,7 @@ const std::string kSource = HANDLAB_SOURCE_DIR;
 // what the commands are asked to write goes elsewhere.
 std::string inputs_folder() {
   static const std::string dir = [] {
-    const std::string d = fresh_path("hostile-inputs");
+    const std::string d = fresh_path("hostile-inputs-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     return d;
   }();
@@ -43,7 +43,7 @@ std::string inputs_folder() {
 
 std::string new_output() {
   static int made = 0;
-  const std::string dir = fresh_path("hostile-outputs");
+  const std::string dir = fresh_path("hostile-outputs-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir + "/new-" + std::to_string(++made);
 }
@@ -62,7 +62,7 @@ std::string two_blocks() {
 // A study to spoil in different ways: made once.
 const std::string& good_study() {
   static const std::string db = [] {
-    const std::string path = fresh_path("hostile-good.db");
+    const std::string path = fresh_path("hostile-good-" + std::to_string(::getpid()) + ".db");
     const CliResult r =
         run_cli("simulate --protocol " + two_blocks() +
                 " --participants 2 --seed 1 --world proxy --frames --quiet --db " + path);
@@ -222,7 +222,8 @@ TEST(HostileInput, StoppedMidwayLeavesNoStrayFile) {
   const std::string cli = HANDLAB_CLI;
   const bool with_report = run_cli("report --help").status == 0;
   for (int ms : {5, 20, 60, 150, 400}) {
-    const std::string dir = fresh_path("hostile-stopped-" + std::to_string(ms));
+    const std::string dir =
+        fresh_path("hostile-stopped-" + std::to_string(::getpid()) + "-" + std::to_string(ms));
     std::filesystem::create_directories(dir);
     std::vector<std::string> commands = {
         cli + " merge --out " + dir + "/merged.db " + good_study(),

@@ -158,9 +158,9 @@ TEST(CliMerge, RefusalsSayWhichFileAndWhyAndChangeNothing) {
   refused(run_cli("merge --out " + out + " " + a + " " + reseeded),
           "participant S01 is in " + a + " and " + reseeded + " with different data");
   refused(run_cli("merge --out " + out + " " + a + " " + not_a_study),
-          not_a_study + " is not a handlab study");
+          not_a_study + " is not a study database (not an SQLite file)");
   refused(run_cli("merge --out " + out + " " + a + " " + damaged),
-          damaged + " fails SQLite's integrity check");
+          damaged + " is damaged (cut short or overwritten; SQLite's integrity check: ");
   refused(run_cli("merge --out " + out + " " + a + " " + out + ".missing"),
           out + ".missing: no such file");
   refused(run_cli("merge --out " + a + " " + b), a + " exists");

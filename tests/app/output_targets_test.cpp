@@ -40,7 +40,8 @@ struct OutputUse {
 class OutputTargets : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fresh_path("output-targets");
+    // A folder of this process' own: CTest runs each of these tests in a process, at once.
+    dir_ = fresh_path("output-targets-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
     protocol_ = dir_ + "/two-blocks.json";
     std::ofstream(protocol_) << handlab::test::with(file_bytes(handlab::test::kStudy),
@@ -106,7 +107,7 @@ class OutputTargets : public testing::Test {
     std::string command = use.command;
     command.replace(command.find("{OUT}"), 5, out);
     if (const auto at = command.find("{NEW}"); at != std::string::npos)
-      command.replace(at, 5, fresh_path("output-targets-new-" + std::to_string(++made_) + ".db"));
+      command.replace(at, 5, dir_ + "/new-" + std::to_string(++made_) + ".db");
     return run_cli(command);
   }
 

@@ -281,7 +281,7 @@ TEST(CliSimulate, RunsAStudyAndReportsEveryConditionsOutcome) {
   EXPECT_EQ(handlab::test::file_bytes(db), before);
   one_line_error(run_cli("simulate --protocol " + one_block + " --db " +
                          handlab::test::fresh_path("cli_rigid.db") + " --world rigid"),
-                 "--world must be soft or proxy");
+                 "--world must be proxy or soft");
   one_line_error(run_cli("simulate --protocol " + one_block + " --participants 0 --db " +
                          handlab::test::fresh_path("cli_none.db")),
                  "--participants");

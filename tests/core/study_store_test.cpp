@@ -178,7 +178,7 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
         "DROP INDEX event_by_trial; DROP INDEX trial_by_planned; ALTER TABLE trial DROP COLUMN "
         "frames; ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
         "DROP TABLE simulated_memory; ALTER TABLE participant DROP COLUMN between_levels; "
-        "PRAGMA user_version = 1");
+        "ALTER TABLE study DROP COLUMN planned_participants; PRAGMA user_version = 1");
   }
   StudyStore db(path);
   EXPECT_EQ(db.study().schema_version, kSchemaVersion);
@@ -208,6 +208,9 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
   grouped.between_levels = {{"glove", "on"}, {"experience", "novice"}};  // the protocol's order
   db.add_participant(grouped, {});
   EXPECT_EQ(db.participant("G01")->between_levels, grouped.between_levels);
+  // Schema 6: a study made before plans no size and is never partial.
+  EXPECT_EQ(db.study().planned_participants, 0);
+  EXPECT_FALSE(db.completeness().partial());
 }
 
 // Analyses open a study read-only: a file committed with a rollback journal (as the test
@@ -222,7 +225,7 @@ TEST(StudyStore, ReadOnlyAccessWritesNothing) {
     db.database().exec(
         "ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
         "DROP TABLE simulated_memory; ALTER TABLE participant DROP COLUMN between_levels; "
-        "PRAGMA user_version = 2");
+        "ALTER TABLE study DROP COLUMN planned_participants; PRAGMA user_version = 2");
   }
   { Database(path, Database::Mode::kInspect).exec("PRAGMA journal_mode = DELETE"); }
   ASSERT_FALSE(std::filesystem::exists(path + "-wal"));

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/store/study_store.h"
 #include "studies/cluster/slurm_batch.h"
 #include "tests/support/test_files.h"
 
@@ -71,13 +72,20 @@ TEST(SlurmBatch, EachPartsStateFromTheFilesAlone) {
   touch(part_path(s, s.studies[0], 2) + ".tmp");  // running
   touch(part_path(s, s.studies[0], 3) + ".tmp");  // stopped
   touch(part_path(s, s.studies[0], 3) + ".stopped");
-  touch(study_path(dir, s.studies[1]));  // merged (its parts since removed)
+  // Merged (its parts since removed): a study whose plan is whole; the first study merged
+  // from some of its parts only (merge --partial) is not.
+  store::StudyDefinition definition{"s", "{}", 1, {"f"}, {{"a", {"a"}}}, 0};
+  store::StudyStore::create(study_path(dir, s.studies[1]), definition);  // no plan: whole
+  definition.planned_participants = 3;                                   // and none of them there
+  store::StudyStore::create(study_path(dir, s.studies[0]), definition);
   const SeriesStatus status = series_status(s);
   ASSERT_EQ(status.studies.size(), 2u);
   EXPECT_EQ(status.studies[0].parts,
             (std::vector<PartState>{PartState::kDone, PartState::kRunning, PartState::kStopped}));
   EXPECT_FALSE(status.studies[0].merged);
+  EXPECT_TRUE(status.studies[0].merged_partial);
   EXPECT_TRUE(status.studies[1].merged);
+  EXPECT_FALSE(status.studies[1].merged_partial);
   EXPECT_EQ(status.unfinished_tasks, (std::vector<int>{1, 2}));
 }
 
