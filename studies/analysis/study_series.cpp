@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "analysis/stats/descriptives.h"
+#include "analysis/stats/effect_size.h"
 #include "core/util/json_value.h"
 #include "core/util/json_writer.h"
 
@@ -39,6 +40,36 @@ void describe(const std::vector<double>& values, double& median, double& min, do
   median = finite.empty() ? kNaN : stats::quantile_type7(finite, 0.5);
   min = finite.empty() ? kNaN : finite.front();
   max = finite.empty() ? kNaN : finite.back();
+}
+
+// The effect size a test's statistic gives (effect_size.h), NaN for the others.
+std::string effect_name(const std::string& statistic) {
+  return statistic == "F" ? "pes" : statistic == "t" ? "dz" : "";
+}
+
+double effect_of(const std::string& statistic, double value, const std::vector<double>& df) {
+  if (statistic == "F" && df.size() == 2) return stats::partial_eta_squared(value, df[0], df[1]);
+  if (statistic == "t" && df.size() == 1) return stats::paired_dz(value, df[0]);
+  return kNaN;
+}
+
+stats::EffectInterval published_interval(const PublishedTest& p) {
+  if (!std::isfinite(p.value)) return {kNaN, kNaN};
+  if (p.statistic == "F" && p.df.size() == 2)
+    return stats::partial_eta_squared_interval(p.value, p.df[0], p.df[1]);
+  if (p.statistic == "t" && p.df.size() == 1) return stats::paired_dz_interval(p.value, p.df[0]);
+  return {kNaN, kNaN};
+}
+
+// The median and the 2.5 and 97.5 % quantiles of the finite values.
+void describe_spread(const std::vector<double>& values, double& median, double& low, double& high) {
+  std::vector<double> finite;
+  for (double v : values)
+    if (std::isfinite(v)) finite.push_back(v);
+  std::sort(finite.begin(), finite.end());
+  median = finite.empty() ? kNaN : stats::quantile_type7(finite, 0.5);
+  low = finite.empty() ? kNaN : stats::quantile_type7(finite, 0.025);
+  high = finite.empty() ? kNaN : stats::quantile_type7(finite, 0.975);
 }
 
 std::string fixed(double x, int decimals) {
@@ -94,6 +125,40 @@ void write_test_row(const SeriesTest& t, bool published, std::size_t n, std::ost
                 ? std::to_string(t.below_published) + " of " + std::to_string(t.studies)
                 : std::string());
   out << " |\n";
+}
+
+// The effect sizes of the F and t tests beside the published one's 95 % interval: agreement
+// judged by how large an effect is, not by how many studies reached p < alpha.
+void write_effect_sizes(const StudySeries& s, std::ostream& out) {
+  const bool published = s.published.has_value();
+  out << "\nEffect sizes: partial eta squared (pes) of each F test, d_z (t / sqrt(df + 1)) of "
+         "each t test; the median and the 2.5-97.5 % range over the studies"
+      << (published ? "; beside the published value with its 95 % interval from the noncentral "
+                      "F or t, and how many studies' effects fall inside it"
+                    : "")
+      << "\n\n| test | effect |" << (published ? " published (95 % CI) |" : "")
+      << " median | 2.5-97.5 % |" << (published ? " within the published CI |" : "")
+      << "\n|---|---|" << (published ? "---|" : "") << "---|---|" << (published ? "---|" : "")
+      << "\n";
+  for (const SeriesTest& t : s.tests) {
+    if (t.effect.empty()) continue;
+    out << "| " << t.name << " | " << t.effect << " | ";
+    if (published)
+      out << (std::isfinite(t.published_effect)
+                  ? fixed(t.published_effect, 2) + " (" + fixed(t.published_low, 2) + " to " +
+                        fixed(t.published_high, 2) + ")"
+                  : std::string("–"))
+          << " | ";
+    out << fixed(t.effect_median, 2) << " | " << fixed(t.effect_low, 2) << " to "
+        << fixed(t.effect_high, 2) << " |";
+    if (published)
+      out << " "
+          << (t.within_published >= 0
+                  ? std::to_string(t.within_published) + " of " + std::to_string(t.studies)
+                  : std::string("–"))
+          << " |";
+    out << "\n";
+  }
 }
 
 }  // namespace
@@ -197,6 +262,7 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
     s.name = name;
     s.value.assign(n, kNaN);
     s.p.assign(n, kNaN);
+    s.effect_value.assign(n, kNaN);
     for (std::size_t k = 0; k < n; ++k)
       for (const StudyTest& t : found[k].tests) {
         if (t.name != name) continue;
@@ -204,10 +270,13 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
         s.group = t.group;
         s.value[k] = t.value;
         s.p[k] = t.p;
+        s.effect = effect_name(t.statistic);
+        s.effect_value[k] = effect_of(t.statistic, t.value, t.df);
         ++s.studies;
         s.rejected += t.p < options.alpha ? 1 : 0;
       }
     describe(s.value, s.median, s.min, s.max);
+    describe_spread(s.effect_value, s.effect_median, s.effect_low, s.effect_high);
     double ignored_min, ignored_max;
     describe(s.p, s.p_median, ignored_min, ignored_max);
     if (options.published)
@@ -216,6 +285,17 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
     if (s.published && std::isfinite(s.published->value)) {
       s.below_published = 0;
       for (double v : s.value) s.below_published += v < s.published->value ? 1 : 0;
+    }
+    s.published_effect = s.published_low = s.published_high = kNaN;
+    if (s.published && s.published->statistic == s.statistic) {
+      const stats::EffectInterval ci = published_interval(*s.published);
+      s.published_effect = effect_of(s.statistic, s.published->value, s.published->df);
+      s.published_low = ci.low;
+      s.published_high = ci.high;
+      if (std::isfinite(ci.low)) {
+        s.within_published = 0;
+        for (double e : s.effect_value) s.within_published += e >= ci.low && e <= ci.high ? 1 : 0;
+      }
     }
     series.tests.push_back(std::move(s));
   }
@@ -284,6 +364,7 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
     for (const SeriesTest& t : s.tests)
       if (t.group == group) write_test_row(t, published, n, out);
   }
+  write_effect_sizes(s, out);
   if (published) {
     out << "\nPublished: " << s.published->source << "\n";
     if (!s.published_unmatched.empty()) {
@@ -318,6 +399,26 @@ void write_series_json(const StudySeries& s, std::ostream& out) {
     json.field("studies", t.studies).field("rejected", t.rejected);
     json.field("median", t.median).field("min", t.min).field("max", t.max);
     json.field("p_median", t.p_median);
+    json.field("effect", t.effect).key("effect_values").begin_array();
+    for (double e : t.effect_value) json.value(e);
+    json.end_array();
+    json.field("effect_median", t.effect_median)
+        .field("effect_low", t.effect_low)
+        .field("effect_high", t.effect_high);
+    json.key("published_effect");
+    if (std::isfinite(t.published_effect))
+      json.begin_object()
+          .field("value", t.published_effect)
+          .field("low", t.published_low)
+          .field("high", t.published_high)
+          .end_object();
+    else
+      json.null();
+    json.key("within_published");
+    if (t.within_published >= 0)
+      json.value(t.within_published);
+    else
+      json.null();
     json.key("below_published");
     if (t.below_published >= 0)
       json.value(t.below_published);

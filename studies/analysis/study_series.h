@@ -54,6 +54,17 @@ struct SeriesTest {
   // Where the published statistic falls in the series: the studies whose statistic is below
   // it (-1 when no value was published).
   int below_published = -1;
+  // How large the effect is, so that studies agree or differ by size, not by p < alpha:
+  // "pes" (partial eta squared) of an F test, "dz" (t / sqrt(df + 1)) of a t test; empty for
+  // chi2 and V. Per study, then the median and the 2.5 and 97.5 % quantiles (type 7) over the
+  // studies with it.
+  std::string effect;
+  std::vector<double> effect_value;
+  double effect_median = 0.0, effect_low = 0.0, effect_high = 0.0;
+  // The published test's effect and its 95 % interval from the noncentral F or t (NaN where
+  // it gave no value or dfs), and how many studies' effects fall inside that interval.
+  double published_effect = 0.0, published_low = 0.0, published_high = 0.0;
+  int within_published = -1;
 };
 
 struct StudySeries {

@@ -268,6 +268,26 @@ TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
   EXPECT_EQ(test("repetition").below_published, 1);
   EXPECT_EQ(test("strategy:manipulation: naive gross - ours gross").below_published, -1);
   EXPECT_EQ(test("strategy").below_published, -1);  // not published at all
+  // Effect sizes by hand: the interaction's partial eta squared F df1 / (F df1 + df2) with
+  // F(1, 19) = 8.7376, the fine contrast's d_z t / sqrt(20); the paper's F(1, 19) = 8.78 has
+  // the 95 % interval .026 to .554 (R: tests/data/r/effect_size_reference.json), which holds
+  // this study's; its t(19) = 3.52, 0.28 to 1.28.
+  const SeriesTest& interaction = test("strategy:manipulation");
+  EXPECT_EQ(interaction.effect, "pes");
+  EXPECT_NEAR(interaction.effect_value[0], 8.7376 / (8.7376 + 19.0), 1e-5);
+  EXPECT_EQ(interaction.effect_median, interaction.effect_value[0]);
+  EXPECT_EQ(interaction.effect_low, interaction.effect_value[0]);
+  EXPECT_NEAR(interaction.published_effect, 8.78 / 27.78, 1e-12);
+  EXPECT_NEAR(interaction.published_low, 0.026199002669103678, 1e-7);
+  EXPECT_NEAR(interaction.published_high, 0.55360523675721607, 1e-7);
+  EXPECT_EQ(interaction.within_published, 1);
+  const SeriesTest& fine = test("strategy:manipulation: naive fine - ours fine");
+  EXPECT_EQ(fine.effect, "dz");
+  EXPECT_NEAR(fine.effect_value[0], 3.3357 / std::sqrt(20.0), 1e-5);
+  EXPECT_NEAR(fine.published_low, 0.27543730420068402, 1e-6);
+  EXPECT_NEAR(fine.published_high, 1.2830934600911701, 1e-6);
+  EXPECT_EQ(test("precision (Friedman)").effect, "");
+  EXPECT_TRUE(std::isnan(test("precision (Friedman)").effect_value[0]));
 }
 
 TEST(StudySeries, DescribesEachTestOverTheStudies) {
