@@ -22,8 +22,9 @@ std::string number(double x) {
   return util::format_number(x);
 }
 
-// Lengths and times of the frame log to the micrometre and microsecond: the float32 record
-// holds no finer detail at the scene's size, and the file stays readable.
+// Lengths and times to the micrometre and microsecond: the frame log's float32 record holds
+// no finer detail at the scene's size, a trial's time is counted in steps of 1/120 s, and the
+// file stays readable.
 std::string micro(double x) {
   if (!std::isfinite(x)) return util::format_number(x);
   char text[48];
@@ -119,7 +120,9 @@ void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_
     if (r.status == store::TrialStatus::kSkipped)
       out << ",NA,skipped,NA,NA," << r.attempt << '\n';
     else
-      out << ',' << number(r.completion_time_s) << ','
+      // A time counted in simulation steps (1/120 s) to the microsecond: 858 steps are 7.15 s,
+      // not the double's 7.1499999999999995.
+      out << ',' << micro(r.completion_time_s) << ','
           << (r.status == store::TrialStatus::kCompleted ? "success" : "timeout") << ',' << r.grasps
           << ',' << r.drops << ',' << r.attempt << '\n';
   }
