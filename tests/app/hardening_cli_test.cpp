@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -204,6 +205,9 @@ TEST(Hardening, TheProgramReadsItsOwnExportWithSkippedTrials) {
   const std::string out = fresh_path("roundtrip-export");
   ASSERT_EQ(run_cli("export --db " + db + " --out " + out).status, 0);
   EXPECT_NE(file_bytes(out + "/trials.csv").find(",NA"), std::string::npos);
+  // 7. Times to the microsecond, the precision of a time counted in 1/120 s steps, never a
+  // double's last digits (7.1499999999999995).
+  EXPECT_FALSE(std::regex_search(file_bytes(out + "/trials.csv"), std::regex("\\.[0-9]{7,}")));
   r = run_cli("analyze --csv " + out +
               "/trials.csv --subject participant --dv completion_time_s --within "
               "strategy,manipulation --json -");
