@@ -142,6 +142,40 @@ TEST(MainWindow, ShowsAStudyDatabasesProgress) {
   EXPECT_NE(window.show_study("/no/such/study.db"), QString());
 }
 
+// A simulated study merged from some of its parts says so on its page.
+TEST(MainWindow, SaysAStudyIsPartial) {
+  const std::string path = std::string(HANDLAB_TEST_TMP) + "/gui_partial.db";
+  for (const char* side : {"", "-wal", "-shm"}) std::filesystem::remove(path + side);
+  const studies::Protocol protocol = studies::read_protocol(std::string(HANDLAB_SOURCE_DIR) +
+                                                            "/studies/fine-manipulation-2021.json");
+  store::StudyDefinition definition = studies::study_definition(protocol);
+  definition.planned_participants = 3;  // of whom only the second is here
+  store::StudyStore::create(path, definition);
+  {
+    store::StudyStore db(path);
+    store::Participant p;
+    p.id = "S02";
+    p.age = 40;
+    p.sex = "F";
+    p.handedness = "right";
+    p.hand_length = 0.18;
+    p.vr_experience = "some";
+    p.simulated = true;
+    db.add_participant(p, studies::planned_rows(protocol, "S02", 1), 1);
+  }
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  ASSERT_EQ(window.show_study(QString::fromStdString(path)), QString());
+  auto* summary = window.findChild<QTableWidget*>("study_summary");
+  ASSERT_NE(summary, nullptr);
+  QString said;
+  for (int row = 0; row < summary->rowCount(); ++row)
+    if (summary->item(row, 0)->text() == "Partial study") said = summary->item(row, 1)->text();
+  EXPECT_TRUE(said.startsWith("1 of 3 planned participants (missing enrolment places 1, 3)"))
+      << said.toStdString();
+}
+
 }  // namespace
 }  // namespace handlab::gui
 
