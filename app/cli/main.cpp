@@ -1,6 +1,7 @@
 // handlab-cli: every handlab job, headless.
 #include <algorithm>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -51,6 +52,13 @@ int main(int argc, char** argv) {
     } catch (const handlab::cli::UsageError& e) {
       std::cerr << "handlab-cli " << command.name << ": " << one_line(e.what()) << "\n";
       return 2;
+    } catch (const std::filesystem::filesystem_error& e) {
+      // The file system's words ("filesystem error: cannot create directories: ...") as what
+      // happened to which file.
+      std::cerr << "handlab-cli " << command.name << ": cannot use " << e.path1().string()
+                << (e.path2().empty() ? "" : " or " + e.path2().string()) << ": "
+                << e.code().message() << "\n";
+      return 1;
     } catch (const std::exception& e) {
       std::cerr << "handlab-cli " << command.name << ": " << one_line(e.what()) << "\n";
       return 1;

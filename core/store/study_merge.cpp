@@ -296,7 +296,7 @@ MergeResult merge_studies(const std::vector<std::string>& named_parts, const std
   remove_database(partial);
   // Removed if the merge fails or is stopped (Ctrl-C, scancel): no stray file, and nothing
   // under the output's name that looks like a study.
-  util::TemporaryFile unfinished(partial), wal(partial + "-wal"), shm(partial + "-shm");
+  util::TemporaryDatabase unfinished(partial);
   StudyStore::create(partial, definition_of(first));
   {
     StudyStore merged(partial, StudyStore::Access::kUnfinished);

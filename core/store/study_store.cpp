@@ -97,7 +97,7 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
                      " does not exist");
   const std::filesystem::path partial = path + ".creating";
   std::filesystem::remove(partial, ec);
-  util::TemporaryFile unfinished(partial.string());
+  util::TemporaryDatabase unfinished(partial.string());
   {
     Database db(partial.string(), Database::Mode::kReadWriteCreate);
     Transaction t(db);

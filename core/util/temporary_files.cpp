@@ -15,7 +15,7 @@ namespace {
 // Fixed storage the signal handler can read without allocating: a slot is free, being
 // written, or holds a path to remove.
 enum SlotState : int { kFree, kWriting, kHeld };
-constexpr std::size_t kSlots = 64;
+constexpr std::size_t kSlots = 1024;  // a 250-person simulated study's parts
 constexpr std::size_t kPathBytes = 4096;
 std::array<std::atomic<int>, kSlots> g_state{};
 std::array<std::array<char, kPathBytes>, kSlots> g_path{};

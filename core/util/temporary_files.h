@@ -26,4 +26,19 @@ class TemporaryFile {
   bool kept_ = false;
 };
 
+// An SQLite database under construction: the file and the companions SQLite makes beside it
+// (-wal, -shm, -journal), removed together.
+class TemporaryDatabase {
+ public:
+  explicit TemporaryDatabase(const std::string& path)
+      : file_(path), wal_(path + "-wal"), shm_(path + "-shm"), journal_(path + "-journal") {}
+  // The database became the output: none of its files is removed.
+  void keep() {
+    for (TemporaryFile* f : {&file_, &wal_, &shm_, &journal_}) f->keep();
+  }
+
+ private:
+  TemporaryFile file_, wal_, shm_, journal_;
+};
+
 }  // namespace handlab::util

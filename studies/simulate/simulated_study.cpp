@@ -8,6 +8,7 @@
 #include <exception>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -15,6 +16,7 @@
 
 #include "core/store/sqlite_database.h"
 #include "core/store/study_store.h"
+#include "core/util/temporary_files.h"
 #include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
 
@@ -59,6 +61,10 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   }
   // Enrolled in order: the schedules' counterbalancing follows enrolment.
   store::StudyStore::create(db_path, definition);
+  // The study and its sessions' parts are removed if the run fails or is stopped (Ctrl-C, a
+  // batch system's cancel): a simulated study is whole or not there.
+  util::TemporaryDatabase unfinished_study(db_path);
+  std::vector<std::unique_ptr<util::TemporaryDatabase>> unfinished_parts;
   store::StudyStore study(db_path);
   std::vector<store::Participant> people;
   std::vector<std::vector<store::PlannedTrialRow>> plans;
@@ -76,6 +82,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
   for (const store::Participant& p : people) {
     const std::string path = part_path(db_path, p.id);
     store::remove_database_files(path);
+    unfinished_parts.push_back(std::make_unique<util::TemporaryDatabase>(path));
     study.copy_to(path);
   }
   const int n = int(people.size());
@@ -187,6 +194,7 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
       }
     }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  unfinished_study.keep();  // the study, now whole
   return report;
 }
 

@@ -216,8 +216,8 @@ int stopped_after(const std::string& command, int ms) {
   return WIFSIGNALED(status) ? -WTERMSIG(status) : WEXITSTATUS(status);
 }
 
-// Merge, export and report stopped at moments through their work: no stray file, and an
-// output that is there is whole.
+// Merge, export, report and simulate stopped at moments through their work: no stray file,
+// and an output that is there is whole.
 TEST(HostileInput, StoppedMidwayLeavesNoStrayFile) {
   const std::string cli = HANDLAB_CLI;
   const bool with_report = run_cli("report --help").status == 0;
@@ -228,6 +228,8 @@ TEST(HostileInput, StoppedMidwayLeavesNoStrayFile) {
     std::vector<std::string> commands = {
         cli + " merge --out " + dir + "/merged.db " + good_study(),
         cli + " export --frames --db " + good_study() + " --out " + dir + "/export",
+        cli + " simulate --protocol " + two_blocks() +
+            " --participants 4 --seed 2 --world proxy --quiet --jobs 2 --db " + dir + "/sim.db",
     };
     if (with_report)
       commands.push_back(cli + " report --db " + good_study() + " --out " + dir + "/report");
@@ -236,6 +238,13 @@ TEST(HostileInput, StoppedMidwayLeavesNoStrayFile) {
       const std::string name = e.path().filename().string();
       EXPECT_EQ(name.find(".part"), std::string::npos) << e.path() << " after " << ms << " ms";
       EXPECT_EQ(name.find(".creating"), std::string::npos) << e.path();
+    }
+    if (std::filesystem::exists(dir + "/sim.db")) {  // there only when whole
+      handlab::store::StudyStore simulated(dir + "/sim.db",
+                                           handlab::store::StudyStore::Access::kReadOnly);
+      EXPECT_EQ(simulated.participants().size(), 4u);
+      for (const auto& p : simulated.participants())
+        EXPECT_FALSE(simulated.next_trial(p.id).has_value()) << p.id << " after " << ms << " ms";
     }
     if (std::filesystem::exists(dir + "/merged.db")) {
       handlab::store::StudyStore merged(dir + "/merged.db",
