@@ -184,4 +184,19 @@ TEST_F(OutputTargets, ASymbolicLinkIsFollowedToItsTargetAndStaysALink) {
   }
 }
 
+// The options that name a folder (export, report) write into the folder a link points to.
+TEST_F(OutputTargets, AFolderNamedByALinkTakesTheFiles) {
+  for (const std::string& command : {"export --frames --db " + db_, "report --db " + db_}) {
+    const std::string target = dir_ + "/folder-target", link = dir_ + "/folder-link";
+    std::filesystem::remove_all(target);
+    std::filesystem::remove(link);
+    std::filesystem::create_directories(target);
+    std::filesystem::create_directory_symlink(target, link);
+    const CliResult r = run_cli(command + " --out " + link);
+    EXPECT_EQ(r.status, 0) << command << "\n" << r.out;
+    EXPECT_EQ(kind_of(link), "link") << command;
+    EXPECT_FALSE(std::filesystem::is_empty(target)) << command;
+  }
+}
+
 }  // namespace
