@@ -206,6 +206,22 @@ std::unique_ptr<StudyStore> open_part(const std::string& path) {
   }
 }
 
+// The population seeds a part's simulated people were drawn with (none for people): parts
+// of one simulated study share one.
+std::set<std::uint64_t> population_seeds(Database& db) {
+  std::set<std::uint64_t> seeds;
+  Statement s = db.prepare("SELECT DISTINCT seed FROM simulated_person");
+  while (s.step()) seeds.insert(std::uint64_t(s.column_int64(0)));
+  return seeds;
+}
+
+std::string seeds_text(const std::set<std::uint64_t>& seeds) {
+  if (seeds.empty()) return "no simulated people";
+  std::string text = seeds.size() == 1 ? "population seed" : "population seeds";
+  for (std::uint64_t seed : seeds) text += " " + std::to_string(seed);
+  return text;
+}
+
 void remove_database(const std::string& path) {
   std::error_code ignored;
   for (const char* suffix : {"", "-wal", "-shm", "-journal"})
@@ -222,7 +238,8 @@ MergeResult merge_studies(const std::vector<std::string>& named_parts, const std
   if (std::filesystem::exists(out, ec)) {
     if (!options.update) throw StoreError(out + " exists: a merge writes a new study");
     const StudyCompleteness before = open_part(out)->completeness();
-    if (!before.partial()) {
+    // Whole by its plan: nothing to add. A study without a plan (of people) is merged again.
+    if (before.planned > 0 && !before.partial()) {
       MergeResult whole;
       whole.whole_already = true;
       whole.participants = before.planned;
@@ -233,6 +250,7 @@ MergeResult merge_studies(const std::vector<std::string>& named_parts, const std
   std::vector<std::unique_ptr<StudyStore>> stores;
   for (const std::string& path : parts) stores.push_back(open_part(path));
   const StudyInfo first = stores.front()->study();
+  const std::set<std::uint64_t> first_seeds = population_seeds(stores.front()->database());
   std::string created_at = first.created_at;  // the merged study's: its earliest part's
   // Each participant's part and place; a second copy only if its data are the same.
   struct Member {
@@ -251,12 +269,13 @@ MergeResult merge_studies(const std::vector<std::string>& named_parts, const std
       throw StoreError(parts[k] + " is a study of another protocol (sha256 " + sha.substr(0, 12) +
                        "…; " + parts.front() + " has " + first.protocol_sha256.substr(0, 12) +
                        "…)");
-    if (info.planned_participants != first.planned_participants || info.seed != first.seed)
+    const std::set<std::uint64_t> seeds = population_seeds(stores[k]->database());
+    if (info.planned_participants != first.planned_participants || seeds != first_seeds)
       throw StoreError(parts[k] + " is a part of another study (" +
-                       std::to_string(info.planned_participants) + " planned participants, seed " +
-                       std::to_string(info.seed) + "; " + parts.front() + " has " +
-                       std::to_string(first.planned_participants) + ", seed " +
-                       std::to_string(first.seed) + ")");
+                       std::to_string(info.planned_participants) + " planned participants, " +
+                       seeds_text(seeds) + "; " + parts.front() + " has " +
+                       std::to_string(first.planned_participants) + ", " +
+                       seeds_text(first_seeds) + ")");
     for (const Participant& p : stores[k]->participants()) {
       const auto seen = member_of.find(p.id);
       if (seen == member_of.end()) {

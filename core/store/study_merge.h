@@ -16,8 +16,8 @@ struct MergeOptions {
   // Write the study though its parts lack participants its plan names; it then says it is
   // partial (StudyStore::completeness) until merged again with the rest.
   bool partial = false;
-  // An existing `out` that is partial is merged again with the parts (and replaced); one that
-  // is whole is left as it is. Without it, an existing `out` is refused.
+  // An existing `out` is merged again with the parts and replaced, unless its plan says it is
+  // whole already, when it is left as it is. Without it, an existing `out` is refused.
   bool update = false;
 };
 
@@ -35,7 +35,8 @@ struct MergeResult {
 // order. `out` appears only when complete: it is written as OUT.partial (a stale one, left by
 // a merge that was killed, is replaced) and renamed at the end. Throws StoreError naming the
 // file and the reason: `out` exists; a part is missing, not a handlab study, or fails
-// SQLite's integrity check; a part's protocol or plan differs from the first part's; a
+// SQLite's integrity check; a part's protocol, plan or simulated people's population seed
+// differs from the first part's; a
 // participant is in two parts with different data; the parts lack planned participants and
 // `options.partial` is not set.
 MergeResult merge_studies(const std::vector<std::string>& parts, const std::string& out,

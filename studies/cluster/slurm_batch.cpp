@@ -286,8 +286,10 @@ SeriesStatus series_status(const SlurmSeries& s) {
       const std::string part = part_path(s, study, shard);
       const PartState state = std::filesystem::exists(part)                ? PartState::kDone
                               : std::filesystem::exists(part + ".stopped") ? PartState::kStopped
-                              : std::filesystem::exists(part + ".tmp")     ? PartState::kRunning
-                                                                           : PartState::kMissing;
+                              : std::filesystem::exists(part + ".tmp") ||
+                                      std::filesystem::exists(part + ".tmp.creating")
+                                  ? PartState::kRunning
+                                  : PartState::kMissing;
       st.parts.push_back(state);
       if (state != PartState::kDone && !st.merged) status.unfinished_tasks.push_back(task);
     }

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -59,13 +60,18 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
                                   std::to_string(options.seed) + "): " + e.what());
     }
   }
-  // Enrolled in order: the schedules' counterbalancing follows enrolment.
-  store::StudyStore::create(db_path, definition);
-  // The study and its sessions' parts are removed if the run fails or is stopped (Ctrl-C, a
-  // batch system's cancel): a simulated study is whole or not there.
-  util::TemporaryDatabase unfinished_study(db_path);
+  // A simulated study is whole or not there: it is built as DB.creating (which every command
+  // that opens a study refuses, if a killed run left it) and renamed when complete; it and
+  // its sessions' parts are removed if the run fails or is stopped (Ctrl-C, a batch system's
+  // cancel).
+  const std::string building = db_path + ".creating";
+  util::TemporaryDatabase unfinished_study(building);
+  store::remove_database_files(building);
   std::vector<std::unique_ptr<util::TemporaryDatabase>> unfinished_parts;
-  store::StudyStore study(db_path);
+  // Enrolled in order: the schedules' counterbalancing follows enrolment.
+  store::StudyStore::create(building, definition);
+  std::optional<store::StudyStore> open_study;
+  store::StudyStore& study = open_study.emplace(building, store::StudyStore::Access::kUnfinished);
   std::vector<store::Participant> people;
   std::vector<std::vector<store::PlannedTrialRow>> plans;
   int planned_total = 0;
@@ -193,8 +199,12 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
         report.simulated_seconds += protocol.timeout_s;
       }
     }
+  open_study.reset();  // closed: its log checkpointed into the file
+  if (std::filesystem::exists(db_path))
+    throw std::runtime_error(db_path + " appeared while the study ran; it is left as it is");
+  std::filesystem::rename(building, db_path);
+  unfinished_study.keep();  // the study, now whole under its name
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  unfinished_study.keep();  // the study, now whole
   return report;
 }
 

@@ -117,6 +117,15 @@ TEST(Hardening, AStudyMergedFromSomeOfItsPartsIsRefusedOrSaysItIsPartial) {
   refused(run_cli("merge --partial --out " + fresh_path("partial-mixed.db") + " " + parts[0] + " " +
                   other),
           "a part of another study");
+  // Nor are shards of another population (another --seed), though their people never clash.
+  const std::string reseeded = fresh_path("partial-reseeded.db");
+  ASSERT_EQ(run_cli("simulate --protocol " + protocol +
+                    " --participants 4 --seed 2 --world proxy --quiet --shard 2/4 --db " + reseeded)
+                .status,
+            0);
+  refused(run_cli("merge --partial --out " + fresh_path("partial-reseeded-merge.db") + " " +
+                  parts[0] + " " + reseeded),
+          "population seed 2; " + parts[0] + " has 4, population seed 1");
 }
 
 // 1 (Slurm's files): the series the issue tried, run by hand with bash: a partial merge is

@@ -132,7 +132,8 @@ TEST(CliMerge, RefusalsSayWhichFileAndWhyAndChangeNothing) {
   const std::string protocol = short_protocol(1);
   const std::string a = simulate("merge_a.db", "1/2", protocol, 11, false),
                     b = simulate("merge_b.db", "2/2", protocol, 11, false);
-  // Another protocol (with practice trials), another seed, a text file, a damaged study.
+  // Another protocol (with practice trials), another population seed, a text file, a damaged
+  // study.
   const std::string other = simulate("merge_other.db", "2/2", short_protocol(1, true), 11, false);
   const std::string reseeded = simulate("merge_reseeded.db", "1/2", protocol, 12, false);
   const std::string not_a_study = fresh_path("merge_not_a_study.db");
@@ -148,7 +149,15 @@ TEST(CliMerge, RefusalsSayWhichFileAndWhyAndChangeNothing) {
         "WHERE name = 'trial_by_planned'");
     db.exec("PRAGMA journal_mode = DELETE");
   }
-  const std::vector<std::string> files = {a, b, other, reseeded, not_a_study, damaged};
+  // The same people of another participant model (--set): S01 twice, with different data.
+  const std::string changed = fresh_path("merge_changed.db");
+  ASSERT_EQ(run_cli("simulate --protocol " + protocol +
+                    " --participants 4 --seed 11 --world proxy --quiet --shard 1/2 --set "
+                    "fitts_a=0.7 --db " +
+                    changed)
+                .status,
+            0);
+  const std::vector<std::string> files = {a, b, other, reseeded, changed, not_a_study, damaged};
   std::vector<std::string> before;
   for (const std::string& f : files) before.push_back(file_bytes(f));
 
@@ -156,7 +165,10 @@ TEST(CliMerge, RefusalsSayWhichFileAndWhyAndChangeNothing) {
   refused(run_cli("merge --out " + out + " " + a + " " + other),
           other + " is a study of another protocol");
   refused(run_cli("merge --out " + out + " " + a + " " + reseeded),
-          "participant S01 is in " + a + " and " + reseeded + " with different data");
+          reseeded + " is a part of another study (4 planned participants, population seed 12; " +
+              a + " has 4, population seed 11)");
+  refused(run_cli("merge --out " + out + " " + a + " " + changed),
+          "participant S01 is in " + a + " and " + changed + " with different data");
   refused(run_cli("merge --out " + out + " " + a + " " + not_a_study),
           not_a_study + " is not a study database (not an SQLite file)");
   refused(run_cli("merge --out " + out + " " + a + " " + damaged),

@@ -95,11 +95,13 @@ echo "power: the power from $(wc -l <"$work/power/tasks.tsv") array tasks equals
   --per-task 2 --slurm "$work/cut" --time 0:10:00 >/dev/null
 read -r array merge < <(jobs_of "$work/cut" | tr ',' ' ')
 echo "$array $merge" | grep -qE '^[0-9]+ [0-9]+$' || fail "jobs of the cut series: $(cat "$work/cut/jobs.txt")"
+# The task's simulate builds its part as PART.tmp.creating and renames it when complete.
 for _ in $(seq 1 300); do
-  [ -e "$work/cut/parts/n4-seed23/shard-2-of-2.db.tmp" ] && break
+  [ -e "$work/cut/parts/n4-seed23/shard-2-of-2.db.tmp.creating" ] && break
   sleep 0.1
 done
-[ -e "$work/cut/parts/n4-seed23/shard-2-of-2.db.tmp" ] || fail "task 1 never started its part"
+[ -e "$work/cut/parts/n4-seed23/shard-2-of-2.db.tmp.creating" ] ||
+  fail "task 1 never started its part"
 scancel "${array}_1"
 wait_for_jobs "$array" 600
 scancel "$merge" 2>/dev/null || true  # its dependency can no longer be met
