@@ -193,6 +193,22 @@ AnalysisReport run_analysis(const LongTable& given, const AnalysisRequest& reque
   if (table.rows() == 0)
     throw DataError(given.source() + ": no row has a value of '" + request.design.dv +
                     "' (every one is NA or empty)");
+  // Leaving rows out must not change the design: a cell with no observation left is an error,
+  // a participant with none is named.
+  for (const std::string& f : request.design.within)
+    for (const std::string& level : given.factor_codes(f).levels) {
+      const std::vector<std::string> kept = table.factor_codes(f).levels;
+      if (std::find(kept.begin(), kept.end(), level) == kept.end())
+        throw DataError(given.source() + ": no row of " + f + " '" + level + "' has a value of '" +
+                        request.design.dv + "' (every one is NA or empty)");
+    }
+  std::string without_any;
+  {
+    const std::vector<std::string> kept = table.factor_codes(request.design.subject).levels;
+    for (const std::string& who : given.factor_codes(request.design.subject).levels)
+      if (std::find(kept.begin(), kept.end(), who) == kept.end())
+        without_any += (without_any.empty() ? "" : ", ") + who;
+  }
   const stats::RmData data = stats::prepare_rm_data(table, request.design);
   report.n_subjects = int(data.subjects.size());
   report.dropped_subjects = data.dropped_subjects;
@@ -200,6 +216,9 @@ AnalysisReport run_analysis(const LongTable& given, const AnalysisRequest& reque
     report.warnings.push_back(std::to_string(given.rows() - table.rows()) +
                               (given.rows() - table.rows() == 1 ? " row" : " rows") + " with no " +
                               request.design.dv + " (NA) left out before the cells were averaged");
+  if (!without_any.empty())
+    report.warnings.push_back("no " + request.design.dv +
+                              " at all (every row NA), left out: " + without_any);
   report.warnings.insert(report.warnings.end(), data.warnings.begin(), data.warnings.end());
   report.covariate_means = data.covariate_means;
   report.anova = stats::rm_anova(data);

@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
     } catch (const std::filesystem::filesystem_error& e) {
       // The file system's words ("filesystem error: cannot create directories: ...") as what
       // happened to which file.
-      std::cerr << "handlab-cli " << command.name << ": cannot use " << e.path1().string()
+      std::cerr << "handlab-cli " << command.name << ": "
+                << (e.path1().empty() ? std::string("a file") : "cannot use " + e.path1().string())
                 << (e.path2().empty() ? "" : " or " + e.path2().string()) << ": "
                 << e.code().message() << "\n";
       return 1;

@@ -1,6 +1,5 @@
 #include "app/report/figure_file.h"
 
-#include <filesystem>
 #include <stdexcept>
 
 #include <QBuffer>
@@ -16,9 +15,7 @@ void write_figure_file(const std::string& path, QSize size, const std::string& t
   const QString file = QString::fromStdString(path);
   const QRectF area(QPointF(0, 0), QSizeF(size));
   // A stream (standard output, /dev/null, a pipe) has no extension to choose by: SVG, text.
-  const bool stream =
-      !file.endsWith(".png", Qt::CaseInsensitive) &&
-      (path == "-" || (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path)));
+  const bool stream = !file.endsWith(".png", Qt::CaseInsensitive) && util::is_stream_output(path);
   if (file.endsWith(".svg", Qt::CaseInsensitive) || stream) {
     QByteArray bytes;
     QBuffer buffer(&bytes);

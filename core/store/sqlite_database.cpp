@@ -22,7 +22,7 @@ std::string what_happened(int code, const std::string& file) {
     case SQLITE_READONLY:
       return file + " cannot be written: it, or its folder, is read-only";
     case SQLITE_CANTOPEN:
-      return file + " cannot be opened: its folder is missing or not readable";
+      return file + " cannot be opened: it or its folder is missing, or not readable";
     case SQLITE_PERM:
     case SQLITE_AUTH:
       return "no permission to use " + file;

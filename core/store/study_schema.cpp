@@ -179,7 +179,9 @@ std::int64_t checked_study_file(const std::string& path) {
   } catch (const StoreError& e) {
     if (probe.last_error_code() == SQLITE_NOTADB)
       throw StoreError(path + " is not a study database (not an SQLite file)");
-    throw StoreError(path + " cannot be read: " + e.what());
+    const std::string what = e.what();
+    throw StoreError(what.find(path) != std::string::npos ? what
+                                                          : path + " cannot be read: " + what);
   }
   if (application != kApplicationId)
     throw StoreError(path + " is an SQLite file but not a handlab study database");

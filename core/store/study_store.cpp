@@ -93,10 +93,12 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
   if (d.conditions.empty()) throw StoreError("a study needs at least one condition");
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
-    throw StoreError("cannot create " + path + ": the folder " + folder.string() +
-                     " does not exist");
+    throw StoreError("cannot create " + path + ": " +
+                     (std::filesystem::exists(folder, ec)
+                          ? folder.string() + " is not a folder"
+                          : "the folder " + folder.string() + " does not exist"));
   const std::filesystem::path partial = path + ".creating";
-  std::filesystem::remove(partial, ec);
+  remove_database_files(partial.string());  // a stale one, and its log, of a killed creation
   util::TemporaryDatabase unfinished(partial.string());
   {
     Database db(partial.string(), Database::Mode::kReadWriteCreate);

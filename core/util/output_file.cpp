@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 #include "core/util/temporary_files.h"
@@ -87,7 +89,9 @@ std::optional<int> own_descriptor(const std::string& path) {
   for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"}) {
     if (path.rfind(prefix, 0) != 0) continue;
     const std::string number = path.substr(prefix.size());
-    if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (number.empty() || number.size() > 9 ||
+        number.find_first_not_of("0123456789") != std::string::npos)
+      continue;
     return std::stoi(number);
   }
   return std::nullopt;
@@ -121,29 +125,38 @@ void write_through(const std::string& target, const std::string& path,
   ::close(fd);
 }
 
+// Makes the temporary file beside `target`, with the signals held until its name is
+// registered: a signal in between cannot leave it behind. Created 0666 under the umask, as
+// any new file, close-on-exec.
+std::unique_ptr<TemporaryFile> make_temporary(const std::string& target, const std::string& path,
+                                              int* fd) {
+  static std::atomic<unsigned> made{0};
+  prepare_temporary_files();
+  const SignalsHeld held;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const std::string name =
+        target + ".part-" + std::to_string(::getpid()) + "-" + std::to_string(made++);
+    *fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (*fd >= 0) return std::make_unique<TemporaryFile>(name);
+    if (errno != EEXIST) refuse(path, system_reason(errno));
+  }
+  refuse(path, "no free name for a temporary file beside it");
+}
+
 void replace_file(const std::string& target, const std::string& path, const struct stat* existing,
                   const std::function<void(std::ostream&)>& write) {
   const fs::path folder = fs::path(target).parent_path();
   struct stat folder_stat {};
-  if (!folder.empty() &&
-      (::stat(folder.c_str(), &folder_stat) != 0 || !S_ISDIR(folder_stat.st_mode)))
-    refuse(path, "the folder " + folder.string() + " does not exist");
-  std::string name = target + ".part-XXXXXX";
-  const int fd = ::mkstemp(name.data());
-  if (fd < 0) refuse(path, system_reason(errno));
-  TemporaryFile temporary(name);
+  if (!folder.empty()) {
+    if (::stat(folder.c_str(), &folder_stat) != 0)
+      refuse(path, errno == ENOENT ? "the folder " + folder.string() + " does not exist"
+                                   : "the folder " + folder.string() + ": " + system_reason(errno));
+    if (!S_ISDIR(folder_stat.st_mode)) refuse(path, folder.string() + " is not a folder");
+  }
+  int fd = -1;
+  const std::unique_ptr<TemporaryFile> temporary = make_temporary(target, path, &fd);
   try {
-    // mkstemp makes the file private (0600): give it what the replaced file had, or what a new
-    // file gets under the umask.
-    mode_t mode = 0;
-    if (existing) {
-      mode = existing->st_mode & 07777;
-    } else {
-      const mode_t mask = ::umask(0);
-      ::umask(mask);
-      mode = 0666 & ~mask;
-    }
-    ::fchmod(fd, mode);
+    if (existing) ::fchmod(fd, existing->st_mode & 07777);  // a replaced file keeps its mode
     stream_to(fd, path, write);
     if (::fsync(fd) != 0) refuse(path, system_reason(errno));
   } catch (...) {
@@ -151,8 +164,8 @@ void replace_file(const std::string& target, const std::string& path, const stru
     throw;
   }
   if (::close(fd) != 0) refuse(path, system_reason(errno));
-  if (::rename(name.c_str(), target.c_str()) != 0) refuse(path, system_reason(errno));
-  temporary.keep();
+  if (::rename(temporary->path().c_str(), target.c_str()) != 0) refuse(path, system_reason(errno));
+  temporary->keep();
 }
 
 }  // namespace
@@ -185,6 +198,14 @@ void write_output(const std::string& path, const std::function<void(std::ostream
   if (S_ISBLK(st.st_mode))
     refuse(path, "it is a block device (a disk), which handlab never writes to");
   refuse(path, "it is a socket or another special file, which handlab does not write to");
+}
+
+bool is_stream_output(const std::string& path) {
+  if (path == "-") return true;
+  const std::string target = follow_links(path);
+  if (own_descriptor(target)) return true;
+  struct stat st {};
+  return ::stat(target.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
 }
 
 void make_output_folder(const std::string& path) {

@@ -28,6 +28,11 @@ class OutputError : public std::runtime_error {
 // any failure while writing, which leaves no temporary file behind.
 void write_output(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// Whether write_output writes `path` through as a stream (standard output, a device, a pipe,
+// one of the process' descriptors) rather than as a file it names: such an output has no
+// extension to choose a format by.
+bool is_stream_output(const std::string& path);
+
 // The same for bytes made in memory (a PNG, a PDF).
 void write_output_bytes(const std::string& path, std::string_view bytes);
 

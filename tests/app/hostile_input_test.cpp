@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -73,6 +74,20 @@ const std::string& good_study() {
 }
 
 // The study cut to `keep_bytes`, or with its schema's pages (after the first) overwritten.
+// A study whose participant P1 has not started: a session reads its recording first.
+std::string not_started_study() {
+  const std::string db = inputs_folder() + "/not-started.db";
+  if (!std::filesystem::exists(db)) {
+    EXPECT_EQ(run_cli("study create --protocol " + two_blocks() + " --db " + db).status, 0);
+    EXPECT_EQ(run_cli("participant add --db " + db +
+                      " --id P1 --age 30 --sex F --handedness right --hand-length 0.18 "
+                      "--vr-experience some")
+                  .status,
+              0);
+  }
+  return db;
+}
+
 std::string spoiled_study(const std::string& name, std::size_t keep_bytes, bool overwrite_schema) {
   std::string bytes = file_bytes(good_study());
   if (overwrite_schema)
@@ -179,10 +194,10 @@ TEST(HostileInput, BadRecordings) {
       {"JSON of another shape", written("other.json", "{\"frames\": [{\"hands\": 7}]}")},
       {"a hlrec header alone", written("header.hlrec", "HLRC")},
   };
-  expect_refused_cleanly(
-      recordings, {"tracking info {IN}", "retarget {IN}", "sim replay {IN}",
-                   "tracking convert {IN} --out {NEW}.csv",
-                   "session run --db " + good_study() + " --participant S01 --tracker {IN}"});
+  expect_refused_cleanly(recordings, {"tracking info {IN}", "retarget {IN}", "sim replay {IN}",
+                                      "tracking convert {IN} --out {NEW}.csv",
+                                      "session run --db " + not_started_study() +
+                                          " --participant P1 --resume --tracker {IN}"});
 }
 
 TEST(HostileInput, BadCsvs) {
@@ -246,11 +261,21 @@ TEST(HostileInput, StoppedMidwayLeavesNoStrayFile) {
       for (const auto& p : simulated.participants())
         EXPECT_FALSE(simulated.next_trial(p.id).has_value()) << p.id << " after " << ms << " ms";
     }
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      for (const char* side : {"-wal", "-shm", "-journal"}) {  // only beside a whole database
+        if (!name.ends_with(side)) continue;
+        const std::string whole = e.path().string();
+        EXPECT_TRUE(std::filesystem::exists(whole.substr(0, whole.size() - std::strlen(side))))
+            << e.path();
+      }
+    }
     if (std::filesystem::exists(dir + "/merged.db")) {
       handlab::store::StudyStore merged(dir + "/merged.db",
                                         handlab::store::StudyStore::Access::kReadOnly);
       EXPECT_EQ(merged.participants().size(), 2u);
     }
+    if (!HasFailure()) std::filesystem::remove_all(dir);
   }
 }
 

@@ -60,6 +60,8 @@ class OutputTargets : public testing::Test {
     ASSERT_EQ(sensitivity.status, 0) << sensitivity.out;
   }
 
+  static void TearDownTestSuite() { std::filesystem::remove_all(dir_); }
+
   static std::vector<OutputUse> uses() {
     const std::string db = db_, p = protocol_, rec = kRecording;
     return {
@@ -148,9 +150,14 @@ TEST_F(OutputTargets, ANamedPipeWithAReaderGetsTheOutput) {
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     auto reader = std::async(std::launch::async, [&] { return file_bytes(fifo); });
     const CliResult r = run(use, fifo);
-    // A command that failed before opening the pipe leaves the reader waiting: release it.
-    if (reader.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-      ::close(::open(fifo.c_str(), O_WRONLY | O_NONBLOCK));
+    // A command that failed before opening the pipe leaves the reader waiting: release it
+    // (opening for writing fails until the reader has opened its end: try again).
+    for (int k = 0;
+         k < 100 && reader.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready;
+         ++k) {
+      const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) ::close(fd);
+    }
     const std::string got = reader.get();
     EXPECT_EQ(r.status, 0) << use.command << "\n" << r.out;
     EXPECT_FALSE(got.empty()) << use.command;

@@ -12,7 +12,7 @@ namespace handlab::test {
 // HANDLAB_TEST_TMP/name, with any earlier file of that name and its SQLite companions gone.
 inline std::string fresh_path(const std::string& name) {
   const std::string path = std::string(HANDLAB_TEST_TMP) + "/" + name;
-  for (const char* side : {"", "-wal", "-shm", ".creating"})
+  for (const char* side : {"", "-wal", "-shm", "-journal", ".creating", ".partial"})
     std::filesystem::remove_all(path + side);
   return path;
 }

@@ -202,7 +202,7 @@ int run_power(const std::vector<std::string>& argv) {
   if (args.help_requested()) {
     std::cout
         << "Usage: handlab-cli power --protocol FILE (--pilot DB | --model FILE | --pipeline "
-           "[--world soft|proxy]) --n 10:40:2 --sims 1000 [--alpha 0.05] [--seed S] [--target "
+           "[--world proxy|soft]) --n 10:40:2 --sims 1000 [--alpha 0.05] [--seed S] [--target "
            "0.8] [--exact] [--plot FILE] [--json OUT]\n"
            "       handlab-cli power --protocol FILE --pipeline ... --slurm DIR [--per-task K] "
            "[--dry-run]\n\nFor every N, simulates studies of the "
