@@ -54,13 +54,13 @@ EffectInterval partial_eta_squared_interval(double f, double df1, double df2, do
   return {eta(low), eta(high)};
 }
 
-double paired_dz(double t, double df) {
-  return t / std::sqrt(df + 1.0);
+double paired_dz(double t, double n) {
+  return t / std::sqrt(n);
 }
 
-EffectInterval paired_dz_interval(double t, double df, double level) {
+EffectInterval paired_dz_interval(double t, double df, double n, double level) {
   check_level(level);
-  if (!std::isfinite(t) || !(df > 0.0))
+  if (!std::isfinite(t) || !(df > 0.0) || !(n > 0.0))
     return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
   // The cdf at t falls as delta grows; delta is searched on [t - w, t + w], widened as needed.
   auto cdf = [&](double delta) { return bm::cdf(bm::non_central_t(df, delta), t); };
@@ -70,7 +70,7 @@ EffectInterval paired_dz_interval(double t, double df, double level) {
   auto shifted = [&](double x) { return cdf(x + t - w); };  // on [0, 2w]
   const double low = solve_decreasing(shifted, 1.0 - tail, 0.0, 2.0 * w) + t - w;
   const double high = solve_decreasing(shifted, tail, 0.0, 2.0 * w) + t - w;
-  const double root_n = std::sqrt(df + 1.0);
+  const double root_n = std::sqrt(n);
   return {low / root_n, high / root_n};
 }
 

@@ -18,11 +18,13 @@ double partial_eta_squared(double f, double df1, double df2);
 // lambda / (lambda + df1 + df2 + 1), as MBESS's ci.pvaf converts it.
 EffectInterval partial_eta_squared_interval(double f, double df1, double df2, double level = 0.95);
 
-// d_z of a paired t test (a within-participants contrast of n = df + 1 people): t / sqrt(n).
-double paired_dz(double t, double df);
+// d_z of a within-participants contrast of n people (the mean difference over the
+// differences' standard deviation): t / sqrt(n). A paired t test has df = n - 1; with g
+// groups between participants the contrast's df is n - g.
+double paired_dz(double t, double n);
 
-// Its `level` interval from the noncentral t: delta / sqrt(n) at the deltas whose cdf at `t`
-// is (1 + level) / 2 and (1 - level) / 2.
-EffectInterval paired_dz_interval(double t, double df, double level = 0.95);
+// Its `level` interval from the noncentral t with `df`: delta / sqrt(n) at the deltas whose
+// cdf at `t` is (1 + level) / 2 and (1 - level) / 2.
+EffectInterval paired_dz_interval(double t, double df, double n, double level = 0.95);
 
 }  // namespace handlab::stats

@@ -47,17 +47,24 @@ std::string effect_name(const std::string& statistic) {
   return statistic == "F" ? "pes" : statistic == "t" ? "dz" : "";
 }
 
-double effect_of(const std::string& statistic, double value, const std::vector<double>& df) {
+// A t's people: as given, else those of a paired test (df + 1).
+double people(const std::vector<double>& df, int participants) {
+  return participants > 0 ? double(participants) : df[0] + 1.0;
+}
+
+double effect_of(const std::string& statistic, double value, const std::vector<double>& df,
+                 int participants) {
   if (statistic == "F" && df.size() == 2) return stats::partial_eta_squared(value, df[0], df[1]);
-  if (statistic == "t" && df.size() == 1) return stats::paired_dz(value, df[0]);
+  if (statistic == "t" && df.size() == 1) return stats::paired_dz(value, people(df, participants));
   return kNaN;
 }
 
-stats::EffectInterval published_interval(const PublishedTest& p) {
+stats::EffectInterval published_interval(const PublishedTest& p, int participants) {
   if (!std::isfinite(p.value)) return {kNaN, kNaN};
   if (p.statistic == "F" && p.df.size() == 2)
     return stats::partial_eta_squared_interval(p.value, p.df[0], p.df[1]);
-  if (p.statistic == "t" && p.df.size() == 1) return stats::paired_dz_interval(p.value, p.df[0]);
+  if (p.statistic == "t" && p.df.size() == 1)
+    return stats::paired_dz_interval(p.value, p.df[0], people(p.df, participants));
   return {kNaN, kNaN};
 }
 
@@ -131,7 +138,8 @@ void write_test_row(const SeriesTest& t, bool published, std::size_t n, std::ost
 // judged by how large an effect is, not by how many studies reached p < alpha.
 void write_effect_sizes(const StudySeries& s, std::ostream& out) {
   const bool published = s.published.has_value();
-  out << "\nEffect sizes: partial eta squared (pes) of each F test, d_z (t / sqrt(df + 1)) of "
+  out << "\nEffect sizes: partial eta squared (pes) of each F test, d_z (t / sqrt(n), n the "
+         "participants) of "
          "each t test; the median and the 2.5-97.5 % range over the studies"
       << (published ? "; beside the published value with its 95 % interval from the noncentral "
                       "F or t, and how many studies' effects fall inside it"
@@ -271,7 +279,7 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
         s.value[k] = t.value;
         s.p[k] = t.p;
         s.effect = effect_name(t.statistic);
-        s.effect_value[k] = effect_of(t.statistic, t.value, t.df);
+        s.effect_value[k] = effect_of(t.statistic, t.value, t.df, t.participants);
         ++s.studies;
         s.rejected += t.p < options.alpha ? 1 : 0;
       }
@@ -288,8 +296,9 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
     }
     s.published_effect = s.published_low = s.published_high = kNaN;
     if (s.published && s.published->statistic == s.statistic) {
-      const stats::EffectInterval ci = published_interval(*s.published);
-      s.published_effect = effect_of(s.statistic, s.published->value, s.published->df);
+      const int n = options.published->participants;
+      const stats::EffectInterval ci = published_interval(*s.published, n);
+      s.published_effect = effect_of(s.statistic, s.published->value, s.published->df, n);
       s.published_low = ci.low;
       s.published_high = ci.high;
       if (std::isfinite(ci.low)) {

@@ -55,9 +55,9 @@ struct SeriesTest {
   // it (-1 when no value was published).
   int below_published = -1;
   // How large the effect is, so that studies agree or differ by size, not by p < alpha:
-  // "pes" (partial eta squared) of an F test, "dz" (t / sqrt(df + 1)) of a t test; empty for
-  // chi2 and V. Per study, then the median and the 2.5 and 97.5 % quantiles (type 7) over the
-  // studies with it.
+  // "pes" (partial eta squared) of an F test, "dz" (t / sqrt(n), n the people whose cell means it
+  // compares) of a t test; empty for chi2 and V. Per study, then the median and the 2.5 and 97.5 %
+  // quantiles (type 7) over the studies with it.
   std::string effect;
   std::vector<double> effect_value;
   double effect_median = 0.0, effect_low = 0.0, effect_high = 0.0;

@@ -89,8 +89,9 @@ bool involves(const std::string& effect, const std::string& variable) {
 
 // A Tukey-adjusted contrast of two cells, its t signed in the pair's order.
 StudyTest tukey_test(std::string name, const Pair& pair, const stats::PairwiseContrast& c,
-                     const std::string& group) {
-  return {std::move(name), "t", pair.swapped ? -c.t : c.t, {c.df}, c.p_tukey, true, group};
+                     const std::string& group, int participants) {
+  return {std::move(name), "t",         pair.swapped ? -c.t : c.t, {c.df}, c.p_tukey, true,
+          group,           participants};
 }
 
 // The effects of a completion-time ANOVA, its pairs of the protocol's cells and each factor's
@@ -117,8 +118,8 @@ void time_tests(const analysis::AnalysisReport& t, const Protocol& protocol,
       const Pair pair = in_order(protocol, c.first, c.second);
       stats::PairwiseContrast oriented = c;
       oriented.contrast = pair.label;
-      pairs.push_back(
-          {pair.key, tukey_test(power::contrast_name(oriented) + suffix, pair, c, group)});
+      pairs.push_back({pair.key, tukey_test(power::contrast_name(oriented) + suffix, pair, c, group,
+                                            t.n_subjects)});
     }
   append_sorted(pairs, tests);
   // Each factor's levels on their first trial ("strategy:repetition: naive 1 - ours 1"): how
@@ -130,8 +131,8 @@ void time_tests(const analysis::AnalysisReport& t, const Protocol& protocol,
           !on_first_repetition(c.second))
         continue;
       const Pair pair = in_order(protocol, c.first, c.second);
-      first_trials.push_back(
-          {pair.key, tukey_test(c.effect + ": " + pair.label + suffix, pair, c, group)});
+      first_trials.push_back({pair.key, tukey_test(c.effect + ": " + pair.label + suffix, pair, c,
+                                                   group, t.n_subjects)});
     }
   append_sorted(first_trials, tests);
 }

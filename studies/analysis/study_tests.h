@@ -30,6 +30,7 @@ struct StudyTest {
   double p = 0.0;          // as judged: the sphericity correction, Tukey, Bonferroni
   bool contrast = false;   // a comparison of two cells (t, V), not an omnibus test
   std::string group;       // the analysis it belongs to: one of the kTests* names below
+  int participants = 0;    // t: the people its cells' means are of (d_z's n); 0: not known
 };
 
 // The analyses the tests come from, in the order they are listed.

@@ -39,8 +39,8 @@ TEST(EffectSize, PairedDzAndItsNoncentralTIntervalAsR) {
   for (const util::JsonValue& c : r["t"].as_array()) {
     const double t = c["t"].as_number(), df = c["df"].as_number();
     const std::string what = "t(" + c["df"].dump() + ") = " + c["t"].dump();
-    EXPECT_NEAR(paired_dz(t, df), c["dz"].as_number(), 1e-14) << what;
-    const EffectInterval ci = paired_dz_interval(t, df);
+    EXPECT_NEAR(paired_dz(t, df + 1), c["dz"].as_number(), 1e-14) << what;
+    const EffectInterval ci = paired_dz_interval(t, df, df + 1);
     EXPECT_NEAR(ci.low, c["low"].as_number(), 1e-6) << what;
     EXPECT_NEAR(ci.high, c["high"].as_number(), 1e-6) << what;
   }
@@ -50,13 +50,13 @@ TEST(EffectSize, PairedDzAndItsNoncentralTIntervalAsR) {
 // error; t(19) = 3.52 is 3.52 / sqrt(20) standard deviations of the differences.
 TEST(EffectSize, ByHand) {
   EXPECT_DOUBLE_EQ(partial_eta_squared(8.78, 1, 19), 8.78 / 27.78);
-  EXPECT_DOUBLE_EQ(paired_dz(3.52, 19), 3.52 / std::sqrt(20.0));
+  EXPECT_DOUBLE_EQ(paired_dz(3.52, 20), 3.52 / std::sqrt(20.0));
   // An interval holds its estimate; a larger level holds the smaller one.
-  const EffectInterval ci95 = paired_dz_interval(3.52, 19),
-                       ci80 = paired_dz_interval(3.52, 19, 0.8);
+  const EffectInterval ci95 = paired_dz_interval(3.52, 19, 20),
+                       ci80 = paired_dz_interval(3.52, 19, 20, 0.8);
   EXPECT_LT(ci95.low, ci80.low);
   EXPECT_GT(ci95.high, ci80.high);
-  EXPECT_LT(ci80.low, paired_dz(3.52, 19));
+  EXPECT_LT(ci80.low, paired_dz(3.52, 20));
 }
 
 }  // namespace
