@@ -40,6 +40,38 @@ double pad_depth(const hand::Skeleton& skeleton, const HandSimModel& model, int 
   return depth;
 }
 
+// The closing's timing: its speed sets the closing's length (the pads travel from 15 mm off
+// the faces to their targets), one digit's lead delays the other's degrees of freedom, and
+// everything after the closing moves with it; the hold lasts as long as asked. The default
+// closing keeps the script's timeline as written.
+void apply_timing(const hand::Skeleton& skeleton, const GraspClosing& closing,
+                  PinchScript& script) {
+  const GraspClosing standard;
+  if (closing.closing_speed == standard.closing_speed && closing.lead_s == standard.lead_s &&
+      closing.hold_s == standard.hold_s)
+    return;
+  const double closing_s = closing.closing_speed > 0
+                               ? (0.015 + closing.over_closure) / closing.closing_speed
+                               : script.close_end - script.approach_end;
+  const double lag = std::abs(closing.lead_s);
+  if (lag > 0) {
+    const std::string later = closing.lead_s > 0 ? "index" : "thumb";
+    script.dof_delay.assign(skeleton.dofs.size(), 0.0);
+    for (std::size_t k = 0; k < skeleton.dofs.size(); ++k)
+      if (skeleton.dofs[k].name.rfind(later, 0) == 0) script.dof_delay[k] = lag;
+  }
+  const double settle = script.lift_start - script.close_end,
+               lift = script.lift_end - script.lift_start,
+               release = script.release_end - script.hold_end,
+               fall = script.end - script.release_end;
+  script.close_end = script.approach_end + closing_s;
+  script.lift_start = script.close_end + lag + settle;
+  script.lift_end = script.lift_start + lift;
+  script.hold_end = script.lift_end + closing.hold_s;
+  script.release_end = script.hold_end + release;
+  script.end = script.release_end + fall;
+}
+
 }  // namespace
 
 hand::HandPose PinchScript::target(double t) const {
@@ -48,8 +80,15 @@ hand::HandPose PinchScript::target(double t) const {
     hand::HandPose flat = open;
     flat.angles.setZero();
     pose = blend(flat, open, smooth(t / shape_end));
-  } else if (t < hold_end) {
+  } else if (t < hold_end && dof_delay.empty()) {
     pose = blend(open, pinch, smooth((t - approach_end) / (close_end - approach_end)));
+  } else if (t < hold_end) {
+    pose = open;
+    for (Eigen::Index k = 0; k < pose.angles.size(); ++k) {
+      const double w =
+          smooth((t - approach_end - dof_delay[std::size_t(k)]) / (close_end - approach_end));
+      pose.angles(k) = open.angles(k) + w * (pinch.angles(k) - open.angles(k));
+    }
   } else {
     pose = blend(pinch, open, smooth((t - hold_end) / (release_end - hold_end)));
   }
@@ -73,6 +112,14 @@ Eigen::Isometry3d PinchScript::start_root() const {
 
 PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                               double squeeze) {
+  GraspClosing closing;
+  closing.over_closure = squeeze;
+  return make_grasp_script(skeleton, model, closing);
+}
+
+PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
+                              const GraspClosing& closing) {
+  const double squeeze = closing.over_closure;
   PinchScript script;
   script.cube_size = 2 * model.cube_half.x();
   script.squeeze = squeeze;
@@ -113,8 +160,12 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
   const hand::BoneFrames frames = hand::forward_kinematics(ik, pose);
   const Eigen::Vector3d thumb = hand::marker_position(ik, frames, first),
                         index = hand::marker_position(ik, frames, first + 2);
-  // The faces the pads go to: across the cube along z, the thumb on its own side.
-  const Eigen::Vector3d axis(0, 0, (thumb - index).z() > 0 ? 1.0 : -1.0);
+  // The faces the pads go to: across the cube along z, the thumb on its own side; the
+  // closing's tilt turns that axis about the vertical (yaw) and the faces' horizontal (pitch).
+  Eigen::Vector3d axis(0, 0, (thumb - index).z() > 0 ? 1.0 : -1.0);
+  if (closing.tilt_yaw != 0.0 || closing.tilt_pitch != 0.0)
+    axis = Eigen::AngleAxisd(closing.tilt_yaw, Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(closing.tilt_pitch, Eigen::Vector3d::UnitX()) * axis;
   // Where the pads take the faces: 20 mm under the top, so that the distal phalanges (about
   // 2 cm) lie on the faces rather than over the top edge (at 12 mm the fingertips hooked over
   // it, and once the skin no longer let the edge sink in between its nodes the heavy cube
@@ -122,7 +173,8 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
   // so that a finger that touches first slides a light cube instead of tipping it (pushed at
   // height z, a cube on a floor of friction mu tips before it slides when z > side / (2 mu)).
   const double pad_height = std::max(0.4 * script.cube_size, script.cube_size - 0.020);
-  const Eigen::Vector3d centre(script.cube_centre.x(), pad_height, script.cube_centre.z());
+  const Eigen::Vector3d centre(script.cube_centre.x() + closing.offset_along * script.cube_size,
+                               pad_height, script.cube_centre.z());
   pose.root_position = centre + Eigen::Vector3d(0, 0.01, 0) - 0.5 * (thumb + index);
   auto goals = [&](double gap) {
     const double half = script.cube_size / 2 + gap;
@@ -147,6 +199,7 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
       retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
   script.open = script.pinch;
   script.open.angles = opened.angles;
+  apply_timing(ik, closing, script);
   return script;
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/hand/skeleton.h"
 #include "core/sim/hand_simulator.h"
+#include "core/task/grasp_closing.h"
 
 namespace handlab::sim {
 
@@ -26,7 +27,10 @@ struct PinchScript {
   double shape_end = 0.3, approach_end = 0.8, close_end = 1.3, lift_start = 1.5, lift_end = 2.5;
   double hold_end = 7.5, release_end = 7.9, end = 8.7;
   double approach_height = 0.05, lift_height = 0.10;  // m
-  double squeeze = 0.0;                  // m: how far inside the faces the pads' targets are
+  double squeeze = 0.0;  // m: how far inside the faces the pads' targets are
+  // s per degree of freedom: how much later than the others it starts to close (one digit
+  // before the other); empty: all together.
+  std::vector<double> dof_delay;
   int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
   double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
 
@@ -39,6 +43,13 @@ struct PinchScript {
 // far inside the faces, so that the tracking springs press them on.
 PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                               double squeeze = 0.003);
+
+// The same pinch-and-lift closed as `closing` says (grasp_closing.h): the pads' targets
+// `over_closure` past the faces along the tilted axis, moved along the faces, one digit
+// `lead_s` before the other, at `closing_speed`, held `hold_s`. The default closing is the
+// scripted pinch, the same poses and timeline to the bit.
+PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
+                              const GraspClosing& closing);
 
 struct PinchReport {
   bool held = false;      // lifted to at least 80% of the lift and kept there through the hold

@@ -309,6 +309,38 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(run_cli("sim pinch --help").status, 0);
 }
 
+// The grasp map's parts on the 6 cm cube: a closing known to hold (the scripted pinch's 3 mm
+// past the faces) and one known to lose the cube (25 mm past them: the cube is never lifted,
+// docs/simulator.md), each closing's keys in the JSON, and the refusals.
+TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
+  const auto closing = [](const std::string& spec) {
+    const Result r = run_cli("sim grasp --cube 0.06 --jobs 1 --closing " + spec + " --json -");
+    EXPECT_EQ(r.status, 0) << r.out;
+    const util::JsonValue doc = util::JsonValue::parse(r.out);
+    EXPECT_EQ(doc["factors"].size(), 7u);
+    EXPECT_EQ(doc["cubes"].size(), 1u);
+    EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), 0.06);
+    const util::JsonValue o = doc["cubes"][0]["closings"][0];
+    for (const char* key : {"factor", "level", "closing", "held", "released", "lift_m", "slip_mm",
+                            "max_penetration_mm", "pinch_error_mm"})
+      EXPECT_NE(o.find(key), nullptr) << key;
+    return o;
+  };
+  const util::JsonValue holds = closing("over_closure=3");
+  EXPECT_TRUE(holds["held"].as_bool());
+  EXPECT_TRUE(holds["released"].as_bool());
+  EXPECT_LT(holds["slip_mm"].as_number(), 0.1);
+  EXPECT_EQ(holds["closing"].as_string(), "the scripted pinch");
+  const util::JsonValue loses = closing("over_closure=25");
+  EXPECT_FALSE(loses["held"].as_bool());
+  EXPECT_LT(loses["lift_m"].as_number(), 0.01);
+  EXPECT_EQ(loses["closing"].as_string(), "over_closure 25 mm");
+  EXPECT_EQ(run_cli("sim grasp --closing squeeze=3").status, 2);
+  EXPECT_EQ(run_cli("sim grasp --closing over_closure=40").status, 2);
+  EXPECT_EQ(run_cli("sim grasp --factor tilt").status, 2);
+  EXPECT_EQ(run_cli("sim grasp --cube 2").status, 2);
+}
+
 TEST(CliAnalyze, ReportsAndWritesJson) {
   const std::string csv = write_temp("good.csv", kGood);
   const std::string json = std::string(HANDLAB_TEST_TMP) + "/good.json";

@@ -17,6 +17,7 @@
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
+#include "app/cli/commands/sim_grasp.h"
 #include "app/cli/commands/sim_replay.h"
 #include "app/cli/commands/sim_settle.h"
 #include "core/hand/flesh.h"
@@ -390,19 +391,23 @@ int run_sim(const std::vector<std::string>& argv) {
   if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
     std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n"
                  "       handlab-cli sim pinch --cube 0.01|0.06 [--json OUT] [--frames DIR]\n"
+                 "       handlab-cli sim grasp [--cube SIDE]... [--factor NAME]... [--closing "
+                 "NAME=VALUE,...] [--json OUT]\n"
                  "       handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
                  "[--json OUT]\n"
                  "       handlab-cli sim settle [--cube SIDE] [--speed M/S] [--spin RAD/S] "
                  "[--json OUT]\n";
     return 0;
   }
-  if (argv.empty()) throw UsageError("sim needs a command: bench, pinch, replay or settle");
+  if (argv.empty())
+    throw UsageError("sim needs a command: bench, pinch, grasp, replay or settle");
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
   if (argv[0] == "bench") return sim_bench(rest);
   if (argv[0] == "pinch") return sim_pinch(rest);
+  if (argv[0] == "grasp") return sim_grasp(rest);
   if (argv[0] == "replay") return sim_replay(rest);
   if (argv[0] == "settle") return sim_settle(rest);
-  throw UsageError("unknown sim command '" + argv[0] + "' (bench, pinch, replay, settle)");
+  throw UsageError("unknown sim command '" + argv[0] + "' (bench, pinch, grasp, replay, settle)");
 }
 
 }  // namespace handlab::cli

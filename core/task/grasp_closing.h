@@ -1,0 +1,42 @@
+// How a hand closes on a cube, as people close and a script does not: the pads' targets past
+// the faces, the pinch's axis tilted from the faces' normal, the pads off the face's centre,
+// one digit before the other, fast or slow, held short or long. Specified on the intermediate
+// hand the soft hand follows, so that the grip is judged apart from any retargeting strategy
+// (`handlab-cli sim grasp`, docs/simulator.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace handlab::sim {
+
+struct GraspClosing {
+  double over_closure = 0.003;  // m: each pad's target this far past its face
+  double tilt_yaw = 0.0;        // rad: the pinch's axis turned about the vertical
+  double tilt_pitch = 0.0;      // rad: ... about the horizontal axis in the faces' plane
+  double offset_along = 0.0;    // of the side: the pads moved along the faces, horizontally
+  double lead_s = 0.0;          // s: the thumb closes this long before the index (< 0: after)
+  double closing_speed = 0.0;   // m/s: each pad's mean speed as it closes; 0: the script's 0.5 s
+  double hold_s = 5.0;          // s: lifted and held before the fingers open
+};
+
+// A closing's factors by name ("over_closure", "tilt_yaw", ...), each with its value in the
+// unit the command line takes (mm, degrees, fraction of the side, ms, cm/s, s).
+struct ClosingFactor {
+  std::string name, unit;
+  double GraspClosing::*field;
+  double scale;                // the unit in SI (0.001 for mm, pi/180 for degrees, ...)
+  std::vector<double> levels;  // the grid's levels, in the command line's unit
+};
+const std::vector<ClosingFactor>& closing_factors();
+// The factor of that name; throws std::invalid_argument naming the factors for another name.
+const ClosingFactor& closing_factor(const std::string& name);
+
+// Sets factor `name` to `value` (the command line's unit); throws std::invalid_argument for an
+// unknown name or a value outside the factor's range.
+void set_closing_factor(GraspClosing& closing, const std::string& name, double value);
+
+// "over_closure 10 mm, lead 100 ms" of the factors away from the default.
+std::string describe(const GraspClosing& closing);
+
+}  // namespace handlab::sim

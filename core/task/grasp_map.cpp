@@ -1,0 +1,65 @@
+#include "core/task/grasp_map.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace handlab::sim {
+
+std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors) {
+  std::vector<ClosingPoint> points = {{"", 0.0, GraspClosing{}}};
+  for (const ClosingFactor& f : closing_factors()) {
+    if (!factors.empty() && std::find(factors.begin(), factors.end(), f.name) == factors.end())
+      continue;
+    for (double level : f.levels) {
+      GraspClosing closing;
+      set_closing_factor(closing, f.name, level);
+      points.push_back({f.name, level, closing});
+    }
+  }
+  return points;
+}
+
+std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
+                                        const std::vector<ClosingPoint>& points, int jobs,
+                                        const std::function<void(int done)>& done) {
+  std::vector<GraspOutcome> outcomes(points.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  int finished = 0;
+  std::exception_ptr failure;
+  SimOptions options;
+  if (jobs > 1) options.threads = 1;  // the runs side by side, not each one's work
+  auto work = [&] {
+    for (std::size_t i = next++; i < points.size(); i = next++) {
+      try {
+        const PinchScript script =
+            make_grasp_script(scene.skeleton, scene.model, points[i].closing);
+        const PinchReport r = run_pinch(scene.model, scene.skeleton, script, options);
+        GraspOutcome& o = outcomes[i];
+        o.point = points[i];
+        o.held = r.held;
+        o.released = r.released;
+        o.lift_m = r.lift;
+        o.slip_mm = r.slip_mm;
+        o.max_penetration_mm = r.max_penetration_mm;
+        o.pinch_error_mm = 1000 * script.pinch_error;
+      } catch (...) {
+        const std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+      }
+      const std::lock_guard lock(mutex);
+      ++finished;
+      if (done) done(finished);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < std::max(1, jobs); ++j) threads.emplace_back(work);
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return outcomes;
+}
+
+}  // namespace handlab::sim

@@ -1,0 +1,39 @@
+// The grasp's robustness map: the pinch-lift-hold-release of a cube run over closings
+// (grasp_closing.h) side by side, each factor alone over its levels from the scripted pinch.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/task/grasp_closing.h"
+#include "core/task/pinch_scene.h"
+
+namespace handlab::sim {
+
+// A closing of the map: the factor it varies from the scripted pinch ("" for the pinch itself)
+// at `level` (the factor's unit).
+struct ClosingPoint {
+  std::string factor;
+  double level = 0.0;
+  GraspClosing closing;
+};
+
+// Every factor of `factors` (all when empty) alone at each of its levels, the others at the
+// scripted pinch's; the scripted pinch first, once.
+std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors = {});
+
+struct GraspOutcome {
+  ClosingPoint point;
+  bool held = false, released = false;  // as sim pinch judges them (pinch_script.h)
+  double lift_m = 0.0, slip_mm = 0.0, max_penetration_mm = 0.0;
+  double pinch_error_mm = 0.0;  // how far the closed pose misses the pads' targets (IK)
+};
+
+// Runs each point on `scene`'s hand and cube, `jobs` at once (each on one thread of the
+// simulator); `done` is called after each, from the calling thread's view of the count.
+std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
+                                        const std::vector<ClosingPoint>& points, int jobs,
+                                        const std::function<void(int done)>& done = {});
+
+}  // namespace handlab::sim

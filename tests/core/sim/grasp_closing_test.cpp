@@ -1,0 +1,96 @@
+// Closings of the grasp map (core/task/grasp_closing.h): the default closing is the scripted
+// pinch to the bit, and each factor changes what it says and nothing else.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/task/grasp_map.h"
+#include "core/task/pinch_scene.h"
+
+namespace handlab::sim {
+namespace {
+
+const PinchScene& scene() {
+  static const PinchScene s = make_pinch_scene(0.01);
+  return s;
+}
+
+TEST(GraspClosing, TheDefaultClosingIsTheScriptedPinchToTheBit) {
+  const PinchScript pinch = make_pinch_script(scene().skeleton, scene().model, 0.003);
+  const PinchScript grasp = make_grasp_script(scene().skeleton, scene().model, GraspClosing{});
+  EXPECT_EQ(grasp.hold_end, pinch.hold_end);
+  EXPECT_EQ(grasp.end, pinch.end);
+  EXPECT_TRUE(grasp.dof_delay.empty());
+  for (double t = 0.0; t < pinch.end; t += 0.05) {
+    const hand::HandPose a = pinch.target(t), b = grasp.target(t);
+    EXPECT_EQ(a.angles, b.angles) << t;
+    EXPECT_EQ(a.root_position, b.root_position) << t;
+  }
+  EXPECT_EQ(describe(GraspClosing{}), "the scripted pinch");
+}
+
+TEST(GraspClosing, OneDigitFirstSpeedAndHoldMoveTheTimeline) {
+  GraspClosing closing;
+  set_closing_factor(closing, "lead", 100);         // ms: the thumb first
+  set_closing_factor(closing, "closing_speed", 5);  // cm/s
+  set_closing_factor(closing, "hold", 2);           // s
+  const PinchScript s = make_grasp_script(scene().skeleton, scene().model, closing);
+  const PinchScript pinch = scene().script;
+  const double closing_s = (0.015 + 0.003) / 0.05;
+  EXPECT_NEAR(s.close_end - s.approach_end, closing_s, 1e-12);
+  EXPECT_NEAR(s.lift_start - s.close_end, 0.1 + (pinch.lift_start - pinch.close_end), 1e-12);
+  EXPECT_NEAR(s.hold_end - s.lift_end, 2.0, 1e-12);
+  // Half-way through the thumb's closing the index is behind it; at the closing's end plus the
+  // lead both have closed.
+  const hand::Skeleton& k = scene().skeleton;
+  const double mid = s.approach_end + 0.5 * closing_s;
+  const hand::HandPose half = s.target(mid), closed = s.target(s.close_end + 0.1);
+  int index_dofs = 0;
+  for (std::size_t d = 0; d < k.dofs.size(); ++d) {
+    const double span = s.pinch.angles(Eigen::Index(d)) - s.open.angles(Eigen::Index(d));
+    if (std::abs(span) < 1e-6) continue;
+    const double done = (half.angles(Eigen::Index(d)) - s.open.angles(Eigen::Index(d))) / span;
+    if (k.dofs[d].name.rfind("index", 0) == 0) {
+      ++index_dofs;
+      EXPECT_LT(done, 0.5) << k.dofs[d].name;
+    } else if (k.dofs[d].name.rfind("thumb", 0) == 0) {
+      EXPECT_NEAR(done, 0.5, 1e-9) << k.dofs[d].name;
+    }
+    EXPECT_NEAR(closed.angles(Eigen::Index(d)), s.pinch.angles(Eigen::Index(d)), 1e-12);
+  }
+  EXPECT_GT(index_dofs, 0);
+  EXPECT_EQ(describe(closing), "lead 100 ms, closing_speed 5 cm/s, hold 2 s");
+}
+
+TEST(GraspClosing, TiltAndOffsetMoveThePadsTargets) {
+  GraspClosing tilted;
+  set_closing_factor(tilted, "tilt_yaw", 20);
+  set_closing_factor(tilted, "offset_along", 0.3);
+  const PinchScript s = make_grasp_script(scene().skeleton, scene().model, tilted);
+  EXPECT_NE(s.pinch.angles, scene().script.pinch.angles);
+  EXPECT_LT(s.pinch_error, 0.006) << "m: the tilted, offset pinch still reaches its targets";
+}
+
+TEST(GraspClosing, UnknownFactorsAndValuesOutsideTheGridAreRefused) {
+  GraspClosing c;
+  EXPECT_THROW(set_closing_factor(c, "squeeze", 1), std::invalid_argument);
+  EXPECT_THROW(set_closing_factor(c, "over_closure", 31), std::invalid_argument);
+  EXPECT_THROW(set_closing_factor(c, "closing_speed", 0), std::invalid_argument);
+  EXPECT_NO_THROW(set_closing_factor(c, "lead", -200));
+  EXPECT_DOUBLE_EQ(c.lead_s, -0.2);
+}
+
+TEST(GraspClosing, TheGridHoldsEachFactorAloneAndThePinchOnce) {
+  const std::vector<ClosingPoint> all = single_factor_grid();
+  std::size_t levels = 0;
+  for (const ClosingFactor& f : closing_factors()) levels += f.levels.size();
+  EXPECT_EQ(all.size(), levels + 1);
+  EXPECT_EQ(all.front().factor, "");
+  const std::vector<ClosingPoint> lead = single_factor_grid({"lead"});
+  ASSERT_EQ(lead.size(), 8u);
+  EXPECT_DOUBLE_EQ(lead.back().closing.lead_s, 0.2);
+  EXPECT_EQ(lead.back().closing.over_closure, GraspClosing{}.over_closure);
+}
+
+}  // namespace
+}  // namespace handlab::sim
