@@ -19,7 +19,7 @@
 namespace handlab::cli {
 namespace {
 
-double number(const std::string& text, const std::string& what) {
+double number_option(const std::string& text, const std::string& what) {
   std::size_t used = 0;
   double value = 0.0;
   try {
@@ -42,8 +42,9 @@ sim::ClosingPoint parse_closing(const std::string& text) {
     if (eq == std::string::npos)
       throw UsageError("--closing takes NAME=VALUE,..., not '" + item + "'");
     try {
-      sim::set_closing_factor(point.closing, item.substr(0, eq),
-                              number(item.substr(eq + 1), "--closing " + item.substr(0, eq)));
+      sim::set_closing_factor(
+          point.closing, item.substr(0, eq),
+          number_option(item.substr(eq + 1), "--closing " + item.substr(0, eq)));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--closing: ") + e.what());
     }
@@ -78,7 +79,7 @@ void print_map(const CubeMap& map) {
   std::printf("\n");
 }
 
-void write_json(const std::vector<CubeMap>& maps, std::ostream& out) {
+void write_map_json(const std::vector<CubeMap>& maps, std::ostream& out) {
   util::JsonWriter json(out);
   json.begin_object().key("factors").begin_array();
   for (const sim::ClosingFactor& f : sim::closing_factors()) {
@@ -148,7 +149,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
   }
   std::vector<double> cubes;
   for (const std::string& c : args.all("cube")) {
-    const double side = number(c, "--cube");
+    const double side = number_option(c, "--cube");
     if (!(side >= 0.005 && side <= 0.1))
       throw UsageError("--cube must be between 0.005 and 0.1 m, not " + c);
     cubes.push_back(side);
@@ -190,7 +191,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
     maps.push_back(std::move(map));
   }
   if (args.has("json"))
-    util::write_output(args.text("json"), [&](std::ostream& out) { write_json(maps, out); });
+    util::write_output(args.text("json"), [&](std::ostream& out) { write_map_json(maps, out); });
   return 0;
 }
 
