@@ -12,6 +12,7 @@
 #include "core/render/scene_drawing.h"
 #include "core/store/study_store.h"
 #include "studies/session/session_runner.h"
+#include "tests/support/test_participant.h"
 
 #include <QDockWidget>
 #include <QTableWidget>
@@ -153,13 +154,7 @@ TEST(MainWindow, SaysAStudyIsPartial) {
   store::StudyStore::create(path, definition);
   {
     store::StudyStore db(path);
-    store::Participant p;
-    p.id = "S02";
-    p.age = 40;
-    p.sex = "F";
-    p.handedness = "right";
-    p.hand_length = 0.18;
-    p.vr_experience = "some";
+    store::Participant p = test::participant("S02");
     p.simulated = true;
     db.add_participant(p, studies::planned_rows(protocol, "S02", 1), 1);
   }
