@@ -9,7 +9,7 @@
 #include "analysis/stats/effect_size.h"
 #include "core/util/json_value.h"
 
-namespace handlab::stats {
+namespace handlab::stats::effect_size_test {
 namespace {
 
 util::JsonValue reference() {
@@ -60,4 +60,4 @@ TEST(EffectSize, ByHand) {
 }
 
 }  // namespace
-}  // namespace handlab::stats
+}  // namespace handlab::stats::effect_size_test

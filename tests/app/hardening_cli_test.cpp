@@ -20,6 +20,7 @@
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
+namespace handlab::hardening_test {
 namespace {
 
 using handlab::test::CliResult;
@@ -347,3 +348,4 @@ TEST(Hardening, DefaultsAreNamedAndAlikeAndOutputReadsWell) {
 }
 
 }  // namespace
+}  // namespace handlab::hardening_test

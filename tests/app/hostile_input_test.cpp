@@ -22,6 +22,7 @@
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
+namespace handlab::hostile_input_test {
 namespace {
 
 using handlab::test::CliResult;
@@ -280,3 +281,4 @@ TEST(HostileInput, StoppedMidwayLeavesNoStrayFile) {
 }
 
 }  // namespace
+}  // namespace handlab::hostile_input_test

@@ -18,6 +18,7 @@
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
+namespace handlab::output_targets_test {
 namespace {
 
 using handlab::test::CliResult;
@@ -208,3 +209,4 @@ TEST_F(OutputTargets, AFolderNamedByALinkTakesTheFiles) {
 }
 
 }  // namespace
+}  // namespace handlab::output_targets_test

@@ -17,7 +17,7 @@
 #include "core/util/temporary_files.h"
 #include "tests/support/test_files.h"
 
-namespace handlab::util {
+namespace handlab::util::output_file_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -158,4 +158,4 @@ TEST(OutputFile, ATemporaryIsRemovedWhenTheRunIsInterrupted) {
 }
 
 }  // namespace
-}  // namespace handlab::util
+}  // namespace handlab::util::output_file_test

@@ -18,7 +18,7 @@
 #include "tests/support/test_files.h"
 #include "tests/support/test_participant.h"
 
-namespace handlab::studies {
+namespace handlab::studies::session_sequence_test {
 namespace {
 
 // Thrown from inside a trial: the process dies there, leaving what a crash leaves on disk.
@@ -175,4 +175,4 @@ TEST(SessionSequences, AnyOrderOfRunKillResumeRedoSkipEndsWithEachTrialOnceByIts
 }
 
 }  // namespace
-}  // namespace handlab::studies
+}  // namespace handlab::studies::session_sequence_test

@@ -7,7 +7,7 @@
 #include "core/task/grasp_map.h"
 #include "core/task/pinch_scene.h"
 
-namespace handlab::sim {
+namespace handlab::sim::grasp_closing_test {
 namespace {
 
 const PinchScene& scene() {
@@ -93,4 +93,4 @@ TEST(GraspClosing, TheGridHoldsEachFactorAloneAndThePinchOnce) {
 }
 
 }  // namespace
-}  // namespace handlab::sim
+}  // namespace handlab::sim::grasp_closing_test
