@@ -31,7 +31,8 @@ struct GraspOutcome {
 };
 
 // Runs each point on `scene`'s hand and cube, `jobs` at once (each on one thread of the
-// simulator); `done` is called after each, from the calling thread's view of the count.
+// simulator); `done` is called with the count finished after each, under a lock, from the
+// worker thread that finished it.
 std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
                                         const std::vector<ClosingPoint>& points, int jobs,
                                         const std::function<void(int done)>& done = {});
