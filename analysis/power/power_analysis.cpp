@@ -18,6 +18,7 @@
 #include "analysis/stats/posthoc.h"
 #include "analysis/stats/ptukey.h"
 #include "analysis/stats/rm_anova.h"
+#include "analysis/stats/wilson_interval.h"
 
 namespace handlab::power {
 
@@ -217,12 +218,9 @@ void set_binomial(PowerEstimate& e, std::size_t k, long hits, int sims) {
   const double n = sims, p = double(hits) / n;
   e.power[k] = p;
   e.mc_se[k] = std::sqrt(p * (1 - p) / n);
-  // Wilson's score interval: right at 0 and 1, where p +- 1.96 SE is not.
-  const double z = 1.959963984540054, z2 = z * z;
-  const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);
-  const double half = z / (1 + z2 / n) * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n));
-  e.lower[k] = std::max(0.0, centre - half);
-  e.upper[k] = std::min(1.0, centre + half);
+  const stats::ProportionInterval interval = stats::wilson_interval(double(hits), n);
+  e.lower[k] = interval.low;
+  e.upper[k] = interval.high;
 }
 
 void check_options(const PowerOptions& o) {

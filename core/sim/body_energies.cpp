@@ -1,5 +1,7 @@
 #include "core/sim/body_energies.h"
 
+#include "core/sim/saturating_spring.h"
+
 namespace handlab::sim {
 
 void add_coupling(const HandSimModel& model, const HandSimState& s, NewtonTerms& terms,
@@ -58,10 +60,24 @@ void add_tracking(const HandSimModel& model, const HandSimState& s,
     // Tracking: the centre of mass towards the target's, and the rotation by the rotation
     // vector that separates them (its derivative is the identity near the target).
     const int tb = bone_block(model, b);
+    const Eigen::Vector3d phi = rotation_vector(pose.rotation * target.rotation.conjugate());
+    const bool finger = model.bones[std::size_t(b)].parent >= 0;
+    if (finger && (par.tracking_force_limit > 0 || par.tracking_torque_limit > 0)) {
+      const SpringResponse move =
+                               saturating_spring(par.tracking_stiffness, par.tracking_force_limit,
+                                                 pose.position - target.position),
+                           turn = saturating_spring(par.tracking_torsion, par.tracking_torque_limit,
+                                                    phi);
+      terms.energy += scale * (move.energy + turn.energy);
+      terms.gradient.segment<3>(3 * tb) += scale * move.force;
+      terms.gradient.segment<3>(3 * (tb + 1)) += scale * turn.force;
+      terms.add_block(tb, scale * move.stiffness);
+      terms.add_block(tb + 1, scale * turn.stiffness);
+      continue;
+    }
     PointJacobian centre;
     centre.add(tb, identity);
     terms.add_spring(centre, par.tracking_stiffness * identity, pose.position - target.position);
-    const Eigen::Vector3d phi = rotation_vector(pose.rotation * target.rotation.conjugate());
     terms.energy += 0.5 * scale * par.tracking_torsion * phi.squaredNorm();
     terms.gradient.segment<3>(3 * (tb + 1)) += scale * par.tracking_torsion * phi;
     terms.add_block(tb + 1, scale * par.tracking_torsion * identity);

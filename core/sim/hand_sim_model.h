@@ -39,6 +39,12 @@ struct SimParameters {
   double joint_stiffness = 2e4;        // N/m, the penalty joints
   double tracking_stiffness = 2000.0;  // N/m per bone, towards the intermediate hand
   double tracking_torsion = 2.0;       // N m/rad per bone
+  // The finger bones' tracking saturates (saturating_spring.h): a virtual coupling's bound, so
+  // that a finger whose target lies deep inside the cube presses as a hand would, not with a
+  // force that grows with the depth. 0: linear springs. The palm, which the arm carries,
+  // tracks linearly.
+  double tracking_force_limit = 0.0;   // N per finger bone
+  double tracking_torque_limit = 0.0;  // N m per finger bone
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
   // coefficient (skin on wood or plastic: 0.5-1).
   double contact_stiffness = 5e3;      // N/m, a flesh node against the cube or floor, at first

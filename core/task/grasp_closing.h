@@ -27,6 +27,8 @@ struct ClosingFactor {
   double GraspClosing::*field;
   double scale;                // the unit in SI (0.001 for mm, pi/180 for degrees, ...)
   std::vector<double> levels;  // the grid's levels, in the command line's unit
+  // The levels the pairs' grid crosses with each other factor's: half the range's ends.
+  std::vector<double> pair_levels;
 };
 const std::vector<ClosingFactor>& closing_factors();
 // The factor of that name; throws std::invalid_argument naming the factors for another name.

@@ -22,6 +22,21 @@ std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& fac
   return points;
 }
 
+std::vector<ClosingPoint> factor_pairs_grid() {
+  const std::vector<ClosingFactor>& factors = closing_factors();
+  std::vector<ClosingPoint> points;
+  for (std::size_t a = 0; a < factors.size(); ++a)
+    for (std::size_t b = a + 1; b < factors.size(); ++b)
+      for (double x : factors[a].pair_levels)
+        for (double y : factors[b].pair_levels) {
+          GraspClosing closing;
+          set_closing_factor(closing, factors[a].name, x);
+          set_closing_factor(closing, factors[b].name, y);
+          points.push_back({"pair", double(points.size() + 1), closing});
+        }
+  return points;
+}
+
 std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
                                         const std::vector<ClosingPoint>& points, int jobs,
                                         const std::function<void(int done)>& done) {
@@ -45,6 +60,8 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
         o.lift_m = r.lift;
         o.slip_mm = r.slip_mm;
         o.max_penetration_mm = r.max_penetration_mm;
+        o.peak_grip_n = r.peak_grip_n;
+        o.turn_deg = r.turn_deg;
         o.pinch_error_mm = 1000 * script.pinch_error;
       } catch (...) {
         const std::lock_guard lock(mutex);

@@ -23,10 +23,15 @@ struct ClosingPoint {
 // scripted pinch's; the scripted pinch first, once.
 std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors = {});
 
+// Every pair of factors at each pair of their pair_levels, the others at the scripted pinch's;
+// factor "pair", level the closing's number (1, 2, ...).
+std::vector<ClosingPoint> factor_pairs_grid();
+
 struct GraspOutcome {
   ClosingPoint point;
   bool held = false, released = false;  // as sim pinch judges them (pinch_script.h)
   double lift_m = 0.0, slip_mm = 0.0, max_penetration_mm = 0.0;
+  double peak_grip_n = 0.0, turn_deg = 0.0;  // the hold's largest grip; the cube's turn
   double pinch_error_mm = 0.0;  // how far the closed pose misses the pads' targets (IK)
 };
 

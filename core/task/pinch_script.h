@@ -51,13 +51,21 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                               const GraspClosing& closing);
 
+// The grip at a state: over the cube's pairs of opposite faces, the lesser of the two faces'
+// flesh normal forces (N).
+double grip_force(const HandSimModel& model, const HandSimState& state);
+
 struct PinchReport {
-  bool held = false;      // lifted to at least 80% of the lift and kept there through the hold
+  bool held = false;      // lifted to at least half the lift and kept there through the hold
   bool released = false;  // back on the floor, no flesh touching it, at the end
   double lift = 0.0;      // m: the cube's rise at the end of the hold
   double slip_mm = 0.0;   // the cube's largest displacement between the pads during the hold
   double max_penetration_mm = 0.0;  // deepest flesh node inside the cube during the hold
-  std::vector<double> step_ms;      // wall time of every step
+  // The hold's largest grip: over the cube's pairs of opposite faces, the lesser of the two
+  // faces' flesh normal forces (contact_forces.h), N.
+  double peak_grip_n = 0.0;
+  double turn_deg = 0.0;        // how far the cube turned from its start by the end of the hold
+  std::vector<double> step_ms;  // wall time of every step
   std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
   std::vector<int> halvings, direct_solves;                                         // per step
 };
@@ -80,7 +88,8 @@ class PinchMeter {
   const PinchScript& script_;
   bool holding_ = true, reference_set_ = false;
   Eigen::Vector3d reference_ = Eigen::Vector3d::Zero();
-  double lift_ = 0.0, slip_mm_ = 0.0, max_penetration_mm_ = 0.0;
+  double lift_ = 0.0, slip_mm_ = 0.0, max_penetration_mm_ = 0.0, peak_grip_n_ = 0.0;
+  double turn_deg_ = 0.0;
 };
 
 // The steps run_pinch takes to reach `duration` seconds, steps of `time_step`.

@@ -1,6 +1,7 @@
 #include "studies/analysis/grasp_contacts.h"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -107,7 +108,7 @@ bool lost(GraspOutcome outcome) {
   return outcome == GraspOutcome::kDropped || outcome == GraspOutcome::kLanded;
 }
 
-std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
+std::vector<GraspContact> grasp_contacts(const TrialReplay& replay, const ClosingReader* closings) {
   const hand::Skeleton hand = hand::build_simulated_hand(replay.simulated_hand);
   const Phalanx thumb = phalanx(hand, "thumb3"), index = phalanx(hand, "index3");
   const double side = replay.layout.cube_size;
@@ -136,6 +137,7 @@ std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
     while (end < frames.size() && phase_of(frames[end]) == TaskPhase::kGrasped) ++end;
     g.held = (end < frames.size() ? frames[end].time : frames.back().time) - f.time;
     g.outcome = outcome_after(frames, end, side);
+    if (closings) g.closing = closings->read(frames, k, side);
     grasps.push_back(g);
   }
   return grasps;
@@ -144,6 +146,17 @@ std::vector<GraspContact> grasp_contacts(const TrialReplay& replay) {
 std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
                                               const std::string& participant) {
   std::vector<TrialGrasps> out;
+  // A reader a simulated hand, its flesh built once.
+  std::vector<std::pair<hand::HandShape, std::unique_ptr<ClosingReader>>> readers;
+  auto reader_for = [&](const hand::HandShape& shape) -> const ClosingReader* {
+    for (const auto& [known, reader] : readers)
+      if (known.length == shape.length && known.breadth == shape.breadth &&
+          known.palm_thickness == shape.palm_thickness && known.tissue == shape.tissue &&
+          known.left == shape.left)
+        return reader.get();
+    readers.emplace_back(shape, std::make_unique<ClosingReader>(shape));
+    return readers.back().second.get();
+  };
   for (const store::Participant& p : store.participants()) {
     if (!participant.empty() && p.id != participant) continue;
     for (const store::TrialRow& row : store.trials(p.id)) {
@@ -153,7 +166,7 @@ std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
       const TrialReplay replay = load_trial_replay(store, p.id, row.position, row.attempt);
       try {
         out.push_back({p.id, replay.condition, row.position, row.attempt, replay.layout.cube_size,
-                       grasp_contacts(replay)});
+                       grasp_contacts(replay, reader_for(replay.simulated_hand))});
       } catch (const std::runtime_error& e) {
         throw std::runtime_error(p.id + "'s trial " + std::to_string(row.position + 1) +
                                  ", attempt " + std::to_string(row.attempt) + ": " + e.what());

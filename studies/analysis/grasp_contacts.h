@@ -5,12 +5,14 @@
 // condition, for real and simulated participants alike (docs/study.md).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "core/store/study_store.h"
+#include "studies/analysis/logged_closing.h"
 #include "studies/session/trial_replay.h"
 
 namespace handlab::studies {
@@ -37,11 +39,14 @@ struct GraspContact {
   // m: the midpoint of the two phalanges' nearest points minus the cube's centre, in the
   // scene's axes (x and z along the floor, y up)
   Eigen::Vector3d pinch_offset = Eigen::Vector3d::Zero();
-  double cube_size = 0.0;  // m
+  double cube_size = 0.0;                // m
+  std::optional<LoggedClosing> closing;  // in the grasp map's terms, when read
 };
 
-// Every grasp of the replayed trial, in time order.
-std::vector<GraspContact> grasp_contacts(const TrialReplay& replay);
+// Every grasp of the replayed trial, in time order; with `closings`, each one's closing read
+// by it (a reader of the replay's simulated hand).
+std::vector<GraspContact> grasp_contacts(const TrialReplay& replay,
+                                         const ClosingReader* closings = nullptr);
 
 struct TrialGrasps {
   std::string participant, condition;
@@ -53,7 +58,7 @@ struct TrialGrasps {
 
 // The grasps of every trial with a result (completed or timed out, practice included) whose
 // attempt logged frames, participants in enrolment order (those of `participant` alone when it
-// is not empty); trials run without frames are left out.
+// is not empty), each with its closing; trials run without frames are left out.
 std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
                                               const std::string& participant = "");
 

@@ -37,6 +37,18 @@ void add(GraspTally& t, const GraspContact& g) {
   count(t.by_thumb[std::size_t(g.thumb)], was_lost);
   count(t.by_index[std::size_t(g.index)], was_lost);
   count(t.by_offset[std::size_t(offset_bin(g))], was_lost);
+  if (g.closing) (was_lost ? t.lost_closings : t.kept_closings).push_back(*g.closing);
+}
+
+void write_spreads(util::JsonWriter& w, const std::vector<LoggedClosing>& closings) {
+  w.begin_object();
+  for (const LoggedFactor& f : logged_factors()) {
+    const FactorSpread s = factor_spread(closings, f);
+    w.key(f.name).begin_object().field("unit", f.unit).field("n", s.n);
+    if (s.n > 0) w.field("p10", s.p10).field("median", s.median).field("p90", s.p90);
+    w.end_object();
+  }
+  w.end_object();
 }
 
 void write_counts(util::JsonWriter& w, const std::array<GraspCount, 3>& by_part) {
@@ -60,7 +72,10 @@ std::vector<GraspTally> tally_grasps(const std::vector<TrialGrasps>& trials,
     auto it = std::find_if(tallies.begin(), tallies.end(),
                            [&](const GraspTally& t) { return t.group == group; });
     if (it == tallies.end()) {
-      tallies.push_back({group, trial.cube_size});
+      GraspTally tally;
+      tally.group = group;
+      tally.cube_size = trial.cube_size;
+      tallies.push_back(std::move(tally));
       it = tallies.end() - 1;
     }
     ++it->trials;
@@ -94,7 +109,11 @@ void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& tria
       w.field("grasps", t.by_offset[bin].grasps).field("lost", t.by_offset[bin].lost);
       w.end_object();
     }
-    w.end_array().end_object();
+    w.end_array().key("closings").begin_object().key("kept");
+    write_spreads(w, t.kept_closings);
+    w.key("lost");
+    write_spreads(w, t.lost_closings);
+    w.end_object().end_object();
   }
   w.end_array().key("grasps").begin_array();
   for (const TrialGrasps& trial : trials)
@@ -107,7 +126,20 @@ void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& tria
       w.field("thumb", phalanx_part_name(g.thumb)).field("index", phalanx_part_name(g.index));
       w.key("pinch_offset_m").begin_array();
       for (int axis = 0; axis < 3; ++axis) w.value(g.pinch_offset[axis]);
-      w.end_array().end_object();
+      w.end_array();
+      if (g.closing) {
+        w.key("closing").begin_object();
+        for (const LoggedFactor& f : logged_factors()) {
+          const double v = (*g.closing).*(f.field);
+          w.key(f.name);
+          if (std::isnan(v))
+            w.null();
+          else
+            w.value(v / f.scale);
+        }
+        w.end_object();
+      }
+      w.end_object();
     }
   w.end_array().end_object();
 }

@@ -27,8 +27,9 @@ struct GraspTally {
   double cube_size = 0.0;
   int trials = 0, grasps = 0;
   int placed = 0, dropped = 0, landed = 0, caught_again = 0, unfinished = 0;  // GraspOutcome
-  std::array<GraspCount, 3> by_thumb{}, by_index{};  // indexed by PhalanxPart
-  std::array<GraspCount, 3> by_offset{};             // by the bins of kPinchOffsetEdges
+  std::array<GraspCount, 3> by_thumb{}, by_index{};         // indexed by PhalanxPart
+  std::array<GraspCount, 3> by_offset{};                    // by the bins of kPinchOffsetEdges
+  std::vector<LoggedClosing> kept_closings, lost_closings;  // the grasps' whose were read
   int lost() const { return dropped + landed; }
 };
 
@@ -38,7 +39,8 @@ enum class GraspGrouping { kCube, kCondition };
 std::vector<GraspTally> tally_grasps(const std::vector<TrialGrasps>& trials,
                                      GraspGrouping grouping);
 
-// {"trials", "groups": [tally...], "grasps": [one per grasp]} into a writer at a value.
+// {"trials", "groups": [tally...], "grasps": [one per grasp]} into a writer at a value; a
+// group's "closings" and a grasp's "closing" in the grasp map's factors and units.
 void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& trials,
                        const std::vector<GraspTally>& tallies);
 

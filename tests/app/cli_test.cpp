@@ -321,9 +321,12 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), 0.06);
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
-    for (const char* key : {"factor", "level", "closing", "held", "released", "lift_m", "slip_mm",
-                            "max_penetration_mm", "pinch_error_mm"})
+    for (const char* key :
+         {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
+          "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm"})
       EXPECT_NE(o.find(key), nullptr) << key;
+    EXPECT_EQ(o["values"].size(), 7u);
+    EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 7u);
     return o;
   };
   const util::JsonValue holds = closing("over_closure=3");
@@ -331,14 +334,20 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_TRUE(holds["released"].as_bool());
   EXPECT_LT(holds["slip_mm"].as_number(), 0.1);
   EXPECT_EQ(holds["closing"].as_string(), "the scripted pinch");
-  const util::JsonValue loses = closing("over_closure=25");
+  EXPECT_GT(holds["peak_grip_n"].as_number(), 0.0);
+  // The pinch's axis pitched 30 degrees from the faces' normal: the cube turns out of the pads.
+  const util::JsonValue loses = closing("tilt_pitch=30");
   EXPECT_FALSE(loses["held"].as_bool());
   EXPECT_LT(loses["lift_m"].as_number(), 0.01);
-  EXPECT_EQ(loses["closing"].as_string(), "over_closure 25 mm");
+  EXPECT_EQ(loses["closing"].as_string(), "tilt_pitch 30 deg");
+  EXPECT_NEAR(loses["values"]["tilt_pitch"].as_number(), 30.0, 1e-9);
   EXPECT_EQ(run_cli("sim grasp --closing squeeze=3").status, 2);
   EXPECT_EQ(run_cli("sim grasp --closing over_closure=40").status, 2);
   EXPECT_EQ(run_cli("sim grasp --factor tilt").status, 2);
   EXPECT_EQ(run_cli("sim grasp --cube 2").status, 2);
+  EXPECT_EQ(run_cli("sim grasp --grid none").status, 2) << "no grid and no draws";
+  EXPECT_EQ(run_cli("sim grasp --physics friction=-1").status, 2);
+  EXPECT_EQ(run_cli("sim grasp --physics grip=1").status, 2);
 }
 
 TEST(CliAnalyze, ReportsAndWritesJson) {

@@ -89,6 +89,7 @@ class OutputTargets : public testing::Test {
         {"sensitivity --protocol " + p + " --from " + dir_ + "/sensitivity.json --plot {OUT}",
          "sensitivity.png"},
         {"sim pinch --cube 0.06 --json {OUT}", "pinch.json"},
+        {"sim pinch --cube 0.06 --trace {OUT}", "trace.csv"},
         {"sim bench --duration 0.4 --threads 1 --runs 1 --steps {OUT}", "steps.csv"},
         {"sim grasp --cube 0.06 --jobs 1 --closing over_closure=3 --json {OUT}", "grasp.json"},
         {"sim settle --speed 0.5 --spin 0 --duration 0.1 --json {OUT}", "settle.json"},

@@ -56,6 +56,23 @@ void print_tally(const studies::GraspTally& t) {
             << edge(e[0]) << ": " << share(t.by_offset[0]) << ", " << edge(e[0]) << "-"
             << edge(e[1]) << ": " << share(t.by_offset[1]) << ", >= " << edge(e[1]) << ": "
             << share(t.by_offset[2]) << "\n";
+  if (t.kept_closings.empty() && t.lost_closings.empty()) return;
+  std::printf(
+      "  closings in the grasp map's terms (sim grasp), median [10th-90th percentile]:\n"
+      "    %-14s %-28s %s\n",
+      "", ("kept (" + std::to_string(t.kept_closings.size()) + ")").c_str(),
+      ("lost (" + std::to_string(t.lost_closings.size()) + ")").c_str());
+  for (const studies::LoggedFactor& f : studies::logged_factors()) {
+    auto spread = [&](const std::vector<studies::LoggedClosing>& closings) {
+      const studies::FactorSpread s = studies::factor_spread(closings, f);
+      char text[80];
+      if (s.n == 0) return std::string("-");
+      std::snprintf(text, sizeof text, "%.3g [%.3g, %.3g] %s", s.median, s.p10, s.p90, f.unit);
+      return std::string(text);
+    };
+    std::printf("    %-14s %-28s %s\n", f.name, spread(t.kept_closings).c_str(),
+                spread(t.lost_closings).c_str());
+  }
 }
 
 }  // namespace

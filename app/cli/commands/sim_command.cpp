@@ -321,32 +321,48 @@ class FrameWriter {
 };
 
 int sim_pinch(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+  std::vector<OptionSpec> specs = {
       {"cube", "METRES", "the cube's side (the study: 0.01 fine, 0.06 gross)", "0.01"},
       {"squeeze", "METRES", "how far inside the faces the pads' targets are", "0.003"},
+      {"closing", "NAME=VALUE,...",
+       "close as this closing of sim grasp says (its factors in their units, e.g. "
+       "over_closure=20,tilt_pitch=10) instead of the scripted pinch"},
       {"frames", "DIR", "draw the run offscreen into DIR/frame_NNN.png"},
       {"frame-interval", "SECONDS", "with --frames: time between frames", "0.25"},
       {"view-yaw", "RAD", "with --frames: the camera's turn about the vertical", "-0.8"},
       {"contacts", "", "with --frames: draw the contact points"},
+      {"trace", "CSV",
+       "write every step's time, the cube's height and turn, the grip, the flesh points on the "
+       "cube and the bones' largest offset and turn from their targets (- for standard output)"},
       {"skin-samples", "N",
        "contact points against the cube inside each of the flesh's boundary faces besides its "
        "nodes: 1 (the centroid) or 0 (the nodes alone, as before 2026-11-26)",
        "1"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
+  specs.push_back(physics_option());
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sim pinch --cube 0.01|0.06 [--json OUT]\n\n"
+    std::cout << "Usage: handlab-cli sim pinch --cube 0.01|0.06 [--closing NAME=VALUE,...] "
+                 "[--physics NAME=VALUE]... [--trace CSV] [--json OUT]\n\n"
                  "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and "
-                 "opens the fingers.\nReports whether it was held, its slip between the pads and "
-                 "the flesh's deepest penetration.\n\nOptions:\n"
+                 "opens the fingers.\nReports whether it was held, its slip between the pads, "
+                 "the flesh's deepest penetration, the hold's peak grip and the cube's turn.\n\n"
+                 "Options:\n"
               << format_options_help(specs);
     return 0;
   }
   const double squeeze = args.number("squeeze");
   if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
-  const sim::PinchScene setup = sim::make_pinch_scene(
-      cube_option(args), 1, squeeze, hand::HandShape{}.length, simulator_parameters(args));
+  sim::SimParameters parameters = simulator_parameters(args);
+  apply_physics_option(args, parameters);
+  sim::PinchScene setup =
+      sim::make_pinch_scene(cube_option(args), 1, squeeze, hand::HandShape{}.length, parameters);
+  if (args.has("closing")) {
+    if (args.has("squeeze")) throw UsageError("give --squeeze or --closing, not both");
+    setup.script = sim::make_grasp_script(setup.skeleton, setup.model,
+                                          parse_closing_option(args.text("closing")));
+  }
   std::function<void(const sim::HandSimState&)> observer;
   std::optional<FrameWriter> frames;
   if (args.has("frames")) {
@@ -356,15 +372,37 @@ int sim_pinch(const std::vector<std::string>& argv) {
                    args.flag("contacts"));
     observer = [&](const sim::HandSimState& s) { (*frames)(s); };
   }
+  std::ostringstream trace;
+  if (args.has("trace")) {
+    trace << "time_s,cube_height_m,cube_turn_deg,grip_n,flesh_points_on_cube,bone_offset_mm,"
+             "bone_turn_deg\n";
+    observer = [&, frame = observer](const sim::HandSimState& s) {
+      if (frame) frame(s);
+      trace << s.time << ',' << s.cube_pose.position.y() << ','
+            << s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI
+            << ',' << sim::grip_force(setup.model, s) << ','
+            << s.node_cube.size() + s.sample_cube.size();
+      const std::vector<sim::RigidPose> targets =
+          sim::bone_targets(setup.model, setup.skeleton, setup.script.target(s.time));
+      double offset = 0, turn = 0;  // the bones' largest from their targets
+      for (std::size_t b = 0; b < targets.size(); ++b) {
+        offset = std::max(offset, (s.bone_pose[b].position - targets[b].position).norm());
+        turn = std::max(turn, s.bone_pose[b].rotation.angularDistance(targets[b].rotation));
+      }
+      trace << ',' << offset * 1000 << ',' << turn * 180 / M_PI << '\n';
+    };
+  }
   const sim::PinchReport r =
       sim::run_pinch(setup.model, setup.skeleton, setup.script, {}, 0.0, observer);
-  // With --json - standard output is the JSON alone.
-  if (args.text("json") != "-") {
+  if (args.has("trace"))
+    util::write_output(args.text("trace"), [&](std::ostream& out) { out << trace.str(); });
+  // With --json - (or --trace -) standard output is that alone.
+  if (args.text("json") != "-" && args.text("trace") != "-") {
     std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
               << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
               << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
-              << " mm, " << (r.released ? "released" : "NOT released")
-              << " (the scripted pads miss their "
+              << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, "
+              << (r.released ? "released" : "NOT released") << " (the scripted pads miss their "
               << "targets by " << setup.script.pinch_error * 1000 << " mm)\n";
     print_timing(setup, r);
   }
@@ -377,7 +415,9 @@ int sim_pinch(const std::vector<std::string>& argv) {
           .field("released", r.released)
           .field("lift_m", r.lift)
           .field("slip_mm", r.slip_mm)
-          .field("max_penetration_mm", r.max_penetration_mm);
+          .field("max_penetration_mm", r.max_penetration_mm)
+          .field("peak_grip_n", r.peak_grip_n)
+          .field("turn_deg", r.turn_deg);
       write_timing(json, setup, r);
       json.end_object();
     });
@@ -390,17 +430,17 @@ int sim_pinch(const std::vector<std::string>& argv) {
 int run_sim(const std::vector<std::string>& argv) {
   if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
     std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n"
-                 "       handlab-cli sim pinch --cube 0.01|0.06 [--json OUT] [--frames DIR]\n"
-                 "       handlab-cli sim grasp [--cube SIDE]... [--factor NAME]... [--closing "
-                 "NAME=VALUE,...] [--json OUT]\n"
+                 "       handlab-cli sim pinch --cube 0.01|0.06 [--closing NAME=VALUE,...] "
+                 "[--trace CSV] [--json OUT] [--frames DIR]\n"
+                 "       handlab-cli sim grasp [--cube SIDE]... [--grid single|pairs|none] "
+                 "[--draws N] [--closing NAME=VALUE,...] [--json OUT]\n"
                  "       handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
                  "[--json OUT]\n"
                  "       handlab-cli sim settle [--cube SIDE] [--speed M/S] [--spin RAD/S] "
                  "[--json OUT]\n";
     return 0;
   }
-  if (argv.empty())
-    throw UsageError("sim needs a command: bench, pinch, grasp, replay or settle");
+  if (argv.empty()) throw UsageError("sim needs a command: bench, pinch, grasp, replay or settle");
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
   if (argv[0] == "bench") return sim_bench(rest);
   if (argv[0] == "pinch") return sim_pinch(rest);

@@ -10,14 +10,24 @@
 #include <stdexcept>
 #include <thread>
 
+#include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
 #include "app/cli/progress_line.h"
+#include "core/hand/hand_shape.h"
+#include "core/sim/sim_parameter_names.h"
 #include "core/task/grasp_map.h"
+#include "core/task/human_closings.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
 
 namespace handlab::cli {
 namespace {
+
+std::string util_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
 
 double number_option(const std::string& text, const std::string& what) {
   std::size_t used = 0;
@@ -32,9 +42,131 @@ double number_option(const std::string& text, const std::string& what) {
   return value;
 }
 
-// --closing over_closure=10,lead=100: one closing, in the factors' units.
-sim::ClosingPoint parse_closing(const std::string& text) {
-  sim::ClosingPoint point{"closing", 0.0, {}};
+struct CubeMap {
+  double cube_size = 0.0;
+  std::vector<sim::GraspOutcome> outcomes;
+};
+
+// "over_closure 10 mm" for a factor's level, the closing's description for a pair or a draw.
+std::string closing_label(const sim::ClosingPoint& p) {
+  if (p.factor.empty()) return "the scripted pinch";
+  if (p.factor == "pair" || p.factor == "draw" || p.factor == "closing")
+    return (p.factor == "draw" ? "draw " + util_number(p.level) + ": " : "") +
+           sim::describe(p.closing);
+  return p.factor + " " + util_number(p.level) + " " + sim::closing_factor(p.factor).unit;
+}
+
+std::string group_of(const sim::ClosingPoint& p) {
+  return p.factor.empty() ? "scripted" : p.factor == "pair" ? "pairs" : p.factor;
+}
+
+void print_map(const CubeMap& map) {
+  std::printf("\ncube %.0f mm\n%-4s %-8s %8s %10s %7s %6s  %s\n", map.cube_size * 1000, "held",
+              "released", "slip mm", "deepest mm", "grip N", "turn", "closing");
+  std::vector<std::pair<std::string, std::pair<int, int>>> held;  // group -> held, run
+  for (const sim::GraspOutcome& o : map.outcomes) {
+    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s\n", o.held ? "yes" : "NO",
+                o.released ? "yes" : "NO", o.slip_mm, o.max_penetration_mm, o.peak_grip_n,
+                o.turn_deg, closing_label(o.point).c_str());
+    const std::string group = group_of(o.point);
+    if (held.empty() || held.back().first != group) held.push_back({group, {0, 0}});
+    held.back().second.first += o.held ? 1 : 0;
+    ++held.back().second.second;
+  }
+  std::printf("held:");
+  for (const auto& [group, count] : held) {
+    std::printf(" %s %d of %d", group.c_str(), count.first, count.second);
+    if (group == "draw") {
+      const stats::ProportionInterval ci = stats::wilson_interval(count.first, count.second);
+      std::printf(" (%.0f %%, 95 %% CI %.0f-%.0f %%)", 100.0 * count.first / count.second,
+                  100 * ci.low, 100 * ci.high);
+    }
+    std::printf(";");
+  }
+  std::printf("\n");
+}
+
+void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
+  json.begin_object()
+      .field("factor", o.point.factor)
+      .field("level", o.point.level)
+      .field("closing", sim::describe(o.point.closing))
+      .key("values")
+      .begin_object();
+  for (const sim::ClosingFactor& f : sim::closing_factors())
+    json.field(f.name, o.point.closing.*(f.field) / f.scale);
+  json.end_object()
+      .field("held", o.held)
+      .field("released", o.released)
+      .field("lift_m", o.lift_m)
+      .field("slip_mm", o.slip_mm)
+      .field("max_penetration_mm", o.max_penetration_mm)
+      .field("peak_grip_n", o.peak_grip_n)
+      .field("turn_deg", o.turn_deg)
+      .field("pinch_error_mm", o.pinch_error_mm)
+      .end_object();
+}
+
+void write_map_json(const std::vector<CubeMap>& maps, int draws, std::uint64_t seed,
+                    const std::vector<std::string>& physics, std::ostream& out) {
+  util::JsonWriter json(out);
+  json.begin_object().key("physics").begin_array();
+  for (const std::string& item : physics) json.value(item);
+  json.end_array().key("factors").begin_array();
+  for (const sim::ClosingFactor& f : sim::closing_factors()) {
+    json.begin_object().field("name", f.name).field("unit", f.unit).key("levels").begin_array();
+    for (double level : f.levels) json.value(level);
+    json.end_array().key("pair_levels").begin_array();
+    for (double level : f.pair_levels) json.value(level);
+    json.end_array().end_object();
+  }
+  json.end_array()
+      .key("human_distribution")
+      .begin_object()
+      .field("draws", draws)
+      .field("seed", seed);
+  json.key("parameters").begin_array();
+  for (const sim::ClosingParameter& p : sim::human_closing_parameters())
+    json.begin_object()
+        .field("factor", p.factor)
+        .field("distribution", p.distribution)
+        .field("source", p.source)
+        .field("assumption", p.assumption)
+        .end_object();
+  json.end_array().end_object().key("cubes").begin_array();
+  for (const CubeMap& map : maps) {
+    json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
+    int held = 0, drawn = 0, drawn_held = 0;
+    for (const sim::GraspOutcome& o : map.outcomes) {
+      write_closing(json, o);
+      held += o.held ? 1 : 0;
+      if (o.point.factor == "draw") {
+        ++drawn;
+        drawn_held += o.held ? 1 : 0;
+      }
+    }
+    json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
+    if (drawn > 0) {
+      const stats::ProportionInterval ci = stats::wilson_interval(drawn_held, drawn);
+      json.key("draws")
+          .begin_object()
+          .field("run", drawn)
+          .field("held", drawn_held)
+          .field("hold_rate", double(drawn_held) / drawn)
+          .field("hold_rate_low", ci.low)
+          .field("hold_rate_high", ci.high)
+          .end_object();
+    }
+    json.end_object();
+  }
+  json.end_array().end_object();
+  out << "\n";
+}
+
+}  // namespace
+
+sim::GraspClosing parse_closing_option(const std::string& text) {
+  sim::GraspClosing closing;
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
@@ -43,80 +175,37 @@ sim::ClosingPoint parse_closing(const std::string& text) {
       throw UsageError("--closing takes NAME=VALUE,..., not '" + item + "'");
     try {
       sim::set_closing_factor(
-          point.closing, item.substr(0, eq),
+          closing, item.substr(0, eq),
           number_option(item.substr(eq + 1), "--closing " + item.substr(0, eq)));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--closing: ") + e.what());
     }
   }
-  return point;
+  return closing;
 }
 
-struct CubeMap {
-  double cube_size = 0.0;
-  std::vector<sim::GraspOutcome> outcomes;
-};
-
-void print_map(const CubeMap& map) {
-  std::printf("\ncube %.0f mm\n%-14s %8s %-5s  %-4s %-8s %8s %9s\n", map.cube_size * 1000, "factor",
-              "level", "unit", "held", "released", "slip mm", "deepest mm");
-  std::map<std::string, std::pair<int, int>> held;  // factor -> held, run
-  for (const sim::GraspOutcome& o : map.outcomes) {
-    const std::string unit = o.point.factor.empty() || o.point.factor == "closing"
-                                 ? ""
-                                 : sim::closing_factor(o.point.factor).unit;
-    std::printf("%-14s %8g %-5s  %-4s %-8s %8.3f %9.2f\n",
-                o.point.factor.empty() ? "scripted" : o.point.factor.c_str(), o.point.level,
-                unit.c_str(), o.held ? "yes" : "NO", o.released ? "yes" : "NO", o.slip_mm,
-                o.max_penetration_mm);
-    auto& [h, n] = held[o.point.factor.empty() ? "scripted" : o.point.factor];
-    h += o.held ? 1 : 0;
-    ++n;
-  }
-  std::printf("held:");
-  for (const auto& [factor, count] : held)
-    std::printf(" %s %d of %d;", factor.c_str(), count.first, count.second);
-  std::printf("\n");
+OptionSpec physics_option() {
+  return {"physics", "NAME=VALUE",
+          "change a simulator parameter (SI units; docs/simulator.md), e.g. "
+          "tracking_force_limit=5 or cube_floor_stiffness=1e5; repeatable",
+          "", true};
 }
 
-void write_map_json(const std::vector<CubeMap>& maps, std::ostream& out) {
-  util::JsonWriter json(out);
-  json.begin_object().key("factors").begin_array();
-  for (const sim::ClosingFactor& f : sim::closing_factors()) {
-    json.begin_object().field("name", f.name).field("unit", f.unit).key("levels").begin_array();
-    for (double level : f.levels) json.value(level);
-    json.end_array().end_object();
+void apply_physics_option(const Arguments& args, sim::SimParameters& parameters) {
+  for (const std::string& item : args.all("physics")) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) throw UsageError("--physics takes NAME=VALUE, not '" + item + "'");
+    try {
+      sim::set_sim_parameter(parameters, item.substr(0, eq),
+                             number_option(item.substr(eq + 1), "--physics " + item.substr(0, eq)));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--physics: ") + e.what());
+    }
   }
-  json.end_array().key("cubes").begin_array();
-  for (const CubeMap& map : maps) {
-    json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
-    for (const sim::GraspOutcome& o : map.outcomes)
-      json.begin_object()
-          .field("factor", o.point.factor)
-          .field("level", o.point.level)
-          .field("closing", sim::describe(o.point.closing))
-          .field("held", o.held)
-          .field("released", o.released)
-          .field("lift_m", o.lift_m)
-          .field("slip_mm", o.slip_mm)
-          .field("max_penetration_mm", o.max_penetration_mm)
-          .field("pinch_error_mm", o.pinch_error_mm)
-          .end_object();
-    int held = 0;
-    for (const sim::GraspOutcome& o : map.outcomes) held += o.held ? 1 : 0;
-    json.end_array()
-        .field("held", held)
-        .field("closings_run", int(map.outcomes.size()))
-        .end_object();
-  }
-  json.end_array().end_object();
-  out << "\n";
 }
-
-}  // namespace
 
 int sim_grasp(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+  std::vector<OptionSpec> specs = {
       {"cube", "METRES", "a cube's side; repeatable (default: 0.01 and 0.06, the study's)", "",
        true},
       {"factor", "NAME",
@@ -126,25 +215,36 @@ int sim_grasp(const std::vector<std::string>& argv) {
       {"closing", "NAME=VALUE,...",
        "run this one closing instead of the grid, in the factors' units (mm, deg, side, ms, "
        "cm/s, s), e.g. over_closure=20,lead=100"},
+      {"grid", "single|pairs|none",
+       "each factor alone at its levels, or every pair of factors at half and all of their "
+       "ranges, or no grid",
+       "single"},
+      {"draws", "N", "also run N closings drawn from the distribution of people's closings", "0"},
+      {"seed", "S", "the draws' seed", "1"},
       {"jobs", "J", "closings run side by side (default: the machine's cores)", "0"},
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
   };
+  specs.push_back(physics_option());
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sim grasp [--cube SIDE]... [--factor NAME]... [--closing "
-                 "NAME=VALUE,...] [--jobs J] [--json OUT]\n\n"
-                 "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing "
-                 "as the closing says on the intermediate hand it follows: each pad's target "
-                 "past its face (over_closure, mm), the pinch's axis turned about the vertical "
-                 "and the faces' horizontal (tilt_yaw, tilt_pitch, degrees), the pads moved "
-                 "along the faces (offset_along, of the side), one digit first (lead, ms: the "
-                 "thumb before the index; below 0 after), the closing's speed (closing_speed, "
-                 "cm/s of each pad) and the hold (hold, s). The grid runs each factor alone at "
-                 "its levels from the scripted pinch (sim pinch). Reports per closing whether "
-                 "the cube was held through the lift and hold and released, its slip between "
-                 "the pads and the flesh's deepest penetration; the hold rate per factor "
-                 "(docs/simulator.md).\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout
+        << "Usage: handlab-cli sim grasp [--cube SIDE]... [--grid single|pairs|none] "
+           "[--factor NAME]... [--draws N] [--closing NAME=VALUE,...] [--jobs J] [--json "
+           "OUT]\n\n"
+           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing "
+           "as the closing says on the intermediate hand it follows: each pad's target "
+           "past its face (over_closure, mm), the pinch's axis turned about the vertical "
+           "and the faces' horizontal (tilt_yaw, tilt_pitch, degrees), the pads moved "
+           "along the faces (offset_along, of the side), one digit first (lead, ms: the "
+           "thumb before the index; below 0 after), the closing's speed (closing_speed, "
+           "cm/s of each pad) and the hold (hold, s). The grid runs each factor alone at "
+           "its levels from the scripted pinch (sim pinch), or pairs of factors; --draws "
+           "adds closings drawn from a distribution of people's closings whose sources "
+           "--json lists. Reports per closing whether the cube was held through the lift "
+           "and hold and released, its slip between the pads, the flesh's deepest "
+           "penetration, the hold's peak grip and the cube's turn; the hold rate per "
+           "factor and over the draws with its 95 % interval (docs/simulator.md).\n\nOptions:\n"
+        << format_options_help(specs);
     return 0;
   }
   std::vector<double> cubes;
@@ -155,26 +255,42 @@ int sim_grasp(const std::vector<std::string>& argv) {
     cubes.push_back(side);
   }
   if (cubes.empty()) cubes = {0.01, 0.06};
-  std::vector<sim::ClosingPoint> points;
+  const std::string grid = args.choice("grid", {"single", "pairs", "none"});
+  const long draws = args.integer("draws");
+  if (draws < 0) throw UsageError("--draws must be 0 or more");
+  const std::uint64_t seed = args.seed("seed");
+  std::vector<sim::ClosingPoint> grid_points;
   if (args.has("closing")) {
-    if (args.has("factor")) throw UsageError("give --closing or --factor, not both");
-    points = {parse_closing(args.text("closing"))};
-  } else {
+    if (args.has("factor") || args.has("grid") || draws > 0)
+      throw UsageError("give --closing alone, not with --factor, --grid or --draws");
+    grid_points = {{"closing", 0.0, parse_closing_option(args.text("closing"))}};
+  } else if (grid == "single") {
     try {
       for (const std::string& f : args.all("factor")) sim::closing_factor(f);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--factor: ") + e.what());
     }
-    points = sim::single_factor_grid(args.all("factor"));
+    grid_points = sim::single_factor_grid(args.all("factor"));
+  } else if (args.has("factor")) {
+    throw UsageError("--factor maps single factors: give it with --grid single");
+  } else if (grid == "pairs") {
+    grid_points = sim::factor_pairs_grid();
   }
+  if (grid_points.empty() && draws == 0) throw UsageError("--grid none needs --draws N");
   int jobs = int(args.integer("jobs"));
   if (jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
   if (jobs == 0) jobs = int(std::max(1u, std::thread::hardware_concurrency()));
   const bool to_stdout = args.text("json") == "-";
   std::vector<CubeMap> maps;
   const auto start = std::chrono::steady_clock::now();
+  sim::SimParameters parameters;
+  apply_physics_option(args, parameters);
   for (double side : cubes) {
-    const sim::PinchScene scene = sim::make_pinch_scene(side);
+    std::vector<sim::ClosingPoint> points = grid_points;
+    for (sim::ClosingPoint& p : sim::human_closing_draws(int(draws), seed, side))
+      points.push_back(std::move(p));
+    const sim::PinchScene scene =
+        sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters);
     ProgressLine progress(to_stdout);
     CubeMap map;
     map.cube_size = side;
@@ -191,7 +307,9 @@ int sim_grasp(const std::vector<std::string>& argv) {
     maps.push_back(std::move(map));
   }
   if (args.has("json"))
-    util::write_output(args.text("json"), [&](std::ostream& out) { write_map_json(maps, out); });
+    util::write_output(args.text("json"), [&](std::ostream& out) {
+      write_map_json(maps, int(draws), seed, args.all("physics"), out);
+    });
   return 0;
 }
 

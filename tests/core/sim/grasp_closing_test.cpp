@@ -1,10 +1,12 @@
 // Closings of the grasp map (core/task/grasp_closing.h): the default closing is the scripted
 // pinch to the bit, and each factor changes what it says and nothing else.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "core/task/grasp_map.h"
+#include "core/task/human_closings.h"
 #include "core/task/pinch_scene.h"
 
 namespace handlab::sim::grasp_closing_test {
@@ -71,6 +73,30 @@ TEST(GraspClosing, TiltAndOffsetMoveThePadsTargets) {
   EXPECT_LT(s.pinch_error, 0.006) << "m: the tilted, offset pinch still reaches its targets";
 }
 
+// A person closing past a face they do not feel closes the fingers on; the hand stays where it
+// reached to (else the 6 cm cube's fingers came down on its top at 20 mm).
+TEST(GraspClosing, OverClosureMovesTheFingersNotTheWrist) {
+  GraspClosing deep;
+  set_closing_factor(deep, "over_closure", 20);
+  const PinchScript s = make_grasp_script(scene().skeleton, scene().model, deep);
+  EXPECT_EQ(s.pinch.root_position, scene().script.pinch.root_position);
+  EXPECT_NE(s.pinch.angles, scene().script.pinch.angles);
+  // The scripted squeeze of `sim pinch --squeeze` still places the wrist with the pads.
+  EXPECT_NE(make_pinch_script(scene().skeleton, scene().model, 0.005).pinch.root_position,
+            scene().script.pinch.root_position);
+}
+
+// A tilted pinch turns the hand with its axis: the wrist's rotation turns by the tilt.
+TEST(GraspClosing, TiltTurnsTheHand) {
+  GraspClosing tilted;
+  set_closing_factor(tilted, "tilt_pitch", -20);
+  const PinchScript s = make_grasp_script(scene().skeleton, scene().model, tilted);
+  const Eigen::AngleAxisd turn(s.pinch.root_rotation *
+                               scene().script.pinch.root_rotation.transpose());
+  EXPECT_NEAR(turn.angle(), 20 * M_PI / 180, 1e-9);
+  EXPECT_NEAR(std::abs(turn.axis().x()), 1.0, 1e-9);
+}
+
 TEST(GraspClosing, UnknownFactorsAndValuesOutsideTheGridAreRefused) {
   GraspClosing c;
   EXPECT_THROW(set_closing_factor(c, "squeeze", 1), std::invalid_argument);
@@ -90,6 +116,51 @@ TEST(GraspClosing, TheGridHoldsEachFactorAloneAndThePinchOnce) {
   ASSERT_EQ(lead.size(), 8u);
   EXPECT_DOUBLE_EQ(lead.back().closing.lead_s, 0.2);
   EXPECT_EQ(lead.back().closing.over_closure, GraspClosing{}.over_closure);
+}
+
+// Every pair of factors at each pair of their half-range levels, once.
+TEST(GraspClosing, ThePairsGridCrossesEveryTwoFactors) {
+  std::size_t expected = 0;
+  const std::vector<ClosingFactor>& factors = closing_factors();
+  for (std::size_t a = 0; a < factors.size(); ++a)
+    for (std::size_t b = a + 1; b < factors.size(); ++b)
+      expected += factors[a].pair_levels.size() * factors[b].pair_levels.size();
+  const std::vector<ClosingPoint> pairs = factor_pairs_grid();
+  ASSERT_EQ(pairs.size(), expected);
+  EXPECT_EQ(pairs.front().factor, "pair");
+  EXPECT_EQ(describe(pairs.front().closing), "over_closure 15 mm, tilt_yaw -15 deg");
+}
+
+// Draws of the human distribution: the same seed the same closings, each within its stated
+// bounds, and every factor drawn but the hold with a source or marked an assumption.
+TEST(HumanClosings, DrawsAreSeededBoundedAndSourced) {
+  const std::vector<ClosingPoint> a = human_closing_draws(200, 7, 0.06),
+                                  b = human_closing_draws(200, 7, 0.06);
+  ASSERT_EQ(a.size(), 200u);
+  double over_closure_sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const GraspClosing& c = a[i].closing;
+    EXPECT_EQ(describe(c), describe(b[i].closing));
+    EXPECT_EQ(a[i].factor, "draw");
+    EXPECT_GT(c.over_closure, 0.0);
+    EXPECT_LE(c.over_closure, 0.030);
+    EXPECT_LE(std::abs(c.tilt_yaw), 30 * M_PI / 180);
+    EXPECT_LE(std::abs(c.offset_along), 0.4);
+    EXPECT_LE(std::abs(c.lead_s), 0.080);
+    EXPECT_GE(c.closing_speed, 0.02);
+    EXPECT_LE(c.closing_speed, 0.30);
+    over_closure_sum += std::log(c.over_closure);
+  }
+  // The log-normal's median, 6 mm, within sampling error of 200 draws (SD of the mean 0.05).
+  EXPECT_NEAR(std::exp(over_closure_sum / 200), 0.006, 0.001);
+  EXPECT_NE(describe(human_closing_draws(1, 8, 0.06)[0].closing), describe(a[0].closing));
+  for (const ClosingFactor& f : closing_factors()) {
+    const auto& table = human_closing_parameters();
+    const auto row = std::find_if(table.begin(), table.end(),
+                                  [&](const ClosingParameter& p) { return p.factor == f.name; });
+    ASSERT_NE(row, table.end()) << f.name;
+    EXPECT_FALSE(row->source.empty()) << f.name;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,59 @@
+#include "core/sim/sim_parameter_names.h"
+
+#include <stdexcept>
+
+namespace handlab::sim {
+namespace {
+
+struct NamedParameter {
+  const char* name;
+  double SimParameters::*field;
+  bool positive;  // must be above zero, not only zero or more
+};
+
+const std::vector<NamedParameter>& named_parameters() {
+  static const std::vector<NamedParameter> table = {
+      {"time_step", &SimParameters::time_step, true},
+      {"flesh_density", &SimParameters::flesh_density, true},
+      {"stiffening_strain", &SimParameters::stiffening_strain, true},
+      {"stiffening_factor", &SimParameters::stiffening_factor, false},
+      {"bone_density", &SimParameters::bone_density, true},
+      {"coupling_stiffness", &SimParameters::coupling_stiffness, true},
+      {"joint_stiffness", &SimParameters::joint_stiffness, true},
+      {"tracking_stiffness", &SimParameters::tracking_stiffness, true},
+      {"tracking_torsion", &SimParameters::tracking_torsion, true},
+      {"tracking_force_limit", &SimParameters::tracking_force_limit, false},
+      {"tracking_torque_limit", &SimParameters::tracking_torque_limit, false},
+      {"contact_stiffness", &SimParameters::contact_stiffness, true},
+      {"contact_stiffening", &SimParameters::contact_stiffening, false},
+      {"cube_floor_stiffness", &SimParameters::cube_floor_stiffness, true},
+      {"cube_floor_stiffening", &SimParameters::cube_floor_stiffening, false},
+      {"friction", &SimParameters::friction, false},
+      {"cube_density", &SimParameters::cube_density, true},
+  };
+  return table;
+}
+
+}  // namespace
+
+std::vector<std::string> sim_parameter_names() {
+  std::vector<std::string> names;
+  for (const NamedParameter& p : named_parameters()) names.push_back(p.name);
+  return names;
+}
+
+void set_sim_parameter(SimParameters& parameters, const std::string& name, double value) {
+  for (const NamedParameter& p : named_parameters()) {
+    if (name != p.name) continue;
+    if (p.positive ? !(value > 0) : !(value >= 0))
+      throw std::invalid_argument(name + (p.positive ? " must be above 0" : " must be 0 or more"));
+    parameters.*(p.field) = value;
+    return;
+  }
+  std::string names;
+  for (const NamedParameter& p : named_parameters())
+    names += (names.empty() ? "" : ", ") + std::string(p.name);
+  throw std::invalid_argument("no simulator parameter '" + name + "' (" + names + ")");
+}
+
+}  // namespace handlab::sim

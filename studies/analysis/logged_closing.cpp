@@ -1,0 +1,157 @@
+#include "studies/analysis/logged_closing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+
+#include "core/hand/flesh.h"
+#include "core/hand/simulated_hand.h"
+#include "core/sim/box_distance.h"
+#include "core/sim/hand_sim_model.h"
+#include "core/task/cube_task.h"
+#include "core/task/finger_pads.h"
+
+namespace handlab::studies {
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(mid), values.end());
+  const double upper = values[mid];
+  if (values.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + std::ptrdiff_t(mid)));
+}
+
+bool grasped(const store::FrameRecord& f) {
+  return task::TaskPhase(f.task_phase) == task::TaskPhase::kGrasped;
+}
+
+// The time a digit's touch began in the run of frames touching the cube that reaches `grasp`.
+double touch_began(const std::vector<store::FrameRecord>& frames, std::size_t grasp,
+                   bool store::FrameRecord::*touching) {
+  if (!(frames[grasp].*touching)) return std::numeric_limits<double>::quiet_NaN();
+  std::size_t k = grasp;
+  while (k > 0 && frames[k - 1].*touching) --k;
+  return frames[k].time;
+}
+
+double quantile(const std::vector<double>& sorted, double q) {
+  const double at = q * double(sorted.size() - 1);
+  const std::size_t low = std::size_t(std::floor(at));
+  const std::size_t high = std::min(low + 1, sorted.size() - 1);
+  return sorted[low] + (at - double(low)) * (sorted[high] - sorted[low]);
+}
+
+}  // namespace
+
+const std::vector<LoggedFactor>& logged_factors() {
+  static const std::vector<LoggedFactor> factors = {
+      {"over_closure", "mm", &LoggedClosing::over_closure, 1e-3},
+      {"tilt_yaw", "deg", &LoggedClosing::tilt_yaw, M_PI / 180},
+      {"tilt_pitch", "deg", &LoggedClosing::tilt_pitch, M_PI / 180},
+      {"offset_along", "side", &LoggedClosing::offset_along, 1.0},
+      {"lead", "ms", &LoggedClosing::lead_s, 1e-3},
+      {"closing_speed", "cm/s", &LoggedClosing::closing_speed, 1e-2},
+  };
+  return factors;
+}
+
+FactorSpread factor_spread(const std::vector<LoggedClosing>& closings, const LoggedFactor& f) {
+  std::vector<double> values;
+  for (const LoggedClosing& c : closings)
+    if (!std::isnan(c.*(f.field))) values.push_back(c.*(f.field) / f.scale);
+  FactorSpread s;
+  s.n = int(values.size());
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  s.p10 = quantile(values, 0.1);
+  s.median = quantile(values, 0.5);
+  s.p90 = quantile(values, 0.9);
+  return s;
+}
+
+ClosingReader::ClosingReader(const hand::HandShape& simulated_hand)
+    : skeleton_(hand::build_simulated_hand(simulated_hand)) {
+  thumb_bone_ = skeleton_.bone_index("thumb3");
+  index_bone_ = skeleton_.bone_index("index3");
+  if (thumb_bone_ < 0 || index_bone_ < 0)
+    throw std::runtime_error("the simulated hand has no thumb3 and index3");
+  const hand::HandFlesh flesh = hand::build_flesh(skeleton_, simulated_hand);
+  const sim::HandSimModel model = sim::make_hand_sim_model(skeleton_, flesh, {});
+  thumb_pad_ = sim::finger_pad(skeleton_, model, thumb_bone_);
+  index_pad_ = sim::finger_pad(skeleton_, model, index_bone_);
+}
+
+ClosingReader::Pads ClosingReader::pads_at(const store::FrameRecord& f) const {
+  hand::HandPose pose;
+  pose.root_position = f.root_position.cast<double>();
+  pose.root_rotation = f.root_rotation.cast<double>().toRotationMatrix();
+  pose.angles = Eigen::Map<const Eigen::VectorXf>(f.angles.data(), Eigen::Index(f.angles.size()))
+                    .cast<double>();
+  if (pose.angles.size() != Eigen::Index(skeleton_.dofs.size()))
+    throw std::runtime_error("a frame's intermediate hand has " +
+                             std::to_string(pose.angles.size()) + " angles, the hand " +
+                             std::to_string(skeleton_.dofs.size()));
+  const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose);
+  const Eigen::Quaterniond cube = f.cube_rotation.cast<double>();
+  const Eigen::Vector3d centre = f.cube_position.cast<double>();
+  auto in_cube = [&](int bone, const Eigen::Vector3d& pad) -> Eigen::Vector3d {
+    const std::size_t b = std::size_t(bone);
+    return cube.conjugate() * (frames.origin[b] + frames.rotation[b] * pad - centre);
+  };
+  return {in_cube(thumb_bone_, thumb_pad_), in_cube(index_bone_, index_pad_)};
+}
+
+LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames, std::size_t grasp,
+                                  double side) const {
+  const Eigen::Vector3d half = Eigen::Vector3d::Constant(side / 2);
+  LoggedClosing c;
+  std::vector<double> depths;
+  for (std::size_t k = grasp; k < frames.size() && grasped(frames[k]); ++k) {
+    const Pads p = pads_at(frames[k]);
+    depths.push_back(-0.5 * (sim::box_proximity(half, p.thumb).distance +
+                             sim::box_proximity(half, p.index).distance));
+  }
+  c.over_closure = median(depths);
+  // The axis against the nearest faces' normal n; the cube's most upright other axis u.
+  const store::FrameRecord& f = frames[grasp];
+  const Pads p = pads_at(f);
+  const Eigen::Vector3d axis = (p.thumb - p.index).normalized();
+  Eigen::Index n = 0;
+  axis.cwiseAbs().maxCoeff(&n);
+  const Eigen::Vector3d up_in_cube =
+      f.cube_rotation.cast<double>().conjugate() * Eigen::Vector3d::UnitY();
+  Eigen::Index u = (n + 1) % 3, h = (n + 2) % 3;
+  if (std::abs(up_in_cube(h)) > std::abs(up_in_cube(u))) std::swap(u, h);
+  const double along_n = std::abs(axis(n));
+  c.tilt_yaw = std::atan2(std::abs(axis(h)), along_n);
+  c.tilt_pitch = std::atan2(std::abs(axis(u)), along_n);
+  c.offset_along = std::abs(0.5 * (p.thumb + p.index)(h)) / side;
+  c.lead_s = touch_began(frames, grasp, &store::FrameRecord::index_contact) -
+             touch_began(frames, grasp, &store::FrameRecord::thumb_contact);
+  // Each pad's speed against the cube over the frame before its touch began.
+  std::vector<double> speeds;
+  for (bool store::FrameRecord::*touching :
+       {&store::FrameRecord::thumb_contact, &store::FrameRecord::index_contact}) {
+    const double began = touch_began(frames, grasp, touching);
+    std::size_t k = grasp;
+    while (k > 0 && frames[k].time > began) --k;
+    if (std::isnan(began) || k == 0) continue;
+    const Pads now = pads_at(frames[k]), before = pads_at(frames[k - 1]);
+    const bool thumb = touching == &store::FrameRecord::thumb_contact;
+    const double dt = frames[k].time - frames[k - 1].time;
+    if (dt > 0)
+      speeds.push_back(
+          ((thumb ? now.thumb : now.index) - (thumb ? before.thumb : before.index)).norm() / dt);
+  }
+  c.closing_speed = speeds.empty()
+                        ? std::numeric_limits<double>::quiet_NaN()
+                        : (speeds.size() == 1 ? speeds[0] : 0.5 * (speeds[0] + speeds[1]));
+  return c;
+}
+
+}  // namespace handlab::studies

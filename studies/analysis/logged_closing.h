@@ -1,0 +1,68 @@
+// A logged grasp's closing in the grasp map's terms (core/task/grasp_closing.h), read on the
+// intermediate hand its frames hold (what the soft hand followed), so that the grasps of any
+// study, real or simulated, can be placed on the map of `handlab-cli sim grasp`.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/hand/hand_shape.h"
+#include "core/hand/skeleton.h"
+#include "core/store/frame_record.h"
+
+namespace handlab::studies {
+
+struct LoggedClosing {
+  // m: the two pads' mean depth past the cube's faces (negative: short of them), the median
+  // over the grasp's frames.
+  double over_closure = 0.0;
+  // rad: the pinch's axis (index pad to thumb pad) from the nearest faces' normal at the
+  // grasp's first frame, about the cube's most upright axis (yaw) and about the faces' other
+  // one (pitch); magnitudes, the map's levels either side of 0 being near mirror images.
+  double tilt_yaw = 0.0, tilt_pitch = 0.0;
+  double offset_along = 0.0;  // of the side: the pads' midpoint from the centre along that axis
+  // s: the index's first touch of the cube minus the thumb's in the contact run that led to
+  // the grasp (positive: the thumb first); NaN when a digit's touch was not logged.
+  double lead_s = 0.0;
+  double closing_speed = 0.0;  // m/s: the pads' mean speed against the cube as each touched
+};
+
+// LoggedClosing's fields by the grasp map's factor names, in the map's units.
+struct LoggedFactor {
+  const char* name;  // the map's factor
+  const char* unit;
+  double LoggedClosing::*field;
+  double scale;  // the unit in SI
+};
+const std::vector<LoggedFactor>& logged_factors();
+
+// The 10th, 50th and 90th percentiles (type 7) of a factor over closings, in its unit,
+// leaving out those where it is NaN; n the closings counted.
+struct FactorSpread {
+  int n = 0;
+  double p10 = 0.0, median = 0.0, p90 = 0.0;
+};
+FactorSpread factor_spread(const std::vector<LoggedClosing>& closings, const LoggedFactor& f);
+
+// Reads closings for one simulated hand: its pads (finger_pads.h) from its flesh, built once.
+class ClosingReader {
+ public:
+  explicit ClosingReader(const hand::HandShape& simulated_hand);
+  // The closing of the grasp whose first grasped frame is frames[grasp], on a cube of `side`.
+  LoggedClosing read(const std::vector<store::FrameRecord>& frames, std::size_t grasp,
+                     double side) const;
+
+ private:
+  struct Pads {
+    Eigen::Vector3d thumb, index;  // in the cube's frame
+  };
+  Pads pads_at(const store::FrameRecord& f) const;
+
+  hand::Skeleton skeleton_;
+  int thumb_bone_ = -1, index_bone_ = -1;
+  Eigen::Vector3d thumb_pad_, index_pad_;  // in their bones' frames
+};
+
+}  // namespace handlab::studies
