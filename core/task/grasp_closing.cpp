@@ -46,6 +46,7 @@ const std::vector<ClosingFactor>& closing_factors() {
       {"lead", "ms", &GraspClosing::lead_s, 1e-3, {-200, -100, -50, 0, 50, 100, 200}, {-100, 100}},
       {"closing_speed", "cm/s", &GraspClosing::closing_speed, 1e-2, {2, 5, 10, 20, 30}, {2, 16}},
       {"hold", "s", &GraspClosing::hold_s, 1.0, {1, 5, 10}, {}},
+      {"jitter", "x", &GraspClosing::jitter, 1.0, {0, 1, 2, 4, 8}, {4}},
   };
   return factors;
 }

@@ -18,6 +18,7 @@ struct GraspClosing {
   double lead_s = 0.0;          // s: the thumb closes this long before the index (< 0: after)
   double closing_speed = 0.0;   // m/s: each pad's mean speed as it closes; 0: the script's 0.5 s
   double hold_s = 5.0;          // s: lifted and held before the fingers open
+  double jitter = 0.0;          // times a real recording's tracker jitter laid on the hand
 };
 
 // A closing's factors by name ("over_closure", "tilt_yaw", ...), each with its value in the

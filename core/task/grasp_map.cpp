@@ -8,11 +8,13 @@
 
 namespace handlab::sim {
 
-std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors) {
+std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors,
+                                             bool with_jitter) {
   std::vector<ClosingPoint> points = {{"", 0.0, GraspClosing{}}};
   for (const ClosingFactor& f : closing_factors()) {
     if (!factors.empty() && std::find(factors.begin(), factors.end(), f.name) == factors.end())
       continue;
+    if (factors.empty() && f.name == "jitter" && !with_jitter) continue;
     for (double level : f.levels) {
       GraspClosing closing;
       set_closing_factor(closing, f.name, level);
@@ -22,8 +24,10 @@ std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& fac
   return points;
 }
 
-std::vector<ClosingPoint> factor_pairs_grid() {
-  const std::vector<ClosingFactor>& factors = closing_factors();
+std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter) {
+  std::vector<ClosingFactor> factors;
+  for (const ClosingFactor& f : closing_factors())
+    if (with_jitter || f.name != "jitter") factors.push_back(f);
   std::vector<ClosingPoint> points;
   for (std::size_t a = 0; a < factors.size(); ++a)
     for (std::size_t b = a + 1; b < factors.size(); ++b)
@@ -51,7 +55,7 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
     for (std::size_t i = next++; i < points.size(); i = next++) {
       try {
         const PinchScript script =
-            make_grasp_script(scene.skeleton, scene.model, points[i].closing);
+            make_grasp_script(scene.skeleton, scene.model, points[i].closing, scene.jitter);
         const PinchReport r = run_pinch(scene.model, scene.skeleton, script, options);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];

@@ -19,13 +19,14 @@ struct ClosingPoint {
   GraspClosing closing;
 };
 
-// Every factor of `factors` (all when empty) alone at each of its levels, the others at the
-// scripted pinch's; the scripted pinch first, once.
-std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors = {});
+// Every factor of `factors` (all when empty, the jitter only `with_jitter`) alone at each of
+// its levels, the others at the scripted pinch's; the scripted pinch first, once.
+std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& factors = {},
+                                             bool with_jitter = false);
 
-// Every pair of factors at each pair of their pair_levels, the others at the scripted pinch's;
-// factor "pair", level the closing's number (1, 2, ...).
-std::vector<ClosingPoint> factor_pairs_grid();
+// Every pair of factors (the jitter only `with_jitter`) at each pair of their pair_levels, the
+// others at the scripted pinch's; factor "pair", level the closing's number (1, 2, ...).
+std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter = false);
 
 struct GraspOutcome {
   ClosingPoint point;
@@ -35,8 +36,8 @@ struct GraspOutcome {
   double pinch_error_mm = 0.0;  // how far the closed pose misses the pads' targets (IK)
 };
 
-// Runs each point on `scene`'s hand and cube, `jobs` at once (each on one thread of the
-// simulator); `done` is called with the count finished after each, under a lock, from the
+// Runs each point on `scene`'s hand and cube (and its jitter), `jobs` at once (each on one thread
+// of the simulator); `done` is called with the count finished after each, under a lock, from the
 // worker thread that finished it.
 std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
                                         const std::vector<ClosingPoint>& points, int jobs,

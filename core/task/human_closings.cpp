@@ -56,7 +56,8 @@ const std::vector<ClosingParameter>& human_closing_parameters() {
   return table;
 }
 
-std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, double cube_size) {
+std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, double cube_size,
+                                              double jitter) {
   util::PortableRandom random(seed);
   std::vector<ClosingPoint> points;
   for (int i = 0; i < count; ++i) {
@@ -67,6 +68,7 @@ std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, dou
     c.offset_along = clipped_normal(random, std::min(0.003 / cube_size, 0.1), 0.4);
     c.lead_s = clipped_normal(random, 0.025, 0.080);
     c.closing_speed = std::clamp(log_normal(random, 0.04, 0.67), 0.02, 0.30);
+    c.jitter = jitter;
     points.push_back({"draw", double(i + 1), c});
   }
   return points;

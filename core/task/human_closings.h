@@ -20,8 +20,10 @@ struct ClosingParameter {
 };
 const std::vector<ClosingParameter>& human_closing_parameters();
 
-// `count` closings drawn for a cube of `cube_size` (m) from `seed`; factor "draw", level the
+// `count` closings drawn for a cube of `cube_size` (m) from `seed`, each with `jitter` times a
+// recording's tracker jitter (1 with one: its own; 0 without); factor "draw", level the
 // draw's number (1, 2, ...). The same seed gives the same closings on every platform.
-std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, double cube_size);
+std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, double cube_size,
+                                              double jitter = 0.0);
 
 }  // namespace handlab::sim

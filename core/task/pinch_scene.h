@@ -18,6 +18,8 @@ struct PinchScene {
   hand::HandFlesh flesh;
   HandSimModel model;
   PinchScript script;
+  // A real recording's tracker jitter, for closings that lay it on (none when null).
+  std::shared_ptr<const PoseJitter> jitter;
 
   // The hand above the cube on the floor, at rest, as the script starts.
   HandSimState start() const;

@@ -82,6 +82,7 @@ hand::HandPose PinchScript::target(double t) const {
                       approach_height * (1 - smooth((t - shape_end) / (approach_end - shape_end))) +
                           lift_height * smooth((t - lift_start) / (lift_end - lift_start)),
                       0);
+  if (jitter) jitter->apply(t, jitter_scale, pose);
   return pose;
 }
 
@@ -211,8 +212,15 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
 // The wrist goes where the script's pinch puts it; a closing past (or short of) that goes on
 // with the fingers alone, as a person's fingers close on past a face they do not feel.
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                              const GraspClosing& closing) {
-  return make_script(skeleton, model, closing, GraspClosing{}.over_closure);
+                              const GraspClosing& closing,
+                              std::shared_ptr<const PoseJitter> jitter) {
+  PinchScript script = make_script(skeleton, model, closing, GraspClosing{}.over_closure);
+  if (closing.jitter > 0) {
+    if (!jitter) throw std::invalid_argument("a closing with jitter needs a recording's jitter");
+    script.jitter = std::move(jitter);
+    script.jitter_scale = closing.jitter;
+  }
+  return script;
 }
 
 double grip_force(const HandSimModel& model, const HandSimState& state) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -15,6 +16,7 @@
 #include "core/hand/skeleton.h"
 #include "core/sim/hand_simulator.h"
 #include "core/task/grasp_closing.h"
+#include "core/task/tracker_jitter.h"
 
 namespace handlab::sim {
 
@@ -31,6 +33,9 @@ struct PinchScript {
   // s per degree of freedom: how much later than the others it starts to close (one digit
   // before the other); empty: all together.
   std::vector<double> dof_delay;
+  // A recording's tracker jitter on every pose, `jitter_scale` times (none when null).
+  std::shared_ptr<const PoseJitter> jitter;
+  double jitter_scale = 0.0;
   int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
   double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
 
@@ -47,9 +52,11 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
 // The same pinch-and-lift closed as `closing` says (grasp_closing.h): the pads' targets
 // `over_closure` past the faces along the tilted axis, moved along the faces, one digit
 // `lead_s` before the other, at `closing_speed`, held `hold_s`. The default closing is the
-// scripted pinch, the same poses and timeline to the bit.
+// scripted pinch, the same poses and timeline to the bit. A closing with jitter takes it from
+// `jitter` (throws std::invalid_argument without one).
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                              const GraspClosing& closing);
+                              const GraspClosing& closing,
+                              std::shared_ptr<const PoseJitter> jitter = nullptr);
 
 // The grip at a state: over the cube's pairs of opposite faces, the lesser of the two faces'
 // flesh normal forces (N).

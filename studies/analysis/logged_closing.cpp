@@ -108,21 +108,36 @@ ClosingReader::Pads ClosingReader::pads_at(const store::FrameRecord& f) const {
 
 LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames, std::size_t grasp,
                                   double side) const {
-  const Eigen::Vector3d half = Eigen::Vector3d::Constant(side / 2);
   LoggedClosing c;
+  const double thumb_touch = touch_began(frames, grasp, &store::FrameRecord::thumb_contact),
+               index_touch = touch_began(frames, grasp, &store::FrameRecord::index_contact);
+  c.lead_s = index_touch - thumb_touch;
+  // The frame before either digit touched (the pads still on their own sides) sets the faces'
+  // axis; the frame both touched from, the closing's tilt and offset.
+  auto frame_at = [&](double time, int before) {
+    std::size_t k = grasp;
+    while (k > 0 && frames[k].time > time) --k;
+    return before && k > 0 && frames[k].time >= time ? k - 1 : k;
+  };
+  const double first = std::fmin(thumb_touch, index_touch),
+               both = std::fmax(thumb_touch, index_touch);
+  const std::size_t apart = std::isnan(first) ? grasp : frame_at(first, 1);
+  const std::size_t touching = std::isnan(both) ? grasp : frame_at(both, 0);
+  const Pads before = pads_at(frames[apart]);
+  Eigen::Index n = 0;
+  (before.thumb - before.index).cwiseAbs().maxCoeff(&n);
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  normal(n) = (before.thumb - before.index)(n) > 0 ? 1.0 : -1.0;
+  // Each pad past its face: half of what the gap between them falls short of the side.
   std::vector<double> depths;
   for (std::size_t k = grasp; k < frames.size() && grasped(frames[k]); ++k) {
     const Pads p = pads_at(frames[k]);
-    depths.push_back(-0.5 * (sim::box_proximity(half, p.thumb).distance +
-                             sim::box_proximity(half, p.index).distance));
+    depths.push_back(0.5 * (side - (p.thumb - p.index).dot(normal)));
   }
   c.over_closure = median(depths);
-  // The axis against the nearest faces' normal n; the cube's most upright other axis u.
-  const store::FrameRecord& f = frames[grasp];
+  const store::FrameRecord& f = frames[touching];
   const Pads p = pads_at(f);
   const Eigen::Vector3d axis = (p.thumb - p.index).normalized();
-  Eigen::Index n = 0;
-  axis.cwiseAbs().maxCoeff(&n);
   const Eigen::Vector3d up_in_cube =
       f.cube_rotation.cast<double>().conjugate() * Eigen::Vector3d::UnitY();
   Eigen::Index u = (n + 1) % 3, h = (n + 2) % 3;
@@ -131,22 +146,17 @@ LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames,
   c.tilt_yaw = std::atan2(std::abs(axis(h)), along_n);
   c.tilt_pitch = std::atan2(std::abs(axis(u)), along_n);
   c.offset_along = std::abs(0.5 * (p.thumb + p.index)(h)) / side;
-  c.lead_s = touch_began(frames, grasp, &store::FrameRecord::index_contact) -
-             touch_began(frames, grasp, &store::FrameRecord::thumb_contact);
   // Each pad's speed against the cube over the frame before its touch began.
   std::vector<double> speeds;
-  for (bool store::FrameRecord::*touching :
-       {&store::FrameRecord::thumb_contact, &store::FrameRecord::index_contact}) {
-    const double began = touch_began(frames, grasp, touching);
-    std::size_t k = grasp;
-    while (k > 0 && frames[k].time > began) --k;
-    if (std::isnan(began) || k == 0) continue;
-    const Pads now = pads_at(frames[k]), before = pads_at(frames[k - 1]);
-    const bool thumb = touching == &store::FrameRecord::thumb_contact;
+  for (const auto& [touch, thumb] : {std::pair{thumb_touch, true}, std::pair{index_touch, false}}) {
+    if (std::isnan(touch)) continue;
+    const std::size_t k = frame_at(touch, 0);
+    if (k == 0) continue;
+    const Pads now = pads_at(frames[k]), earlier = pads_at(frames[k - 1]);
     const double dt = frames[k].time - frames[k - 1].time;
     if (dt > 0)
       speeds.push_back(
-          ((thumb ? now.thumb : now.index) - (thumb ? before.thumb : before.index)).norm() / dt);
+          ((thumb ? now.thumb : now.index) - (thumb ? earlier.thumb : earlier.index)).norm() / dt);
   }
   c.closing_speed = speeds.empty()
                         ? std::numeric_limits<double>::quiet_NaN()

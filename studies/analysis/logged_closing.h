@@ -15,16 +15,19 @@
 namespace handlab::studies {
 
 struct LoggedClosing {
-  // m: the two pads' mean depth past the cube's faces (negative: short of them), the median
-  // over the grasp's frames.
+  // m: how far each pad is past its face, on average over the two: half of what the pads' gap
+  // along the faces' normal falls short of the side (negative: the gap is wider), the median
+  // over the grasp's frames. The faces are the pair the pads were across before either
+  // touched, so that pads that close through a small cube count past it, not outside.
   double over_closure = 0.0;
-  // rad: the pinch's axis (index pad to thumb pad) from the nearest faces' normal at the
-  // grasp's first frame, about the cube's most upright axis (yaw) and about the faces' other
-  // one (pitch); magnitudes, the map's levels either side of 0 being near mirror images.
+  // rad: the pinch's axis (index pad to thumb pad) from the faces' normal once both digits
+  // touch, about the cube's most upright other axis (yaw) and about the third (pitch);
+  // magnitudes, the map's levels either side of 0 being near mirror images.
   double tilt_yaw = 0.0, tilt_pitch = 0.0;
-  double offset_along = 0.0;  // of the side: the pads' midpoint from the centre along that axis
+  double offset_along = 0.0;  // of the side: the pads' midpoint from the centre along the third
   // s: the index's first touch of the cube minus the thumb's in the contact run that led to
-  // the grasp (positive: the thumb first); NaN when a digit's touch was not logged.
+  // the grasp (positive: the thumb first; any part of the digit: a finger resting on the
+  // cube's top counts from then); NaN when a digit's touch was not logged.
   double lead_s = 0.0;
   double closing_speed = 0.0;  // m/s: the pads' mean speed against the cube as each touched
 };

@@ -317,7 +317,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     const Result r = run_cli("sim grasp --cube 0.06 --jobs 1 --closing " + spec + " --json -");
     EXPECT_EQ(r.status, 0) << r.out;
     const util::JsonValue doc = util::JsonValue::parse(r.out);
-    EXPECT_EQ(doc["factors"].size(), 7u);
+    EXPECT_EQ(doc["factors"].size(), 8u);
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), 0.06);
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
@@ -325,8 +325,8 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
          {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
           "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm"})
       EXPECT_NE(o.find(key), nullptr) << key;
-    EXPECT_EQ(o["values"].size(), 7u);
-    EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 7u);
+    EXPECT_EQ(o["values"].size(), 8u);
+    EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 8u);
     return o;
   };
   const util::JsonValue holds = closing("over_closure=3");
@@ -346,6 +346,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_EQ(run_cli("sim grasp --factor tilt").status, 2);
   EXPECT_EQ(run_cli("sim grasp --cube 2").status, 2);
   EXPECT_EQ(run_cli("sim grasp --grid none").status, 2) << "no grid and no draws";
+  EXPECT_EQ(run_cli("sim grasp --closing jitter=1").status, 2) << "jitter without a recording";
   EXPECT_EQ(run_cli("sim grasp --physics friction=-1").status, 2);
   EXPECT_EQ(run_cli("sim grasp --physics grip=1").status, 2);
 }

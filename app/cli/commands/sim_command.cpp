@@ -327,6 +327,8 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"closing", "NAME=VALUE,...",
        "close as this closing of sim grasp says (its factors in their units, e.g. "
        "over_closure=20,tilt_pitch=10) instead of the scripted pinch"},
+      {"jitter-from", "RECORDING",
+       "with --closing jitter=X: the recording whose jitter it lays on"},
       {"frames", "DIR", "draw the run offscreen into DIR/frame_NNN.png"},
       {"frame-interval", "SECONDS", "with --frames: time between frames", "0.25"},
       {"view-yaw", "RAD", "with --frames: the camera's turn about the vertical", "-0.8"},
@@ -360,8 +362,12 @@ int sim_pinch(const std::vector<std::string>& argv) {
       sim::make_pinch_scene(cube_option(args), 1, squeeze, hand::HandShape{}.length, parameters);
   if (args.has("closing")) {
     if (args.has("squeeze")) throw UsageError("give --squeeze or --closing, not both");
-    setup.script = sim::make_grasp_script(setup.skeleton, setup.model,
-                                          parse_closing_option(args.text("closing")));
+    const sim::GraspClosing closing = parse_closing_option(args.text("closing"));
+    if (closing.jitter > 0 && !args.has("jitter-from"))
+      throw UsageError("a closing with jitter needs --jitter-from RECORDING");
+    setup.script = sim::make_grasp_script(
+        setup.skeleton, setup.model, closing,
+        args.has("jitter-from") ? recording_jitter(args.text("jitter-from")) : nullptr);
   }
   std::function<void(const sim::HandSimState&)> observer;
   std::optional<FrameWriter> frames;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -14,6 +15,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/progress_line.h"
 #include "core/hand/hand_shape.h"
+#include "core/retarget/recording_poses.h"
 #include "core/sim/sim_parameter_names.h"
 #include "core/task/grasp_map.h"
 #include "core/task/human_closings.h"
@@ -107,12 +109,29 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
       .end_object();
 }
 
-void write_map_json(const std::vector<CubeMap>& maps, int draws, std::uint64_t seed,
-                    const std::vector<std::string>& physics, std::ostream& out) {
+// What a map was run with, besides its closings.
+struct MapRun {
+  int draws = 0;
+  std::uint64_t seed = 0;
+  std::vector<std::string> physics;  // --physics NAME=VALUE
+  std::string jitter_from;
+  std::shared_ptr<const sim::PoseJitter> jitter;
+};
+
+void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::ostream& out) {
   util::JsonWriter json(out);
   json.begin_object().key("physics").begin_array();
-  for (const std::string& item : physics) json.value(item);
-  json.end_array().key("factors").begin_array();
+  for (const std::string& item : run.physics) json.value(item);
+  json.end_array().key("jitter");
+  if (run.jitter)
+    json.begin_object()
+        .field("recording", run.jitter_from)
+        .field("root_rms_mm", 1000 * run.jitter->root_rms())
+        .field("angle_rms_deg", run.jitter->angle_rms() * 180 / M_PI)
+        .end_object();
+  else
+    json.null();
+  json.key("factors").begin_array();
   for (const sim::ClosingFactor& f : sim::closing_factors()) {
     json.begin_object().field("name", f.name).field("unit", f.unit).key("levels").begin_array();
     for (double level : f.levels) json.value(level);
@@ -123,8 +142,8 @@ void write_map_json(const std::vector<CubeMap>& maps, int draws, std::uint64_t s
   json.end_array()
       .key("human_distribution")
       .begin_object()
-      .field("draws", draws)
-      .field("seed", seed);
+      .field("draws", run.draws)
+      .field("seed", run.seed);
   json.key("parameters").begin_array();
   for (const sim::ClosingParameter& p : sim::human_closing_parameters())
     json.begin_object()
@@ -184,6 +203,14 @@ sim::GraspClosing parse_closing_option(const std::string& text) {
   return closing;
 }
 
+// The tracker jitter of a recording: retargeted by Naive (its angles as tracked) onto the study
+// hand, less the poses' moving average over 0.1 s.
+std::shared_ptr<const sim::PoseJitter> recording_jitter(const std::string& path) {
+  const retarget::RecordingPoses poses =
+      retarget::retarget_recording(tracking::read_recording(path), retarget::Strategy::kNaive);
+  return std::make_shared<const sim::PoseJitter>(sim::pose_jitter(poses.times, poses.poses, 0.1));
+}
+
 OptionSpec physics_option() {
   return {"physics", "NAME=VALUE",
           "change a simulator parameter (SI units; docs/simulator.md), e.g. "
@@ -221,6 +248,9 @@ int sim_grasp(const std::vector<std::string>& argv) {
        "single"},
       {"draws", "N", "also run N closings drawn from the distribution of people's closings", "0"},
       {"seed", "S", "the draws' seed", "1"},
+      {"jitter-from", "RECORDING",
+       "lay this recording's tracker jitter on the closings: the jitter factor in the grid, "
+       "its own jitter in the draws (e.g. data/leap/pinch.json.lz)"},
       {"jobs", "J", "closings run side by side (default: the machine's cores)", "0"},
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
   };
@@ -259,6 +289,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
   const long draws = args.integer("draws");
   if (draws < 0) throw UsageError("--draws must be 0 or more");
   const std::uint64_t seed = args.seed("seed");
+  std::shared_ptr<const sim::PoseJitter> jitter;
+  if (args.has("jitter-from")) jitter = recording_jitter(args.text("jitter-from"));
   std::vector<sim::ClosingPoint> grid_points;
   if (args.has("closing")) {
     if (args.has("factor") || args.has("grid") || draws > 0)
@@ -270,12 +302,15 @@ int sim_grasp(const std::vector<std::string>& argv) {
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--factor: ") + e.what());
     }
-    grid_points = sim::single_factor_grid(args.all("factor"));
+    grid_points = sim::single_factor_grid(args.all("factor"), jitter != nullptr);
   } else if (args.has("factor")) {
     throw UsageError("--factor maps single factors: give it with --grid single");
   } else if (grid == "pairs") {
-    grid_points = sim::factor_pairs_grid();
+    grid_points = sim::factor_pairs_grid(jitter != nullptr);
   }
+  for (const sim::ClosingPoint& p : grid_points)
+    if (p.closing.jitter > 0 && !jitter)
+      throw UsageError("a closing with jitter needs --jitter-from RECORDING");
   if (grid_points.empty() && draws == 0) throw UsageError("--grid none needs --draws N");
   int jobs = int(args.integer("jobs"));
   if (jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
@@ -287,10 +322,12 @@ int sim_grasp(const std::vector<std::string>& argv) {
   apply_physics_option(args, parameters);
   for (double side : cubes) {
     std::vector<sim::ClosingPoint> points = grid_points;
-    for (sim::ClosingPoint& p : sim::human_closing_draws(int(draws), seed, side))
+    for (sim::ClosingPoint& p :
+         sim::human_closing_draws(int(draws), seed, side, jitter ? 1.0 : 0.0))
       points.push_back(std::move(p));
-    const sim::PinchScene scene =
+    sim::PinchScene scene =
         sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters);
+    scene.jitter = jitter;
     ProgressLine progress(to_stdout);
     CubeMap map;
     map.cube_size = side;
@@ -303,12 +340,19 @@ int sim_grasp(const std::vector<std::string>& argv) {
       progress.show(done, text);
     });
     progress.finish();
-    if (!to_stdout) print_map(map);
+    if (!to_stdout) {
+      if (jitter && maps.empty())
+        std::printf("jitter of %s: the wrist %.2f mm, the joints %.2f deg RMS\n",
+                    args.text("jitter-from").c_str(), 1000 * jitter->root_rms(),
+                    jitter->angle_rms() * 180 / M_PI);
+      print_map(map);
+    }
     maps.push_back(std::move(map));
   }
   if (args.has("json"))
     util::write_output(args.text("json"), [&](std::ostream& out) {
-      write_map_json(maps, int(draws), seed, args.all("physics"), out);
+      write_map_json(
+          maps, {int(draws), seed, args.all("physics"), args.text("jitter-from"), jitter}, out);
     });
   return 0;
 }

@@ -1,12 +1,14 @@
 // handlab-cli sim grasp: the grasp's robustness map over human-like closings (sim_grasp.cpp).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/cli/arguments.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/task/grasp_closing.h"
+#include "core/task/tracker_jitter.h"
 
 namespace handlab::cli {
 
@@ -15,6 +17,10 @@ int sim_grasp(const std::vector<std::string>& argv);
 // --closing over_closure=10,lead=100: one closing, in the factors' units (sim grasp, sim pinch);
 // throws UsageError naming what is wrong.
 sim::GraspClosing parse_closing_option(const std::string& text);
+
+// The tracker jitter of a recording: retargeted by Naive (its angles as tracked) onto the study
+// hand, less the poses' moving average over 0.1 s (--jitter-from of sim grasp and sim pinch).
+std::shared_ptr<const sim::PoseJitter> recording_jitter(const std::string& path);
 
 // --physics NAME=VALUE (repeatable): a simulator parameter changed, for sim pinch and sim grasp.
 OptionSpec physics_option();

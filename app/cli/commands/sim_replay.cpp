@@ -16,7 +16,7 @@
 #include "app/cli/arguments.h"
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
-#include "core/retarget/retargeter.h"
+#include "core/retarget/recording_poses.h"
 #include "core/sim/hand_simulator.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
@@ -58,32 +58,12 @@ int sim_replay(const std::vector<std::string>& argv) {
   if (threads < 1 || threads > 64) throw UsageError("--threads must be 1 to 64");
 
   const tracking::Recording recording = tracking::read_recording(args.positional()[0]);
-  tracking::Side side = tracking::Side::kRight;
-  auto fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
-  if (!fitter) {
-    side = tracking::Side::kLeft;
-    fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
-  }
-  if (!fitter) throw std::runtime_error(recording.source + ": no hand in the recording");
-  hand::HandShape shape;  // the study's hand, 21.4 cm
-  shape.left = side == tracking::Side::kLeft;
-  const hand::Skeleton skeleton = hand::build_simulated_hand(shape);
-  auto calibration = retarget::calibrate_open_palm(recording.frames, side, skeleton, *fitter);
-  if (!calibration) {  // no open hand: the ratio of hand lengths, as `retarget` does
-    calibration = retarget::Calibration{};
-    calibration->scale = shape.length / *tracking::estimate_hand_length(recording.frames, side);
-  }
-  const auto strategy =
-      strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
-  retarget::Retargeter retargeter(strategy, skeleton, *calibration,
-                                  strategy == retarget::Strategy::kNaive ? fitter : std::nullopt);
-  std::vector<hand::HandPose> poses;
-  std::vector<double> times;
-  for (const tracking::TrackedFrame& frame : recording.frames)
-    if (const tracking::TrackedHand* h = frame.hand(side)) {
-      poses.push_back(retargeter.retarget(*h).pose);
-      times.push_back(frame.timestamp);
-    }
+  const retarget::RecordingPoses replay = retarget::retarget_recording(
+      recording, strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs);
+  const hand::HandShape& shape = replay.shape;  // the study's hand, 21.4 cm
+  const hand::Skeleton& skeleton = replay.skeleton;
+  const std::vector<hand::HandPose>& poses = replay.poses;
+  const std::vector<double>& times = replay.times;
   const bool hold = args.flag("hold");
   const double length = times.back() - times.front();
   const double duration = hold && args.has("duration") ? args.number("duration") : length;
