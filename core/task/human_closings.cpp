@@ -49,9 +49,13 @@ const std::vector<ClosingParameter>& human_closing_parameters() {
        "at right angles; no speed at contact at hand",
        true},
       {"hold", "5 s, the scripted pinch's",
-       "a lab lift's hold (Johansson & Westling 1988 held "
-       "10 s); a pick-and-place holds shorter",
+       "a lab lift's hold (Johansson & Westling 1988 held 10 s); a pick-and-place holds "
+       "shorter",
        true},
+      {"jitter", "1: the recording's own (sim grasp --jitter-from)",
+       "a real recording's tracker jitter (data/leap: Leap Motion, LeapJS Playback): the "
+       "intermediate hand retargeted from it by Naive less its 0.1 s moving average",
+       false},
   };
   return table;
 }

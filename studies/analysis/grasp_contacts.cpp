@@ -9,6 +9,7 @@
 
 #include "core/hand/simulated_hand.h"
 #include "core/task/cube_task.h"
+#include "core/task/tracker_jitter.h"
 
 namespace handlab::studies {
 namespace {
@@ -72,6 +73,25 @@ Phalanx phalanx(const hand::Skeleton& hand, const char* name) {
   const int bone = hand.bone_index(name);
   if (bone < 0) throw std::runtime_error(std::string("the simulated hand has no bone ") + name);
   return {bone, hand.bones[std::size_t(bone)].length};
+}
+
+// The jitter of the intermediate hand the trial's frames hold.
+void set_jitter(const TrialReplay& replay, TrialGrasps& trial) {
+  std::vector<double> times;
+  std::vector<hand::HandPose> poses;
+  for (const store::FrameRecord& f : replay.frames) {
+    hand::HandPose pose;
+    pose.root_position = f.root_position.cast<double>();
+    pose.root_rotation = f.root_rotation.cast<double>().toRotationMatrix();
+    pose.angles = Eigen::Map<const Eigen::VectorXf>(f.angles.data(), Eigen::Index(f.angles.size()))
+                      .cast<double>();
+    times.push_back(f.time);
+    poses.push_back(std::move(pose));
+  }
+  if (poses.size() < 2) return;
+  const sim::PoseJitter jitter = sim::pose_jitter(times, poses, 0.1);
+  trial.jitter_root_rms = jitter.root_rms();
+  trial.jitter_angle_rms = jitter.angle_rms();
 }
 
 }  // namespace
@@ -165,8 +185,15 @@ std::vector<TrialGrasps> study_grasp_contacts(store::StudyStore& store,
       if (!result || row.frames == 0) continue;
       const TrialReplay replay = load_trial_replay(store, p.id, row.position, row.attempt);
       try {
-        out.push_back({p.id, replay.condition, row.position, row.attempt, replay.layout.cube_size,
-                       grasp_contacts(replay, reader_for(replay.simulated_hand))});
+        TrialGrasps trial;
+        trial.participant = p.id;
+        trial.condition = replay.condition;
+        trial.position = row.position;
+        trial.attempt = row.attempt;
+        trial.cube_size = replay.layout.cube_size;
+        trial.grasps = grasp_contacts(replay, reader_for(replay.simulated_hand));
+        set_jitter(replay, trial);
+        out.push_back(std::move(trial));
       } catch (const std::runtime_error& e) {
         throw std::runtime_error(p.id + "'s trial " + std::to_string(row.position + 1) +
                                  ", attempt " + std::to_string(row.attempt) + ": " + e.what());

@@ -54,6 +54,9 @@ struct TrialGrasps {
   int attempt = 0;         // from 1
   double cube_size = 0.0;  // m, the condition's
   std::vector<GraspContact> grasps;
+  // The intermediate hand's jitter over the trial (core/task/tracker_jitter.h, 0.1 s): RMS of
+  // the wrist's offsets (m) and of the joint angles' (rad), the grasp map's jitter factor.
+  double jitter_root_rms = 0.0, jitter_angle_rms = 0.0;
 };
 
 // The grasps of every trial with a result (completed or timed out, practice included) whose

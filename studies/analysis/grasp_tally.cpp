@@ -40,6 +40,14 @@ void add(GraspTally& t, const GraspContact& g) {
   if (g.closing) (was_lost ? t.lost_closings : t.kept_closings).push_back(*g.closing);
 }
 
+void write_spread(util::JsonWriter& w, const char* key, const std::vector<double>& values,
+                  double unit) {
+  const FactorSpread s = spread_of(values, unit);
+  w.key(key).begin_object().field("n", s.n);
+  if (s.n > 0) w.field("p10", s.p10).field("median", s.median).field("p90", s.p90);
+  w.end_object();
+}
+
 void write_spreads(util::JsonWriter& w, const std::vector<LoggedClosing>& closings) {
   w.begin_object();
   for (const LoggedFactor& f : logged_factors()) {
@@ -79,6 +87,8 @@ std::vector<GraspTally> tally_grasps(const std::vector<TrialGrasps>& trials,
       it = tallies.end() - 1;
     }
     ++it->trials;
+    it->jitter_root_rms.push_back(trial.jitter_root_rms);
+    it->jitter_angle_rms.push_back(trial.jitter_angle_rms);
     for (const GraspContact& g : trial.grasps) add(*it, g);
   }
   return tallies;
@@ -109,7 +119,10 @@ void write_grasps_json(util::JsonWriter& w, const std::vector<TrialGrasps>& tria
       w.field("grasps", t.by_offset[bin].grasps).field("lost", t.by_offset[bin].lost);
       w.end_object();
     }
-    w.end_array().key("closings").begin_object().key("kept");
+    w.end_array().key("jitter").begin_object();
+    write_spread(w, "root_rms_mm", t.jitter_root_rms, 1e-3);
+    write_spread(w, "angle_rms_deg", t.jitter_angle_rms, M_PI / 180);
+    w.end_object().key("closings").begin_object().key("kept");
     write_spreads(w, t.kept_closings);
     w.key("lost");
     write_spreads(w, t.lost_closings);

@@ -30,6 +30,7 @@ struct GraspTally {
   std::array<GraspCount, 3> by_thumb{}, by_index{};         // indexed by PhalanxPart
   std::array<GraspCount, 3> by_offset{};                    // by the bins of kPinchOffsetEdges
   std::vector<LoggedClosing> kept_closings, lost_closings;  // the grasps' whose were read
+  std::vector<double> jitter_root_rms, jitter_angle_rms;    // the trials' (TrialGrasps)
   int lost() const { return dropped + landed; }
 };
 

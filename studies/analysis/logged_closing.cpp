@@ -62,15 +62,21 @@ const std::vector<LoggedFactor>& logged_factors() {
 
 FactorSpread factor_spread(const std::vector<LoggedClosing>& closings, const LoggedFactor& f) {
   std::vector<double> values;
-  for (const LoggedClosing& c : closings)
-    if (!std::isnan(c.*(f.field))) values.push_back(c.*(f.field) / f.scale);
+  for (const LoggedClosing& c : closings) values.push_back(c.*(f.field));
+  return spread_of(values, f.scale);
+}
+
+FactorSpread spread_of(const std::vector<double>& values, double unit) {
+  std::vector<double> kept;
+  for (double v : values)
+    if (!std::isnan(v)) kept.push_back(v / unit);
   FactorSpread s;
-  s.n = int(values.size());
-  if (values.empty()) return s;
-  std::sort(values.begin(), values.end());
-  s.p10 = quantile(values, 0.1);
-  s.median = quantile(values, 0.5);
-  s.p90 = quantile(values, 0.9);
+  s.n = int(kept.size());
+  if (kept.empty()) return s;
+  std::sort(kept.begin(), kept.end());
+  s.p10 = quantile(kept, 0.1);
+  s.median = quantile(kept, 0.5);
+  s.p90 = quantile(kept, 0.9);
   return s;
 }
 

@@ -48,6 +48,8 @@ struct FactorSpread {
   double p10 = 0.0, median = 0.0, p90 = 0.0;
 };
 FactorSpread factor_spread(const std::vector<LoggedClosing>& closings, const LoggedFactor& f);
+// The same of any values (SI), in a unit of `unit` SI (NaN left out).
+FactorSpread spread_of(const std::vector<double>& values, double unit);
 
 // Reads closings for one simulated hand: its pads (finger_pads.h) from its flesh, built once.
 class ClosingReader {

@@ -193,6 +193,14 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
       EXPECT_LT(std::abs(g["pinch_offset_m"][1].as_number()),
                 g["cube_size_m"].as_number() / 2 + 0.015)
           << "the pinch is on the cube, up and down";
+      // Its closing in the grasp map's terms: the pads' gap within a few cm of the cube's side,
+      // the axis's tilts within a right angle.
+      for (const char* factor :
+           {"over_closure", "tilt_yaw", "tilt_pitch", "offset_along", "lead", "closing_speed"})
+        EXPECT_NE(g["closing"].find(factor), nullptr) << factor;
+      EXPECT_LT(std::abs(g["closing"]["over_closure"].as_number()), 40.0);
+      EXPECT_LE(g["closing"]["tilt_yaw"].as_number(), 90.0);
+      EXPECT_GE(g["closing"]["tilt_pitch"].as_number(), 0.0);
     }
     EXPECT_EQ(std::to_string(dropped),
               check.query_text("SELECT coalesce(sum(t.drops), 0) " + results));
@@ -203,6 +211,10 @@ TEST(CliStudy, CreateEnrolRunStatusExportAnalyze) {
       for (const char* part : {"base", "pad", "tip"})
         by_thumb += int(group["by_thumb"][part]["grasps"].as_number());
       EXPECT_EQ(group["by_pinch_offset"].size(), 3u);
+      // A tracked hand jitters: some of what a 0.1 s average leaves, under a centimetre.
+      EXPECT_GT(group["jitter"]["root_rms_mm"]["median"].as_number(), 0.0);
+      EXPECT_LT(group["jitter"]["root_rms_mm"]["median"].as_number(), 10.0);
+      EXPECT_EQ(group["closings"]["kept"]["over_closure"]["unit"].as_string(), "mm");
     }
     EXPECT_EQ(by_thumb, int(grasps["grasps"].size()));
   }

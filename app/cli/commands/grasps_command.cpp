@@ -56,6 +56,14 @@ void print_tally(const studies::GraspTally& t) {
             << edge(e[0]) << ": " << share(t.by_offset[0]) << ", " << edge(e[0]) << "-"
             << edge(e[1]) << ": " << share(t.by_offset[1]) << ", >= " << edge(e[1]) << ": "
             << share(t.by_offset[2]) << "\n";
+  const studies::FactorSpread root = studies::spread_of(t.jitter_root_rms, 1e-3),
+                              angle = studies::spread_of(t.jitter_angle_rms, M_PI / 180);
+  if (root.n > 0)
+    std::printf(
+        "  the intermediate hand's jitter (RMS of what its 0.1 s average leaves; sim grasp's "
+        "jitter), median [10th-90th percentile] of the trials: the wrist %.3g [%.3g, %.3g] "
+        "mm, the joints %.3g [%.3g, %.3g] deg\n",
+        root.median, root.p10, root.p90, angle.median, angle.p10, angle.p90);
   if (t.kept_closings.empty() && t.lost_closings.empty()) return;
   std::printf(
       "  closings in the grasp map's terms (sim grasp), median [10th-90th percentile]:\n"
