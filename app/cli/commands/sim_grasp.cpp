@@ -237,13 +237,14 @@ int sim_grasp(const std::vector<std::string>& argv) {
        true},
       {"factor", "NAME",
        "map only this factor of the closing; repeatable (default: every one: over_closure, "
-       "tilt_yaw, tilt_pitch, offset_along, lead, closing_speed, hold)",
+       "tilt_yaw, tilt_pitch, offset_along, lead, closing_speed, hold, and jitter with "
+       "--jitter-from)",
        "", true},
       {"closing", "NAME=VALUE,...",
        "run this one closing instead of the grid, in the factors' units (mm, deg, side, ms, "
        "cm/s, s), e.g. over_closure=20,lead=100"},
       {"grid", "single|pairs|none",
-       "each factor alone at its levels, or every pair of factors at half and all of their "
+       "each factor alone at its levels, or every pair of factors at the ends of half their "
        "ranges, or no grid",
        "single"},
       {"draws", "N", "also run N closings drawn from the distribution of people's closings", "0"},
@@ -259,15 +260,16 @@ int sim_grasp(const std::vector<std::string>& argv) {
   if (args.help_requested()) {
     std::cout
         << "Usage: handlab-cli sim grasp [--cube SIDE]... [--grid single|pairs|none] "
-           "[--factor NAME]... [--draws N] [--closing NAME=VALUE,...] [--jobs J] [--json "
-           "OUT]\n\n"
+           "[--factor NAME]... [--draws N] [--closing NAME=VALUE,...] [--jitter-from "
+           "RECORDING] [--physics NAME=VALUE]... [--jobs J] [--json OUT]\n\n"
            "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing "
            "as the closing says on the intermediate hand it follows: each pad's target "
            "past its face (over_closure, mm), the pinch's axis turned about the vertical "
            "and the faces' horizontal (tilt_yaw, tilt_pitch, degrees), the pads moved "
            "along the faces (offset_along, of the side), one digit first (lead, ms: the "
            "thumb before the index; below 0 after), the closing's speed (closing_speed, "
-           "cm/s of each pad) and the hold (hold, s). The grid runs each factor alone at "
+           "cm/s of each pad), the hold (hold, s) and a real recording's tracker jitter laid on "
+           "the hand (jitter, times it; --jitter-from). The grid runs each factor alone at "
            "its levels from the scripted pinch (sim pinch), or pairs of factors; --draws "
            "adds closings drawn from a distribution of people's closings whose sources "
            "--json lists. Reports per closing whether the cube was held through the lift "
