@@ -19,6 +19,7 @@ struct GraspClosing {
   double closing_speed = 0.0;   // m/s: each pad's mean speed as it closes; 0: the script's 0.5 s
   double hold_s = 5.0;          // s: lifted and held before the fingers open
   double jitter = 0.0;          // times a real recording's tracker jitter laid on the hand
+  double jitter_phase = 0.0;    // where in the recording the jitter starts (of its length)
 };
 
 // A closing's factors by name ("over_closure", "tilt_yaw", ...), each with its value in the
@@ -28,7 +29,7 @@ struct ClosingFactor {
   double GraspClosing::*field;
   double scale;                // the unit in SI (0.001 for mm, pi/180 for degrees, ...)
   std::vector<double> levels;  // the grid's levels, in the command line's unit
-  // The levels the pairs' grid crosses with each other factor's: half the range's ends.
+  // The levels the pairs' grid crosses with each other factor's (about half its range).
   std::vector<double> pair_levels;
 };
 const std::vector<ClosingFactor>& closing_factors();

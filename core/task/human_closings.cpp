@@ -22,7 +22,8 @@ double clipped_normal(util::PortableRandom& random, double sd, double limit) {
 
 const std::vector<ClosingParameter>& human_closing_parameters() {
   static const std::vector<ClosingParameter> table = {
-      {"over_closure", "log-normal per pad, median 6 mm, 90 % within 1.8-20 mm, at most 30 mm",
+      {"over_closure",
+       "log-normal, both pads alike, median 6 mm, 90 % within 1.8-20 mm, at most 30 mm",
        "Prachyabrued & Borst 2012 (Int J Hum-Comput Stud 70(11)), 2014 (IEEE 3DUI) and 2016 "
        "(IEEE TVCG 22(6)) measured the real fingers' penetration of virtual objects grasped "
        "without haptics (30 people picking up and dropping a ball); their depths were not at "
@@ -43,8 +44,8 @@ const std::vector<ClosingParameter>& human_closing_parameters() {
        "the delay",
        true},
       {"closing_speed",
-       "log-normal per pad, median 4 cm/s, 90 % within 1.5-12 cm/s, from 2 to "
-       "30 cm/s",
+       "log-normal, both pads alike, median 4 cm/s, 90 % within 1.3-12 cm/s, from "
+       "2 to 30 cm/s",
        "Smeets & Brenner 1999 (Motor Control 3:237): the digits approach the faces slowly and "
        "at right angles; no speed at contact at hand",
        true},
@@ -73,6 +74,7 @@ std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, dou
     c.lead_s = clipped_normal(random, 0.025, 0.080);
     c.closing_speed = std::clamp(log_normal(random, 0.04, 0.67), 0.02, 0.30);
     c.jitter = jitter;
+    c.jitter_phase = random.uniform();  // each draw its own stretch of the recording
     points.push_back({"draw", double(i + 1), c});
   }
   return points;

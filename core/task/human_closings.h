@@ -21,8 +21,9 @@ struct ClosingParameter {
 const std::vector<ClosingParameter>& human_closing_parameters();
 
 // `count` closings drawn for a cube of `cube_size` (m) from `seed`, each with `jitter` times a
-// recording's tracker jitter (1 with one: its own; 0 without); factor "draw", level the
-// draw's number (1, 2, ...). The same seed gives the same closings on every platform.
+// recording's tracker jitter (1 with one: its own; 0 without) from a stretch of it of its
+// own; factor "draw", level the draw's number (1, 2, ...). The same seed gives the same closings on
+// every platform.
 std::vector<ClosingPoint> human_closing_draws(int count, std::uint64_t seed, double cube_size,
                                               double jitter = 0.0);
 

@@ -82,7 +82,7 @@ hand::HandPose PinchScript::target(double t) const {
                       approach_height * (1 - smooth((t - shape_end) / (approach_end - shape_end))) +
                           lift_height * smooth((t - lift_start) / (lift_end - lift_start)),
                       0);
-  if (jitter) jitter->apply(t, jitter_scale, pose);
+  if (jitter) jitter->apply(jitter_start + t, jitter_scale, pose);
   return pose;
 }
 
@@ -217,6 +217,7 @@ PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel
   PinchScript script = make_script(skeleton, model, closing, GraspClosing{}.over_closure);
   if (closing.jitter > 0) {
     if (!jitter) throw std::invalid_argument("a closing with jitter needs a recording's jitter");
+    script.jitter_start = closing.jitter_phase * jitter->duration();
     script.jitter = std::move(jitter);
     script.jitter_scale = closing.jitter;
   }

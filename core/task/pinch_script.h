@@ -36,6 +36,7 @@ struct PinchScript {
   // A recording's tracker jitter on every pose, `jitter_scale` times (none when null).
   std::shared_ptr<const PoseJitter> jitter;
   double jitter_scale = 0.0;
+  double jitter_start = 0.0;             // s into the recording at t = 0
   int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
   double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
 

@@ -34,6 +34,8 @@ double PoseJitter::angle_rms() const {
 
 void PoseJitter::apply(double t, double scale, hand::HandPose& pose) const {
   if (times.empty() || scale == 0.0) return;
+  if (pose.angles.size() != angles.front().size())
+    throw std::invalid_argument("PoseJitter: a recording's jitter of another hand's joints");
   const double looped = std::fmod(std::max(t, 0.0), duration() > 0 ? duration() : 1.0);
   const std::size_t k =
       std::size_t(std::upper_bound(times.begin(), times.end(), looped) - times.begin() - 1);
@@ -50,7 +52,10 @@ PoseJitter pose_jitter(const std::vector<double>& times, const std::vector<hand:
     throw std::invalid_argument("pose_jitter: fewer than two poses");
   PoseJitter j;
   std::size_t from = 0, to = 0;  // the poses within half a window of pose k: [from, to)
+  double start = 0.0;            // the first pose kept
   for (std::size_t k = 0; k < poses.size(); ++k) {
+    // Where the window is whole: a one-sided average at the ends would lag a moving hand.
+    if (times[k] - times.front() < window / 2 || times.back() - times[k] < window / 2) continue;
     while (times[from] < times[k] - window / 2) ++from;
     while (to < poses.size() && times[to] <= times[k] + window / 2) ++to;
     Eigen::VectorXd angles = Eigen::VectorXd::Zero(poses[k].angles.size());
@@ -62,11 +67,13 @@ PoseJitter pose_jitter(const std::vector<double>& times, const std::vector<hand:
       turn += rotation_vector(poses[i].root_rotation * poses[k].root_rotation.transpose());
     }
     const double n = double(to - from);
-    j.times.push_back(times[k] - times.front());
+    if (j.times.empty()) start = times[k];
+    j.times.push_back(times[k] - start);
     j.angles.push_back(poses[k].angles - angles / n);
     j.root.push_back(poses[k].root_position - root / n);
     j.turn.push_back(-turn / n);
   }
+  if (j.times.size() < 2) throw std::invalid_argument("pose_jitter: shorter than its window");
   return j;
 }
 

@@ -79,7 +79,9 @@ Phalanx phalanx(const hand::Skeleton& hand, const char* name) {
 void set_jitter(const TrialReplay& replay, TrialGrasps& trial) {
   std::vector<double> times;
   std::vector<hand::HandPose> poses;
+  const hand::Skeleton hand = hand::build_simulated_hand(replay.simulated_hand);
   for (const store::FrameRecord& f : replay.frames) {
+    if (f.angles.size() != hand.dofs.size()) continue;  // before the tracker saw a hand
     hand::HandPose pose;
     pose.root_position = f.root_position.cast<double>();
     pose.root_rotation = f.root_rotation.cast<double>().toRotationMatrix();

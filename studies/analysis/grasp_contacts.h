@@ -5,6 +5,7 @@
 // condition, for real and simulated participants alike (docs/study.md).
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,8 +56,10 @@ struct TrialGrasps {
   double cube_size = 0.0;  // m, the condition's
   std::vector<GraspContact> grasps;
   // The intermediate hand's jitter over the trial (core/task/tracker_jitter.h, 0.1 s): RMS of
-  // the wrist's offsets (m) and of the joint angles' (rad), the grasp map's jitter factor.
-  double jitter_root_rms = 0.0, jitter_angle_rms = 0.0;
+  // the wrist's offsets per axis (m) and of the joint angles' (rad), the grasp map's jitter
+  // factor; NaN when fewer than two frames held a hand.
+  double jitter_root_rms = std::numeric_limits<double>::quiet_NaN();
+  double jitter_angle_rms = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The grasps of every trial with a result (completed or timed out, practice included) whose

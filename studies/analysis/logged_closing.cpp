@@ -128,7 +128,8 @@ LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames,
   const double first = std::fmin(thumb_touch, index_touch),
                both = std::fmax(thumb_touch, index_touch);
   const std::size_t apart = std::isnan(first) ? grasp : frame_at(first, 1);
-  const std::size_t touching = std::isnan(both) ? grasp : frame_at(both, 0);
+  const bool both_seen = !std::isnan(thumb_touch) && !std::isnan(index_touch);
+  const std::size_t touching = both_seen ? frame_at(both, 0) : grasp;
   const Pads before = pads_at(frames[apart]);
   Eigen::Index n = 0;
   (before.thumb - before.index).cwiseAbs().maxCoeff(&n);
@@ -152,17 +153,17 @@ LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames,
   c.tilt_yaw = std::atan2(std::abs(axis(h)), along_n);
   c.tilt_pitch = std::atan2(std::abs(axis(u)), along_n);
   c.offset_along = std::abs(0.5 * (p.thumb + p.index)(h)) / side;
-  // Each pad's speed against the cube over the frame before its touch began.
+  // Each pad's mean speed against the cube over the 0.1 s before its touch began (a frame's
+  // step alone would be the tracker's jitter more than the closing).
   std::vector<double> speeds;
   for (const auto& [touch, thumb] : {std::pair{thumb_touch, true}, std::pair{index_touch, false}}) {
     if (std::isnan(touch)) continue;
-    const std::size_t k = frame_at(touch, 0);
-    if (k == 0) continue;
-    const Pads now = pads_at(frames[k]), earlier = pads_at(frames[k - 1]);
-    const double dt = frames[k].time - frames[k - 1].time;
-    if (dt > 0)
-      speeds.push_back(
-          ((thumb ? now.thumb : now.index) - (thumb ? earlier.thumb : earlier.index)).norm() / dt);
+    const std::size_t k = frame_at(touch, 0), from = frame_at(touch - 0.1, 0);
+    const double dt = frames[k].time - frames[from].time;
+    if (dt <= 0) continue;
+    const Pads now = pads_at(frames[k]), earlier = pads_at(frames[from]);
+    speeds.push_back(
+        ((thumb ? now.thumb : now.index) - (thumb ? earlier.thumb : earlier.index)).norm() / dt);
   }
   c.closing_speed = speeds.empty()
                         ? std::numeric_limits<double>::quiet_NaN()

@@ -29,7 +29,8 @@ struct LoggedClosing {
   // the grasp (positive: the thumb first; any part of the digit: a finger resting on the
   // cube's top counts from then); NaN when a digit's touch was not logged.
   double lead_s = 0.0;
-  double closing_speed = 0.0;  // m/s: the pads' mean speed against the cube as each touched
+  // m/s: the pads' mean speed against the cube over the 0.1 s before each touched.
+  double closing_speed = 0.0;
 };
 
 // LoggedClosing's fields by the grasp map's factor names, in the map's units.

@@ -346,7 +346,8 @@ int sim_pinch(const std::vector<std::string>& argv) {
   const Arguments args(specs, argv);
   if (args.help_requested()) {
     std::cout << "Usage: handlab-cli sim pinch --cube 0.01|0.06 [--closing NAME=VALUE,...] "
-                 "[--physics NAME=VALUE]... [--trace CSV] [--json OUT]\n\n"
+                 "[--jitter-from RECORDING] [--physics NAME=VALUE]... [--trace CSV] [--json "
+                 "OUT]\n\n"
                  "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and "
                  "opens the fingers.\nReports whether it was held, its slip between the pads, "
                  "the flesh's deepest penetration, the hold's peak grip and the cube's turn.\n\n"
@@ -360,11 +361,15 @@ int sim_pinch(const std::vector<std::string>& argv) {
   apply_physics_option(args, parameters);
   sim::PinchScene setup =
       sim::make_pinch_scene(cube_option(args), 1, squeeze, hand::HandShape{}.length, parameters);
+  if (args.text("trace") == "-" && args.text("json") == "-")
+    throw UsageError("--trace - and --json - would share standard output: give one a file");
+  if (args.has("jitter-from") && !args.has("closing"))
+    throw UsageError("--jitter-from lays its jitter on a --closing with jitter=X");
   if (args.has("closing")) {
     if (args.has("squeeze")) throw UsageError("give --squeeze or --closing, not both");
     const sim::GraspClosing closing = parse_closing_option(args.text("closing"));
-    if (closing.jitter > 0 && !args.has("jitter-from"))
-      throw UsageError("a closing with jitter needs --jitter-from RECORDING");
+    if ((closing.jitter > 0) != args.has("jitter-from"))
+      throw UsageError("a closing with jitter=X and --jitter-from RECORDING go together");
     setup.script = sim::make_grasp_script(
         setup.skeleton, setup.model, closing,
         args.has("jitter-from") ? recording_jitter(args.text("jitter-from")) : nullptr);

@@ -244,8 +244,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
        "run this one closing instead of the grid, in the factors' units (mm, deg, side, ms, "
        "cm/s, s), e.g. over_closure=20,lead=100"},
       {"grid", "single|pairs|none",
-       "each factor alone at its levels, or every pair of factors at the ends of half their "
-       "ranges, or no grid",
+       "each factor alone at its levels, or every pair of factors at about half their ranges "
+       "(docs/simulator.md), or no grid",
        "single"},
       {"draws", "N", "also run N closings drawn from the distribution of people's closings", "0"},
       {"seed", "S", "the draws' seed", "1"},

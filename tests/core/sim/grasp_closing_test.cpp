@@ -108,9 +108,11 @@ TEST(GraspClosing, UnknownFactorsAndValuesOutsideTheGridAreRefused) {
 
 TEST(GraspClosing, TheGridHoldsEachFactorAloneAndThePinchOnce) {
   const std::vector<ClosingPoint> all = single_factor_grid();
-  std::size_t levels = 0;
-  for (const ClosingFactor& f : closing_factors()) levels += f.levels.size();
-  EXPECT_EQ(all.size(), levels + 1);
+  std::size_t levels = 0, jitter_levels = 0;
+  for (const ClosingFactor& f : closing_factors())
+    (f.name == "jitter" ? jitter_levels : levels) += f.levels.size();
+  EXPECT_EQ(all.size(), levels + 1) << "the jitter only with a recording's";
+  EXPECT_EQ(single_factor_grid({}, true).size(), levels + jitter_levels + 1);
   EXPECT_EQ(all.front().factor, "");
   const std::vector<ClosingPoint> lead = single_factor_grid({"lead"});
   ASSERT_EQ(lead.size(), 8u);
@@ -120,13 +122,17 @@ TEST(GraspClosing, TheGridHoldsEachFactorAloneAndThePinchOnce) {
 
 // Every pair of factors at each pair of their half-range levels, once.
 TEST(GraspClosing, ThePairsGridCrossesEveryTwoFactors) {
-  std::size_t expected = 0;
+  std::size_t expected = 0, with_jitter = 0;
   const std::vector<ClosingFactor>& factors = closing_factors();
   for (std::size_t a = 0; a < factors.size(); ++a)
-    for (std::size_t b = a + 1; b < factors.size(); ++b)
-      expected += factors[a].pair_levels.size() * factors[b].pair_levels.size();
+    for (std::size_t b = a + 1; b < factors.size(); ++b) {
+      const std::size_t n = factors[a].pair_levels.size() * factors[b].pair_levels.size();
+      with_jitter += n;
+      if (factors[a].name != "jitter" && factors[b].name != "jitter") expected += n;
+    }
   const std::vector<ClosingPoint> pairs = factor_pairs_grid();
   ASSERT_EQ(pairs.size(), expected);
+  EXPECT_EQ(factor_pairs_grid(true).size(), with_jitter);
   EXPECT_EQ(pairs.front().factor, "pair");
   EXPECT_EQ(describe(pairs.front().closing), "over_closure 15 mm, tilt_yaw -15 deg");
 }
@@ -145,6 +151,9 @@ TEST(HumanClosings, DrawsAreSeededBoundedAndSourced) {
     EXPECT_GT(c.over_closure, 0.0);
     EXPECT_LE(c.over_closure, 0.030);
     EXPECT_LE(std::abs(c.tilt_yaw), 30 * M_PI / 180);
+    EXPECT_LE(std::abs(c.tilt_pitch), 30 * M_PI / 180);
+    EXPECT_GE(c.jitter_phase, 0.0);
+    EXPECT_LT(c.jitter_phase, 1.0);
     EXPECT_LE(std::abs(c.offset_along), 0.4);
     EXPECT_LE(std::abs(c.lead_s), 0.080);
     EXPECT_GE(c.closing_speed, 0.02);
