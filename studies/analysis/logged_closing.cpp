@@ -120,10 +120,14 @@ LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames,
   c.lead_s = index_touch - thumb_touch;
   // The frame before either digit touched (the pads still on their own sides) sets the faces'
   // axis; the frame both touched from, the closing's tilt and offset.
+  // The frame at `time` (with `before`, the one before it), or a later one that holds the hand:
+  // a trial's first frames may come before the tracker saw it.
   auto frame_at = [&](double time, int before) {
     std::size_t k = grasp;
     while (k > 0 && frames[k].time > time) --k;
-    return before && k > 0 && frames[k].time >= time ? k - 1 : k;
+    if (before && k > 0 && frames[k].time >= time) --k;
+    while (k < grasp && frames[k].angles.size() != skeleton_.dofs.size()) ++k;
+    return k;
   };
   const double first = std::fmin(thumb_touch, index_touch),
                both = std::fmax(thumb_touch, index_touch);
