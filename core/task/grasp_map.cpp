@@ -56,16 +56,9 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
       try {
         const PinchScript script =
             make_grasp_script(scene.skeleton, scene.model, points[i].closing, scene.jitter);
-        const PinchReport r = run_pinch(scene.model, scene.skeleton, script, options);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];
-        o.held = r.held;
-        o.released = r.released;
-        o.lift_m = r.lift;
-        o.slip_mm = r.slip_mm;
-        o.max_penetration_mm = r.max_penetration_mm;
-        o.peak_grip_n = r.peak_grip_n;
-        o.turn_deg = r.turn_deg;
+        o.measures = run_pinch(scene.model, scene.skeleton, script, options);
         o.pinch_error_mm = 1000 * script.pinch_error;
       } catch (...) {
         const std::lock_guard lock(mutex);

@@ -30,9 +30,7 @@ std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter = false);
 
 struct GraspOutcome {
   ClosingPoint point;
-  bool held = false, released = false;  // as sim pinch judges them (pinch_script.h)
-  double lift_m = 0.0, slip_mm = 0.0, max_penetration_mm = 0.0;
-  double peak_grip_n = 0.0, turn_deg = 0.0;  // the hold's largest grip; the cube's turn
+  PinchReport measures;         // as sim pinch judges them (pinch_script.h)
   double pinch_error_mm = 0.0;  // how far the closed pose misses the pads' targets (IK)
 };
 

@@ -420,15 +420,8 @@ int sim_pinch(const std::vector<std::string>& argv) {
   if (args.has("json")) {
     util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
-      json.begin_object()
-          .field("cube_size_m", setup.script.cube_size)
-          .field("held", r.held)
-          .field("released", r.released)
-          .field("lift_m", r.lift)
-          .field("slip_mm", r.slip_mm)
-          .field("max_penetration_mm", r.max_penetration_mm)
-          .field("peak_grip_n", r.peak_grip_n)
-          .field("turn_deg", r.turn_deg);
+      json.begin_object().field("cube_size_m", setup.script.cube_size);
+      write_pinch_measures(json, r);
       write_timing(json, setup, r);
       json.end_object();
     });

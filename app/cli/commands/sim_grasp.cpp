@@ -67,12 +67,13 @@ void print_map(const CubeMap& map) {
               "released", "slip mm", "deepest mm", "grip N", "turn", "closing");
   std::vector<std::pair<std::string, std::pair<int, int>>> held;  // group -> held, run
   for (const sim::GraspOutcome& o : map.outcomes) {
-    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s\n", o.held ? "yes" : "NO",
-                o.released ? "yes" : "NO", o.slip_mm, o.max_penetration_mm, o.peak_grip_n,
-                o.turn_deg, closing_label(o.point).c_str());
+    const sim::PinchReport& m = o.measures;
+    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s\n", m.held ? "yes" : "NO",
+                m.released ? "yes" : "NO", m.slip_mm, m.max_penetration_mm, m.peak_grip_n,
+                m.turn_deg, closing_label(o.point).c_str());
     const std::string group = group_of(o.point);
     if (held.empty() || held.back().first != group) held.push_back({group, {0, 0}});
-    held.back().second.first += o.held ? 1 : 0;
+    held.back().second.first += m.held ? 1 : 0;
     ++held.back().second.second;
   }
   std::printf("held:");
@@ -97,16 +98,9 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
       .begin_object();
   for (const sim::ClosingFactor& f : sim::closing_factors())
     json.field(f.name, o.point.closing.*(f.field) / f.scale);
-  json.end_object()
-      .field("held", o.held)
-      .field("released", o.released)
-      .field("lift_m", o.lift_m)
-      .field("slip_mm", o.slip_mm)
-      .field("max_penetration_mm", o.max_penetration_mm)
-      .field("peak_grip_n", o.peak_grip_n)
-      .field("turn_deg", o.turn_deg)
-      .field("pinch_error_mm", o.pinch_error_mm)
-      .end_object();
+  json.end_object();
+  write_pinch_measures(json, o.measures);
+  json.field("pinch_error_mm", o.pinch_error_mm).end_object();
 }
 
 // What a map was run with, besides its closings.
@@ -158,10 +152,10 @@ void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::os
     int held = 0, drawn = 0, drawn_held = 0;
     for (const sim::GraspOutcome& o : map.outcomes) {
       write_closing(json, o);
-      held += o.held ? 1 : 0;
+      held += o.measures.held ? 1 : 0;
       if (o.point.factor == "draw") {
         ++drawn;
-        drawn_held += o.held ? 1 : 0;
+        drawn_held += o.measures.held ? 1 : 0;
       }
     }
     json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
@@ -209,6 +203,16 @@ std::shared_ptr<const sim::PoseJitter> recording_jitter(const std::string& path)
   const retarget::RecordingPoses poses =
       retarget::retarget_recording(tracking::read_recording(path), retarget::Strategy::kNaive);
   return std::make_shared<const sim::PoseJitter>(sim::pose_jitter(poses.times, poses.poses, 0.1));
+}
+
+void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r) {
+  json.field("held", r.held)
+      .field("released", r.released)
+      .field("lift_m", r.lift)
+      .field("slip_mm", r.slip_mm)
+      .field("max_penetration_mm", r.max_penetration_mm)
+      .field("peak_grip_n", r.peak_grip_n)
+      .field("turn_deg", r.turn_deg);
 }
 
 OptionSpec physics_option() {

@@ -8,7 +8,9 @@
 #include "app/cli/arguments.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/task/grasp_closing.h"
+#include "core/task/pinch_script.h"
 #include "core/task/tracker_jitter.h"
+#include "core/util/json_writer.h"
 
 namespace handlab::cli {
 
@@ -21,6 +23,10 @@ sim::GraspClosing parse_closing_option(const std::string& text);
 // The tracker jitter of a recording: retargeted by Naive (its angles as tracked) onto the study
 // hand, less the poses' moving average over 0.1 s (--jitter-from of sim grasp and sim pinch).
 std::shared_ptr<const sim::PoseJitter> recording_jitter(const std::string& path);
+
+// The measures of a pinch (held, released, lift, slip, penetration, grip, turn) as fields of
+// the JSON object being written: sim pinch's and each closing of sim grasp's.
+void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r);
 
 // --physics NAME=VALUE (repeatable): a simulator parameter changed, for sim pinch and sim grasp.
 OptionSpec physics_option();
