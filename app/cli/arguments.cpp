@@ -90,14 +90,17 @@ std::vector<std::string> Arguments::all(const std::string& name) const {
   return it == values_.end() ? std::vector<std::string>{} : it->second;
 }
 
-double Arguments::number(const std::string& name) const {
-  const std::string value = text(name);
+double parse_number(const std::string& value, const std::string& what) {
   double result = 0.0;
   const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), result);
   if (value.empty() || error != std::errc() || end != value.data() + value.size() ||
       !std::isfinite(result))
-    throw UsageError("option --" + name + " needs a number, got '" + value + "'");
+    throw UsageError(what + " needs a number, got '" + value + "'");
   return result;
+}
+
+double Arguments::number(const std::string& name) const {
+  return parse_number(text(name), "option --" + name);
 }
 
 void Arguments::require(std::initializer_list<const char*> names) const {

@@ -34,6 +34,9 @@ struct OptionSpec {
   bool repeatable;
 };
 
+// `value` as a finite number; UsageError "WHAT needs a number, not 'VALUE'" otherwise.
+double parse_number(const std::string& value, const std::string& what);
+
 class Arguments {
  public:
   Arguments(std::vector<OptionSpec> specs, std::vector<std::string> argv, int max_positional = 0);

@@ -8,8 +8,10 @@
 namespace handlab::sim {
 namespace {
 
+// Three significant digits, as the command line would take them back.
 std::string number(double value) {
   std::ostringstream text;
+  text.precision(3);
   text << value;
   return text.str();
 }
@@ -72,16 +74,19 @@ void set_closing_factor(GraspClosing& closing, const std::string& name, double v
   closing.*(f->field) = value * f->scale;
 }
 
+std::string describe_level(const ClosingFactor& factor, double level) {
+  return factor.name + " " + number(level) + " " + factor.unit;
+}
+
 std::string describe(const GraspClosing& closing) {
   const GraspClosing standard;
-  std::ostringstream text;
-  text.precision(3);
+  std::string text;
   for (const ClosingFactor& f : closing_factors()) {
     const double value = closing.*(f.field);
     if (value == standard.*(f.field)) continue;
-    text << (text.tellp() > 0 ? ", " : "") << f.name << " " << value / f.scale << " " << f.unit;
+    text += (text.empty() ? "" : ", ") + describe_level(f, value / f.scale);
   }
-  return text.tellp() > 0 ? text.str() : "the scripted pinch";
+  return text.empty() ? "the scripted pinch" : text;
 }
 
 }  // namespace handlab::sim

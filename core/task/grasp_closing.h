@@ -40,6 +40,9 @@ const ClosingFactor& closing_factor(const std::string& name);
 // unknown name or a value outside the factor's range.
 void set_closing_factor(GraspClosing& closing, const std::string& name, double value);
 
+// "over_closure 10 mm": a factor at a level (its unit's).
+std::string describe_level(const ClosingFactor& factor, double level);
+
 // "over_closure 10 mm, lead 100 ms" of the factors away from the default.
 std::string describe(const GraspClosing& closing);
 

@@ -25,25 +25,6 @@
 namespace handlab::cli {
 namespace {
 
-std::string util_number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-double number_option(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
-    throw UsageError(what + " needs a number, not '" + text + "'");
-  return value;
-}
-
 struct CubeMap {
   double cube_size = 0.0;
   std::vector<sim::GraspOutcome> outcomes;
@@ -53,9 +34,9 @@ struct CubeMap {
 std::string closing_label(const sim::ClosingPoint& p) {
   if (p.factor.empty()) return "the scripted pinch";
   if (p.factor == "pair" || p.factor == "draw" || p.factor == "closing")
-    return (p.factor == "draw" ? "draw " + util_number(p.level) + ": " : "") +
+    return (p.factor == "draw" ? "draw " + std::to_string(int(p.level)) + ": " : "") +
            sim::describe(p.closing);
-  return p.factor + " " + util_number(p.level) + " " + sim::closing_factor(p.factor).unit;
+  return sim::describe_level(sim::closing_factor(p.factor), p.level);
 }
 
 std::string group_of(const sim::ClosingPoint& p) {
@@ -187,9 +168,8 @@ sim::GraspClosing parse_closing_option(const std::string& text) {
     if (eq == std::string::npos)
       throw UsageError("--closing takes NAME=VALUE,..., not '" + item + "'");
     try {
-      sim::set_closing_factor(
-          closing, item.substr(0, eq),
-          number_option(item.substr(eq + 1), "--closing " + item.substr(0, eq)));
+      sim::set_closing_factor(closing, item.substr(0, eq),
+                              parse_number(item.substr(eq + 1), "--closing " + item.substr(0, eq)));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--closing: ") + e.what());
     }
@@ -228,7 +208,7 @@ void apply_physics_option(const Arguments& args, sim::SimParameters& parameters)
     if (eq == std::string::npos) throw UsageError("--physics takes NAME=VALUE, not '" + item + "'");
     try {
       sim::set_sim_parameter(parameters, item.substr(0, eq),
-                             number_option(item.substr(eq + 1), "--physics " + item.substr(0, eq)));
+                             parse_number(item.substr(eq + 1), "--physics " + item.substr(0, eq)));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--physics: ") + e.what());
     }
@@ -285,7 +265,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
   }
   std::vector<double> cubes;
   for (const std::string& c : args.all("cube")) {
-    const double side = number_option(c, "--cube");
+    const double side = parse_number(c, "--cube");
     if (!(side >= 0.005 && side <= 0.1))
       throw UsageError("--cube must be between 0.005 and 0.1 m, not " + c);
     cubes.push_back(side);
