@@ -1,10 +1,8 @@
 #include "core/task/grasp_map.h"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
+
+#include "core/util/parallel_runs.h"
 
 namespace handlab::sim {
 
@@ -45,34 +43,19 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
                                         const std::vector<ClosingPoint>& points, int jobs,
                                         const std::function<void(int done)>& done) {
   std::vector<GraspOutcome> outcomes(points.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex mutex;
-  int finished = 0;
-  std::exception_ptr failure;
   SimOptions options;
   if (jobs > 1) options.threads = 1;  // the runs side by side, not each one's work
-  auto work = [&] {
-    for (std::size_t i = next++; i < points.size(); i = next++) {
-      try {
+  util::run_in_parallel(
+      points.size(), jobs,
+      [&](std::size_t i) {
         const PinchScript script =
             make_grasp_script(scene.skeleton, scene.model, points[i].closing, scene.jitter);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];
         o.measures = run_pinch(scene.model, scene.skeleton, script, options);
         o.pinch_error_mm = 1000 * script.pinch_error;
-      } catch (...) {
-        const std::lock_guard lock(mutex);
-        if (!failure) failure = std::current_exception();
-      }
-      const std::lock_guard lock(mutex);
-      ++finished;
-      if (done) done(finished);
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int j = 0; j < std::max(1, jobs); ++j) threads.emplace_back(work);
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
+      },
+      done);
   return outcomes;
 }
 

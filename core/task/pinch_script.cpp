@@ -59,6 +59,20 @@ void apply_timing(const hand::Skeleton& skeleton, const GraspClosing& closing,
 
 hand::HandPose PinchScript::target(double t) const {
   hand::HandPose pose;
+  if (!recorded_poses.empty() && t < close_end) {
+    if (t >= approach_end) {  // the recording, from its first pose at approach_end
+      const auto after =
+          std::upper_bound(recorded_times.begin(), recorded_times.end(), t - approach_end);
+      return recorded_poses[std::size_t(
+          std::max<std::ptrdiff_t>(0, std::distance(recorded_times.begin(), after) - 1))];
+    }
+    hand::HandPose flat = open;  // shaped into the first pose as the script's pinch is
+    flat.angles.setZero();
+    pose = blend(flat, open, smooth(t / shape_end));
+    pose.root_position.y() +=
+        approach_height * (1 - smooth((t - shape_end) / (approach_end - shape_end)));
+    return pose;
+  }
   if (t < approach_end) {
     hand::HandPose flat = open;
     flat.angles.setZero();

@@ -36,7 +36,13 @@ struct PinchScript {
   // A recording's tracker jitter on every pose, `jitter_scale` times (none when null).
   std::shared_ptr<const PoseJitter> jitter;
   double jitter_scale = 0.0;
-  double jitter_start = 0.0;             // s into the recording at t = 0
+  double jitter_start = 0.0;  // s into the recording at t = 0
+  // A real closing in place of the scripted one (recorded_pinches.h): the hand shapes into
+  // `open`, the first of these poses, and comes down onto it as the script does; from
+  // approach_end to close_end it takes the latest pose at or before t - approach_end (s, the
+  // first at 0); `pinch`, the last, is what the lift carries up.
+  std::vector<double> recorded_times;
+  std::vector<hand::HandPose> recorded_poses;
   int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
   double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
 

@@ -309,6 +309,33 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(run_cli("sim pinch --help").status, 0);
 }
 
+// Real pinches on the soft hand: pinch-57fps.json.lz's one closing, retargeted by Naive, takes
+// the 6 cm cube and holds it (docs/simulator.md); each row's keys; the refusals.
+TEST(CliSim, PinchesRunARecordingsClosingOnTheSoftHand) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch-57fps.json.lz";
+  const Result r = run_cli("sim pinches --recording " + recording +
+                           " --strategy naive --cube 0.06 --jobs 1 --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const util::JsonValue doc = util::JsonValue::parse(r.out);
+  ASSERT_EQ(doc["pinches"].size(), 1u) << r.out;
+  const util::JsonValue p = doc["pinches"][0];
+  for (const char* key :
+       {"recording", "strategy", "cube_size_m", "moment_s", "closed_s", "widest_m", "narrowest_m",
+        "closing_speed_m_s", "tilt_deg", "takes_cube", "outcome", "pushed_mm", "grip_at_lift_n",
+        "held", "released", "lift_m", "slip_mm", "max_penetration_mm", "peak_grip_n"})
+    EXPECT_NE(p.find(key), nullptr) << key;
+  EXPECT_TRUE(p["takes_cube"].as_bool());
+  EXPECT_TRUE(p["held"].as_bool());
+  EXPECT_EQ(p["outcome"].as_string(), "held");
+  EXPECT_GT(p["widest_m"].as_number(), 0.06);
+  EXPECT_LT(p["narrowest_m"].as_number(), 0.06);
+  EXPECT_LT(p["moment_s"].as_number(), p["closed_s"].as_number());
+  EXPECT_EQ(run_cli("sim pinches").status, 2) << "no recording";
+  EXPECT_EQ(run_cli("sim pinches --recording " + recording + " --strategy both").status, 2);
+  EXPECT_EQ(run_cli("sim pinches --recording " + recording + " --cube 2").status, 2);
+  EXPECT_EQ(run_cli("sim pinches --help").status, 0);
+}
+
 // The grasp map's parts on the 6 cm cube: a closing known to hold (the scripted pinch's 3 mm
 // past the faces) and one known to lose the cube (25 mm past them: the cube is never lifted,
 // docs/simulator.md), each closing's keys in the JSON, and the refusals.

@@ -18,6 +18,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/sim_grasp.h"
+#include "app/cli/commands/sim_pinches.h"
 #include "app/cli/commands/sim_replay.h"
 #include "app/cli/commands/sim_settle.h"
 #include "core/hand/flesh.h"
@@ -26,6 +27,7 @@
 #include "core/render/hand_drawing.h"
 #include "core/render/offscreen_context.h"
 #include "core/render/sim_drawing.h"
+#include "core/sim/contact_forces.h"
 #include "core/task/pinch_scene.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -334,8 +336,9 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"view-yaw", "RAD", "with --frames: the camera's turn about the vertical", "-0.8"},
       {"contacts", "", "with --frames: draw the contact points"},
       {"trace", "CSV",
-       "write every step's time, the cube's height and turn, the grip, the flesh points on the "
-       "cube and the bones' largest offset and turn from their targets (- for standard output)"},
+       "write every step's time, the cube's height and turn, the grip, the flesh's force on the "
+       "cube's top, the flesh points on the cube, and the bones' largest offset and turn from "
+       "their targets with the bone farthest off (- for standard output)"},
       {"skin-samples", "N",
        "contact points against the cube inside each of the flesh's boundary faces besides its "
        "nodes: 1 (the centroid) or 0 (the nodes alone, as before 2026-11-26)",
@@ -385,22 +388,26 @@ int sim_pinch(const std::vector<std::string>& argv) {
   }
   std::ostringstream trace;
   if (args.has("trace")) {
-    trace << "time_s,cube_height_m,cube_turn_deg,grip_n,flesh_points_on_cube,bone_offset_mm,"
-             "bone_turn_deg\n";
+    trace << "time_s,cube_height_m,cube_turn_deg,grip_n,top_n,flesh_points_on_cube,bone_offset_mm,"
+             "bone_turn_deg,farthest_bone\n";
     observer = [&, frame = observer](const sim::HandSimState& s) {
       if (frame) frame(s);
       trace << s.time << ',' << s.cube_pose.position.y() << ','
             << s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI
             << ',' << sim::grip_force(setup.model, s) << ','
+            << sim::flesh_forces_on_cube_faces(setup.model, s)[3] << ','  // its own +y: the top
             << s.node_cube.size() + s.sample_cube.size();
       const std::vector<sim::RigidPose> targets =
           sim::bone_targets(setup.model, setup.skeleton, setup.script.target(s.time));
       double offset = 0, turn = 0;  // the bones' largest from their targets
+      std::size_t farthest = 0;
       for (std::size_t b = 0; b < targets.size(); ++b) {
-        offset = std::max(offset, (s.bone_pose[b].position - targets[b].position).norm());
+        const double away = (s.bone_pose[b].position - targets[b].position).norm();
+        if (away > offset) offset = away, farthest = b;
         turn = std::max(turn, s.bone_pose[b].rotation.angularDistance(targets[b].rotation));
       }
-      trace << ',' << offset * 1000 << ',' << turn * 180 / M_PI << '\n';
+      trace << ',' << offset * 1000 << ',' << turn * 180 / M_PI << ','
+            << setup.skeleton.bones[farthest].name << '\n';
     };
   }
   const sim::PinchReport r =
@@ -438,20 +445,25 @@ int run_sim(const std::vector<std::string>& argv) {
                  "[--trace CSV] [--json OUT] [--frames DIR]\n"
                  "       handlab-cli sim grasp [--cube SIDE]... [--grid single|pairs|none] "
                  "[--draws N] [--closing NAME=VALUE,...] [--json OUT]\n"
+                 "       handlab-cli sim pinches --recording FILE... [--strategy naive|ours]... "
+                 "[--cube SIDE]... [--json OUT]\n"
                  "       handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
                  "[--json OUT]\n"
                  "       handlab-cli sim settle [--cube SIDE] [--speed M/S] [--spin RAD/S] "
                  "[--json OUT]\n";
     return 0;
   }
-  if (argv.empty()) throw UsageError("sim needs a command: bench, pinch, grasp, replay or settle");
+  if (argv.empty())
+    throw UsageError("sim needs a command: bench, pinch, grasp, pinches, replay or settle");
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
   if (argv[0] == "bench") return sim_bench(rest);
   if (argv[0] == "pinch") return sim_pinch(rest);
   if (argv[0] == "grasp") return sim_grasp(rest);
+  if (argv[0] == "pinches") return sim_pinches(rest);
   if (argv[0] == "replay") return sim_replay(rest);
   if (argv[0] == "settle") return sim_settle(rest);
-  throw UsageError("unknown sim command '" + argv[0] + "' (bench, pinch, grasp, replay, settle)");
+  throw UsageError("unknown sim command '" + argv[0] +
+                   "' (bench, pinch, grasp, pinches, replay, settle)");
 }
 
 }  // namespace handlab::cli
