@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include "app/cli/nearest_word.h"
 
@@ -141,6 +142,12 @@ std::string format_options_help(const std::vector<OptionSpec>& specs) {
   }
   out << "  --help                  show this help\n";
   return out.str();
+}
+
+int job_count(const Arguments& args) {
+  const long jobs = args.integer("jobs");
+  if (jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
+  return jobs == 0 ? int(std::max(1u, std::thread::hardware_concurrency())) : int(jobs);
 }
 
 }  // namespace handlab::cli

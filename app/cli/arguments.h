@@ -67,4 +67,7 @@ class Arguments {
 
 std::string format_options_help(const std::vector<OptionSpec>& specs);
 
+// --jobs J: runs side by side, 0 for the machine's cores; throws UsageError below 0.
+int job_count(const Arguments& args);
+
 }  // namespace handlab::cli

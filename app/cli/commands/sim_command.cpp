@@ -337,7 +337,8 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"contacts", "", "with --frames: draw the contact points"},
       {"trace", "CSV",
        "write every step's time, the cube's height and turn, the grip, the flesh's force on the "
-       "cube's top, the flesh points on the cube, and the bones' largest offset and turn from "
+       "cube's face that is its top at the start, the flesh points on the cube, and the bones' "
+       "largest offset and turn from "
        "their targets with the bone farthest off (- for standard output)"},
       {"skin-samples", "N",
        "contact points against the cube inside each of the flesh's boundary faces besides its "

@@ -9,7 +9,6 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
@@ -195,6 +194,18 @@ void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r) {
       .field("turn_deg", r.turn_deg);
 }
 
+std::vector<double> cube_sides(const Arguments& args) {
+  std::vector<double> cubes;
+  for (const std::string& c : args.all("cube")) {
+    const double side = parse_number(c, "--cube");
+    if (!(side >= 0.005 && side <= 0.1))
+      throw UsageError("--cube must be between 0.005 and 0.1 m, not " + c);
+    cubes.push_back(side);
+  }
+  if (cubes.empty()) cubes = {0.01, 0.06};
+  return cubes;
+}
+
 OptionSpec physics_option() {
   return {"physics", "NAME=VALUE",
           "change a simulator parameter (SI units; docs/simulator.md), e.g. "
@@ -263,14 +274,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
         << format_options_help(specs);
     return 0;
   }
-  std::vector<double> cubes;
-  for (const std::string& c : args.all("cube")) {
-    const double side = parse_number(c, "--cube");
-    if (!(side >= 0.005 && side <= 0.1))
-      throw UsageError("--cube must be between 0.005 and 0.1 m, not " + c);
-    cubes.push_back(side);
-  }
-  if (cubes.empty()) cubes = {0.01, 0.06};
+  const std::vector<double> cubes = cube_sides(args);
   const std::string grid = args.choice("grid", {"single", "pairs", "none"});
   const long draws = args.integer("draws");
   if (draws < 0) throw UsageError("--draws must be 0 or more");
@@ -298,9 +302,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
     if (p.closing.jitter > 0 && !jitter)
       throw UsageError("a closing with jitter needs --jitter-from RECORDING");
   if (grid_points.empty() && draws == 0) throw UsageError("--grid none needs --draws N");
-  int jobs = int(args.integer("jobs"));
-  if (jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
-  if (jobs == 0) jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  const int jobs = job_count(args);
   const bool to_stdout = args.text("json") == "-";
   std::vector<CubeMap> maps;
   const auto start = std::chrono::steady_clock::now();

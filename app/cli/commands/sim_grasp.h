@@ -28,6 +28,10 @@ std::shared_ptr<const sim::PoseJitter> recording_jitter(const std::string& path)
 // the JSON object being written: sim pinch's and each closing of sim grasp's.
 void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r);
 
+// --cube SIDE (repeatable): the cubes' sides, 5 mm to 10 cm (default the study's, 1 and 6 cm);
+// throws UsageError naming a side out of range.
+std::vector<double> cube_sides(const Arguments& args);
+
 // --physics NAME=VALUE (repeatable): a simulator parameter changed, for sim pinch and sim grasp.
 OptionSpec physics_option();
 void apply_physics_option(const Arguments& args, sim::SimParameters& parameters);

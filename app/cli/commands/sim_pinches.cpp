@@ -10,7 +10,6 @@
 #include <iostream>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
@@ -190,17 +189,8 @@ int sim_pinches(const std::vector<std::string>& argv) {
     strategies.push_back(s);
   }
   if (strategies.empty()) strategies = {"naive", "ours"};
-  std::vector<double> cubes;
-  for (const std::string& c : args.all("cube")) {
-    const double side = parse_number(c, "--cube");
-    if (!(side >= 0.005 && side <= 0.1))
-      throw UsageError("--cube must be between 0.005 and 0.1 m, not " + c);
-    cubes.push_back(side);
-  }
-  if (cubes.empty()) cubes = {0.01, 0.06};
-  int jobs = int(args.integer("jobs"));
-  if (jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
-  if (jobs == 0) jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::vector<double> cubes = cube_sides(args);
+  const int jobs = job_count(args);
 
   sim::SimParameters parameters;
   apply_physics_option(args, parameters);

@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include <unistd.h>
-#include <thread>
 
 #include "app/cli/arguments.h"
 #include "app/cli/commands/commands.h"
@@ -181,9 +180,7 @@ int run_simulate(const std::vector<std::string>& argv) {
     throw UsageError("--participants must be between 1 and 10000");
   options.seed = args.seed("seed");
   options.only = shard_members(args, options.participants);
-  options.jobs = int(args.integer("jobs"));
-  if (options.jobs < 0) throw UsageError("--jobs must be 0 (all cores) or more");
-  if (options.jobs == 0) options.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  options.jobs = job_count(args);
   options.world = world_kind(args);
   const std::string world = args.text("world");
   options.frames = args.flag("frames");
