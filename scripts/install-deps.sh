@@ -21,6 +21,9 @@ packages=(
   slurm-wlm munge
   # scripts/cluster-plan.py (the planning table of docs/cluster.md)
   python3
+  # the Debian package: its checks, and the clean Debian 12 root it is tested in
+  # (scripts/package.sh, tests/package/package-test.sh)
+  lintian mmdebstrap
 )
 
 missing=()

@@ -12,13 +12,14 @@ const std::vector<Command>& all_commands() {
       {"retarget", "retarget a recording onto the simulated hand (naive or ours) and report errors",
        run_retarget},
       {"sim",
-       "the soft-hand simulator: time its steps, pinch and lift a cube, kick one (bench, pinch, "
-       "replay, settle)",
+       "the soft-hand simulator: time its steps, pinch and lift a cube over closings and real "
+       "recordings, kick one (bench, pinch, grasp, pinches, replay, settle)",
        run_sim},
       {"tracking", "read Leap Motion recordings: info, convert to CSV or .hlrec", run_tracking},
       {"render", "draw the task scene, or a moment of a stored trial, into a PNG (no display)",
        run_render},
-      {"study", "create a study database from a protocol; show its progress", run_study},
+      {"study", "create a study database from a protocol; show its progress and what wrote it",
+       run_study},
       {"participant", "enrol a participant (their schedule is fixed and stored)", run_participant},
       {"session", "run a participant's session headless (resumes after a crash); redo, skip",
        run_session},

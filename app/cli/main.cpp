@@ -8,7 +8,7 @@
 
 #include "app/cli/arguments.h"
 #include "app/cli/command.h"
-#include "handlab/version.h"
+#include "core/util/build_info.h"
 
 namespace {
 
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "--version" || args[0] == "version") {
-    std::cout << "handlab-cli " << HANDLAB_VERSION << "\n";
+    std::cout << "handlab-cli " << handlab::util::version_line() << "\n";
     return 0;
   }
   for (const auto& command : handlab::cli::all_commands()) {

@@ -27,7 +27,7 @@
 #include "app/live/leap_replay_server.h"
 #include "app/report/figure_file.h"
 #include "core/tracking/recording_io.h"
-#include "handlab/version.h"
+#include "core/util/build_info.h"
 
 namespace {
 
@@ -102,7 +102,7 @@ struct Options {
 // The command line read by an application made without a display.
 void process_without_display(QCoreApplication& core, QCommandLineParser& parser, Options& options) {
   QCoreApplication::setApplicationName("handlab");
-  QCoreApplication::setApplicationVersion(HANDLAB_VERSION);
+  QCoreApplication::setApplicationVersion(QString::fromStdString(handlab::util::version_line()));
   options.add_to(parser);
   parser.process(core);
 }
@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setApplicationName("handlab");
   QApplication::setOrganizationName("handlab");
-  QApplication::setApplicationVersion(HANDLAB_VERSION);
+  QApplication::setApplicationVersion(QString::fromStdString(handlab::util::version_line()));
   QCommandLineParser parser;
   Options options;
   options.add_to(parser);

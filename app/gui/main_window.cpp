@@ -8,6 +8,7 @@
 #include <QComboBox>
 #include <QDialog>
 #include <QDialogButtonBox>
+#include <QDir>
 #include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
@@ -37,9 +38,10 @@
 #include "app/report/figure_file.h"
 #include "app/report/report_files.h"
 #include "core/store/study_store.h"
+#include "core/util/build_info.h"
 #include "core/util/csv.h"
+#include "core/util/data_files.h"
 #include "core/util/output_file.h"
-#include "handlab/version.h"
 #include "studies/export/study_export.h"
 #include "studies/session/enrolment.h"
 #include "studies/session/session_runner.h"
@@ -259,8 +261,12 @@ void MainWindow::remember_recent(const QString& path) {
 }
 
 void MainWindow::new_study_dialog() {
-  const QString protocol = QFileDialog::getOpenFileName(this, tr("New Study: choose the protocol"),
-                                                        QString(), tr("Study protocols (*.json)"));
+  // Installed, the package's protocols are where to look first.
+  const QString installed =
+      QString::fromStdString(util::installed_data_directory()) + QStringLiteral("/studies");
+  const QString protocol = QFileDialog::getOpenFileName(
+      this, tr("New Study: choose the protocol"), QDir(installed).exists() ? installed : QString(),
+      tr("Study protocols (*.json)"));
   if (protocol.isEmpty()) return;
   studies::Protocol p;
   try {
@@ -527,7 +533,7 @@ void MainWindow::show_about() {
   QMessageBox::about(this, tr("About handlab"),
                      tr("<b>handlab %1</b><p>Runs and analyses user studies of fine virtual "
                         "manipulation with tracked hands driving a simulated soft hand.</p>")
-                         .arg(HANDLAB_VERSION));
+                         .arg(QString::fromStdString(util::version_line())));
 }
 
 }  // namespace handlab::gui

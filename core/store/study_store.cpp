@@ -11,6 +11,7 @@
 
 #include <sqlite3.h>
 
+#include "core/util/build_info.h"
 #include "core/util/json_value.h"
 #include "core/util/json_writer.h"
 #include "core/util/sha256.h"
@@ -71,6 +72,14 @@ Participant read_participant(const Statement& s) {
 constexpr const char* kPlannedColumns =
     "id, position, block, order_in_block, condition_id, repetition, practice, questionnaire";
 
+// This build's version and commit, once per file (study_store.h: StudyInfo::programs).
+void record_program(Database& db) {
+  db.prepare("INSERT OR IGNORE INTO program (version, commit_id) VALUES (?, ?)")
+      .bind(1, util::program_version())
+      .bind(2, util::build_commit())
+      .run();
+}
+
 }  // namespace
 
 std::string utc_timestamp() {
@@ -105,6 +114,7 @@ void StudyStore::create(const std::string& path, const StudyDefinition& d) {
     Transaction t(db);
     apply_migrations(db, 0, kSchemaVersion);
     db.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+    record_program(db);
     std::ostringstream factors;
     {
       util::JsonWriter w(factors, 0);
@@ -160,6 +170,7 @@ StudyStore::StudyStore(const Opening& opening) : db_(opening.path, opening.mode)
     // A trial's result is the record of a person's time: survive power loss, not just a crash.
     db_.exec("PRAGMA synchronous = FULL");
   if (opening.migrate) migrate();
+  if (opening.mode == Database::Mode::kReadWrite) record_program(db_);
 }
 
 void StudyStore::migrate() {
@@ -187,6 +198,9 @@ StudyInfo StudyStore::study() {
   for (const auto& f : factors.as_array()) info.factors.push_back(f.as_string());
   info.planned_participants = int(s.column_int64(6));
   info.schema_version = int(pragma_int(db_, "user_version"));
+  Statement programs = db_.prepare("SELECT version, commit_id FROM program ORDER BY id");
+  while (programs.step())
+    info.programs.emplace_back(programs.column_text(0), programs.column_text(1));
   Statement c = db_.prepare("SELECT label, levels FROM condition ORDER BY id");
   while (c.step()) {
     std::vector<std::string> levels;

@@ -18,7 +18,7 @@
 
 namespace handlab::store {
 
-constexpr int kSchemaVersion = 6;
+constexpr int kSchemaVersion = 7;
 
 struct StudyDefinition {
   std::string name;
@@ -39,6 +39,9 @@ struct StudyInfo {
   std::vector<std::string> factors;
   std::vector<std::pair<std::string, std::vector<std::string>>> conditions;
   int planned_participants = 0;  // as StudyDefinition's
+  // The handlab versions and commits that created the file or opened it to write, in the order
+  // they first did (none recorded before schema 7).
+  std::vector<std::pair<std::string, std::string>> programs;
 };
 
 // Whether a study holds every participant its plan names: a shard, or a merge of only some

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/tracking/lz_string.h"
+#include "core/util/data_files.h"
 #include "core/util/output_file.h"
 
 namespace handlab::tracking {
@@ -155,7 +156,8 @@ void write_hlrec(const std::vector<TrackedFrame>& frames, const std::string& pat
                            std::string_view(reinterpret_cast<const char*>(out.data()), out.size()));
 }
 
-Recording read_recording(const std::string& path) {
+Recording read_recording(const std::string& named) {
+  const std::string path = util::find_data_file(named);
   const std::string bytes = read_file(path);
   if (bytes.size() >= 4 && std::memcmp(bytes.data(), kMagic, 4) == 0) {
     Recording recording;

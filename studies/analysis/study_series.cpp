@@ -12,6 +12,7 @@
 
 #include "analysis/stats/descriptives.h"
 #include "analysis/stats/effect_size.h"
+#include "core/util/data_files.h"
 #include "core/util/json_value.h"
 #include "core/util/json_writer.h"
 
@@ -171,7 +172,8 @@ void write_effect_sizes(const StudySeries& s, std::ostream& out) {
 
 }  // namespace
 
-PublishedStudy read_published_study(const std::string& path) {
+PublishedStudy read_published_study(const std::string& named) {
+  const std::string path = util::find_data_file(named);
   std::ifstream in(path, std::ios::binary);
   if (!in) refuse(path, "cannot be read");
   std::ostringstream text;

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/util/data_files.h"
 #include "core/util/json_value.h"
 #include "core/util/portable_random.h"
 #include "studies/export/study_export.h"
@@ -305,7 +306,8 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
   return p;
 }
 
-Protocol read_protocol(const std::string& path) {
+Protocol read_protocol(const std::string& named) {
+  const std::string path = util::find_data_file(named);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ProtocolError("cannot read " + path);
   std::ostringstream text;

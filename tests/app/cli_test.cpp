@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/render/image.h"
+#include "core/util/build_info.h"
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/test_files.h"
@@ -19,10 +20,33 @@ namespace {
 using Result = test::CliResult;
 using handlab::test::run_cli;
 
-TEST(Cli, Version) {
+// The version is CMakeLists.txt's, with the commit the build was made from.
+TEST(Cli, VersionNamesTheVersionAndTheCommit) {
   const Result r = run_cli("--version");
   EXPECT_EQ(r.status, 0);
-  EXPECT_EQ(r.out.rfind("handlab-cli ", 0), 0u) << r.out;
+  EXPECT_EQ(r.out, "handlab-cli " + util::version_line() + "\n");
+  EXPECT_NE(util::build_commit(), "") << r.out;
+  EXPECT_EQ(util::program_version().find_first_not_of("0123456789."), std::string::npos);
+}
+
+// study info: the study, its schema, and the version that made it.
+TEST(Cli, StudyInfoShowsTheVersionsThatWroteTheStudy) {
+  const std::string db = handlab::test::fresh_path("cli_info.db");
+  ASSERT_EQ(run_cli("study create --protocol " + std::string(HANDLAB_SOURCE_DIR) +
+                    "/studies/fine-manipulation-2021.json --db " + db)
+                .status,
+            0);
+  const Result text = run_cli("study info --db " + db);
+  ASSERT_EQ(text.status, 0) << text.out;
+  EXPECT_NE(text.out.find("handlab " + util::version_line()), std::string::npos) << text.out;
+  const Result json = run_cli("study info --db " + db + " --json -");
+  ASSERT_EQ(json.status, 0) << json.out;
+  const util::JsonValue doc = util::JsonValue::parse(json.out);
+  EXPECT_EQ(doc["schema_version"].as_number(), 7);
+  ASSERT_EQ(doc["programs"].size(), 1u);
+  EXPECT_EQ(doc["programs"][0]["version"].as_string(), util::program_version());
+  EXPECT_EQ(doc["programs"][0]["commit"].as_string(), util::build_commit());
+  EXPECT_EQ(run_cli("study info").status, 2);
 }
 
 TEST(Cli, HelpListsCommandsAndEachCommandHasHelp) {

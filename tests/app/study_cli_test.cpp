@@ -366,7 +366,7 @@ TEST(CliStudy, BadInputIsOneClearLineAndLeavesTheFileAlone) {
   // Newer, corrupt, truncated and locked files.
   const std::string newer = handlab::test::fresh_path("cli_newer.db");
   std::filesystem::copy_file(db, newer);
-  { Database(newer, Database::Mode::kReadWrite).exec("PRAGMA user_version = 7"); }
+  { Database(newer, Database::Mode::kReadWrite).exec("PRAGMA user_version = 8"); }
   const std::string newer_bytes = handlab::test::file_bytes(newer);
   one_line_error(run_cli("study status --db " + newer), "newer handlab");
   one_line_error(run_cli("session run --db " + newer + " --participant P01"), "newer handlab");

@@ -9,6 +9,7 @@
 #include "core/store/frame_logger.h"
 #include "core/store/frame_record.h"
 #include "core/store/study_store.h"
+#include "core/util/build_info.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::store {
@@ -178,7 +179,8 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
         "DROP INDEX event_by_trial; DROP INDEX trial_by_planned; ALTER TABLE trial DROP COLUMN "
         "frames; ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
         "DROP TABLE simulated_memory; ALTER TABLE participant DROP COLUMN between_levels; "
-        "ALTER TABLE study DROP COLUMN planned_participants; PRAGMA user_version = 1");
+        "ALTER TABLE study DROP COLUMN planned_participants; DROP TABLE program; "
+        "PRAGMA user_version = 1");
   }
   StudyStore db(path);
   EXPECT_EQ(db.study().schema_version, kSchemaVersion);
@@ -211,6 +213,24 @@ TEST(StudyStore, MigratesAnOlderSchemaForward) {
   // Schema 6: a study made before plans no size and is never partial.
   EXPECT_EQ(db.study().planned_participants, 0);
   EXPECT_FALSE(db.completeness().partial());
+  // Schema 7: the versions that wrote it, from this one on (opened here to write).
+  ASSERT_EQ(db.study().programs.size(), 1u);
+  EXPECT_EQ(db.study().programs[0].first, util::program_version());
+}
+
+// The file names the handlab that made it and each other one that opened it to write, once
+// each; reading it names nobody.
+TEST(StudyStore, RecordsTheVersionsThatWroteIt) {
+  const std::string path = test::fresh_path("store_programs.db");
+  StudyStore::create(path, definition());
+  const std::pair<std::string, std::string> self = {util::program_version(), util::build_commit()};
+  EXPECT_EQ(StudyStore(path).study().programs, std::vector{self});
+  { StudyStore(path).database().exec("UPDATE program SET version = '0.27.0'"); }
+  EXPECT_EQ(StudyStore(path, StudyStore::Access::kReadOnly).study().programs.size(), 1u);
+  const auto programs = StudyStore(path).study().programs;
+  ASSERT_EQ(programs.size(), 2u);
+  EXPECT_EQ(programs[0].first, "0.27.0");
+  EXPECT_EQ(programs[1], self);
 }
 
 // Analyses open a study read-only: a file committed with a rollback journal (as the test
@@ -225,7 +245,8 @@ TEST(StudyStore, ReadOnlyAccessWritesNothing) {
     db.database().exec(
         "ALTER TABLE participant DROP COLUMN simulated; DROP TABLE simulated_person; "
         "DROP TABLE simulated_memory; ALTER TABLE participant DROP COLUMN between_levels; "
-        "ALTER TABLE study DROP COLUMN planned_participants; PRAGMA user_version = 2");
+        "ALTER TABLE study DROP COLUMN planned_participants; DROP TABLE program; "
+        "PRAGMA user_version = 2");
   }
   { Database(path, Database::Mode::kInspect).exec("PRAGMA journal_mode = DELETE"); }
   ASSERT_FALSE(std::filesystem::exists(path + "-wal"));

@@ -112,18 +112,74 @@ int study_status(const std::vector<std::string>& argv) {
   return 0;
 }
 
+int study_info(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = {
+      {"db", "DB", "the study database"},
+      {"json", "OUT", "write it as JSON (- for standard output)"},
+  };
+  const Arguments args(specs, argv);
+  if (args.help_requested()) {
+    std::cout << "Usage: handlab-cli study info --db DB [--json OUT]\n\nThe study: its name, "
+                 "protocol (SHA-256), seed, conditions, planned size, the file's schema, and "
+                 "each handlab version and commit that created it or opened it to write.\n\n"
+                 "Options:\n"
+              << format_options_help(specs);
+    return 0;
+  }
+  args.require({"db"});
+  store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
+  const store::StudyInfo info = store.study();
+  const std::string json = args.text("json");
+  if (json != "-") {
+    std::cout << "study " << info.name << " (" << args.text("db") << ")\n"
+              << "  created " << info.created_at << ", schema " << info.schema_version << ", seed "
+              << info.seed << "\n"
+              << "  protocol sha256 " << info.protocol_sha256 << "\n"
+              << "  conditions:";
+    for (const auto& c : info.conditions) std::cout << ' ' << c.first;
+    std::cout << "\n  planned participants: "
+              << (info.planned_participants > 0 ? std::to_string(info.planned_participants)
+                                                : std::string("not planned (a study of people)"))
+              << "\n  written by:";
+    if (info.programs.empty()) std::cout << " no version recorded (before handlab 0.28.0)";
+    for (const auto& [version, commit] : info.programs)
+      std::cout << "\n    handlab " << version << " (commit " << commit << ")";
+    std::cout << "\n";
+  }
+  if (!json.empty())
+    util::write_output(json, [&](std::ostream& out) {
+      util::JsonWriter w(out);
+      w.begin_object()
+          .field("study", info.name)
+          .field("created_at", info.created_at)
+          .field("schema_version", info.schema_version)
+          .field("seed", static_cast<unsigned long long>(info.seed))
+          .field("protocol_sha256", info.protocol_sha256)
+          .field("planned_participants", info.planned_participants);
+      w.key("conditions").begin_array();
+      for (const auto& c : info.conditions) w.value(c.first);
+      w.end_array().key("programs").begin_array();
+      for (const auto& [version, commit] : info.programs)
+        w.begin_object().field("version", version).field("commit", commit).end_object();
+      w.end_array().end_object();
+    });
+  return 0;
+}
+
 }  // namespace
 
 int run_study(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
     std::cout << "Usage: handlab-cli study create --protocol FILE --db DB\n"
-                 "       handlab-cli study status --db DB [--json OUT]\n";
+                 "       handlab-cli study status --db DB [--json OUT]\n"
+                 "       handlab-cli study info --db DB [--json OUT]\n";
     return argv.empty() ? 2 : 0;
   }
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
   if (argv[0] == "create") return study_create(rest);
   if (argv[0] == "status") return study_status(rest);
-  throw UsageError("unknown study command '" + argv[0] + "' (create, status)");
+  if (argv[0] == "info") return study_info(rest);
+  throw UsageError("unknown study command '" + argv[0] + "' (create, status, info)");
 }
 
 }  // namespace handlab::cli
