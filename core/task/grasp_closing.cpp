@@ -47,6 +47,13 @@ const std::vector<ClosingFactor>& closing_factors() {
        {-0.2, 0.2}},
       {"lead", "ms", &GraspClosing::lead_s, 1e-3, {-200, -100, -50, 0, 50, 100, 200}, {-100, 100}},
       {"closing_speed", "cm/s", &GraspClosing::closing_speed, 1e-2, {2, 5, 10, 20, 30}, {2, 16}},
+      // From the script's gentle 0.6 to 12 m/s^2, above a brisk lift of a light object.
+      {"lift_acceleration",
+       "m/s2",
+       &GraspClosing::lift_acceleration,
+       1.0,
+       {0.6, 1.5, 3, 6, 12},
+       {6}},
       {"hold", "s", &GraspClosing::hold_s, 1.0, {1, 5, 10}, {}},
       {"jitter", "x", &GraspClosing::jitter, 1.0, {0, 1, 2, 4, 8}, {4}},
   };
@@ -67,7 +74,8 @@ void set_closing_factor(GraspClosing& closing, const std::string& name, double v
   const ClosingFactor* f = &closing_factor(name);
   // The grid's range, the speed and hold above zero.
   const double lo = std::min(f->levels.front(), 0.0), hi = f->levels.back();
-  const bool positive = f->name == "closing_speed" || f->name == "hold";
+  const bool positive =
+      f->name == "closing_speed" || f->name == "hold" || f->name == "lift_acceleration";
   if (!(value >= lo && value <= hi) || (positive && !(value > 0)))
     throw std::invalid_argument(name + " must be from " + number(lo) + " to " + number(hi) + " " +
                                 f->unit + ", not " + number(value));

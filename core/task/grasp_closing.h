@@ -1,7 +1,8 @@
 // How a hand closes on a cube, as people close and a script does not: the pads' targets past
 // the faces, the pinch's axis tilted from the faces' normal, the pads off the face's centre,
-// one digit before the other, fast or slow, held short or long. Specified on the intermediate
-// hand the soft hand follows, so that the grip is judged apart from any retargeting strategy
+// one digit before the other, fast or slow, lifted briskly or gently, held short or long. Specified
+// on the intermediate hand the soft hand follows, so that the grip is judged apart from any
+// retargeting strategy
 // (`handlab-cli sim grasp`, docs/simulator.md).
 #pragma once
 
@@ -17,13 +18,16 @@ struct GraspClosing {
   double offset_along = 0.0;    // of the side: the pads moved along the faces, horizontally
   double lead_s = 0.0;          // s: the thumb closes this long before the index (< 0: after)
   double closing_speed = 0.0;   // m/s: each pad's mean speed as it closes; 0: the script's 0.5 s
-  double hold_s = 5.0;          // s: lifted and held before the fingers open
-  double jitter = 0.0;          // times a real recording's tracker jitter laid on the hand
-  double jitter_phase = 0.0;    // where in the recording the jitter starts (of its length)
+  // m/s^2: the lift's peak acceleration (at its start: the lift follows a smoothstep, whose
+  // peak is 6 height / duration^2); 0: the script's 10 cm in 1 s, 0.6 m/s^2.
+  double lift_acceleration = 0.0;
+  double hold_s = 5.0;        // s: lifted and held before the fingers open
+  double jitter = 0.0;        // times a real recording's tracker jitter laid on the hand
+  double jitter_phase = 0.0;  // where in the recording the jitter starts (of its length)
 };
 
 // A closing's factors by name ("over_closure", "tilt_yaw", ...), each with its value in the
-// unit the command line takes (mm, degrees, fraction of the side, ms, cm/s, s).
+// unit the command line takes (mm, degrees, fraction of the side, ms, cm/s, m/s^2, s).
 struct ClosingFactor {
   std::string name, unit;
   double GraspClosing::*field;

@@ -25,13 +25,14 @@ hand::HandPose blend(const hand::HandPose& a, const hand::HandPose& b, double w)
 
 // The closing's timing: its speed sets the closing's length (the pads travel from 15 mm off
 // the faces to their targets), one digit's lead delays the other's degrees of freedom, and
-// everything after the closing moves with it; the hold lasts as long as asked. The default
+// everything after the closing moves with it; the lift's acceleration sets the lift's length,
+// and the hold lasts as long as asked. The default
 // closing keeps the script's timeline as written.
 void apply_timing(const hand::Skeleton& skeleton, const GraspClosing& closing,
                   PinchScript& script) {
   const GraspClosing standard;
   if (closing.closing_speed == standard.closing_speed && closing.lead_s == standard.lead_s &&
-      closing.hold_s == standard.hold_s)
+      closing.hold_s == standard.hold_s && closing.lift_acceleration == standard.lift_acceleration)
     return;
   const double closing_s = closing.closing_speed > 0
                                ? (0.015 + closing.over_closure) / closing.closing_speed
@@ -43,8 +44,11 @@ void apply_timing(const hand::Skeleton& skeleton, const GraspClosing& closing,
     for (std::size_t k = 0; k < skeleton.dofs.size(); ++k)
       if (skeleton.dofs[k].name.rfind(later, 0) == 0) script.dof_delay[k] = lag;
   }
+  // A smoothstep lift of height h over T peaks at 6 h / T^2, at its start.
   const double settle = script.lift_start - script.close_end,
-               lift = script.lift_end - script.lift_start,
+               lift = closing.lift_acceleration > 0
+                          ? std::sqrt(6 * script.lift_height / closing.lift_acceleration)
+                          : script.lift_end - script.lift_start,
                release = script.release_end - script.hold_end,
                fall = script.end - script.release_end;
   script.close_end = script.approach_end + closing_s;

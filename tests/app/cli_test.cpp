@@ -368,7 +368,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     const Result r = run_cli("sim grasp --cube 0.06 --jobs 1 --closing " + spec + " --json -");
     EXPECT_EQ(r.status, 0) << r.out;
     const util::JsonValue doc = util::JsonValue::parse(r.out);
-    EXPECT_EQ(doc["factors"].size(), 8u);
+    EXPECT_EQ(doc["factors"].size(), 9u);
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), 0.06);
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
@@ -376,7 +376,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
          {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
           "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm"})
       EXPECT_NE(o.find(key), nullptr) << key;
-    EXPECT_EQ(o["values"].size(), 8u);
+    EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 8u);
     return o;
   };

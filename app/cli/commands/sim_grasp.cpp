@@ -232,12 +232,13 @@ int sim_grasp(const std::vector<std::string>& argv) {
        true},
       {"factor", "NAME",
        "map only this factor of the closing; repeatable (default: every one: over_closure, "
-       "tilt_yaw, tilt_pitch, offset_along, lead, closing_speed, hold, and jitter with "
+       "tilt_yaw, tilt_pitch, offset_along, lead, closing_speed, lift_acceleration, hold, and "
+       "jitter with "
        "--jitter-from)",
        "", true},
       {"closing", "NAME=VALUE,...",
        "run this one closing instead of the grid, in the factors' units (mm, deg, side, ms, "
-       "cm/s, s), e.g. over_closure=20,lead=100"},
+       "cm/s, m/s2, s), e.g. over_closure=20,lead=100"},
       {"grid", "single|pairs|none",
        "each factor alone at its levels, or every pair of factors at about half their ranges "
        "(docs/simulator.md), or no grid",
@@ -263,7 +264,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
            "and the faces' horizontal (tilt_yaw, tilt_pitch, degrees), the pads moved "
            "along the faces (offset_along, of the side), one digit first (lead, ms: the "
            "thumb before the index; below 0 after), the closing's speed (closing_speed, "
-           "cm/s of each pad), the hold (hold, s) and a real recording's tracker jitter laid on "
+           "cm/s of each pad), the lift's peak acceleration (lift_acceleration, m/s2), the hold "
+           "(hold, s) and a real recording's tracker jitter laid on "
            "the hand (jitter, times it; --jitter-from). The grid runs each factor alone at "
            "its levels from the scripted pinch (sim pinch), or pairs of factors; --draws "
            "adds closings drawn from a distribution of people's closings whose sources "

@@ -64,6 +64,26 @@ TEST(GraspClosing, OneDigitFirstSpeedAndHoldMoveTheTimeline) {
   EXPECT_EQ(describe(closing), "lead 100 ms, closing_speed 5 cm/s, hold 2 s");
 }
 
+// The lift's peak acceleration sets its length (a smoothstep of height h over T peaks at
+// 6 h / T^2): 6 m/s^2 lifts the 10 cm in 0.32 s; the timeline after it moves with it.
+TEST(GraspClosing, TheLiftsAccelerationSetsItsLength) {
+  GraspClosing brisk;
+  set_closing_factor(brisk, "lift_acceleration", 6);
+  const PinchScript s = make_grasp_script(scene().skeleton, scene().model, brisk);
+  const PinchScript& pinch = scene().script;
+  EXPECT_NEAR(s.lift_end - s.lift_start, std::sqrt(6 * 0.10 / 6.0), 1e-12);
+  EXPECT_EQ(s.lift_start, pinch.lift_start);
+  EXPECT_NEAR(s.hold_end - s.lift_end, pinch.hold_end - pinch.lift_end, 1e-12);
+  const double dt = 1e-4;  // the lift's acceleration at its start, by finite differences
+  const auto height = [&](double t) { return s.target(t).root_position.y(); };
+  EXPECT_NEAR(
+      (height(s.lift_start + 2 * dt) - 2 * height(s.lift_start + dt) + height(s.lift_start)) /
+          (dt * dt),
+      6.0, 0.05);
+  EXPECT_EQ(describe(brisk), "lift_acceleration 6 m/s2");
+  EXPECT_THROW(set_closing_factor(brisk, "lift_acceleration", 0), std::invalid_argument);
+}
+
 TEST(GraspClosing, TiltAndOffsetMoveThePadsTargets) {
   GraspClosing tilted;
   set_closing_factor(tilted, "tilt_yaw", 20);
