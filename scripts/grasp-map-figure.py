@@ -12,7 +12,7 @@ import argparse
 import json
 from xml.sax.saxutils import escape
 
-CELL, GAP, LABEL, TOP = 34, 3, 118, 46
+CELL, GAP, LABEL, TOP = 34, 3, 160, 62
 HELD, LOST = "#3f9f5f", "#c8463c"
 
 
@@ -31,7 +31,7 @@ def merged_cubes(paths):
 
 
 def panel(x0, size, cube, factors):
-    out = [f'<text x="{x0}" y="{TOP - 22}" font-size="15" font-weight="bold">'
+    out = [f'<text x="{x0}" y="{TOP - 12}" font-size="15" font-weight="bold">'
            f'{size * 100:.0f} cm cube</text>']
     single = {(c["factor"], round(c["level"], 6)): c["held"] for c in cube["closings"]
               if c["factor"] not in ("", "pair", "closing")}
