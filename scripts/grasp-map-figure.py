@@ -4,8 +4,8 @@
 Usage: scripts/grasp-map-figure.py MAP.json [MAP.json ...] --out FIGURE.svg
 
 Each cube of the maps gets a panel: a row per factor, a cell per level, green where the cube
-was held, red where it was lost (the scripted pinch's own cell outlined), and below them the
-hold rate over the draws of people's closings with its 95 % interval. Maps of one cube from
+was held, red where it was lost; below them whether the scripted pinch held, how many pairs of
+factors held, and the hold rate over the draws of people's closings with its 95 % interval. Maps of one cube from
 several files (a single-factor grid, a run of draws) are merged. Standard library only.
 """
 import argparse

@@ -17,9 +17,16 @@ cmake -S . -B "$tree" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX
   -DHANDLAB_CPU=generic -DHANDLAB_WERROR=ON -DHANDLAB_BUILD_TESTS=OFF \
   -DHANDLAB_BUILD_BENCHMARKS=OFF >"$tree/configure.log" 2>&1 ||
   { cat "$tree/configure.log"; exit 1; }
+# The man pages' date: the commit's, so that the same commit packages the same bytes.
+SOURCE_DATE_EPOCH=$(git log -1 --format=%ct 2>/dev/null || date +%s)
+export SOURCE_DATE_EPOCH
 cmake --build "$tree" -j "$(nproc)"
 
 version=$(sed -n 's/^project(handlab VERSION \([0-9.]*\) .*/\1/p' CMakeLists.txt)
+if [ -z "$version" ]; then
+  echo "package.sh: no version in CMakeLists.txt's project()" >&2
+  exit 1
+fi
 stage=$tree/stage
 rm -rf "$stage"
 DESTDIR="$PWD/$stage" cmake --install "$tree" --strip >/dev/null
@@ -41,7 +48,11 @@ shlibs=$tree/shlibs
 rm -rf "$shlibs" && mkdir -p "$shlibs/debian"
 printf 'Source: handlab\n\nPackage: handlab\nArchitecture: amd64\n' >"$shlibs/debian/control"
 depends=$(cd "$shlibs" && dpkg-shlibdeps -O -e"$OLDPWD/$stage/usr/bin/handlab" \
-  -e"$OLDPWD/$stage/usr/bin/handlab-cli" 2>/dev/null | sed -n 's/^shlibs:Depends=//p')
+  -e"$OLDPWD/$stage/usr/bin/handlab-cli" | sed -n 's/^shlibs:Depends=//p')
+if [ -z "$depends" ]; then
+  echo "package.sh: dpkg-shlibdeps found no dependencies" >&2
+  exit 1
+fi
 depends="$depends, qt6-qpa-plugins"
 
 install -d "$stage/DEBIAN"
@@ -68,11 +79,20 @@ CONTROL
 (cd "$stage" && find usr -type f -print0 | sort -z | xargs -0 md5sum >DEBIAN/md5sums)
 chmod 644 "$stage/DEBIAN/control" "$stage/DEBIAN/md5sums"
 
+rm -f "$tree"/handlab_*_amd64.deb  # one package in the tree: this version's
 deb=$tree/handlab_${version}_amd64.deb
 dpkg-deb --root-owner-group -Zxz --build "$stage" "$deb" >/dev/null
 echo "package.sh: wrote $deb ($(du -h "$deb" | cut -f1))"
 if [ "$lint" = 1 ]; then
-  lintian --tag-display-limit 0 "$deb" 2>/dev/null | tee "$tree/lintian.txt" || true
+  # lintian exits 1 when it reports errors, above 1 when it could not check.
+  status=0
+  lintian --tag-display-limit 0 "$deb" >"$tree/lintian.txt" 2>"$tree/lintian.err" || status=$?
+  cat "$tree/lintian.txt"
+  if [ "$status" -gt 1 ]; then
+    cat "$tree/lintian.err" >&2
+    echo "package.sh: lintian could not check the package (exit $status)" >&2
+    exit 1
+  fi
   if grep -q '^E:' "$tree/lintian.txt"; then
     echo "package.sh: lintian found errors (above)" >&2
     exit 1

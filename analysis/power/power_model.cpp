@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "core/util/data_files.h"
 #include "core/util/json_value.h"
 
 namespace handlab::power {
@@ -220,7 +221,8 @@ PowerModel parse_power_model(const std::string& text, const PowerDesign& design,
   return m;
 }
 
-PowerModel read_power_model(const std::string& path, const PowerDesign& design) {
+PowerModel read_power_model(const std::string& named, const PowerDesign& design) {
+  const std::string path = util::find_data_file(named);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot read");
   std::ostringstream text;

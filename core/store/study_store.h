@@ -39,8 +39,8 @@ struct StudyInfo {
   std::vector<std::string> factors;
   std::vector<std::pair<std::string, std::vector<std::string>>> conditions;
   int planned_participants = 0;  // as StudyDefinition's
-  // The handlab versions and commits that created the file or opened it to write, in the order
-  // they first did (none recorded before schema 7).
+  // The handlab versions and commits that created the file or opened it with write access, in the
+  // order they first did (none recorded before schema 7).
   std::vector<std::pair<std::string, std::string>> programs;
 };
 

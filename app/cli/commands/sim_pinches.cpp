@@ -4,6 +4,7 @@
 // why. The grasp map's question asked of real hands.
 #include "app/cli/commands/sim_pinches.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -112,8 +113,12 @@ void print_rows(const std::vector<PinchRow>& rows) {
     std::printf("\n");
   }
   // Per strategy and cube, over the recordings.
+  std::vector<double> cubes;
+  for (const PinchRow& r : rows)
+    if (std::find(cubes.begin(), cubes.end(), r.cube_size) == cubes.end())
+      cubes.push_back(r.cube_size);
   for (const char* strategy : {"naive", "ours"})
-    for (double cube : {0.01, 0.06}) {
+    for (double cube : cubes) {
       int run = 0, held = 0;
       for (const PinchRow& r : rows)
         if (r.strategy == strategy && r.cube_size == cube && r.closing.takes_cube)
@@ -176,7 +181,8 @@ int sim_pinches(const std::vector<std::string>& argv) {
            "the cube rests on the floor between them), the fingers kept where the closing "
            "ends, then lifted 10 cm and held 2 s. Reports per closing its moment, widest and "
            "least aperture, the pads' speed and tilt, whether the cube was held and, if not, "
-           "why: pushed away before the second pad, squeezed out, or slipped at the lift "
+           "why: pushed away (a quarter of its side along the floor by the closing's end, no "
+           "grip as the lift starts), squeezed out (no grip otherwise) or slipped at the lift "
            "(docs/simulator.md).\n\nOptions:\n"
         << format_options_help(specs);
     return 0;

@@ -119,11 +119,12 @@ int study_info(const std::vector<std::string>& argv) {
   };
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli study info --db DB [--json OUT]\n\nThe study: its name, "
-                 "protocol (SHA-256), seed, conditions, planned size, the file's schema, and "
-                 "each handlab version and commit that created it or opened it to write.\n\n"
-                 "Options:\n"
-              << format_options_help(specs);
+    std::cout
+        << "Usage: handlab-cli study info --db DB [--json OUT]\n\nThe study: its name, "
+           "protocol (SHA-256), seed, conditions, planned size, the file's schema, and "
+           "each handlab version and commit that created it or opened it with write access.\n\n"
+           "Options:\n"
+        << format_options_help(specs);
     return 0;
   }
   args.require({"db"});
