@@ -135,8 +135,8 @@ ALTER TABLE participant ADD COLUMN between_levels TEXT NOT NULL DEFAULT '{}';
     R"sql(
 ALTER TABLE study ADD COLUMN planned_participants INTEGER CHECK (planned_participants > 0);
 )sql",
-    // 6 -> 7: each handlab version and commit that created the file or opened it with write access,
-    // in the order they first did.
+    // 6 -> 7: each handlab version and commit that created the file or opened it with write
+    // access, in the order they first did.
     R"sql(
 CREATE TABLE program (
   id INTEGER PRIMARY KEY,
