@@ -49,6 +49,10 @@ const std::vector<ClosingParameter>& human_closing_parameters() {
        "Smeets & Brenner 1999 (Motor Control 3:237): the digits approach the faces slowly and "
        "at right angles; no speed at contact at hand",
        true},
+      {"lift_acceleration", "0.6 m/s2, the scripted pinch's lift (10 cm in 1 s): not drawn",
+       "none: how briskly people lift a light object after a precision grip was not measured "
+       "here; the grid maps it alone and in pairs",
+       true},
       {"hold", "5 s, the scripted pinch's",
        "a lab lift's hold (Johansson & Westling 1988 held 10 s); a pick-and-place holds "
        "shorter",

@@ -377,7 +377,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
           "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
-    EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 8u);
+    EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);
     return o;
   };
   const util::JsonValue holds = closing("over_closure=3");
