@@ -6,22 +6,13 @@
 
 #include "core/hand/tracked_hand.h"
 #include "core/tracking/hand_fitting.h"
+#include "studies/participant/own_hand_posture.h"
 #include "studies/participant/pinch_ik.h"
 
 namespace handlab::studies {
 namespace {
 
-// The postures' fixed angles (rad), chosen by looking at the own hand and its virtual hand
-// holding each cube (docs/simulated-participants.md), never against a strategy comparison.
-constexpr double kTipRoll = 0.3;   // tip pinch: the palm nearly flat ...
-constexpr double kTipPitch = 0.5;  // ... and the fingers pointing down
-constexpr double kTipTilt = 0.6;   // the distal phalanges from the vertical, in a tip pinch
-// Middle, ring and little fingers, of their flexion range: curled out of the way in a closed
-// pinch, opening with it (the first postural synergy opens and closes all the digits
-// together: Santello, Flanders & Soechting 1998), extended at an aperture of 10 cm.
-constexpr double kOtherFingersCurlClosed = 0.7;
-constexpr double kOtherFingersCurlOpen = 0.1;
-constexpr double kOtherFingersOpenAt = 0.10;  // m between the pads
+constexpr OwnHandPosture kPosture{};  // the model's (own_hand_posture.h)
 
 // Palm down, fingers along the A-B line (+x), rolled 60 degrees towards the thumb so that
 // thumb and index oppose across that line: the posture the simulator's pinch script holds
@@ -40,30 +31,32 @@ Eigen::Matrix3d pinch_rotation(double roll, double pitch) {
 OwnHand::OwnHand(double hand_length, double roll)
     : skeleton_(hand::build_tracked_hand(hand::HandShape::with_length(hand_length))) {
   pad_ = build(false, pinch_rotation(roll, 0.0));
-  tip_ = build(true, pinch_rotation(kTipRoll, kTipPitch));
+  tip_ = build(true, pinch_rotation(kPosture.tip_roll, kPosture.tip_pitch));
 }
 
 OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
   // Pad pinch: the pads on the palmar surface of the distal bones' middles, and points 12 mm
   // deeper, aimed along the grasp axis so that the pads face each other. Tip pinch: the
   // fingertips, and points on the bones' bases, aimed from above so that the distal
-  // phalanges come down on the object at `kTipTilt` from the vertical.
+  // phalanges come down on the object at `tip_tilt` from the vertical.
   const int thumb = skeleton_.bone_index("thumb_distal");
   const int index = skeleton_.bone_index("index_distal");
   auto contact = [&](int bone) {
     const hand::Bone& b = skeleton_.bones[std::size_t(bone)];
-    return tip ? Eigen::Vector3d(0, b.length, 0) : Eigen::Vector3d(0, 0.55 * b.length, b.radius);
+    return tip ? Eigen::Vector3d(0, b.length, 0)
+               : Eigen::Vector3d(0, kPosture.pad_along * b.length, b.radius);
   };
   auto aiming = [&](int bone) {
     const hand::Bone& b = skeleton_.bones[std::size_t(bone)];
-    return tip ? Eigen::Vector3d(0, 0.3 * b.length, 0)
-               : Eigen::Vector3d(0, 0.55 * b.length, b.radius - 0.012);
+    return tip ? Eigen::Vector3d(0, kPosture.tip_aim_along * b.length, 0)
+               : Eigen::Vector3d(0, kPosture.pad_along * b.length, b.radius - kPosture.aim_depth);
   };
   hand::HandPose pose = hand::HandPose::rest(skeleton_);
   pose.root_rotation = rotation;
   auto curl_others = [&](double gap) {
-    const double c = kOtherFingersCurlClosed + (kOtherFingersCurlOpen - kOtherFingersCurlClosed) *
-                                                   std::clamp(gap / kOtherFingersOpenAt, 0.0, 1.0);
+    const double c =
+        kPosture.others_curl_closed + (kPosture.others_curl_open - kPosture.others_curl_closed) *
+                                          std::clamp(gap / kPosture.others_open_at, 0.0, 1.0);
     for (std::size_t k = 0; k < skeleton_.dofs.size(); ++k) {
       const hand::Dof& dof = skeleton_.dofs[k];
       const bool other = dof.name.rfind("middle", 0) == 0 || dof.name.rfind("ring", 0) == 0 ||
@@ -83,10 +76,10 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
       (point(start, thumb, contact(thumb)) - point(start, index, contact(index))).z() > 0 ? 1.0
                                                                                           : -1.0);
   const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-  const double thumb_reach = 0.7 * skeleton_.bones[std::size_t(thumb)].length;
-  const double index_reach = 0.7 * skeleton_.bones[std::size_t(index)].length;
+  const double thumb_reach = kPosture.tip_reach * skeleton_.bones[std::size_t(thumb)].length;
+  const double index_reach = kPosture.tip_reach * skeleton_.bones[std::size_t(index)].length;
   Table table{rotation, {}};
-  for (double gap = 0.14; gap > -1e-9; gap -= 0.005) {
+  for (double gap = kPosture.widest_gap; gap > -1e-9; gap -= kPosture.gap_step) {
     curl_others(gap);
     const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose);
     const Eigen::Vector3d centre =
@@ -94,17 +87,17 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
     const double half = 0.5 * gap;
     const Eigen::Vector3d thumb_at = centre + axis * half, index_at = centre - axis * half;
     const Eigen::Vector3d thumb_aim =
-        tip ? Eigen::Vector3d(thumb_at +
-                              thumb_reach * (std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up))
-            : Eigen::Vector3d(centre + axis * (half + 0.012));
+        tip ? Eigen::Vector3d(thumb_at + thumb_reach * (std::sin(kPosture.tip_tilt) * axis +
+                                                        std::cos(kPosture.tip_tilt) * up))
+            : Eigen::Vector3d(centre + axis * (half + kPosture.aim_depth));
     const Eigen::Vector3d index_aim =
-        tip ? Eigen::Vector3d(index_at +
-                              index_reach * (-std::sin(kTipTilt) * axis + std::cos(kTipTilt) * up))
-            : Eigen::Vector3d(centre - axis * (half + 0.012));
+        tip ? Eigen::Vector3d(index_at + index_reach * (-std::sin(kPosture.tip_tilt) * axis +
+                                                        std::cos(kPosture.tip_tilt) * up))
+            : Eigen::Vector3d(centre - axis * (half + kPosture.aim_depth));
     const std::vector<PointGoal> goals = {{thumb, contact(thumb), thumb_at, 1.0},
                                           {index, contact(index), index_at, 1.0},
-                                          {thumb, aiming(thumb), thumb_aim, 0.3},
-                                          {index, aiming(index), index_aim, 0.3}};
+                                          {thumb, aiming(thumb), thumb_aim, kPosture.aim_weight},
+                                          {index, aiming(index), index_aim, kPosture.aim_weight}};
     solve_pinch_ik(skeleton_, pose, goals);
     const hand::BoneFrames solved = hand::forward_kinematics(skeleton_, pose);
     const Eigen::Vector3d t = point(solved, thumb, contact(thumb));

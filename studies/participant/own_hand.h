@@ -12,6 +12,7 @@
 
 #include "core/hand/skeleton.h"
 #include "core/tracking/tracked_frame.h"
+#include "studies/participant/own_hand_posture.h"
 
 namespace handlab::studies {
 
@@ -20,8 +21,8 @@ enum class Pinch { kPad, kTip };
 class OwnHand {
  public:
   // `roll`: how far the palm is turned from flat towards the thumb in the pad pinch (rad;
-  // 60 degrees, the posture the simulator's pinch script holds both cubes in).
-  explicit OwnHand(double hand_length, double roll = 1.0471975511965976);
+  // the model's own_hand_posture.h).
+  explicit OwnHand(double hand_length, double roll = OwnHandPosture{}.pad_roll);
 
   // The pose of a pinch with the contact points `aperture` apart (m, surface to surface,
   // clamped to what the hand reaches) and their midpoint at `grip`.

@@ -12,10 +12,12 @@
 #include "core/util/sha256.h"
 #include "studies/participant/behaviour.h"
 #include "studies/participant/motor_primitives.h"
+#include "studies/participant/own_hand_posture.h"
+#include "studies/participant/questionnaire_model.h"
 
 namespace handlab::studies {
 
-const char* const kParticipantModelVersion = "handlab participant model 2.7";
+const char* const kParticipantModelVersion = "handlab participant model 2.7.1";
 
 namespace {
 
@@ -84,6 +86,27 @@ constexpr std::pair<const char*, double Behaviour::*> kBehaviourFields[] = {
     {"rest_aperture", &Behaviour::rest_aperture},
     {"reference_hand_length", &Behaviour::reference_hand_length},
 };
+// The own hand's posture constants, every one (checked as the behaviour's are).
+constexpr std::pair<const char*, double OwnHandPosture::*> kPostureFields[] = {
+    {"pad_roll", &OwnHandPosture::pad_roll},
+    {"tip_roll", &OwnHandPosture::tip_roll},
+    {"tip_pitch", &OwnHandPosture::tip_pitch},
+    {"tip_tilt", &OwnHandPosture::tip_tilt},
+    {"others_curl_closed", &OwnHandPosture::others_curl_closed},
+    {"others_curl_open", &OwnHandPosture::others_curl_open},
+    {"others_open_at", &OwnHandPosture::others_open_at},
+    {"pad_along", &OwnHandPosture::pad_along},
+    {"aim_depth", &OwnHandPosture::aim_depth},
+    {"tip_aim_along", &OwnHandPosture::tip_aim_along},
+    {"tip_reach", &OwnHandPosture::tip_reach},
+    {"aim_weight", &OwnHandPosture::aim_weight},
+    {"widest_gap", &OwnHandPosture::widest_gap},
+    {"gap_step", &OwnHandPosture::gap_step},
+};
+static_assert(std::size(kPostureFields) * sizeof(double) == sizeof(OwnHandPosture),
+              "every posture constant is named");
+static_assert(4 * sizeof(QuestionnaireWeights) + sizeof(double) == sizeof(QuestionnaireModel),
+              "every questionnaire weight is written");
 static_assert(std::size(kBehaviourFields) * sizeof(double) == sizeof(Behaviour),
               "every behaviour constant is named");
 static_assert((std::size(kMotorFields) + 4) * sizeof(double) == sizeof(MotorParameters),
@@ -106,6 +129,27 @@ void write_behaviour(util::JsonWriter& w, const Behaviour& b) {
   w.begin_array();
   for (const auto& [name, member] : kBehaviourFields) w.value(b.*member);
   w.end_array();
+}
+
+void write_posture(util::JsonWriter& w, const OwnHandPosture& p) {
+  w.begin_object();
+  for (const auto& [name, member] : kPostureFields) w.field(name, p.*member);
+  w.end_object();
+}
+
+void write_questionnaire(util::JsonWriter& w, const QuestionnaireModel& q) {
+  w.begin_object();
+  for (const auto& [name, weights] :
+       {std::pair{"precision", q.precision}, std::pair{"ease", q.ease},
+        std::pair{"naturalness", q.naturalness}, std::pair{"other", q.other}})
+    w.key(name)
+        .begin_array()
+        .value(weights.attempt)
+        .value(weights.correction)
+        .value(weights.loss)
+        .value(weights.doubling)
+        .end_array();
+  w.field("noise_sd", q.noise_sd).end_object();
 }
 
 }  // namespace
@@ -187,6 +231,12 @@ std::string model_parameters_json(const ParticipantModel& model) {
   write_motor(w, model.fixed);
   w.key("behaviour");
   write_behaviour(w, model.behaviour);
+  // Since 2.7.1: the own hand's postures and the questionnaire's weights, as the code reads
+  // them (not settable: what 2.7 ran, hashed).
+  w.key("own_hand");
+  write_posture(w, OwnHandPosture{});
+  w.key("questionnaire");
+  write_questionnaire(w, QuestionnaireModel{});
   w.end_object();
   return out.str();
 }

@@ -8,15 +8,13 @@
 namespace handlab::studies {
 namespace {
 
-struct Weights {
-  double attempt, correction, loss, doubling;
-};
+constexpr QuestionnaireModel kModel{};
 
-Weights weights_of(const std::string& id) {
-  if (id == "precision") return {0.5, 0.3, 0.3, 0.5};
-  if (id == "ease") return {0.8, 0.1, 0.5, 1.0};
-  if (id == "naturalness") return {0.5, 0.2, 0.5, 0.5};
-  return {0.6, 0.2, 0.433, 2.0 / 3.0};
+const QuestionnaireWeights& weights_of(const std::string& id) {
+  if (id == "precision") return kModel.precision;
+  if (id == "ease") return kModel.ease;
+  if (id == "naturalness") return kModel.naturalness;
+  return kModel.other;
 }
 
 }  // namespace
@@ -29,10 +27,10 @@ std::vector<int> simulated_answers(const std::vector<std::string>& item_ids, int
       e.expected_time > 0 ? std::max(std::log2(std::max(time, 1e-3) / e.expected_time), 0.0) : 0.0;
   std::vector<int> answers;
   for (const std::string& id : item_ids) {
-    const Weights w = weights_of(id);
+    const QuestionnaireWeights& w = weights_of(id);
     const double latent = double(scale_points) - w.attempt * extra_attempts -
                           w.correction * e.corrections - w.loss * e.losses -
-                          w.doubling * doublings + random.normal(0.0, 0.5);
+                          w.doubling * doublings + random.normal(0.0, kModel.noise_sd);
     answers.push_back(std::clamp(int(std::lround(latent)), 1, scale_points));
   }
   return answers;

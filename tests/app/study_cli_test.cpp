@@ -719,3 +719,33 @@ TEST(CliSensitivity, MorrisEffectsOfTheModelsParametersOnWholeStudies) {
       run_cli("sensitivity --protocol " + two_blocks + " --from " + saved + " --work " + work),
       "it takes no --work");
 }
+
+// Model 2.7.1 only hashes more of what model 2.7 read: the same proxy trials, to the last bit
+// of every time, event, answer and memory, as 2.7's binary wrote for the fixture
+// (tests/data/studies/model-2.7-proxy/README.md).
+TEST(CliSimulate, Model271RunsModel27sTrialsBitForBit) {
+  const std::string db = handlab::test::fresh_path("model271.db");
+  ASSERT_EQ(run_cli("simulate --protocol " + std::string(kStudy) +
+                    " --participants 3 --seed 3 --world proxy --db " + db)
+                .status,
+            0);
+  Database study(db, Database::Mode::kQueryOnly);
+  std::string dump;
+  for (const char* sql :
+       {"SELECT 'trial', planned_id, attempt, status, printf('%.17g', completion_time_s), grasps, "
+        "drops, reason, frames FROM trial ORDER BY id",
+        "SELECT 'event', trial_id, printf('%.17g', t), kind FROM event ORDER BY id",
+        "SELECT 'answer', trial_id, item, value FROM answer ORDER BY trial_id, item",
+        "SELECT 'memory', trial_id, memory FROM simulated_memory ORDER BY trial_id"}) {
+    Statement rows = study.prepare(sql);
+    while (rows.step()) {
+      for (int c = 0; c < rows.column_count(); ++c)
+        dump += (c ? "|" : "") + (rows.is_null(c) ? std::string() : rows.column_text(c));
+      dump += '\n';
+    }
+  }
+  EXPECT_EQ(dump, handlab::test::file_bytes(std::string(HANDLAB_SOURCE_DIR) +
+                                            "/tests/data/studies/model-2.7-proxy/seed3-n3.txt"));
+  EXPECT_EQ(study.query_text("SELECT model FROM simulated_person LIMIT 1"),
+            "handlab participant model 2.7.1");
+}
