@@ -46,7 +46,8 @@ Eigen::Vector3d flesh_point(const HandSimModel& model, const HandSimState& s, co
 
 double friction_cone(const HandSimModel& model, const Contact& c, double depth) {
   depth = std::max(depth, 0.0);
-  return model.parameters.friction * depth *
+  const SimParameters& p = model.parameters;
+  return (on_cube(c) ? p.skin_friction : p.friction) * depth *
          (1.0 + contact_stiffening(model, c) * depth / contact_stiffness(model, c));
 }
 

@@ -46,7 +46,7 @@ struct SimParameters {
   double tracking_force_limit = 0.0;   // N per finger bone
   double tracking_torque_limit = 0.0;  // N m per finger bone
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
-  // coefficient (skin on wood or plastic: 0.5-1).
+  // coefficients (below).
   double contact_stiffness = 5e3;      // N/m, a flesh node against the cube or floor, at first
   double contact_stiffening = 2.5e7;   // N/m^2: its force k d + k3 d^2 at a depth d
   double cube_floor_stiffness = 1e4;   // N/m, a cube corner against the floor
@@ -56,7 +56,12 @@ struct SimParameters {
   // skin between them (1.7 mm in the scripted light pinch's hold).
   // The nodes and samples share contact_stiffness (HandSimModel::cube_contact_share).
   int skin_samples = 1;
+  // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
+  // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
+  // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo, Armstrong &
+  // Drinkaus 2009, Ergonomics 52:609).
   double friction = 0.8;
+  double skin_friction = 0.8;
   bool hand_floor_contact = false;  // the study: off
   Eigen::Vector3d floor_normal = Eigen::Vector3d::UnitY();
   double floor_height = 0.0;    // the floor: floor_normal . x = floor_height

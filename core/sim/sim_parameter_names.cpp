@@ -29,6 +29,7 @@ const std::vector<NamedParameter>& named_parameters() {
       {"cube_floor_stiffness", &SimParameters::cube_floor_stiffness, true},
       {"cube_floor_stiffening", &SimParameters::cube_floor_stiffening, false},
       {"friction", &SimParameters::friction, false},
+      {"skin_friction", &SimParameters::skin_friction, false},
       {"cube_density", &SimParameters::cube_density, true},
   };
   return table;

@@ -196,6 +196,21 @@ TEST(Friction, AnchorsStayInsideCoulombsCone) {
   EXPECT_FALSE(s.sample_cube.empty()) << "the skin between the pads' nodes holds too";
 }
 
+// Two pairs of materials: the skin's coefficient sets the cone of flesh on the cube, the
+// floor's that of a cube corner on the floor, each in proportion.
+TEST(Friction, TheSkinsCoefficientIsTheFleshsOnTheCubeTheFloorsTheCubesOnTheFloor) {
+  HandSimModel model = test::gripping_fine_cube().scene.model;
+  const Contact flesh{Contact::kNodeCube, 0, {}, {}}, corner{Contact::kCornerFloor, 0, {}, {}};
+  const double depth = 2e-4, on_cube = friction_cone(model, flesh, depth),
+               on_floor = friction_cone(model, corner, depth);
+  model.parameters.skin_friction *= 1.5;
+  EXPECT_DOUBLE_EQ(friction_cone(model, flesh, depth), 1.5 * on_cube);
+  EXPECT_DOUBLE_EQ(friction_cone(model, corner, depth), on_floor);
+  model.parameters.friction *= 0.5;
+  EXPECT_DOUBLE_EQ(friction_cone(model, flesh, depth), 1.5 * on_cube);
+  EXPECT_DOUBLE_EQ(friction_cone(model, corner, depth), 0.5 * on_floor);
+}
+
 // A corner of the cube pressed into the middle of a skin face, between its nodes: the face's
 // skin sample finds it and pushes the face's nodes and the cube apart, a third of the force on
 // each node. With the nodes alone nothing touches, and the corner goes on into the flesh.
