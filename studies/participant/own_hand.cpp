@@ -28,9 +28,9 @@ Eigen::Matrix3d pinch_rotation(double roll, double pitch) {
 
 }  // namespace
 
-OwnHand::OwnHand(double hand_length, double roll)
+OwnHand::OwnHand(double hand_length)
     : skeleton_(hand::build_tracked_hand(hand::HandShape::with_length(hand_length))) {
-  pad_ = build(false, pinch_rotation(roll, 0.0));
+  pad_ = build(false, pinch_rotation(kPosture.pad_roll, 0.0));
   tip_ = build(true, pinch_rotation(kPosture.tip_roll, kPosture.tip_pitch));
 }
 
@@ -98,7 +98,7 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
                                           {index, contact(index), index_at, 1.0},
                                           {thumb, aiming(thumb), thumb_aim, kPosture.aim_weight},
                                           {index, aiming(index), index_aim, kPosture.aim_weight}};
-    solve_pinch_ik(skeleton_, pose, goals);
+    solve_pinch_ik(skeleton_, pose, goals, kPosture.ik);
     const hand::BoneFrames solved = hand::forward_kinematics(skeleton_, pose);
     const Eigen::Vector3d t = point(solved, thumb, contact(thumb));
     const Eigen::Vector3d i = point(solved, index, contact(index));
@@ -109,7 +109,7 @@ OwnHand::Table OwnHand::build(bool tip, const Eigen::Matrix3d& rotation) const {
   // Keep a strictly increasing aperture (an unreachable gap repeats its neighbour's).
   std::vector<Posture> kept;
   for (const Posture& p : table.postures)
-    if (kept.empty() || p.aperture > kept.back().aperture + 1e-4) kept.push_back(p);
+    if (kept.empty() || p.aperture > kept.back().aperture + kPosture.keep_step) kept.push_back(p);
   table.postures = std::move(kept);
   return table;
 }

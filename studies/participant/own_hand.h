@@ -20,9 +20,8 @@ enum class Pinch { kPad, kTip };
 
 class OwnHand {
  public:
-  // `roll`: how far the palm is turned from flat towards the thumb in the pad pinch (rad;
-  // the model's own_hand_posture.h).
-  explicit OwnHand(double hand_length, double roll = OwnHandPosture{}.pad_roll);
+  // The postures of a hand of this length (m), shaped by the model's own_hand_posture.h.
+  explicit OwnHand(double hand_length);
 
   // The pose of a pinch with the contact points `aperture` apart (m, surface to surface,
   // clamped to what the hand reaches) and their midpoint at `grip`.

@@ -4,6 +4,8 @@
 // hash (participant_model.h), each by name.
 #pragma once
 
+#include "studies/participant/pinch_ik.h"
+
 namespace handlab::studies {
 
 struct OwnHandPosture {
@@ -27,6 +29,8 @@ struct OwnHandPosture {
   double aim_weight = 0.3;     // the aiming points' weight against the contact points' 1
   double widest_gap = 0.14;    // m: the posture table's widest aperture ...
   double gap_step = 0.005;     // m: ... down to 0 in these steps
+  double keep_step = 1e-4;     // m: a posture kept when it opens this much wider than the last
+  PinchIkOptions ik;           // the inverse kinematics that solves each posture
 };
 
 }  // namespace handlab::studies

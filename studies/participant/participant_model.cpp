@@ -102,10 +102,15 @@ constexpr std::pair<const char*, double OwnHandPosture::*> kPostureFields[] = {
     {"aim_weight", &OwnHandPosture::aim_weight},
     {"widest_gap", &OwnHandPosture::widest_gap},
     {"gap_step", &OwnHandPosture::gap_step},
+    {"keep_step", &OwnHandPosture::keep_step},
 };
-static_assert(std::size(kPostureFields) * sizeof(double) == sizeof(OwnHandPosture),
+// The inverse kinematics' options: five doubles and the iteration count (padded to a double).
+static_assert(sizeof(PinchIkOptions) == 6 * sizeof(double), "every IK option is written");
+static_assert(std::size(kPostureFields) * sizeof(double) + sizeof(PinchIkOptions) ==
+                  sizeof(OwnHandPosture),
               "every posture constant is named");
-static_assert(4 * sizeof(QuestionnaireWeights) + sizeof(double) == sizeof(QuestionnaireModel),
+static_assert(sizeof(QuestionnaireWeights) == 4 * sizeof(double) &&
+                  4 * sizeof(QuestionnaireWeights) + sizeof(double) == sizeof(QuestionnaireModel),
               "every questionnaire weight is written");
 static_assert(std::size(kBehaviourFields) * sizeof(double) == sizeof(Behaviour),
               "every behaviour constant is named");
@@ -134,7 +139,16 @@ void write_behaviour(util::JsonWriter& w, const Behaviour& b) {
 void write_posture(util::JsonWriter& w, const OwnHandPosture& p) {
   w.begin_object();
   for (const auto& [name, member] : kPostureFields) w.field(name, p.*member);
-  w.end_object();
+  w.key("ik")
+      .begin_array()
+      .value(p.ik.root_weight)
+      .value(p.ik.damping)
+      .value(p.ik.max_step)
+      .value(p.ik.translation_unit)
+      .value(double(p.ik.iterations))
+      .value(p.ik.step_tolerance)
+      .end_array()
+      .end_object();
 }
 
 void write_questionnaire(util::JsonWriter& w, const QuestionnaireModel& q) {

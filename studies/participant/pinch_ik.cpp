@@ -64,7 +64,7 @@ PinchIkResult solve_pinch_ik(const hand::Skeleton& skeleton, hand::HandPose& pos
     step = ldlt.solve(gradient);
     step = -step;
     scaled = step;
-    scaled.head<3>() /= 0.05;
+    scaled.head<3>() /= options.translation_unit;
     const double longest = scaled.cwiseAbs().maxCoeff();
     if (longest > options.max_step) step *= options.max_step / longest;
     pose.root_position += step.head<3>();

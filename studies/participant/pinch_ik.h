@@ -22,9 +22,10 @@ struct PointGoal {
 };
 
 struct PinchIkOptions {
-  double root_weight = 1e-3;  // (m^2/m^2): the wrist's shift from where it starts, penalised
-  double damping = 1e-6;      // (m^2): Levenberg-Marquardt damping of every step
-  double max_step = 0.3;      // rad (the wrist's shift in units of 5 cm): longest step
+  double root_weight = 1e-3;       // (m^2/m^2): the wrist's shift from where it starts, penalised
+  double damping = 1e-6;           // (m^2): Levenberg-Marquardt damping of every step
+  double max_step = 0.3;           // rad (the wrist's shift in translation_unit): longest step
+  double translation_unit = 0.05;  // m: the wrist's shift counts in these against max_step
   int iterations = 200;
   double step_tolerance = 1e-9;  // stop when no parameter moves more (rad, m)
 };

@@ -17,8 +17,8 @@ namespace handlab::studies {
 struct QuestionnaireWeights {
   double attempt, correction, loss, doubling;
 };
-// The weights of "precision", "ease" and "naturalness", then of any other item (their mean):
-// part of the model's hash (participant_model.h).
+// The weights of "precision", "ease" and "naturalness", then of any other item (about their
+// mean, the loss's 0.433 as 2.7 ran it); part of the model's hash (participant_model.h).
 struct QuestionnaireModel {
   QuestionnaireWeights precision{0.5, 0.3, 0.3, 0.5};
   QuestionnaireWeights ease{0.8, 0.1, 0.5, 1.0};
@@ -28,8 +28,8 @@ struct QuestionnaireModel {
 };
 
 // One answer per item id (1..scale_points). `time` is the trial's completion time (the
-// timeout when it failed). Items other than precision, ease and naturalness take the mean
-// of the three weightings.
+// timeout when it failed). Items other than precision, ease and naturalness take the `other`
+// weights.
 std::vector<int> simulated_answers(const std::vector<std::string>& item_ids, int scale_points,
                                    const TrialExperience& experience, double time,
                                    std::uint64_t seed);

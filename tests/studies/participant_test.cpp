@@ -132,6 +132,15 @@ TEST(Population, DrawsTheStudySampleDeterministically) {
 
 // Its questionnaire answers follow what it experienced, never the condition (the function
 // has no condition to read): a clean trial rates higher than a trial of repeated failures.
+// The frozen model's version and hash, as docs/simulated-participants.md records them: a
+// constant the model reads that changes changes the hash, and this test with it.
+TEST(ParticipantModel, TheFrozenModelIsItsVersionAndHash) {
+  EXPECT_STREQ(kParticipantModelVersion, "handlab participant model 2.7.1");
+  EXPECT_EQ(model_sha256(), "031e128532017b0feb16175b881a0df9f940720dd809b7f415febbb73b6a5ee5");
+  EXPECT_NE(model_parameters_json(frozen_participant_model()).find("\"keep_step\""),
+            std::string::npos);
+}
+
 TEST(QuestionnaireModel, AnswersFollowTheExperience) {
   const std::vector<std::string> ids = {"precision", "ease", "naturalness"};
   TrialExperience clean{1, 0, 0, 6.0};
