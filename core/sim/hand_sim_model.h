@@ -58,8 +58,8 @@ struct SimParameters {
   int skin_samples = 1;
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
-  // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo, Armstrong &
-  // Drinkaus 2009, Ergonomics 52:609).
+  // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong
+  // 2009, Ergonomics 52(5):609).
   double friction = 0.8;
   double skin_friction = 0.8;
   bool hand_floor_contact = false;  // the study: off

@@ -127,12 +127,14 @@ class BulletPinch {
                       btTransform(btQuaternion::getIdentity(),
                                   btVector3(0, btScalar(par.floor_height - 0.05), 0)),
                       kFloor, kCube);
-    floor_->setFriction(1.0);  // rigid-rigid friction is the product: the cube's 0.8
+    // Bullet's friction of a pair is the product of its bodies': the cube's 1, so that the
+    // floor gives the cube on the floor `friction` and the flesh the skin's `skin_friction`.
+    floor_->setFriction(btScalar(par.friction));
     // The cube.
     shapes_.push_back(std::make_unique<btBoxShape>(bt(model.cube_half)));
     cube_ = add_body(model.cube.mass, shapes_.back().get(), bt(start.cube_pose), kCube,
                      kFloor | kFlesh);
-    cube_->setFriction(btScalar(par.friction));
+    cube_->setFriction(1.0);
     cube_->setActivationState(DISABLE_DEACTIVATION);
     // The bones: kinematic, on their targets.
     shapes_.push_back(std::make_unique<btSphereShape>(0.002));
@@ -167,7 +169,7 @@ class BulletPinch {
     flesh_->m_tetraScratchesTn.resize(flesh_->m_tetras.size());
     flesh_->m_cfg.kKHR = 1;  // contact hardness with kinematic and rigid bodies
     flesh_->m_cfg.kCHR = 1;
-    flesh_->m_cfg.kDF = 1;  // friction: the product with the cube's 0.8
+    flesh_->m_cfg.kDF = btScalar(par.skin_friction);  // times the cube's 1
     // Flesh nodes against the cube, as handlab's contacts (SDF_RDN: node-based; SDF_RD alone
     // finds none).
     flesh_->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;

@@ -9,6 +9,7 @@
 
 #include "core/mesh/tet_mesh.h"
 #include "core/sim/contact.h"
+#include "core/sim/sim_parameter_names.h"
 #include "tests/core/sim/stage_fixture.h"
 
 namespace handlab::sim {
@@ -200,15 +201,24 @@ TEST(Friction, AnchorsStayInsideCoulombsCone) {
 // floor's that of a cube corner on the floor, each in proportion.
 TEST(Friction, TheSkinsCoefficientIsTheFleshsOnTheCubeTheFloorsTheCubesOnTheFloor) {
   HandSimModel model = test::gripping_fine_cube().scene.model;
-  const Contact flesh{Contact::kNodeCube, 0, {}, {}}, corner{Contact::kCornerFloor, 0, {}, {}};
-  const double depth = 2e-4, on_cube = friction_cone(model, flesh, depth),
-               on_floor = friction_cone(model, corner, depth);
-  model.parameters.skin_friction *= 1.5;
-  EXPECT_DOUBLE_EQ(friction_cone(model, flesh, depth), 1.5 * on_cube);
-  EXPECT_DOUBLE_EQ(friction_cone(model, corner, depth), on_floor);
-  model.parameters.friction *= 0.5;
-  EXPECT_DOUBLE_EQ(friction_cone(model, flesh, depth), 1.5 * on_cube);
-  EXPECT_DOUBLE_EQ(friction_cone(model, corner, depth), 0.5 * on_floor);
+  const double depth = 2e-4;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  const std::vector<Contact> skin = {{Contact::kNodeCube, 0, zero, zero},
+                                     {Contact::kSampleCube, 0, zero, zero}},
+                             floor = {{Contact::kCornerFloor, 0, zero, zero},
+                                      {Contact::kNodeFloor, 0, zero, zero}};
+  auto cones = [&](const std::vector<Contact>& contacts) {
+    std::vector<double> out;
+    for (const Contact& c : contacts) out.push_back(friction_cone(model, c, depth));
+    return out;
+  };
+  const std::vector<double> skin_before = cones(skin), floor_before = cones(floor);
+  set_sim_parameter(model.parameters, "skin_friction", 1.5 * model.parameters.skin_friction);
+  set_sim_parameter(model.parameters, "friction", 0.5 * model.parameters.friction);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_DOUBLE_EQ(cones(skin)[k], 1.5 * skin_before[k]) << "flesh on the cube, kind " << k;
+    EXPECT_DOUBLE_EQ(cones(floor)[k], 0.5 * floor_before[k]) << "on the floor, kind " << k;
+  }
 }
 
 // A corner of the cube pressed into the middle of a skin face, between its nodes: the face's
