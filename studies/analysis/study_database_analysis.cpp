@@ -12,7 +12,7 @@
 #include "analysis/stats/descriptives.h"
 #include "core/util/json_writer.h"
 #include "studies/export/study_export.h"
-#include "studies/session/session_runner.h"
+#include "studies/protocol/protocol_store.h"
 
 namespace handlab::studies {
 namespace {

@@ -10,8 +10,9 @@
 #include "core/hand/simulated_hand.h"
 #include "core/task/cube_task.h"
 #include "core/util/csv.h"
+#include "studies/protocol/export_columns.h"
 #include "studies/protocol/protocol.h"
-#include "studies/session/session_runner.h"
+#include "studies/protocol/protocol_store.h"
 
 namespace handlab::studies {
 namespace {
@@ -34,20 +35,6 @@ std::string micro(double x) {
   if (out.back() == '.') out.pop_back();
   return out == "-0" ? "0" : out;
 }
-
-// The columns the exports write whatever the protocol: each file is the participant's
-// columns, the between factors', the design's, the within factors', then its own.
-constexpr const char* kParticipantColumns[] = {"participant", "age",         "sex",
-                                               "handedness",  "hand_length", "vr_experience"};
-constexpr const char* kDesignColumns[] = {"block", "order"};
-constexpr const char* kTrialColumns[] = {
-    "repetition", "completion_time_s", "outcome", "grasps", "drops", "attempt"};
-constexpr const char* kFrameColumns[] = {
-    "repetition",    "attempt",         "outcome",     "t",
-    "phase",         "cube_x",          "cube_y",      "cube_z",
-    "thumb_contact", "index_contact",   "thumb_tip_x", "thumb_tip_y",
-    "thumb_tip_z",   "index_tip_x",     "index_tip_y", "index_tip_z",
-    "aperture",      "tracked_aperture"};
 
 template <std::size_t N>
 void write_columns(std::ostream& out, const char* const (&columns)[N], bool first = false) {
@@ -91,19 +78,6 @@ void write_design(std::ostream& out, const store::StudyInfo& info, const store::
 }
 
 }  // namespace
-
-std::vector<std::string> fixed_export_columns() {
-  std::vector<std::string> columns;
-  auto add = [&](auto& list) {
-    for (const char* c : list)
-      if (std::find(columns.begin(), columns.end(), c) == columns.end()) columns.push_back(c);
-  };
-  add(kParticipantColumns);
-  add(kDesignColumns);
-  add(kTrialColumns);
-  add(kFrameColumns);
-  return columns;
-}
 
 void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_skipped) {
   const store::StudyInfo info = store.study();

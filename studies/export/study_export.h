@@ -17,9 +17,6 @@ namespace handlab::studies {
 // skipped), grasps, drops, attempt. One row per planned trial that has a result; a skipped
 // trial's numbers are NA (its row left out with include_skipped false, as an analysis needs).
 void write_trials_csv(store::StudyStore& store, std::ostream& out, bool include_skipped = true);
-// Every column the three files write whatever the protocol (the participant's fields, the
-// design's, the results'); a factor or an item named as one would write a second.
-std::vector<std::string> fixed_export_columns();
 // questionnaire.csv: participant, covariates, groups, block, order, factors, repetition, then one
 // column per questionnaire item.
 void write_questionnaire_csv(store::StudyStore& store, std::ostream& out);

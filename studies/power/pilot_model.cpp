@@ -7,7 +7,7 @@
 #include "analysis/data/long_table.h"
 #include "analysis/stats/rm_data.h"
 #include "studies/export/study_export.h"
-#include "studies/session/session_runner.h"
+#include "studies/protocol/protocol_store.h"
 
 namespace handlab::studies {
 

@@ -11,8 +11,8 @@
 #include "core/util/data_files.h"
 #include "core/util/json_value.h"
 #include "core/util/portable_random.h"
-#include "studies/export/study_export.h"
 #include "studies/protocol/block_schedule.h"
+#include "studies/protocol/export_columns.h"
 
 namespace handlab::studies {
 namespace {

@@ -8,8 +8,8 @@
 #include "core/store/participant_fields.h"
 #include "core/util/csv.h"
 #include "core/util/sha256.h"
+#include "studies/protocol/protocol_store.h"
 #include "studies/session/group_assignment.h"
-#include "studies/session/session_runner.h"
 
 namespace handlab::studies {
 

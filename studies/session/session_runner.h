@@ -11,6 +11,7 @@
 
 #include "core/store/study_store.h"
 #include "studies/protocol/protocol.h"
+#include "studies/protocol/protocol_store.h"
 #include "studies/session/session_control.h"
 #include "studies/session/trial_driver.h"
 
@@ -74,15 +75,5 @@ class SessionRunner {
 // ("experimenter", ended "stopped"), as a skip during a session is recorded in that one.
 void skip_trial_between_sessions(store::StudyStore& store, const std::string& participant_id,
                                  int position, const std::string& reason);
-
-// The protocol a study database was created with, parsed from its stored text.
-Protocol stored_protocol(store::StudyStore& store);
-
-// A study definition for the database from a protocol.
-store::StudyDefinition study_definition(const Protocol& protocol);
-
-// The planned schedule rows of a participant.
-std::vector<store::PlannedTrialRow> planned_rows(const Protocol& protocol,
-                                                 const std::string& participant, int enrolment);
 
 }  // namespace handlab::studies

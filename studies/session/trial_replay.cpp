@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "studies/protocol/protocol.h"
-#include "studies/session/session_runner.h"
+#include "studies/protocol/protocol_store.h"
 
 namespace handlab::studies {
 

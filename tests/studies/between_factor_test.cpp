@@ -11,6 +11,7 @@
 #include "core/store/study_merge.h"
 #include "core/store/study_store.h"
 #include "studies/export/study_export.h"
+#include "studies/protocol/export_columns.h"
 #include "studies/session/enrolment.h"
 #include "studies/session/group_assignment.h"
 #include "studies/session/session_runner.h"
