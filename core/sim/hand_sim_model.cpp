@@ -1,6 +1,7 @@
 #include "core/sim/hand_sim_model.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -52,6 +53,28 @@ void add_skin_samples(HandSimModel& m, const std::vector<std::array<int, 3>>& fa
     for (const auto& f : faces) m.skin_samples.push_back({f, Eigen::Vector3d::Constant(1.0 / 3)});
   const double points = double(m.surface_nodes.size() + m.skin_samples.size());
   m.cube_contact_share = points > 0 ? double(m.surface_nodes.size()) / points : 1.0;
+}
+
+// Each surface node to the bone whose capsule's surface is nearest it at rest.
+void add_bone_skin(HandSimModel& m, const hand::Skeleton& skeleton, const hand::HandFlesh& flesh) {
+  const hand::BoneFrames rest = hand::forward_kinematics(skeleton, hand::HandPose::rest(skeleton));
+  m.bone_skin.assign(m.bones.size(), {});
+  for (int n : m.surface_nodes) {
+    const Eigen::Vector3d& x = m.rest[std::size_t(n)];
+    double nearest = std::numeric_limits<double>::infinity();
+    int bone = 0;
+    for (const hand::Capsule& c : flesh.capsules) {
+      const std::size_t b = std::size_t(c.bone);
+      const Eigen::Vector3d a = rest.origin[b] + rest.rotation[b] * c.a;
+      const Eigen::Vector3d ab = rest.rotation[b] * (c.b - c.a);
+      const double t = std::clamp((x - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+      const double d = (x - a - t * ab).norm() - c.radius;
+      if (d < nearest) nearest = d, bone = c.bone;
+    }
+    const std::size_t b = std::size_t(bone);
+    m.bone_skin[b].push_back(rest.rotation[b].transpose() * (x - rest.origin[b]) -
+                             m.bones[b].centre_in_bone);
+  }
 }
 
 }  // namespace
@@ -117,6 +140,7 @@ HandSimModel make_hand_sim_model(const hand::Skeleton& skeleton, const hand::Han
     s.stiffness = p.coupling_stiffness * c.area;
     m.coupling.push_back(s);
   }
+  add_bone_skin(m, skeleton, flesh);
   return m;
 }
 

@@ -114,6 +114,9 @@ struct HandSimModel {
   std::vector<SimBone> bones;
   std::vector<SimJoint> joints;
   std::vector<SimCoupling> coupling;
+  // The skin each bone carries: the surface nodes nearest it at rest (its capsules'), at rest
+  // in its body frame (about its centre of mass): what a posture keeps clear of the cube.
+  std::vector<std::vector<Eigen::Vector3d>> bone_skin;
   // The cube
   RigidInertia cube;
   Eigen::Vector3d cube_half = Eigen::Vector3d::Zero();

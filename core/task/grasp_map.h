@@ -32,6 +32,11 @@ struct GraspOutcome {
   ClosingPoint point;
   PinchReport measures;         // as sim pinch judges them (pinch_script.h)
   double pinch_error_mm = 0.0;  // how far the closed pose misses the pads' targets (IK)
+  // The pinch's placement (pinch_script.h): the other skin's nearest to the cube (mm, below 0
+  // inside) and the pads' from their goals on the faces (mm), whether the pinch's rule placed
+  // the hand and met the rule.
+  double pinch_clearance_mm = 0.0, placement_pad_error_mm = 0.0;
+  bool placed_by_rule = false, meets_pinch_rule = false;
 };
 
 // Runs each point on `scene`'s hand and cube (and its jitter), `jobs` at once (each on one thread

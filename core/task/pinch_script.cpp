@@ -8,6 +8,7 @@
 #include "core/retarget/fingertip_solver.h"
 #include "core/sim/contact_forces.h"
 #include "core/task/finger_pads.h"
+#include "core/task/pinch_clearance.h"
 
 namespace handlab::sim {
 namespace {
@@ -114,8 +115,29 @@ Eigen::Isometry3d PinchScript::start_root() const {
 
 namespace {
 
-// The script of `closing` with the wrist placed where the pads reach `wrist_squeeze` inside the
-// faces: a closing past that goes on with the fingers alone.
+// How high above the pinch the hand shapes from flat into the open pose: 5 cm, or as many
+// centimetres more as keep every skin point 1 cm off the cube through the shaping (a hand
+// placed steeply over a large cube sweeps its flat fingers through it from 5 cm).
+double clear_approach_height(const hand::Skeleton& ik, const HandSimModel& model,
+                             const PinchScript& script, const RigidPose& cube) {
+  constexpr double kLowest = 0.05, kHighest = 0.20, kRaise = 0.01, kClear = 0.01;
+  constexpr int kSamples = 5;  // of the shaping, flat to open
+  hand::HandPose flat = script.open;
+  flat.angles.setZero();
+  for (double height = kLowest;; height += kRaise) {
+    bool clear = true;
+    for (int i = 0; i < kSamples && clear; ++i) {
+      hand::HandPose pose = blend(flat, script.open, double(i) / (kSamples - 1));
+      pose.root_position.y() += height;
+      clear = skin_clearance(ik, model, pose, cube, model.cube_half, {-1, -1}).distance >= kClear;
+    }
+    if (clear || height >= kHighest) return height;
+  }
+}
+
+// The script of `closing`: the hand placed where the pads reach `wrist_squeeze` inside the faces
+// with the rest of it clear of the cube (pinch_clearance.h); a closing past that goes on with
+// the fingers alone.
 PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                         const GraspClosing& closing, double wrist_squeeze) {
   const double squeeze = closing.over_closure;
@@ -198,22 +220,46 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   options.relative_decrease_tolerance = options.residual_damping = 0.0;
   const retarget::SolverResult placed =
       retarget::FingertipSolver(ik, features, options).solve(pose, goals(-wrist_squeeze), true);
+  pose.angles = placed.angles;
+  pose.root_position += placed.root_shift;
+  // Where the pinch so placed lays other skin inside the cube (a finger across a 6 cm cube's
+  // top), the hand is placed again by the pinch's rule: the pads on the faces, the rest of the
+  // hand clear of the cube, the pads' facing (the points behind them) at a tenth of their
+  // weight, as the rule asks for the pads' places and a pad turned a few degrees still presses
+  // its face (pinch_clearance.h).
+  RigidPose cube;
+  cube.position = script.cube_centre;
+  const std::array<int, 2> pads = {script.thumb_bone, script.index_bone};
   script.pinch = pose;
-  script.pinch.angles = placed.angles;
-  script.pinch.root_position += placed.root_shift;
-  script.pinch_error = placed.max_feature_error;
+  script.pinch_clearance = skin_clearance(ik, model, pose, cube, model.cube_half, pads).distance;
+  if (script.pinch_clearance < -kSkinClearance) {
+    std::vector<retarget::Feature> relaxed = features;
+    relaxed[2].weight = relaxed[3].weight = 0.1;
+    const ClearPinch clear = clear_pinch(ik, model, relaxed, goals(0.0), cube, pads, pose);
+    script.pinch = clear.pose;
+    script.pinch_clearance = clear.clearance.distance;
+    script.placed_by_rule = true;
+    script.pinch_meets_rule = clear.meets_rule();
+    script.placement_pad_error = clear.pad_error;
+  }
   options.root_translation_weight = 0.0;  // from here on the same wrist
-  if (squeeze != wrist_squeeze) {
+  if (script.placed_by_rule || squeeze != wrist_squeeze) {
     const retarget::SolverResult closed =
         retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(-squeeze), true);
     script.pinch.angles = closed.angles;
-    script.pinch_error = closed.max_feature_error;
   }
+  const hand::BoneFrames at_pinch = hand::forward_kinematics(ik, script.pinch);
+  const std::vector<Eigen::Vector3d> squeezed = goals(-squeeze);
+  for (int pad = 0; pad < 2; ++pad)
+    script.pinch_error = std::max(
+        script.pinch_error,
+        (hand::marker_position(ik, at_pinch, first + 2 * pad) - squeezed[std::size_t(pad)]).norm());
   // The pads 15 mm off the faces.
   const retarget::SolverResult opened =
       retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
   script.open = script.pinch;
   script.open.angles = opened.angles;
+  script.approach_height = clear_approach_height(ik, model, script, cube);
   apply_timing(ik, closing, script);
   return script;
 }

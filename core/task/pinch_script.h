@@ -45,6 +45,13 @@ struct PinchScript {
   std::vector<hand::HandPose> recorded_poses;
   int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
   double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
+  // The nearest skin but the pads' to the cube at the pinch before the closing's squeeze (m;
+  // below 0: inside), whether the hand was placed again by the pinch's rule because the
+  // script's pose laid a finger inside the cube (pinch_clearance.h), and whether the rule was
+  // then met (false where it was not needed).
+  double pinch_clearance = 0.0;
+  bool placed_by_rule = false, pinch_meets_rule = false;
+  double placement_pad_error = 0.0;  // m: the farther pad from its face's goal, so placed
 
   hand::HandPose target(double t) const;  // the intermediate hand at time t
   Eigen::Isometry3d start_root() const;   // the wrist at t = 0

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/task/finger_pads.h"
+#include "core/task/pinch_clearance.h"
 
 namespace handlab::sim {
 namespace {
@@ -136,6 +137,12 @@ PinchScript make_recorded_pinch_script(const hand::Skeleton& skeleton, const Han
   }
   script.open = script.recorded_poses.front();
   script.pinch = script.recorded_poses.back();
+  // The other skin at the least aperture (pinch_clearance.h), to set beside the map's pinch.
+  RigidPose cube;
+  cube.position = script.cube_centre;
+  script.pinch_clearance = skin_clearance(skeleton, model, script.pinch, cube, model.cube_half,
+                                          {script.thumb_bone, script.index_bone})
+                               .distance;
   // The script's timeline around the recording: shape and come down, play it, settle, lift
   // 10 cm in a second, hold 2 s, open, let the cube fall.
   script.shape_end = 0.3;

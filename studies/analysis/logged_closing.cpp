@@ -13,6 +13,7 @@
 #include "core/sim/hand_sim_model.h"
 #include "core/task/cube_task.h"
 #include "core/task/finger_pads.h"
+#include "core/task/pinch_clearance.h"
 
 namespace handlab::studies {
 namespace {
@@ -56,6 +57,7 @@ const std::vector<LoggedFactor>& logged_factors() {
       {"offset_along", "side", &LoggedClosing::offset_along, 1.0},
       {"lead", "ms", &LoggedClosing::lead_s, 1e-3},
       {"closing_speed", "cm/s", &LoggedClosing::closing_speed, 1e-2},
+      {"other_skin_depth", "mm", &LoggedClosing::other_skin_depth, 1e-3},
   };
   return factors;
 }
@@ -87,12 +89,21 @@ ClosingReader::ClosingReader(const hand::HandShape& simulated_hand)
   if (thumb_bone_ < 0 || index_bone_ < 0)
     throw std::runtime_error("the simulated hand has no thumb3 and index3");
   const hand::HandFlesh flesh = hand::build_flesh(skeleton_, simulated_hand);
-  const sim::HandSimModel model = sim::make_hand_sim_model(skeleton_, flesh, {});
-  thumb_pad_ = sim::finger_pad(skeleton_, model, thumb_bone_);
-  index_pad_ = sim::finger_pad(skeleton_, model, index_bone_);
+  model_ = sim::make_hand_sim_model(skeleton_, flesh, {});
+  thumb_pad_ = sim::finger_pad(skeleton_, model_, thumb_bone_);
+  index_pad_ = sim::finger_pad(skeleton_, model_, index_bone_);
 }
 
-ClosingReader::Pads ClosingReader::pads_at(const store::FrameRecord& f) const {
+double ClosingReader::other_skin_depth(const store::FrameRecord& f, double side) const {
+  sim::RigidPose cube;
+  cube.position = f.cube_position.cast<double>();
+  cube.rotation = f.cube_rotation.cast<double>();
+  return -sim::skin_clearance(skeleton_, model_, pose_at(f), cube,
+                              Eigen::Vector3d::Constant(side / 2), {thumb_bone_, index_bone_})
+              .distance;
+}
+
+hand::HandPose ClosingReader::pose_at(const store::FrameRecord& f) const {
   hand::HandPose pose;
   pose.root_position = f.root_position.cast<double>();
   pose.root_rotation = f.root_rotation.cast<double>().toRotationMatrix();
@@ -102,7 +113,11 @@ ClosingReader::Pads ClosingReader::pads_at(const store::FrameRecord& f) const {
     throw std::runtime_error("a frame's intermediate hand has " +
                              std::to_string(pose.angles.size()) + " angles, the hand " +
                              std::to_string(skeleton_.dofs.size()));
-  const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose);
+  return pose;
+}
+
+ClosingReader::Pads ClosingReader::pads_at(const store::FrameRecord& f) const {
+  const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose_at(f));
   const Eigen::Quaterniond cube = f.cube_rotation.cast<double>();
   const Eigen::Vector3d centre = f.cube_position.cast<double>();
   auto in_cube = [&](int bone, const Eigen::Vector3d& pad) -> Eigen::Vector3d {
@@ -140,12 +155,14 @@ LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames,
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   normal(n) = (before.thumb - before.index)(n) > 0 ? 1.0 : -1.0;
   // Each pad past its face: half of what the gap between them falls short of the side.
-  std::vector<double> depths;
+  std::vector<double> depths, other_depths;
   for (std::size_t k = grasp; k < frames.size() && grasped(frames[k]); ++k) {
     const Pads p = pads_at(frames[k]);
     depths.push_back(0.5 * (side - (p.thumb - p.index).dot(normal)));
+    other_depths.push_back(other_skin_depth(frames[k], side));
   }
   c.over_closure = median(depths);
+  c.other_skin_depth = median(other_depths);
   const store::FrameRecord& f = frames[touching];
   const Pads p = pads_at(f);
   const Eigen::Vector3d axis = (p.thumb - p.index).normalized();

@@ -10,6 +10,7 @@
 
 #include "core/hand/hand_shape.h"
 #include "core/hand/skeleton.h"
+#include "core/sim/hand_sim_model.h"
 #include "core/store/frame_record.h"
 
 namespace handlab::studies {
@@ -31,9 +32,15 @@ struct LoggedClosing {
   double lead_s = 0.0;
   // m/s: the pads' mean speed against the cube over the 0.1 s before each touched.
   double closing_speed = 0.0;
+  // m: how deep the skin of the bones but the two distal phalanges lies inside the cube
+  // (negative: how far it keeps off), the median over the grasp's frames: a finger across
+  // the cube's top pins it to the floor. Not a factor of the map, whose pinch keeps it below
+  // -2 mm (core/task/pinch_clearance.h).
+  double other_skin_depth = 0.0;
 };
 
-// LoggedClosing's fields by the grasp map's factor names, in the map's units.
+// LoggedClosing's fields by the grasp map's factor names, in the map's units (and the other
+// skin's depth).
 struct LoggedFactor {
   const char* name;  // the map's factor
   const char* unit;
@@ -64,9 +71,13 @@ class ClosingReader {
   struct Pads {
     Eigen::Vector3d thumb, index;  // in the cube's frame
   };
+  hand::HandPose pose_at(const store::FrameRecord& f) const;  // the intermediate hand
   Pads pads_at(const store::FrameRecord& f) const;
 
+  double other_skin_depth(const store::FrameRecord& f, double side) const;
+
   hand::Skeleton skeleton_;
+  sim::HandSimModel model_;  // the simulated hand's, for the skin each bone carries
   int thumb_bone_ = -1, index_bone_ = -1;
   Eigen::Vector3d thumb_pad_, index_pad_;  // in their bones' frames
 };

@@ -360,38 +360,44 @@ TEST(CliSim, PinchesRunARecordingsClosingOnTheSoftHand) {
   EXPECT_EQ(run_cli("sim pinches --help").status, 0);
 }
 
-// The grasp map's parts on the 6 cm cube: a closing known to hold (the scripted pinch's 3 mm
-// past the faces) and one known to lose the cube (25 mm past them: the cube is never lifted,
-// docs/simulator.md), each closing's keys in the JSON, and the refusals.
+// The grasp map's parts: a closing known to hold (the 6 cm cube's scripted pinch, 3 mm past
+// the faces, its hand placed by the pinch's rule) and one known to lose the cube (the 1 cm
+// cube's pads' targets on its faces: nothing presses it, docs/simulator.md), each closing's
+// keys in the JSON, and the refusals.
 TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
-  const auto closing = [](const std::string& spec) {
-    const Result r = run_cli("sim grasp --cube 0.06 --jobs 1 --closing " + spec + " --json -");
+  const auto closing = [](const std::string& cube, const std::string& spec) {
+    const Result r =
+        run_cli("sim grasp --cube " + cube + " --jobs 1 --closing " + spec + " --json -");
     EXPECT_EQ(r.status, 0) << r.out;
     const util::JsonValue doc = util::JsonValue::parse(r.out);
     EXPECT_EQ(doc["factors"].size(), 9u);
     EXPECT_EQ(doc["cubes"].size(), 1u);
-    EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), 0.06);
+    EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), std::stod(cube));
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
     for (const char* key :
          {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
-          "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm"})
+          "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm", "pinch_clearance_mm",
+          "placement_pad_error_mm", "placed_by_rule", "meets_pinch_rule"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);
     return o;
   };
-  const util::JsonValue holds = closing("over_closure=3");
+  const util::JsonValue holds = closing("0.06", "over_closure=3");
   EXPECT_TRUE(holds["held"].as_bool());
   EXPECT_TRUE(holds["released"].as_bool());
   EXPECT_LT(holds["slip_mm"].as_number(), 0.1);
   EXPECT_EQ(holds["closing"].as_string(), "the scripted pinch");
   EXPECT_GT(holds["peak_grip_n"].as_number(), 0.0);
-  // The pinch's axis pitched 30 degrees from the faces' normal: the cube turns out of the pads.
-  const util::JsonValue loses = closing("tilt_pitch=30");
+  EXPECT_TRUE(holds["placed_by_rule"].as_bool());
+  EXPECT_TRUE(holds["meets_pinch_rule"].as_bool());
+  EXPECT_GE(holds["pinch_clearance_mm"].as_number(), 2.0);
+  const util::JsonValue loses = closing("0.01", "over_closure=0");
   EXPECT_FALSE(loses["held"].as_bool());
   EXPECT_LT(loses["lift_m"].as_number(), 0.01);
-  EXPECT_EQ(loses["closing"].as_string(), "tilt_pitch 30 deg");
-  EXPECT_NEAR(loses["values"]["tilt_pitch"].as_number(), 30.0, 1e-9);
+  EXPECT_EQ(loses["closing"].as_string(), "over_closure 0 mm");
+  EXPECT_NEAR(loses["values"]["over_closure"].as_number(), 0.0, 1e-9);
+  EXPECT_FALSE(loses["placed_by_rule"].as_bool());
   EXPECT_EQ(run_cli("sim grasp --closing squeeze=3").status, 2);
   EXPECT_EQ(run_cli("sim grasp --closing over_closure=40").status, 2);
   EXPECT_EQ(run_cli("sim grasp --factor tilt").status, 2);

@@ -9,6 +9,7 @@
 
 #include "core/task/cube_task.h"
 #include "core/task/grasp_closing.h"
+#include "core/task/pinch_clearance.h"
 #include "core/task/pinch_scene.h"
 
 namespace handlab::studies::logged_closing_test {
@@ -60,6 +61,21 @@ TEST(LoggedClosing, ReadsBackTheClosingTheMapAskedFor) {
   // Over the 0.1 s before the middle of a smooth closing of mean 5 cm/s (0.5 s long) the pads
   // move at about 1.45 times it.
   EXPECT_NEAR(c.closing_speed, 0.072, 0.015);
+  // The other fingers' skin in the cube, the map's pinch's own (10 mm past the faces, the
+  // fingers flexed on through them), with the cube where the frames have it.
+  const auto depth_at = [&](double raised) {
+    sim::RigidPose cube;
+    cube.position = s.cube_centre + Eigen::Vector3d(0, raised, 0);
+    return -sim::skin_clearance(scene.skeleton, scene.model, s.pinch, cube, scene.model.cube_half,
+                                {s.thumb_bone, s.index_bone})
+                .distance;
+  };
+  EXPECT_NEAR(c.other_skin_depth, depth_at(0.0), 1e-5);
+  std::vector<store::FrameRecord> higher = frames;
+  for (store::FrameRecord& f : higher) f.cube_position.y() += 0.05f;
+  EXPECT_NEAR(ClosingReader(scene.shape).read(higher, grasp, 0.06).other_skin_depth, depth_at(0.05),
+              1e-5);
+  EXPECT_NE(depth_at(0.05), depth_at(0.0));
 }
 
 TEST(LoggedClosing, SpreadsAreRsType7Quantiles) {

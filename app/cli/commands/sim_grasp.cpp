@@ -48,9 +48,15 @@ void print_map(const CubeMap& map) {
   std::vector<std::pair<std::string, std::pair<int, int>>> held;  // group -> held, run
   for (const sim::GraspOutcome& o : map.outcomes) {
     const sim::PinchReport& m = o.measures;
-    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s\n", m.held ? "yes" : "NO",
+    // A posture the pinch's rule could not clear (pinch_clearance.h) is marked.
+    char unmet[96] = "";
+    if (o.placed_by_rule && !o.meets_pinch_rule)
+      std::snprintf(unmet, sizeof unmet,
+                    " (the pinch's rule not met: pads %.1f mm off, other skin %.1f mm)",
+                    o.placement_pad_error_mm, o.pinch_clearance_mm);
+    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s%s\n", m.held ? "yes" : "NO",
                 m.released ? "yes" : "NO", m.slip_mm, m.max_penetration_mm, m.peak_grip_n,
-                m.turn_deg, closing_label(o.point).c_str());
+                m.turn_deg, closing_label(o.point).c_str(), unmet);
     const std::string group = group_of(o.point);
     if (held.empty() || held.back().first != group) held.push_back({group, {0, 0}});
     held.back().second.first += m.held ? 1 : 0;
@@ -80,7 +86,12 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
     json.field(f.name, o.point.closing.*(f.field) / f.scale);
   json.end_object();
   write_pinch_measures(json, o.measures);
-  json.field("pinch_error_mm", o.pinch_error_mm).end_object();
+  json.field("pinch_error_mm", o.pinch_error_mm)
+      .field("pinch_clearance_mm", o.pinch_clearance_mm)
+      .field("placement_pad_error_mm", o.placement_pad_error_mm)
+      .field("placed_by_rule", o.placed_by_rule)
+      .field("meets_pinch_rule", o.meets_pinch_rule)
+      .end_object();
 }
 
 // What a map was run with, besides its closings.

@@ -96,11 +96,11 @@ std::vector<PinchRow> prepare(const std::vector<std::string>& recordings,
 }
 
 void print_rows(const std::vector<PinchRow>& rows) {
-  std::printf("%-22s %-6s %5s %7s %7s %7s %6s %6s  %-15s %6s %6s %6s\n", "recording", "strat",
+  std::printf("%-22s %-6s %5s %7s %7s %7s %6s %6s  %-15s %6s %6s %6s %6s\n", "recording", "strat",
               "cube", "moment", "widest", "least", "speed", "tilt", "outcome", "pushed", "grip",
-              "slip");
-  std::printf("%-22s %-6s %5s %7s %7s %7s %6s %6s  %-15s %6s %6s %6s\n", "", "", "mm", "s", "mm",
-              "mm", "cm/s", "deg", "", "mm", "N", "mm");
+              "slip", "other");
+  std::printf("%-22s %-6s %5s %7s %7s %7s %6s %6s  %-15s %6s %6s %6s %6s\n", "", "", "mm", "s",
+              "mm", "mm", "cm/s", "deg", "", "mm", "N", "mm", "mm");
   for (const PinchRow& r : rows) {
     const std::string name = std::filesystem::path(r.recording).filename().string();
     std::printf("%-22s %-6s %5.0f %7.2f %7.1f %7.1f %6.1f %6.1f  %-15s", name.c_str(),
@@ -108,8 +108,8 @@ void print_rows(const std::vector<PinchRow>& rows) {
                 1000 * r.closing.widest, 1000 * r.closing.narrowest, 100 * r.closing.closing_speed,
                 r.closing.tilt * 180 / M_PI, outcome(r).c_str());
     if (r.closing.takes_cube)
-      std::printf(" %6.1f %6.2f %6.2f", r.run.pushed_mm, r.run.grip_at_lift_n,
-                  r.run.report.slip_mm);
+      std::printf(" %6.1f %6.2f %6.2f %6.1f", r.run.pushed_mm, r.run.grip_at_lift_n,
+                  r.run.report.slip_mm, -1000 * r.script.pinch_clearance);
     std::printf("\n");
   }
   // Per strategy and cube, over the recordings.
@@ -150,7 +150,9 @@ void write_rows_json(const std::vector<PinchRow>& rows, const std::vector<std::s
         .field("takes_cube", r.closing.takes_cube)
         .field("outcome", outcome(r));
     if (r.closing.takes_cube) {
-      json.field("pushed_mm", r.run.pushed_mm).field("grip_at_lift_n", r.run.grip_at_lift_n);
+      json.field("pushed_mm", r.run.pushed_mm)
+          .field("grip_at_lift_n", r.run.grip_at_lift_n)
+          .field("other_skin_depth_mm", -1000 * r.script.pinch_clearance);
       write_pinch_measures(json, r.run.report);
     }
     json.end_object();

@@ -10,6 +10,7 @@
 
 #include "core/hand/hand_shape.h"
 #include "core/sim/box_distance.h"
+#include "core/sim/contact_forces.h"
 #include "core/task/pinch_scene.h"
 #include "tests/support/under_sanitizers.h"
 
@@ -54,6 +55,26 @@ TEST_P(Pinch, LiftsHoldsAndReleasesTheCube) {
 }
 
 INSTANTIATE_TEST_SUITE_P(StudyCubes, Pinch, testing::Values(0.01, 0.06));
+
+// The heavy cube's pinch is placed by the pinch's rule (core/task/pinch_clearance.h): the pads
+// on the faces and no other skin within 2 mm, so no finger rests on the top. Placed as the
+// script first poses it, palm down with the fingers along the floor, the index lay across the
+// top (its middle phalanx's target 14 mm inside) and pressed the cube into the floor with
+// 133-143 N through the closing. The light cube's pinch keeps the script's pose.
+TEST(PinchPlacement, TheHeavyCubesPinchLeavesItsTopFree) {
+  const PinchScene scene = make_pinch_scene(0.06);
+  const PinchScript& script = scene.script;
+  EXPECT_TRUE(script.placed_by_rule);
+  EXPECT_TRUE(script.pinch_meets_rule);
+  EXPECT_GE(script.pinch_clearance, 0.002);
+  EXPECT_LE(script.placement_pad_error, 0.001);
+  double top = 0.0;  // N, the flesh on the cube's top face (+y of its frame)
+  run_pinch(scene.model, scene.skeleton, script, {}, script.lift_start, [&](const HandSimState& s) {
+    top = std::max(top, flesh_forces_on_cube_faces(scene.model, s)[3]);
+  });
+  EXPECT_LT(top, 5.0) << "N on the top before the lift";
+  EXPECT_FALSE(make_pinch_scene(0.01).script.placed_by_rule);
+}
 
 // The script run to the first second of the hold at each squeeze: the cube lifted and held,
 // no slip, the skin (nodes and samples) within `skin_mm` of its faces.

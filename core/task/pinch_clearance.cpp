@@ -1,0 +1,144 @@
+#include "core/task/pinch_clearance.h"
+
+#include <algorithm>
+#include <limits>
+
+#include <Eigen/Cholesky>
+
+#include "core/sim/box_distance.h"
+#include "core/sim/hand_sim_state.h"
+
+namespace handlab::sim {
+namespace {
+
+// The penalty aims a little beyond the rule's clearance, which it then meets: at its last
+// weight it leaves the skin about a tenth of a millimetre short of where it aims.
+constexpr double kAimedClearance = 0.0022;  // m
+constexpr double kFirstWeight = 0.3, kLastWeight = 40.0;
+constexpr int kIterations = 300;      // Levenberg-Marquardt's at each weight
+constexpr double kDifference = 1e-6;  // the Jacobian's forward differences (m, rad)
+
+bool is_pad(const std::array<int, 2>& pads, std::size_t bone) {
+  return int(bone) == pads[0] || int(bone) == pads[1];
+}
+
+// The pose moved by x: the wrist turned by x[0..2] (a rotation vector, world), moved by
+// x[3..5], each joint by x[6 + k] within its limits.
+hand::HandPose moved(const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                     const Eigen::VectorXd& x) {
+  hand::HandPose out = pose;
+  out.root_rotation = rotation_from_vector(x.head<3>()).toRotationMatrix() * pose.root_rotation;
+  out.root_position += x.segment<3>(3);
+  for (std::size_t k = 0; k < skeleton.dofs.size(); ++k) {
+    const hand::Dof& dof = skeleton.dofs[k];
+    const Eigen::Index i = Eigen::Index(k);
+    out.angles(i) = std::clamp(pose.angles(i) + x(6 + i), dof.lower, dof.upper);
+  }
+  return out;
+}
+
+struct Problem {
+  const hand::Skeleton& skeleton;
+  const HandSimModel& model;
+  const std::vector<retarget::Feature>& features;
+  const std::vector<Eigen::Vector3d>& goals;
+  const RigidPose& cube;
+  const std::array<int, 2>& pads;
+
+  // The features' weighted misses, then each other skin node's shortfall from the aimed
+  // clearance times `weight`.
+  Eigen::VectorXd residuals(const hand::HandPose& pose, double weight) const {
+    const hand::BoneFrames frames = hand::forward_kinematics(skeleton, pose);
+    std::vector<double> r;
+    for (std::size_t i = 0; i < features.size(); ++i) {
+      const Eigen::Vector3d miss =
+          hand::marker_position(skeleton, frames, features[i].marker) - goals[i];
+      for (int a = 0; a < 3; ++a) r.push_back(features[i].weight * miss(a));
+    }
+    const std::vector<RigidPose> bones = bone_targets(model, skeleton, pose);
+    const Eigen::Quaterniond to_cube = cube.rotation.conjugate();
+    for (std::size_t b = 0; b < bones.size(); ++b) {
+      if (is_pad(pads, b)) continue;
+      for (const Eigen::Vector3d& local : model.bone_skin[b]) {
+        const double d =
+            box_proximity(model.cube_half, to_cube * (bones[b].point(local) - cube.position))
+                .distance;
+        r.push_back(weight * std::max(0.0, kAimedClearance - d));
+      }
+    }
+    return Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
+  }
+
+  // Levenberg-Marquardt from `pose` at one weight of the penalty.
+  hand::HandPose solve(hand::HandPose pose, double weight) const {
+    const Eigen::Index n = 6 + Eigen::Index(skeleton.dofs.size());
+    Eigen::VectorXd r = residuals(pose, weight);
+    double damping = 1e-3;
+    for (int iteration = 0; iteration < kIterations; ++iteration) {
+      Eigen::MatrixXd jacobian(r.size(), n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const Eigen::VectorXd step = Eigen::VectorXd::Unit(n, j) * kDifference;
+        jacobian.col(j) = (residuals(moved(skeleton, pose, step), weight) - r) / kDifference;
+      }
+      const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
+      const Eigen::VectorXd gradient = jacobian.transpose() * r;
+      bool lower = false;
+      for (int attempt = 0; attempt < 10 && !lower; ++attempt) {
+        Eigen::MatrixXd damped = normal;
+        damped.diagonal() += damping * (normal.diagonal().array() + 1e-9).matrix();
+        const hand::HandPose trial = moved(skeleton, pose, -damped.ldlt().solve(gradient));
+        const Eigen::VectorXd trial_r = residuals(trial, weight);
+        lower = trial_r.squaredNorm() < r.squaredNorm();
+        if (lower) {
+          pose = trial;
+          r = trial_r;
+          damping *= 0.3;
+        } else {
+          damping *= 10;
+        }
+      }
+      if (!lower) break;
+    }
+    return pose;
+  }
+};
+
+}  // namespace
+
+SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
+                             const hand::HandPose& pose, const RigidPose& cube,
+                             const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones) {
+  SkinClearance out;
+  out.distance = std::numeric_limits<double>::infinity();
+  const std::vector<RigidPose> bones = bone_targets(model, skeleton, pose);
+  const Eigen::Quaterniond to_cube = cube.rotation.conjugate();
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    if (is_pad(pad_bones, b)) continue;
+    for (const Eigen::Vector3d& local : model.bone_skin[b]) {
+      const double d =
+          box_proximity(half, to_cube * (bones[b].point(local) - cube.position)).distance;
+      if (d < out.distance) out = {d, int(b)};
+    }
+  }
+  return out;
+}
+
+ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model,
+                       const std::vector<retarget::Feature>& features,
+                       const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
+                       const std::array<int, 2>& pad_bones, const hand::HandPose& start) {
+  const Problem problem{skeleton, model, features, goals, cube, pad_bones};
+  ClearPinch out;
+  out.pose = start;
+  for (double weight = kFirstWeight; weight <= kLastWeight; weight *= 2)
+    out.pose = problem.solve(out.pose, weight);
+  const hand::BoneFrames frames = hand::forward_kinematics(skeleton, out.pose);
+  for (std::size_t i = 0; i < 2; ++i)
+    out.pad_error =
+        std::max(out.pad_error,
+                 (hand::marker_position(skeleton, frames, features[i].marker) - goals[i]).norm());
+  out.clearance = skin_clearance(skeleton, model, out.pose, cube, model.cube_half, pad_bones);
+  return out;
+}
+
+}  // namespace handlab::sim

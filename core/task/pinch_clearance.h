@@ -1,0 +1,55 @@
+// The pinch's posture by a rule fixed before any closing ran with it: the pads on their goals
+// and no other skin within 2 mm of the cube. The palm-down pinch whose fingers stretch along
+// the floor lays the index across a 6 cm cube's top (its middle phalanx's target 14 mm
+// inside), and the soft hand then pins the cube to the floor through every bone's tracking
+// spring (133-143 N on the top): a grip of three faces that no hand makes on a real cube and
+// that the grasp map does not mean to measure (docs/simulator.md, "A hand that reaches the
+// far face").
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/hand/skeleton.h"
+#include "core/retarget/fingertip_solver.h"
+#include "core/sim/hand_sim_model.h"
+#include "core/sim/rigid_body.h"
+
+namespace handlab::sim {
+
+// The rule: both pads within kPadReach of their goals, every other bone's skin at least
+// kSkinClearance off the cube.
+constexpr double kPadReach = 0.001;       // m
+constexpr double kSkinClearance = 0.002;  // m
+
+struct SkinClearance {
+  double distance = 0.0;  // m: the nearest skin of the other bones to the cube (< 0: inside)
+  int bone = -1;          // whose skin that is
+};
+
+// How near a cube of half sides `half` at `cube` the skin of every bone but `pad_bones` comes
+// with the hand at `pose` (each surface node carried rigidly by its bone:
+// HandSimModel::bone_skin).
+SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
+                             const hand::HandPose& pose, const RigidPose& cube,
+                             const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones);
+
+struct ClearPinch {
+  hand::HandPose pose;
+  double pad_error = 0.0;  // m: the farther pad from its goal
+  SkinClearance clearance;
+  bool meets_rule() const { return pad_error <= kPadReach && clearance.distance >= kSkinClearance; }
+};
+
+// The posture nearest `start` (least squares from it, over the wrist's pose and every joint
+// within its limits) whose `features` (the pads first, as markers of `skeleton`) reach
+// `goals` while the other skin keeps kSkinClearance off the cube: a penalty on the skin nearer
+// than that, raised step by step, each step solved from the last (Levenberg-Marquardt).
+ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model,
+                       const std::vector<retarget::Feature>& features,
+                       const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
+                       const std::array<int, 2>& pad_bones, const hand::HandPose& start);
+
+}  // namespace handlab::sim
