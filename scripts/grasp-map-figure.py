@@ -73,7 +73,7 @@ def panel(x0, size, cube, factors):
                    f'stroke="black" stroke-width="2"/>')
         out.append(f'<line x1="{bx + w * 0.95:.1f}" y1="{y}" x2="{bx + w * 0.95:.1f}" '
                    f'y2="{y + 24}" stroke="black" stroke-dasharray="3,2"/>')
-        out.append(f'<text x="{bx}" y="{y + 38}" font-size="11">held {d["held"]} of '
+        out.append(f'<text x="{x0}" y="{y + 38}" font-size="11">held {d["held"]} of '
                    f'{d["run"]} ({100 * d["hold_rate"]:.0f} %, 95 % CI '
                    f'{100 * d["hold_rate_low"]:.0f}-{100 * d["hold_rate_high"]:.0f} %); '
                    f'dashed: the 95 % target</text>')

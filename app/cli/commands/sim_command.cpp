@@ -422,13 +422,18 @@ int sim_pinch(const std::vector<std::string>& argv) {
               << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
               << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, "
               << (r.released ? "released" : "NOT released") << " (the scripted pads miss their "
-              << "targets by " << setup.script.pinch_error * 1000 << " mm)\n";
+              << "targets by " << setup.script.pinch_error * 1000 << " mm"
+              << (setup.script.placed_by_rule ? "; the hand placed by the pinch's rule" : "")
+              << ")\n";
     print_timing(setup, r);
   }
   if (args.has("json")) {
     util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
-      json.begin_object().field("cube_size_m", setup.script.cube_size);
+      json.begin_object()
+          .field("cube_size_m", setup.script.cube_size)
+          .field("placed_by_rule", setup.script.placed_by_rule)
+          .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance);
       write_pinch_measures(json, r);
       write_timing(json, setup, r);
       json.end_object();

@@ -185,7 +185,8 @@ int sim_pinches(const std::vector<std::string>& argv) {
            "least aperture, the pads' speed and tilt, whether the cube was held and, if not, "
            "why: pushed away (a quarter of its side along the floor by the closing's end, no "
            "grip as the lift starts), squeezed out (no grip otherwise) or slipped at the lift "
-           "(docs/simulator.md).\n\nOptions:\n"
+           "(docs/simulator.md), and how deep the skin but the pads' lies in the cube at the "
+           "least aperture (other, mm; below 0: clear of it).\n\nOptions:\n"
         << format_options_help(specs);
     return 0;
   }
