@@ -3,8 +3,7 @@
 // the floor lays the index across a 6 cm cube's top (its middle phalanx's target 14 mm
 // inside), and the soft hand then pins the cube to the floor through every bone's tracking
 // spring (133-143 N on the top): a grip of three faces that no hand makes on a real cube and
-// that the grasp map does not mean to measure (docs/simulator.md, "A hand that reaches the
-// far face").
+// that the grasp map does not mean to measure (docs/simulator.md, the scripted pinch).
 #pragma once
 
 #include <array>
@@ -20,9 +19,11 @@
 namespace handlab::sim {
 
 // The rule: both pads within kPadReach of their goals, every other bone's skin at least
-// kSkinClearance off the cube.
+// kSkinClearance off the cube. A pinch is placed by it where its other skin lies deeper than
+// kPinningDepth inside the cube.
 constexpr double kPadReach = 0.001;       // m
 constexpr double kSkinClearance = 0.002;  // m
+constexpr double kPinningDepth = 0.002;   // m
 
 struct SkinClearance {
   double distance = 0.0;  // m: the nearest skin of the other bones to the cube (< 0: inside)
@@ -43,10 +44,11 @@ struct ClearPinch {
   bool meets_rule() const { return pad_error <= kPadReach && clearance.distance >= kSkinClearance; }
 };
 
-// The posture nearest `start` (least squares from it, over the wrist's pose and every joint
-// within its limits) whose `features` (the pads first, as markers of `skeleton`) reach
-// `goals` while the other skin keeps kSkinClearance off the cube: a penalty on the skin nearer
-// than that, raised step by step, each step solved from the last (Levenberg-Marquardt).
+// A posture found by least squares from `start` (Levenberg-Marquardt over the wrist's pose and
+// every joint within its limits) whose `features` (the pads first, as markers of `skeleton`)
+// reach `goals` while the other skin keeps kSkinClearance off the cube: a penalty on the skin
+// nearer than that, raised step by step, each step solved from the last. Where the clearance
+// binds, the pads may stop short of their goals: `meets_rule` says whether they reached them.
 ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,

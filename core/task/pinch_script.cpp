@@ -115,9 +115,10 @@ Eigen::Isometry3d PinchScript::start_root() const {
 
 namespace {
 
-// How high above the pinch the hand shapes from flat into the open pose: 5 cm, or as many
-// centimetres more as keep every skin point 1 cm off the cube through the shaping (a hand
-// placed steeply over a large cube sweeps its flat fingers through it from 5 cm).
+// How high above the pinch a hand placed by the pinch's rule shapes from flat into the open
+// pose: 5 cm, or as many centimetres more as keep every skin point 1 cm off the cube through the
+// shaping (the rule's steeper hand over the 6 cm cube swept its flat fingers through it from
+// 5 cm). A hand the rule leaves alone shapes at 5 cm, as before the rule.
 double clear_approach_height(const hand::Skeleton& ik, const HandSimModel& model,
                              const PinchScript& script, const RigidPose& cube) {
   constexpr double kLowest = 0.05, kHighest = 0.20, kRaise = 0.01, kClear = 0.01;
@@ -135,9 +136,44 @@ double clear_approach_height(const hand::Skeleton& ik, const HandSimModel& model
   }
 }
 
-// The script of `closing`: the hand placed where the pads reach `wrist_squeeze` inside the faces
-// with the rest of it clear of the cube (pinch_clearance.h); a closing past that goes on with
-// the fingers alone.
+// Where `pose` (the pads `wrist_squeeze` inside the faces) lays other skin deeper than
+// kPinningDepth inside the cube (a finger across a 6 cm cube's top), the hand is placed again
+// by the pinch's rule, the pads on the faces (`on_faces`), the rest of the hand clear of the
+// cube, the pads' facing (the points behind them) at a tenth of their weight: the rule asks
+// for the pads' places, and a pad turned a few degrees still presses its face
+// (pinch_clearance.h). Sets the script's pinch and what the placement measured.
+void place_by_rule(const hand::Skeleton& ik, const HandSimModel& model,
+                   const std::vector<retarget::Feature>& features,
+                   const std::vector<Eigen::Vector3d>& on_faces, const RigidPose& cube,
+                   const hand::HandPose& pose, PinchScript& script) {
+  const std::array<int, 2> pads = {script.thumb_bone, script.index_bone};
+  script.pinch = pose;
+  script.pinch_clearance = skin_clearance(ik, model, pose, cube, model.cube_half, pads).distance;
+  if (script.pinch_clearance >= -kPinningDepth) return;
+  std::vector<retarget::Feature> relaxed = features;
+  relaxed[2].weight = relaxed[3].weight = 0.1;
+  const ClearPinch clear = clear_pinch(ik, model, relaxed, on_faces, cube, pads, pose);
+  script.pinch = clear.pose;
+  script.pinch_clearance = clear.clearance.distance;
+  script.placed_by_rule = true;
+  script.pinch_meets_rule = clear.meets_rule();
+  script.placement_pad_error = clear.pad_error;
+}
+
+// The farther of the two pads (the first two features) from its goal at `pose`.
+double pads_miss(const hand::Skeleton& ik, const std::vector<retarget::Feature>& features,
+                 const hand::HandPose& pose, const std::vector<Eigen::Vector3d>& goals) {
+  const hand::BoneFrames frames = hand::forward_kinematics(ik, pose);
+  double miss = 0.0;
+  for (std::size_t pad = 0; pad < 2; ++pad)
+    miss = std::max(miss,
+                    (hand::marker_position(ik, frames, features[pad].marker) - goals[pad]).norm());
+  return miss;
+}
+
+// The script of `closing`: the hand placed where the pads reach `wrist_squeeze` inside the faces,
+// or on them where the pinch's rule places it again (place_by_rule); a closing past that goes
+// on with the fingers alone.
 PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                         const GraspClosing& closing, double wrist_squeeze) {
   const double squeeze = closing.over_closure;
@@ -222,44 +258,23 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
       retarget::FingertipSolver(ik, features, options).solve(pose, goals(-wrist_squeeze), true);
   pose.angles = placed.angles;
   pose.root_position += placed.root_shift;
-  // Where the pinch so placed lays other skin inside the cube (a finger across a 6 cm cube's
-  // top), the hand is placed again by the pinch's rule: the pads on the faces, the rest of the
-  // hand clear of the cube, the pads' facing (the points behind them) at a tenth of their
-  // weight, as the rule asks for the pads' places and a pad turned a few degrees still presses
-  // its face (pinch_clearance.h).
   RigidPose cube;
   cube.position = script.cube_centre;
-  const std::array<int, 2> pads = {script.thumb_bone, script.index_bone};
-  script.pinch = pose;
-  script.pinch_clearance = skin_clearance(ik, model, pose, cube, model.cube_half, pads).distance;
-  if (script.pinch_clearance < -kSkinClearance) {
-    std::vector<retarget::Feature> relaxed = features;
-    relaxed[2].weight = relaxed[3].weight = 0.1;
-    const ClearPinch clear = clear_pinch(ik, model, relaxed, goals(0.0), cube, pads, pose);
-    script.pinch = clear.pose;
-    script.pinch_clearance = clear.clearance.distance;
-    script.placed_by_rule = true;
-    script.pinch_meets_rule = clear.meets_rule();
-    script.placement_pad_error = clear.pad_error;
-  }
+  place_by_rule(ik, model, features, goals(0.0), cube, pose, script);
   options.root_translation_weight = 0.0;  // from here on the same wrist
   if (script.placed_by_rule || squeeze != wrist_squeeze) {
     const retarget::SolverResult closed =
         retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(-squeeze), true);
     script.pinch.angles = closed.angles;
   }
-  const hand::BoneFrames at_pinch = hand::forward_kinematics(ik, script.pinch);
-  const std::vector<Eigen::Vector3d> squeezed = goals(-squeeze);
-  for (int pad = 0; pad < 2; ++pad)
-    script.pinch_error = std::max(
-        script.pinch_error,
-        (hand::marker_position(ik, at_pinch, first + 2 * pad) - squeezed[std::size_t(pad)]).norm());
+  script.pinch_error = pads_miss(ik, features, script.pinch, goals(-squeeze));
   // The pads 15 mm off the faces.
   const retarget::SolverResult opened =
       retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
   script.open = script.pinch;
   script.open.angles = opened.angles;
-  script.approach_height = clear_approach_height(ik, model, script, cube);
+  if (script.placed_by_rule)
+    script.approach_height = clear_approach_height(ik, model, script, cube);
   apply_timing(ik, closing, script);
   return script;
 }

@@ -24,8 +24,9 @@ struct PinchScript {
   double cube_size = 0.01;                                // m
   Eigen::Vector3d cube_centre = Eigen::Vector3d::Zero();  // at the start, on the floor
   hand::HandPose open, pinch;  // above the cube: fingers around it, pads on its faces
-  // Timeline (s): open the fingers 5 cm above the cube, come down, close, settle, lift 10 cm,
-  // hold 5 s, open, let the cube fall.
+  // Timeline (s): open the fingers `approach_height` above the cube (5 cm, more where the
+  // shaping would sweep the hand through the cube), come down, close, settle, lift 10 cm, hold
+  // 5 s, open, let the cube fall.
   double shape_end = 0.3, approach_end = 0.8, close_end = 1.3, lift_start = 1.5, lift_end = 2.5;
   double hold_end = 7.5, release_end = 7.9, end = 8.7;
   double approach_height = 0.05, lift_height = 0.10;  // m
@@ -48,7 +49,8 @@ struct PinchScript {
   // The nearest skin but the pads' to the cube at the pinch before the closing's squeeze (m;
   // below 0: inside), whether the hand was placed again by the pinch's rule because the
   // script's pose laid a finger inside the cube (pinch_clearance.h), and whether the rule was
-  // then met (false where it was not needed).
+  // then met (false where it was not needed). A recorded closing's script (recorded_pinches.h)
+  // sets the clearance alone, at its least aperture.
   double pinch_clearance = 0.0;
   bool placed_by_rule = false, pinch_meets_rule = false;
   double placement_pad_error = 0.0;  // m: the farther pad from its face's goal, so placed

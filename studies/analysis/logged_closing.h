@@ -34,15 +34,15 @@ struct LoggedClosing {
   double closing_speed = 0.0;
   // m: how deep the skin of the bones but the two distal phalanges lies inside the cube
   // (negative: how far it keeps off), the median over the grasp's frames: a finger across
-  // the cube's top pins it to the floor. Not a factor of the map, whose pinch keeps it below
-  // -2 mm (core/task/pinch_clearance.h).
+  // the cube's top pins it to the floor. Not a factor of the map, whose pinch the pinch's rule
+  // places again where it is deeper than 2 mm (core/task/pinch_clearance.h).
   double other_skin_depth = 0.0;
 };
 
-// LoggedClosing's fields by the grasp map's factor names, in the map's units (and the other
-// skin's depth).
+// LoggedClosing's fields by the grasp map's factor names, in the map's units, and the other
+// skin's depth, which is not a factor of the map.
 struct LoggedFactor {
-  const char* name;  // the map's factor
+  const char* name;  // the map's factor (or other_skin_depth)
   const char* unit;
   double LoggedClosing::*field;
   double scale;  // the unit in SI

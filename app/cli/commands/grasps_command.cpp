@@ -67,7 +67,7 @@ void print_tally(const studies::GraspTally& t) {
   if (t.kept_closings.empty() && t.lost_closings.empty()) return;
   std::printf(
       "  closings in the grasp map's terms (sim grasp), median [10th-90th percentile]:\n"
-      "    %-14s %-28s %s\n",
+      "    %-16s %-28s %s\n",
       "", ("kept (" + std::to_string(t.kept_closings.size()) + ")").c_str(),
       ("lost (" + std::to_string(t.lost_closings.size()) + ")").c_str());
   for (const studies::LoggedFactor& f : studies::logged_factors()) {
@@ -78,7 +78,7 @@ void print_tally(const studies::GraspTally& t) {
       std::snprintf(text, sizeof text, "%.3g [%.3g, %.3g] %s", s.median, s.p10, s.p90, f.unit);
       return std::string(text);
     };
-    std::printf("    %-14s %-28s %s\n", f.name, spread(t.kept_closings).c_str(),
+    std::printf("    %-16s %-28s %s\n", f.name, spread(t.kept_closings).c_str(),
                 spread(t.lost_closings).c_str());
   }
 }

@@ -433,7 +433,9 @@ int sim_pinch(const std::vector<std::string>& argv) {
       json.begin_object()
           .field("cube_size_m", setup.script.cube_size)
           .field("placed_by_rule", setup.script.placed_by_rule)
-          .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance);
+          .field("meets_pinch_rule", setup.script.pinch_meets_rule)
+          .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance)
+          .field("placement_pad_error_mm", 1000 * setup.script.placement_pad_error);
       write_pinch_measures(json, r);
       write_timing(json, setup, r);
       json.end_object();

@@ -52,7 +52,7 @@ void print_map(const CubeMap& map) {
     char unmet[96] = "";
     if (o.placed_by_rule && !o.meets_pinch_rule)
       std::snprintf(unmet, sizeof unmet,
-                    " (the pinch's rule not met: pads %.1f mm off, other skin %.1f mm)",
+                    " (the pinch's rule not met: pads %.1f mm off, other skin %.1f mm off)",
                     o.placement_pad_error_mm, o.pinch_clearance_mm);
     std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s%s\n", m.held ? "yes" : "NO",
                 m.released ? "yes" : "NO", m.slip_mm, m.max_penetration_mm, m.peak_grip_n,

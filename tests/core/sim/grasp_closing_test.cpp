@@ -108,8 +108,8 @@ TEST(GraspClosing, OverClosureMovesTheFingersNotTheWrist) {
 }
 
 // A tilted pinch turns the hand with its axis: the wrist's rotation turns by the tilt (where
-// the pinch's rule does not place the hand again: at 20 degrees it lays other skin 2 mm into
-// the light cube, and the rule turns the hand on).
+// the pinch's rule does not place the hand again: at 20 degrees it lays other skin more than 2 mm
+// into the light cube, and the rule turns the hand on).
 TEST(GraspClosing, TiltTurnsTheHand) {
   GraspClosing tilted;
   set_closing_factor(tilted, "tilt_pitch", -10);
@@ -123,6 +123,19 @@ TEST(GraspClosing, TiltTurnsTheHand) {
   const PinchScript placed = make_grasp_script(scene().skeleton, scene().model, tilted);
   EXPECT_TRUE(placed.placed_by_rule);
   EXPECT_GE(placed.pinch_clearance, kSkinClearance);
+}
+
+// The light cube's closings that the pinch's rule leaves alone come down from 5 cm as before
+// the rule, so that they are the same closings to the bit.
+TEST(GraspClosing, ClosingsTheRuleLeavesAloneShapeAtFiveCentimetres) {
+  int left_alone = 0;
+  for (const ClosingPoint& p : single_factor_grid()) {
+    const PinchScript s = make_grasp_script(scene().skeleton, scene().model, p.closing);
+    if (s.placed_by_rule) continue;
+    ++left_alone;
+    EXPECT_EQ(s.approach_height, 0.05) << describe(p.closing);
+  }
+  EXPECT_GT(left_alone, 40);
 }
 
 TEST(GraspClosing, UnknownFactorsAndValuesOutsideTheGridAreRefused) {
