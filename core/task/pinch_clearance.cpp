@@ -18,8 +18,20 @@ constexpr double kFirstWeight = 0.3, kWeightBound = 40.0;
 constexpr int kIterations = 300;      // Levenberg-Marquardt's at each weight
 constexpr double kDifference = 1e-6;  // the Jacobian's forward differences (m, rad)
 
-bool is_pad(const std::array<int, 2>& pads, std::size_t bone) {
-  return int(bone) == pads[0] || int(bone) == pads[1];
+// Calls visit(bone, distance) for each skin point of every bone but `pads` with the hand at
+// `pose`: its signed distance to a cube of half sides `half` at `cube` (< 0: inside).
+template <class Visit>
+void visit_other_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
+                      const hand::HandPose& pose, const RigidPose& cube,
+                      const Eigen::Vector3d& half, const std::array<int, 2>& pads, Visit visit) {
+  const std::vector<RigidPose> bones = bone_targets(model, skeleton, pose);
+  const Eigen::Quaterniond to_cube = cube.rotation.conjugate();
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    if (int(b) == pads[0] || int(b) == pads[1]) continue;
+    for (const Eigen::Vector3d& local : model.bone_skin[b])
+      visit(int(b),
+            box_proximity(half, to_cube * (bones[b].point(local) - cube.position)).distance);
+  }
 }
 
 // The pose moved by x: the wrist turned by x[0..2] (a rotation vector, world), moved by
@@ -55,17 +67,9 @@ struct Problem {
           hand::marker_position(skeleton, frames, features[i].marker) - goals[i];
       for (int a = 0; a < 3; ++a) r.push_back(features[i].weight * miss(a));
     }
-    const std::vector<RigidPose> bones = bone_targets(model, skeleton, pose);
-    const Eigen::Quaterniond to_cube = cube.rotation.conjugate();
-    for (std::size_t b = 0; b < bones.size(); ++b) {
-      if (is_pad(pads, b)) continue;
-      for (const Eigen::Vector3d& local : model.bone_skin[b]) {
-        const double d =
-            box_proximity(model.cube_half, to_cube * (bones[b].point(local) - cube.position))
-                .distance;
-        r.push_back(weight * std::max(0.0, kAimedClearance - d));
-      }
-    }
+    visit_other_skin(skeleton, model, pose, cube, model.cube_half, pads, [&](int, double d) {
+      r.push_back(weight * std::max(0.0, kAimedClearance - d));
+    });
     return Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
   }
 
@@ -110,16 +114,9 @@ SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel&
                              const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones) {
   SkinClearance out;
   out.distance = std::numeric_limits<double>::infinity();
-  const std::vector<RigidPose> bones = bone_targets(model, skeleton, pose);
-  const Eigen::Quaterniond to_cube = cube.rotation.conjugate();
-  for (std::size_t b = 0; b < bones.size(); ++b) {
-    if (is_pad(pad_bones, b)) continue;
-    for (const Eigen::Vector3d& local : model.bone_skin[b]) {
-      const double d =
-          box_proximity(half, to_cube * (bones[b].point(local) - cube.position)).distance;
-      if (d < out.distance) out = {d, int(b)};
-    }
-  }
+  visit_other_skin(skeleton, model, pose, cube, half, pad_bones, [&](int bone, double d) {
+    if (d < out.distance) out = {d, bone};
+  });
   return out;
 }
 
