@@ -315,6 +315,9 @@ PinchMeter::PinchMeter(const HandSimModel& model, const PinchScript& script)
     : model_(model), script_(script) {}
 
 void PinchMeter::observe(const HandSimState& state, double t, double max_penetration) {
+  if (t <= script_.approach_end + 1e-9)
+    top_load_before_closing_n_ =
+        std::max(top_load_before_closing_n_, flesh_forces_on_cube_faces(model_, state)[3]);
   if (t < script_.lift_end - 1e-9 || t > script_.hold_end + 1e-9) return;
   // The hold: the cube seen from the distal bones, relative to the midpoint of their origins.
   const hand::BoneFrames frames = simulated_bone_frames(model_, state);
@@ -345,6 +348,7 @@ void PinchMeter::finish(const HandSimState& state, double duration, bool flesh_o
   report.max_penetration_mm = max_penetration_mm_;
   report.peak_grip_n = peak_grip_n_;
   report.turn_deg = turn_deg_;
+  report.top_load_before_closing_n = top_load_before_closing_n_;
   // Released: no flesh on the cube and the cube back down, a corner within 1 mm of the floor
   // (dropped from the lift's height it may still be tumbling, as a real one does).
   double lowest = INFINITY;

@@ -87,15 +87,19 @@ struct PinchReport {
   // The hold's largest grip: over the cube's pairs of opposite faces, the lesser of the two
   // faces' flesh normal forces (contact_forces.h), N.
   double peak_grip_n = 0.0;
-  double turn_deg = 0.0;        // how far the cube turned from its start by the end of the hold
+  double turn_deg = 0.0;  // how far the cube turned from its start by the end of the hold
+  // The flesh's largest force on the cube's top (its own +y face) before the closing begins: a
+  // hand come down onto the cube pressing it into the floor (N).
+  double top_load_before_closing_n = 0.0;
   std::vector<double> step_ms;  // wall time of every step
   std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
   std::vector<int> halvings, direct_solves;                                         // per step
 };
 
-// The measures of the report, fed the state after each step: held, lift, slip and penetration
-// through the hold, released at the end. run_pinch feeds it handlab's states; a peer
-// simulator's run of the same script is measured by the same rules (tests/bench).
+// The measures of the report, fed the state after each step: the top's load before the
+// closing, held, lift, slip and penetration through the hold, released at the end. run_pinch feeds
+// it handlab's states; a peer simulator's run of the same script is measured by the same rules
+// (tests/bench).
 class PinchMeter {
  public:
   PinchMeter(const HandSimModel& model, const PinchScript& script);
@@ -112,7 +116,7 @@ class PinchMeter {
   bool holding_ = true, reference_set_ = false;
   Eigen::Vector3d reference_ = Eigen::Vector3d::Zero();
   double lift_ = 0.0, slip_mm_ = 0.0, max_penetration_mm_ = 0.0, peak_grip_n_ = 0.0;
-  double turn_deg_ = 0.0;
+  double turn_deg_ = 0.0, top_load_before_closing_n_ = 0.0;
 };
 
 // The steps run_pinch takes to reach `duration` seconds, steps of `time_step`.

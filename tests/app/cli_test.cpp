@@ -343,10 +343,16 @@ TEST(CliSim, PinchesRunARecordingsClosingOnTheSoftHand) {
   const util::JsonValue doc = util::JsonValue::parse(r.out);
   ASSERT_EQ(doc["pinches"].size(), 1u) << r.out;
   const util::JsonValue p = doc["pinches"][0];
-  for (const char* key :
-       {"recording", "strategy", "cube_size_m", "moment_s", "closed_s", "widest_m", "narrowest_m",
-        "closing_speed_m_s", "tilt_deg", "takes_cube", "outcome", "pushed_mm", "grip_at_lift_n",
-        "held", "released", "lift_m", "slip_mm", "max_penetration_mm", "peak_grip_n"})
+  for (const char* key : {"recording",      "strategy",
+                          "cube_size_m",    "moment_s",
+                          "closed_s",       "widest_m",
+                          "narrowest_m",    "closing_speed_m_s",
+                          "tilt_deg",       "takes_cube",
+                          "outcome",        "pushed_mm",
+                          "grip_at_lift_n", "held",
+                          "released",       "lift_m",
+                          "slip_mm",        "max_penetration_mm",
+                          "peak_grip_n",    "top_load_before_closing_n"})
     EXPECT_NE(p.find(key), nullptr) << key;
   EXPECT_TRUE(p["takes_cube"].as_bool());
   EXPECT_TRUE(p["held"].as_bool());
@@ -374,10 +380,10 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), std::stod(cube));
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
-    for (const char* key :
-         {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
-          "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm", "pinch_clearance_mm",
-          "placement_pad_error_mm", "placed_by_rule", "meets_pinch_rule"})
+    for (const char* key : {"factor", "level", "closing", "values", "held", "released", "lift_m",
+                            "slip_mm", "max_penetration_mm", "peak_grip_n", "turn_deg",
+                            "pinch_error_mm", "pinch_clearance_mm", "placement_pad_error_mm",
+                            "placed_by_rule", "meets_pinch_rule", "top_load_before_closing_n"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);
@@ -392,12 +398,15 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_TRUE(holds["placed_by_rule"].as_bool());
   EXPECT_TRUE(holds["meets_pinch_rule"].as_bool());
   EXPECT_GE(holds["pinch_clearance_mm"].as_number(), 2.0);
+  EXPECT_LT(holds["top_load_before_closing_n"].as_number(), 5.0) << "the rule keeps the top free";
   const util::JsonValue loses = closing("0.01", "over_closure=0");
   EXPECT_FALSE(loses["held"].as_bool());
   EXPECT_LT(loses["lift_m"].as_number(), 0.01);
   EXPECT_EQ(loses["closing"].as_string(), "over_closure 0 mm");
   EXPECT_NEAR(loses["values"]["over_closure"].as_number(), 0.0, 1e-9);
   EXPECT_FALSE(loses["placed_by_rule"].as_bool());
+  // The light cube's script comes down with the index's knuckles on its top (docs/simulator.md).
+  EXPECT_GT(loses["top_load_before_closing_n"].as_number(), 10.0);
   EXPECT_EQ(run_cli("sim grasp --closing squeeze=3").status, 2);
   EXPECT_EQ(run_cli("sim grasp --closing over_closure=40").status, 2);
   EXPECT_EQ(run_cli("sim grasp --factor tilt").status, 2);

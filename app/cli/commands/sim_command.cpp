@@ -420,7 +420,8 @@ int sim_pinch(const std::vector<std::string>& argv) {
     std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
               << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
               << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
-              << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, "
+              << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, top "
+              << r.top_load_before_closing_n << " N before the closing, "
               << (r.released ? "released" : "NOT released") << " (the scripted pads miss their "
               << "targets by " << setup.script.pinch_error * 1000 << " mm"
               << (setup.script.placed_by_rule ? "; the hand placed by the pinch's rule" : "")

@@ -43,8 +43,9 @@ std::string group_of(const sim::ClosingPoint& p) {
 }
 
 void print_map(const CubeMap& map) {
-  std::printf("\ncube %.0f mm\n%-4s %-8s %8s %10s %7s %6s  %s\n", map.cube_size * 1000, "held",
-              "released", "slip mm", "deepest mm", "grip N", "turn", "closing");
+  // "top N": the flesh's load on the cube's top before the closing (PinchReport).
+  std::printf("\ncube %.0f mm\n%-4s %-8s %8s %10s %7s %6s %6s  %s\n", map.cube_size * 1000, "held",
+              "released", "slip mm", "deepest mm", "grip N", "turn", "top N", "closing");
   std::vector<std::pair<std::string, std::pair<int, int>>> held;  // group -> held, run
   for (const sim::GraspOutcome& o : map.outcomes) {
     const sim::PinchReport& m = o.measures;
@@ -54,9 +55,9 @@ void print_map(const CubeMap& map) {
       std::snprintf(unmet, sizeof unmet,
                     " (the pinch's rule not met: pads %.1f mm off, other skin %.1f mm off)",
                     o.placement_pad_error_mm, o.pinch_clearance_mm);
-    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f°  %s%s\n", m.held ? "yes" : "NO",
+    std::printf("%-4s %-8s %8.3f %10.2f %7.2f %5.1f° %6.1f  %s%s\n", m.held ? "yes" : "NO",
                 m.released ? "yes" : "NO", m.slip_mm, m.max_penetration_mm, m.peak_grip_n,
-                m.turn_deg, closing_label(o.point).c_str(), unmet);
+                m.turn_deg, m.top_load_before_closing_n, closing_label(o.point).c_str(), unmet);
     const std::string group = group_of(o.point);
     if (held.empty() || held.back().first != group) held.push_back({group, {0, 0}});
     held.back().second.first += m.held ? 1 : 0;
@@ -202,7 +203,8 @@ void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r) {
       .field("slip_mm", r.slip_mm)
       .field("max_penetration_mm", r.max_penetration_mm)
       .field("peak_grip_n", r.peak_grip_n)
-      .field("turn_deg", r.turn_deg);
+      .field("turn_deg", r.turn_deg)
+      .field("top_load_before_closing_n", r.top_load_before_closing_n);
 }
 
 std::vector<double> cube_sides(const Arguments& args) {
