@@ -1,5 +1,7 @@
 #include "app/gui/session_setup.h"
 
+#include <exception>
+
 #include <QCheckBox>
 #include <QComboBox>
 #include <QFileDialog>
@@ -113,7 +115,7 @@ QString SessionSetup::fill(SessionOptions& options, std::shared_ptr<live::LiveFr
       live = std::make_shared<live::LiveFrameStats>();
       live::FrameQueue* queue = &leap_->client()->queue();
       auto stats = live;
-      options.tracker = studies::TrackerKind::live(
+      options.tracker = studies::live_tracker(
           "leap " + address_->text().toStdString(),
           [queue, stats] { return std::make_unique<live::LiveFrames>(*queue, stats); });
       options.frame_arrival = [stats] { return stats->last_arrival_ns.load(); };
@@ -121,14 +123,17 @@ QString SessionSetup::fill(SessionOptions& options, std::shared_ptr<live::LiveFr
     }
     case kRecording:
       if (recording_->text().isEmpty()) return tr("choose a recording file");
-      options.tracker = studies::TrackerKind::recording(recording_->text().toStdString());
+      try {
+        options.tracker = studies::recording_tracker(recording_->text().toStdString());
+      } catch (const std::exception& e) {
+        return QString::fromStdString(e.what());
+      }
       break;
     case kSimulated:
-      options.tracker = studies::TrackerKind::simulated(std::uint64_t(seed_->value()));
-      options.simulated_answers = true;
+      options.tracker = studies::simulated_tracker(std::uint64_t(seed_->value()));
       break;
     default:
-      options.tracker = studies::TrackerKind::scripted();
+      options.tracker = studies::scripted_tracker();
   }
   return {};
 }

@@ -129,8 +129,8 @@ void SessionWorker::run() {
     studies::PipelineTrialDriver driver(options_.tracker, 120.0, options_.world, threads);
     driver.set_real_time(options_.real_time);
     studies::QuestionnaireResponder responder;
-    if (options_.simulated_answers) {
-      responder = studies::simulated_responder(options_.tracker.seed());
+    if (const auto own = options_.tracker->own_answers()) {
+      responder = *own;
     } else {
       responder = [this](const studies::SeenQuestionnaire& asked, const studies::TrialRun&) {
         std::future<std::vector<int>> answers;
@@ -153,8 +153,8 @@ void SessionWorker::run() {
     studies::SessionRunner runner(store, driver, responder);
     runner.attach(&control_);
     const std::string tracker = options_.world == studies::WorldKind::kSoftHand
-                                    ? options_.tracker.name() + " (soft hand)"
-                                    : options_.tracker.name();
+                                    ? options_.tracker->name() + " (soft hand)"
+                                    : options_.tracker->name();
     const studies::SessionReport report =
         runner.run(options_.participant, tracker, options_.resume);
     finished_ = true;

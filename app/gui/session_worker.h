@@ -27,12 +27,11 @@ namespace handlab::gui {
 struct SessionOptions {
   QString database;
   std::string participant;
-  studies::TrackerKind tracker = studies::TrackerKind::scripted();
+  // A simulated participant answers the questionnaires itself; otherwise the dialog asks.
+  studies::TrackerPtr tracker = studies::scripted_tracker();
   studies::WorldKind world = studies::WorldKind::kSoftHand;
   bool resume = false;
   bool real_time = true;
-  // With a simulated participant, its answers; otherwise the questionnaire dialog's.
-  bool simulated_answers = false;
   // With a live tracker: when the frame a step used arrived (steady clock, ns), read on the
   // session thread right after the step, for the display's latency.
   std::function<long long()> frame_arrival;

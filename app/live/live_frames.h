@@ -1,4 +1,4 @@
-// A live tracker as the session's frame source (studies::TrackerKind::live). It keeps when that
+// A live tracker as the session's frame source (studies::live_tracker). It keeps when that
 // frame arrived, for the app's latency figures, and counts the frames the session never
 // used (superseded by a newer one before a step took them).
 #pragma once

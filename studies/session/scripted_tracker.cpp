@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "core/hand/tracked_hand.h"
 #include "core/retarget/fingertip_solver.h"
 #include "core/tracking/hand_fitting.h"
+#include "studies/session/tracker.h"
 
 namespace handlab::studies {
 namespace {
@@ -83,6 +85,21 @@ std::vector<tracking::TrackedFrame> scripted_open_palm(const ScriptedMotionSetti
   for (long k = 0; k < long(settings.rate_hz); ++k)
     frames.push_back(frame_of(s, open, double(k) / settings.rate_hz, k));
   return frames;
+}
+
+retarget::Calibration scripted_calibration(const task::SceneLayout& scene, double hand_length,
+                                           const hand::Skeleton& first_hand,
+                                           SessionControl* control) {
+  ScriptedMotionSettings settings;
+  settings.hand_length = hand_length;
+  settings.layout = scene;
+  const std::vector<tracking::TrackedFrame> open = scripted_open_palm(settings);
+  const auto calibration = retarget::calibrate_open_palm(
+      open, tracking::Side::kRight, first_hand,
+      tracking::TrackedHandFitter(hand_length, tracking::Side::kRight));
+  if (!calibration) throw std::runtime_error("the scripted open palm did not calibrate");
+  report_calibration(control, *calibration, open.back());
+  return *calibration;
 }
 
 ScriptedTracker::ScriptedTracker(const ScriptedMotionSettings& settings)

@@ -8,10 +8,13 @@
 #include <vector>
 
 #include "core/hand/skeleton.h"
+#include "core/retarget/retargeter.h"
 #include "core/task/scene_layout.h"
 #include "core/tracking/frame_source.h"
 
 namespace handlab::studies {
+
+class SessionControl;
 
 struct ScriptedMotionSettings {
   double hand_length = 0.18;            // the participant's (m)
@@ -24,6 +27,13 @@ struct ScriptedMotionSettings {
 
 // A second of the open palm held over zone A: what calibration measures.
 std::vector<tracking::TrackedFrame> scripted_open_palm(const ScriptedMotionSettings& settings);
+
+// How the scripted and the simulated participant calibrate: a second of the open palm of a
+// hand of the participant's length over zone A, measured for `first_hand` (the first
+// condition's simulated hand); the outcome reported to `control` (may be null).
+retarget::Calibration scripted_calibration(const task::SceneLayout& scene, double hand_length,
+                                           const hand::Skeleton& first_hand,
+                                           SessionControl* control);
 
 class ScriptedTracker : public tracking::FrameSource {
  public:

@@ -6,44 +6,30 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "core/sim/step_totals.h"
 #include "core/store/study_store.h"
+#include "studies/participant/activity_time.h"
 #include "studies/protocol/protocol.h"
 #include "studies/protocol/protocol_store.h"
+#include "studies/session/questionnaire_responder.h"
 #include "studies/session/session_control.h"
 #include "studies/session/trial_driver.h"
 
 namespace handlab::studies {
 
-// What a questionnaire's responder is told of the trial it answers for: who answers, the
-// trial's place, its time limit and the items. Nothing of the condition, the strategy or the
-// labels (a person's answers come from what it went through: the TrialRun).
-struct SeenQuestionnaire {
-  std::string participant_id;
-  int position = 0;
-  double timeout_s = 0.0;
-  std::vector<std::string> item_ids;
-  int scale_points = 5;
-};
-
-// Answers for the questionnaire after a trial: one value per item, 1..scale.
-using QuestionnaireResponder =
-    std::function<std::vector<int>(const SeenQuestionnaire&, const TrialRun&)>;
-
-// The scripted participant's answers: the middle of the scale for every item.
-QuestionnaireResponder fixed_responder();
-
-// A simulated participant's answers (studies/participant/questionnaire_model.h): from its
-// account of the trial (TrialRun::experience), with noise from its own stream under `seed`;
-// never from the condition. Without an account, the middle of the scale.
-QuestionnaireResponder simulated_responder(std::uint64_t seed);
-
 struct SessionReport {
   int trials_run = 0, aborted_before = 0;
   bool schedule_complete = false;
   bool stopped = false;  // by a stop request (SessionControl)
+  // The soft hand's steps of every trial run, per condition label (TrialRun::simulator).
+  std::map<std::string, sim::StepTotals> simulator;
+  // Where a simulated participant's time went in the trials run to their result (not those
+  // stopped by the experimenter), by the cube they saw (its side in m, to the millimetre).
+  std::map<double, ActivityTime> participant_time;
 };
 
 class SessionRunner {
@@ -62,6 +48,9 @@ class SessionRunner {
   void attach(SessionControl* control) { control_ = control; }
 
  private:
+  struct Session;  // what the session's trials share
+  bool run_trial(Session& session, const store::PlannedTrialRow& next, SessionReport& report,
+                 const std::function<void(const std::string&)>& progress);
   void apply_decisions(const std::string& participant_id, std::int64_t session);
 
   bool log_frames_ = true;

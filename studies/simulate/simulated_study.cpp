@@ -92,9 +92,9 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
     study.copy_to(path);
   }
   const int n = int(people.size());
-  const TrackerKind tracker = TrackerKind::simulated(options.seed, options.model);
+  const TrackerPtr tracker = simulated_tracker(options.seed, options.model);
   const std::string tracker_name =
-      options.world == WorldKind::kSoftHand ? tracker.name() + " (soft hand)" : tracker.name();
+      options.world == WorldKind::kSoftHand ? tracker->name() + " (soft hand)" : tracker->name();
   std::mutex mutex;
   std::condition_variable changed;
   std::vector<int> state(std::size_t(n), 0);  // 0 waiting, 1 running, 2 done
@@ -113,16 +113,17 @@ SimulationReport simulate_study(const Protocol& protocol, const std::string& db_
       try {
         store::StudyStore part(path);
         PipelineTrialDriver driver(tracker, 120.0, options.world, 1);
-        SessionRunner runner(part, driver, simulated_responder(options.seed));
+        SessionRunner runner(part, driver, *tracker->own_answers());
         runner.log_frames(options.frames);
-        runner.run(people[std::size_t(i)].id, tracker_name, false, [&](const std::string&) {
-          const std::lock_guard lock(mutex);
-          ++trials_done;
-          changed.notify_all();
-        });
+        const SessionReport report =
+            runner.run(people[std::size_t(i)].id, tracker_name, false, [&](const std::string&) {
+              const std::lock_guard lock(mutex);
+              ++trials_done;
+              changed.notify_all();
+            });
         const std::lock_guard lock(mutex);
-        for (const auto& [label, t] : driver.simulator_totals()) simulator[label] += t;
-        participant_time[std::size_t(i)] = driver.participant_time();
+        for (const auto& [label, t] : report.simulator) simulator[label] += t;
+        participant_time[std::size_t(i)] = report.participant_time;
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();

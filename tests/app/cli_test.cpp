@@ -1,9 +1,11 @@
 // handlab-cli as a user calls it: exit status, one-line errors, the files it writes.
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -59,6 +61,69 @@ TEST(Cli, HelpListsCommandsAndEachCommandHasHelp) {
   const Result h = run_cli("render --help");
   EXPECT_EQ(h.status, 0);
   EXPECT_NE(h.out.find("--width"), std::string::npos);
+}
+
+// The "--name" words of `text`.
+std::set<std::string> option_words(const std::string& text) {
+  std::set<std::string> words;
+  for (std::size_t at = text.find("--"); at != std::string::npos; at = text.find("--", at + 2)) {
+    std::size_t end = at + 2;
+    while (end < text.size() &&
+           (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '-'))
+      ++end;
+    if (end > at + 2) words.insert(text.substr(at, end - at));
+  }
+  return words;
+}
+
+// Every command's usage is written from its option table (app/cli/command_help.h): each
+// option a usage line names is one its --help lists, a family's list of its subcommands says
+// what each subcommand's own --help says, and a usage that leaves options out says so.
+TEST(Cli, EveryUsageNamesOnlyTheOptionsItsTableHas) {
+  const Result top = run_cli("--help");
+  std::vector<std::string> commands;
+  for (std::size_t at = top.out.find("\n  "); at != std::string::npos;
+       at = top.out.find("\n  ", at + 1))
+    commands.push_back(top.out.substr(at + 3, top.out.find(' ', at + 3) - at - 3));
+  ASSERT_GE(commands.size(), 15u) << top.out;
+  int checked = 0;
+  for (const std::string& command : commands) {
+    const Result own = run_cli(command + " --help");
+    ASSERT_EQ(own.status, 0) << command << ": " << own.out;
+    ASSERT_EQ(own.out.rfind("Usage: handlab-cli " + command + " ", 0), 0u) << own.out;
+    std::vector<std::string> lines;  // the usage lines: a family's list its subcommands
+    for (std::size_t at = 0; at < own.out.size();) {
+      const std::size_t end = own.out.find('\n', at);
+      const std::string line = own.out.substr(at, end - at);
+      if (line.find("handlab-cli " + command) == std::string::npos) break;
+      lines.push_back(line);
+      at = end + 1;
+    }
+    for (const std::string& line : lines) {
+      const std::string called = line.substr(line.find("handlab-cli ") + 12);
+      const std::string sub = called.substr(
+          command.size() + 1, called.find(' ', command.size() + 1) - command.size() - 1);
+      const bool family = !sub.empty() && sub[0] != '-' && sub[0] != '[' &&
+                          std::islower(static_cast<unsigned char>(sub[0])) &&
+                          own.out.find("\nOptions:\n") == std::string::npos;
+      const Result help = family ? run_cli(command + " " + sub + " --help") : own;
+      ASSERT_EQ(help.status, 0) << line;
+      const std::string table = help.out.substr(help.out.find("\nOptions:\n"));
+      const std::set<std::string> listed = option_words(table);
+      for (const std::string& word : option_words(line)) {
+        EXPECT_TRUE(listed.count(word)) << line << ": " << word;
+      }
+      if (family) {
+        EXPECT_NE(help.out.find(line.substr(7)), std::string::npos)
+            << "the family's line is not " << command << " " << sub << "'s own:\n"
+            << help.out;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 30);
+  const Result merge = run_cli("merge --help");
+  EXPECT_NE(merge.out.find("PART.db... [options]"), std::string::npos) << "--json is left out";
 }
 
 TEST(Cli, ErrorsAreOneLineWithNonZeroStatus) {

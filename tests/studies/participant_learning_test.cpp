@@ -151,7 +151,7 @@ TEST(ParticipantMemory, ASessionStoppedAndResumedGoesOnWithWhatItLearnt) {
   const std::string& id = person.participant.id;
   store::StudyStore whole(enrolled("memory_whole.db"));
   {
-    PipelineTrialDriver driver(TrackerKind::simulated(3));
+    PipelineTrialDriver driver(simulated_tracker(3));
     SessionRunner runner(whole, driver, simulated_responder(3));
     ASSERT_TRUE(runner.run(id, "simulated", false).schedule_complete);
   }
@@ -166,7 +166,7 @@ TEST(ParticipantMemory, ASessionStoppedAndResumedGoesOnWithWhatItLearnt) {
 
   store::StudyStore split(enrolled("memory_split.db"));
   {
-    PipelineTrialDriver driver(TrackerKind::simulated(3));
+    PipelineTrialDriver driver(simulated_tracker(3));
     SessionRunner runner(split, driver, simulated_responder(3));
     SessionControl control;
     int ended = 0;
@@ -178,7 +178,7 @@ TEST(ParticipantMemory, ASessionStoppedAndResumedGoesOnWithWhatItLearnt) {
   }
   EXPECT_EQ(memory_from_json(*split.participant_memory(id)).trials, 7);
   {
-    PipelineTrialDriver driver(TrackerKind::simulated(3));
+    PipelineTrialDriver driver(simulated_tracker(3));
     SessionRunner runner(split, driver, simulated_responder(3));
     ASSERT_TRUE(runner.run(id, "simulated", true).schedule_complete);
   }

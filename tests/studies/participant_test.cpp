@@ -237,7 +237,7 @@ std::vector<TrialSetup> setups_of_cube(const Protocol& protocol, const Simulated
 struct StudyPerson {
   explicit StudyPerson(int who)
       : protocol(read_protocol(kSource + "/studies/fine-manipulation-2021.json")),
-        driver(TrackerKind::simulated(5)),
+        driver(simulated_tracker(5)),
         person(draw_person(Population{}, 5, who)),
         own(person.participant.hand_length),
         calibration(driver.calibrate(protocol, person.participant)) {}
@@ -312,7 +312,7 @@ TEST(SimulatedParticipantBlinding, SameObservationsSameFramesWhateverTheStrategy
 //   Object Pointing and Manipulation in Virtual Reality", IEEE RAM 2022).
 TEST(SimulatedParticipantKinematics, ReachAndGraspWithinPublishedRanges) {
   const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
-  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  PipelineTrialDriver driver(simulated_tracker(5));
   Condition base;
   for (const Condition& c : protocol.conditions())
     if (c.strategy.method == retarget::Strategy::kOurs && c.cube_size == 0.06) base = c;
@@ -521,7 +521,7 @@ class SeenOtherwiseWorld : public task::HandCubeWorld {
 // questionnaire answers are the same. Every phase of the state machine is gone through.
 TEST(SimulatedParticipantBlinding, EveryPhaseSwappedConditionsSameFramesMemoryAndAnswers) {
   const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
-  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  PipelineTrialDriver driver(simulated_tracker(5));
   const QuestionnaireResponder answer = simulated_responder(5);
   std::set<std::string> phases;
   int runs = 0;
@@ -954,7 +954,7 @@ TEST(SimulatedParticipantGrip, CautionAfterFailuresSlowsTheGraspNotTheReach) {
 // floor, and reaches for it where it fell.
 TEST(SimulatedParticipantCare, WipesOffACubeCaughtOnItsThumb) {
   const Protocol protocol = read_protocol(kSource + "/studies/fine-manipulation-2021.json");
-  PipelineTrialDriver driver(TrackerKind::simulated(5));
+  PipelineTrialDriver driver(simulated_tracker(5));
   const SimulatedPerson person = draw_person(Population{}, 5, 3);
   const OwnHand own(person.participant.hand_length);
   TrialSetup setup;

@@ -60,7 +60,7 @@ TEST(SessionControl, StopAbortsTheRunningTrialWhichRunsAgainOnResume) {
   const Protocol protocol = read_protocol(kStudy);
   const std::string path = enrolled_study("control_stop.db", protocol);
   store::StudyStore db(path);
-  PipelineTrialDriver driver(TrackerKind::scripted());
+  PipelineTrialDriver driver(scripted_tracker());
   SessionRunner runner(db, driver, fixed_responder());
   SessionControl control;
   int started = 0, ended = 0;
@@ -122,7 +122,7 @@ TEST(SessionControl, OnTheSoftHandEachStepHasTheFleshTheSkinIsDrawnFrom) {
   for (const WorldKind world : {WorldKind::kSoftHand, WorldKind::kGraspProxy}) {
     const bool soft = world == WorldKind::kSoftHand;
     store::StudyStore db(enrolled_study(soft ? "control_soft.db" : "control_proxy.db", protocol));
-    PipelineTrialDriver driver(TrackerKind::scripted(), 120.0, world, 1);
+    PipelineTrialDriver driver(scripted_tracker(), 120.0, world, 1);
     SessionRunner runner(db, driver, fixed_responder());
     SessionControl control;
     long steps = 0, with_flesh = 0, skins_checked = 0;
@@ -178,7 +178,7 @@ TEST(SessionControl, PauseHoldsAndDecisionsApplyBetweenTrials) {
   const Protocol protocol = read_protocol(kStudy);
   const std::string path = enrolled_study("control_pause.db", protocol);
   store::StudyStore db(path);
-  PipelineTrialDriver driver(TrackerKind::scripted());
+  PipelineTrialDriver driver(scripted_tracker());
   SessionRunner runner(db, driver, fixed_responder());
   SessionControl control;
   std::atomic<int> ended{0};
@@ -255,7 +255,7 @@ TEST(SessionControl, LiveTrackerCalibratesFromTheHeldPalmAndRunsInRealTime) {
     }
   };
   const Protocol protocol = read_protocol(kStudy);
-  PipelineTrialDriver driver(TrackerKind::live("live (test)", [&] {
+  PipelineTrialDriver driver(live_tracker("live (test)", [&] {
     auto live = std::make_unique<Live>();
     live->frames = &recording.frames;
     return live;

@@ -24,7 +24,7 @@ using test::kStudy;
 // (it only moves when held), carries it and puts it down inside B.
 TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
   const Protocol protocol = read_protocol(kStudy);
-  PipelineTrialDriver driver(TrackerKind::scripted());
+  PipelineTrialDriver driver(scripted_tracker());
   for (double length : {0.165, 0.205}) {
     const store::Participant p = test::participant("S", length);
     const retarget::Calibration calibration = driver.calibrate(protocol, p);
@@ -70,7 +70,7 @@ TEST(PipelineTrialDriver, ScriptedPickAndPlaceSucceedsInEveryCondition) {
 // (docs/study.md), so the trial's outcome is not asserted here.
 TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
   const Protocol protocol = read_protocol(kStudy);
-  PipelineTrialDriver driver(TrackerKind::scripted(), 120.0, WorldKind::kSoftHand);
+  PipelineTrialDriver driver(scripted_tracker(), 120.0, WorldKind::kSoftHand);
   const store::Participant p = test::participant("S", 0.18);
   TrialSetup setup;
   setup.protocol = &protocol;
@@ -99,7 +99,6 @@ TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
   EXPECT_GE(run.simulator.factorizing_steps, 1);
   EXPECT_GE(run.simulator.factorizations, run.simulator.factorizing_steps);
   EXPECT_GT(run.simulator.seconds, 0.0);
-  EXPECT_EQ(driver.simulator_totals().at(setup.condition.label).steps, run.simulator.steps);
   EXPECT_GT(touching, 10) << "frames with thumb or index on the cube";
   EXPECT_EQ(moved_untouched, 0) << "the cube moved before the hand touched it";
 }
@@ -136,7 +135,7 @@ TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) 
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
   db.add_participant(test::participant("P01", 0.18), planned_rows(protocol, "P01", 0));
-  PipelineTrialDriver driver(TrackerKind::scripted());
+  PipelineTrialDriver driver(scripted_tracker());
   SessionRunner runner(db, driver, fixed_responder());
   std::vector<std::string> lines;
   const SessionReport report =
@@ -220,7 +219,7 @@ TEST(SessionRunner, HandSizeFactorRescalesTheCalibrationPerCondition) {
   db.add_participant(test::participant("H1", 0.19), planned_rows(protocol, "H1", 0));
   // The real pipeline, watched: which calibration each condition's trial received.
   struct Watching : TrialDriver {
-    PipelineTrialDriver real{TrackerKind::scripted()};
+    PipelineTrialDriver real{scripted_tracker()};
     std::map<std::string, double> scale;
     retarget::Calibration calibrate(const Protocol& p, const store::Participant& who) override {
       return real.calibrate(p, who);

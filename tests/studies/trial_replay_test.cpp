@@ -31,7 +31,7 @@ TEST(TrialReplay, PlaysBackWhatTheSessionLogged) {
   store::StudyStore db(path);
   enrol_participant(db, test::participant("P01"));
   // Four trials by the scripted participant, stopped in the fifth.
-  PipelineTrialDriver driver(TrackerKind::scripted());
+  PipelineTrialDriver driver(scripted_tracker());
   SessionRunner runner(db, driver, fixed_responder());
   SessionControl control;
   int started = 0;

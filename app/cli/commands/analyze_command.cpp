@@ -7,6 +7,7 @@
 
 #include "analysis/report/analysis_output.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
 #include "core/util/output_file.h"
@@ -39,8 +40,10 @@ int analyze_database(const std::string& path, const std::string& json_out) {
 
 }  // namespace
 
-int run_analyze(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> analyze_options() {
+  return {
       {"csv", "FILE", "long-format data: one row per observation, with a header"},
       {"db", "DB",
        "a study database: run the study's analysis (completion time ANOVA, "
@@ -60,20 +63,25 @@ int run_analyze(const std::vector<std::string>& argv) {
        "Friedman and pairwise Wilcoxon tests of these columns instead"},
       {"json", "OUT", "write every number as JSON to OUT (- for standard output)"},
   };
+}
+
+CommandHelp analyze_help() {
+  return {"analyze",
+          {"csv subject dv within", "csv subject within nonparametric", "db [json]"},
+          "Repeated-measures ANOVA (type 3, as afex::aov_ez) with Mauchly's test, Greenhouse-\n"
+          "Geisser and Huynh-Feldt corrections, and pairwise comparisons of cell means (as\n"
+          "emmeans on afex's multivariate model: Tukey, Bonferroni, Holm); or, with\n"
+          "--nonparametric, Friedman's test and Bonferroni/Holm-adjusted Wilcoxon signed-rank\n"
+          "tests between all conditions for each item. Prints an APA-style report."};
+}
+
+}  // namespace
+
+int run_analyze(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = analyze_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli analyze --csv FILE --subject COL --dv COL --within A,B,... "
-           "[options]\n"
-           "       handlab-cli analyze --csv FILE --subject COL --within A,B --nonparametric "
-           "I1,I2,...\n"
-           "       handlab-cli analyze --db DB [--json OUT]\n\n"
-           "Repeated-measures ANOVA (type 3, as afex::aov_ez) with Mauchly's test, Greenhouse-\n"
-           "Geisser and Huynh-Feldt corrections, and pairwise comparisons of cell means (as\n"
-           "emmeans on afex's multivariate model: Tukey, Bonferroni, Holm); or, with\n"
-           "--nonparametric, Friedman's test and Bonferroni/Holm-adjusted Wilcoxon signed-rank\n"
-           "tests between all conditions for each item. Prints an APA-style report.\n\nOptions:\n"
-        << format_options_help(specs);
+    std::cout << help_text(analyze_help(), specs);
     return 0;
   }
   if (args.has("db")) {

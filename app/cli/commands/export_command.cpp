@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
 #include "core/util/output_file.h"
@@ -10,23 +11,35 @@
 
 namespace handlab::cli {
 
-int run_export(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> export_options() {
+  return {
       {"db", "DB", "the study database"},
       {"out", "DIR", "directory for trials.csv and questionnaire.csv (created if needed)"},
       {"frames", "",
        "also frames.csv: every logged step of those trials (cube, fingertips, aperture)"},
   };
+}
+
+CommandHelp export_help() {
+  return {"export",
+          {"db out [frames]"},
+          "Writes trials.csv (one row per trial with a result: participant, covariates, block, "
+          "order, factors, repetition, completion_time_s, outcome, grasps, drops) and "
+          "questionnaire.csv (one column per item); with --frames, frames.csv (one row per "
+          "logged step of those trials: time, task phase, the cube's centre, the contacts, the "
+          "simulated thumb and index tips, their aperture, the tracked aperture; docs/study.md). "
+          "Practice trials are left out."};
+}
+
+}  // namespace
+
+int run_export(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = export_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli export --db DB --out DIR [--frames]\n\nWrites trials.csv (one "
-                 "row per trial with a result: participant, covariates, block, order, factors, "
-                 "repetition, completion_time_s, outcome, grasps, drops) and questionnaire.csv "
-                 "(one column per item); with --frames, frames.csv (one row per logged step of "
-                 "those trials: time, task phase, the cube's centre, the contacts, the "
-                 "simulated thumb and index tips, their aperture, the tracked aperture; "
-                 "docs/study.md). Practice trials are left out.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(export_help(), specs);
     return 0;
   }
   args.require({"db", "out"});

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
 #include "core/util/output_file.h"
@@ -85,30 +86,40 @@ void print_tally(const studies::GraspTally& t) {
 
 }  // namespace
 
-int run_grasps(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> grasps_options() {
+  return {
       {"db", "DB", "the study database (its trials run with logged frames)"},
       {"participant", "ID", "only this participant's trials"},
       {"by", "cube|condition", "group the grasps by the cube's size or by condition", "cube"},
       {"json", "OUT", "write the groups and every grasp as JSON (- for standard output)"},
   };
+}
+
+CommandHelp grasps_help() {
+  return {"grasps",
+          {"db [participant] [by] [json]"},
+          "How each grasp of the study's trials met the cube, from their frame logs (trials with "
+          "a result whose attempt logged frames, practice included: a session's, or a simulated "
+          "study run with --frames). At the first frame the task saw the cube lifted between "
+          "thumb and index: on each distal phalanx, the point of the bone nearest the cube's "
+          "centre (the fingertip's end: tip; the joint: base; between: pad), and the pinch's "
+          "midpoint against the cube's centre. Then what became of the grasp: placed in B, "
+          "dropped (it came to rest outside B), landed (it came down onto the floor and was "
+          "grasped again before it rested), caught again in the air, or unfinished at the "
+          "trial's end. Prints per group how many grasps lost the cube (dropped or landed) by "
+          "the part of each phalanx and by the pinch's distance from the centre; --json writes "
+          "the same and every grasp, and with - replaces the printout (docs/study.md)."};
+}
+
+}  // namespace
+
+int run_grasps(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = grasps_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli grasps --db DB [--participant ID] [--by cube|condition] "
-           "[--json OUT]\n\nHow each grasp of the study's trials met the cube, from their "
-           "frame logs (trials with a result whose attempt logged frames, practice included: a "
-           "session's, or a simulated study run with --frames). At the first frame the task saw "
-           "the cube lifted between thumb and index: on each distal phalanx, the point of the "
-           "bone nearest the cube's centre (the fingertip's end: tip; the joint: base; between: "
-           "pad), and the pinch's midpoint against the cube's centre. Then what became of the "
-           "grasp: placed in B, dropped (it came to rest outside B), landed (it came down onto "
-           "the floor and was grasped again before it rested), caught again in the air, or "
-           "unfinished at the trial's end. Prints per group how many grasps lost the cube "
-           "(dropped or landed) by the part of each phalanx and by the pinch's distance from the "
-           "centre; --json writes the same and every grasp, and with - replaces the printout "
-           "(docs/study.md).\n\nOptions:\n"
-        << format_options_help(specs);
+    std::cout << help_text(grasps_help(), specs);
     return 0;
   }
   args.require({"db"});

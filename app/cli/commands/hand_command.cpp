@@ -4,6 +4,7 @@
 
 #include <optional>
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/util/output_file.h"
 
@@ -40,8 +41,10 @@ render::Image render_hands(const render::DrawList& list, bool wide = false) {
 
 }  // namespace
 
-int run_hand(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> hand_options() {
+  return {
       {"length", "METRES", "hand length, wrist crease to middle fingertip", "0.214"},
       {"breadth", "METRES", "hand breadth across the MCPs (default 0.45 x length)"},
       {"left", "", "a left hand (default right)"},
@@ -55,11 +58,21 @@ int run_hand(const std::vector<std::string>& argv) {
       {"png", "FILE", "draw the hand offscreen into a PNG"},
       {"json", "OUT", "write sizes and mesh figures as JSON (- for standard output)"},
   };
+}
+
+CommandHelp hand_help() {
+  return {"hand",
+          {"[length] [out] [png]"},
+          "Builds the simulated hand (16 bones, skin) of the given size."};
+}
+
+}  // namespace
+
+int run_hand(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = hand_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli hand [--length 0.214] [--out hand.obj] [--png hand.png]\n\n"
-                 "Builds the simulated hand (16 bones, skin) of the given size.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(hand_help(), specs);
     return 0;
   }
   hand::HandShape shape = hand::HandShape::with_length(args.number("length"));

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_merge.h"
 #include "core/util/count_text.h"
@@ -10,8 +11,10 @@
 
 namespace handlab::cli {
 
-int run_merge(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> merge_options() {
+  return {
       {"out", "STUDY.db", "the merged study database to create (must not exist)"},
       {"partial", "",
        "write the study though the parts lack participants its plan names (a simulated "
@@ -21,19 +24,28 @@ int run_merge(const std::vector<std::string>& argv) {
        "is left as it is"},
       {"json", "OUT", "write what was merged as JSON (- for standard output)"},
   };
+}
+
+CommandHelp merge_help() {
+  return {"merge",
+          {"out [partial] [update] PART.db..."},
+          "One study from several databases of the same protocol: the shards of a simulated "
+          "study (simulate --shard, --slurm) or a study recorded on several lab machines. Every "
+          "participant comes with everything stored of them (schedule, sessions, attempts, redos "
+          "and skips with their reasons, events, frames, answers). The parts are opened "
+          "read-only; the output appears only when complete. Refused when the output exists, a "
+          "part is not an intact handlab study, the protocols differ, a participant is in two "
+          "parts with different data, or a simulated study's parts lack participants its plan "
+          "names (unless --partial; docs/cluster.md)."};
+}
+
+}  // namespace
+
+int run_merge(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = merge_options();
   const Arguments args(specs, argv, 100000);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli merge --out STUDY.db [--partial] [--update] PART.db...\n\n"
-                 "One study from several databases of the same protocol: the shards of a "
-                 "simulated study (simulate --shard, --slurm) or a study recorded on several lab "
-                 "machines. Every participant comes with everything stored of them (schedule, "
-                 "sessions, attempts, redos and skips with their reasons, events, frames, "
-                 "answers). The parts are opened read-only; the output appears only when "
-                 "complete. Refused when the output exists, a part is not an intact handlab "
-                 "study, the protocols differ, a participant is in two parts with different "
-                 "data, or a simulated study's parts lack participants its plan names "
-                 "(unless --partial; docs/cluster.md).\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(merge_help(), specs);
     return 0;
   }
   args.require({"out"});

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
 #include "studies/session/enrolment.h"
@@ -11,8 +12,8 @@
 namespace handlab::cli {
 namespace {
 
-int participant_add(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> participant_add_options() {
+  return {
       {"db", "DB", "the study database"},
       {"id", "ID", "participant id, e.g. P01"},
       {"age", "YEARS", "age in years"},
@@ -22,13 +23,20 @@ int participant_add(const std::vector<std::string>& argv) {
       {"vr-experience", "TEXT", "e.g. none, some, yes, expert"},
       {"notes", "TEXT", "free text"},
   };
+}
+
+CommandHelp participant_add_help() {
+  return {"participant add",
+          {"db id age sex handedness hand-length vr-experience [notes]"},
+          "Enrols a participant and stores their schedule, drawn from the study's seed and the "
+          "id."};
+}
+
+int participant_add(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = participant_add_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli participant add --db DB --id P01 --age 26 --sex F "
-                 "--handedness right --hand-length 0.188 --vr-experience yes [--notes TEXT]\n\n"
-                 "Enrols a participant and stores their schedule, drawn from the study's seed "
-                 "and the id.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(participant_add_help(), specs);
     return 0;
   }
   args.require({"db", "id", "age", "sex", "handedness", "hand-length", "vr-experience"});
@@ -69,8 +77,7 @@ int participant_add(const std::vector<std::string>& argv) {
 
 int run_participant(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
-    std::cout << "Usage: handlab-cli participant add --db DB --id ID --age N --sex F|M|X "
-                 "--handedness right|left|ambidextrous --hand-length M --vr-experience TEXT\n";
+    std::cout << family_usage({{participant_add_help(), participant_add_options()}});
     return argv.empty() ? 2 : 0;
   }
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());

@@ -8,6 +8,7 @@
 
 #include "analysis/power/power_analysis.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/simulate_slurm.h"
 #include "app/cli/nearest_word.h"
@@ -159,8 +160,10 @@ studies::SlurmSeries power_series(const Arguments& args, const power::PowerOptio
 
 }  // namespace
 
-int run_power(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> power_options() {
+  return {
       {"protocol", "FILE", "the study protocol (its factors and blocks make the design)"},
       {"model", "FILE", "the data's model: cell means, SDs, correlation, ... (docs/power.md)"},
       {"pilot", "DB", "estimate the model from a pilot study's database instead"},
@@ -196,24 +199,32 @@ int run_power(const std::vector<std::string>& argv) {
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the results as JSON (- for standard output)"},
   };
+}
+
+CommandHelp power_help() {
+  return {"power",
+          {"protocol (pilot|model|pipeline) [world] n sims [alpha] [seed] [target] [exact] [plot] "
+           "[json]",
+           "protocol pipeline slurm [per-task] [dry-run]"},
+          "For every N, simulates studies of the protocol's design from the model (or, with "
+          "--pipeline, runs whole simulated studies) and analyses each as `analyze --db` does "
+          "(RM-ANOVA with the sphericity correction, Tukey-adjusted pairwise comparisons, "
+          "Friedman and Bonferroni-adjusted Wilcoxon tests per questionnaire item): the power of "
+          "every effect and planned contrast with its Monte Carlo SE and 95 % interval, and the "
+          "smallest N reaching the target. With --pipeline --slurm, the studies run as Slurm "
+          "jobs and the power is written to DIR/power.json when they are merged "
+          "(docs/cluster.md)."};
+}
+
+}  // namespace
+
+int run_power(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = power_options();
   std::vector<OptionSpec> all_specs = specs;
   for (const OptionSpec& spec : slurm_option_specs()) all_specs.push_back(spec);
   const Arguments args(all_specs, argv);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli power --protocol FILE (--pilot DB | --model FILE | --pipeline "
-           "[--world proxy|soft]) --n 10:40:2 --sims 1000 [--alpha 0.05] [--seed S] [--target "
-           "0.8] [--exact] [--plot FILE] [--json OUT]\n"
-           "       handlab-cli power --protocol FILE --pipeline ... --slurm DIR [--per-task K] "
-           "[--dry-run]\n\nFor every N, simulates studies of the "
-           "protocol's design from the model (or, with --pipeline, runs whole simulated studies) "
-           "and analyses each as `analyze --db` does (RM-ANOVA with the sphericity "
-           "correction, Tukey-adjusted pairwise comparisons, Friedman and Bonferroni-adjusted "
-           "Wilcoxon tests per questionnaire item): the power of every effect and planned "
-           "contrast with its Monte Carlo SE and 95 % interval, and the smallest N reaching "
-           "the target. With --pipeline --slurm, the studies run as Slurm jobs and the power is "
-           "written to DIR/power.json when they are merged (docs/cluster.md).\n\nOptions:\n"
-        << format_options_help(all_specs);
+    std::cout << help_text(power_help(), all_specs);
     return 0;
   }
   args.require({"protocol"});

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/hand/simulated_hand.h"
 #include "core/render/frame_drawing.h"
@@ -13,8 +14,10 @@
 
 namespace handlab::cli {
 
-int run_render(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> render_options() {
+  return {
       {"out", "FILE", "PNG file to write", "scene.png"},
       {"width", "PIXELS", "image width", "800"},
       {"height", "PIXELS", "image height", "600"},
@@ -30,14 +33,24 @@ int run_render(const std::vector<std::string>& argv) {
       {"attempt", "K", "with --db: the attempt (default: the latest with logged frames)"},
       {"time", "SECONDS", "with --db: the moment, in s from the trial's start (default: its end)"},
   };
+}
+
+CommandHelp render_help() {
+  return {"render",
+          {},
+          "Draws the task scene (floor, zones A and B, the cube at A) offscreen with\n"
+          "OSMesa and writes it as a PNG. Needs no display. With --db, --participant\n"
+          "and --trial: the trial as its frame log stored it at --time (the simulated\n"
+          "hand's bones, the cube, the zones), the condition's cube."};
+}
+
+}  // namespace
+
+int run_render(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = render_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli render [options]\n\n"
-                 "Draws the task scene (floor, zones A and B, the cube at A) offscreen with\n"
-                 "OSMesa and writes it as a PNG. Needs no display. With --db, --participant\n"
-                 "and --trial: the trial as its frame log stored it at --time (the simulated\n"
-                 "hand's bones, the cube, the zones), the condition's cube.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(render_help(), specs);
     return 0;
   }
   const long width = args.integer("width"), height = args.integer("height");

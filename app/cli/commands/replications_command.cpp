@@ -3,14 +3,17 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/util/output_file.h"
 #include "studies/analysis/study_series.h"
 
 namespace handlab::cli {
 
-int run_replications(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> replications_options() {
+  return {
       {"published", "FILE",
        "a published study's results to set beside them (e.g. "
        "studies/fine-manipulation-2021-published.json)"},
@@ -22,20 +25,28 @@ int run_replications(const std::vector<std::string>& argv) {
        "auto"},
       {"json", "OUT", "write every number as JSON to OUT (- for standard output)"},
   };
+}
+
+CommandHelp replications_help() {
+  return {"replications",
+          {"DB... [published] [test] [json]"},
+          "Analyses each study database as `analyze --db` does and sets the studies side by "
+          "side: the share of each condition's scheduled trials completed, and for every test "
+          "(the ANOVA effects, the pairwise comparisons of the protocol's cells, each "
+          "questionnaire item's Friedman and Wilcoxon tests) its statistic and p per study, "
+          "their median and range, and in how many studies p < alpha (with simulated studies of "
+          "one design, the power it has). Pairs of cells are named in the protocol's order of "
+          "levels, so t is the first cell's mean minus the second's in every study. The studies "
+          "must share one protocol. Prints Markdown tables."};
+}
+
+}  // namespace
+
+int run_replications(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = replications_options();
   const Arguments args(specs, argv, 1000);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli replications DB... [--published FILE] [--test NAME]... "
-                 "[--json OUT]\n\n"
-                 "Analyses each study database as `analyze --db` does and sets the studies side "
-                 "by side: the share of each condition's scheduled trials completed, and for every "
-                 "test (the ANOVA effects, the pairwise comparisons of the protocol's cells, each "
-                 "questionnaire item's Friedman and Wilcoxon tests) its statistic and p per study, "
-                 "their median and range, and in how many studies p < alpha (with simulated "
-                 "studies of one design, the power it has). Pairs of cells are named in the "
-                 "protocol's order of levels, so t is the first cell's mean minus the second's in "
-                 "every study. The studies must share one protocol. Prints Markdown tables.\n\n"
-                 "Options:\n"
-              << format_options_help(specs);
+    std::cout << help_text(replications_help(), specs);
     return 0;
   }
   if (args.positional().empty()) throw UsageError("give one or more study databases");

@@ -7,14 +7,17 @@
 #include <sstream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/gui_application.h"
 #include "app/report/report_files.h"
 
 namespace handlab::cli {
 
-int run_report(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> report_options() {
+  return {
       {"db", "DB", "the study database"},
       {"out", "DIR", "the folder to write report.html and report.pdf into (made if missing)"},
       {"format", "html,pdf", "which files to write", "html,pdf"},
@@ -23,17 +26,25 @@ int run_report(const std::vector<std::string>& argv) {
        "(Cousineau-Morey)",
        "se"},
   };
+}
+
+CommandHelp report_help() {
+  return {"report",
+          {"db out [format] [error-bars]"},
+          "Writes the study's results section from its database: study and protocol,\n"
+          "participants, data quality, descriptives, the repeated-measures ANOVA (APA\n"
+          "table), post hoc comparisons, the participant variables' ANOVAs, Friedman and\n"
+          "Wilcoxon tests of the questionnaire, result sentences, and the paper's figures.\n"
+          "Every number is the one `analyze --db DB --json` gives. No display needed."};
+}
+
+}  // namespace
+
+int run_report(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = report_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli report --db DB --out DIR [--format html,pdf] [--error-bars "
-                 "se|within]\n\n"
-                 "Writes the study's results section from its database: study and protocol,\n"
-                 "participants, data quality, descriptives, the repeated-measures ANOVA (APA\n"
-                 "table), post hoc comparisons, the participant variables' ANOVAs, Friedman and\n"
-                 "Wilcoxon tests of the questionnaire, result sentences, and the paper's figures.\n"
-                 "Every number is the one `analyze --db DB --json` gives. No display needed.\n\n"
-                 "Options:\n"
-              << format_options_help(specs);
+    std::cout << help_text(report_help(), specs);
     return 0;
   }
   if (!args.has("db")) throw UsageError("name the study database (--db DB)");

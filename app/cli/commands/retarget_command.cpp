@@ -9,6 +9,7 @@
 
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/retarget_picture.h"
 #include "core/hand/simulated_hand.h"
@@ -37,8 +38,10 @@ struct Stats {
 
 }  // namespace
 
-int run_retarget(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> retarget_options() {
+  return {
       {"strategy", "naive|ours", "retargeting strategy", "ours"},
       {"hand", "right|left", "which tracked hand", "right"},
       {"sim-length", "METRES", "the simulated hand's length", "0.214"},
@@ -61,18 +64,24 @@ int run_retarget(const std::vector<std::string>& argv) {
       {"frame-rate", "HZ", "degrade: resample the recording to this frame rate (0: its own)", "0"},
       {"degrade-seed", "S", "the seed of the noise and the jumps", "1"},
   };
+}
+
+CommandHelp retarget_help() {
+  return {"retarget",
+          {"FILE [strategy] [hand] [sim-length] [csv] [json] [joint-noise] [jump-chance] "
+           "[frame-rate]"},
+          "Runs a recording through calibration (uniform scale from open-palm frames) and "
+          "retargeting onto\n"
+          "the simulated hand, and reports fingertip and pinch errors and timings."};
+}
+
+}  // namespace
+
+int run_retarget(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = retarget_options();
   const Arguments args(specs, argv, 1);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli retarget FILE [--strategy naive|ours] [--hand right|left] "
-           "[--sim-length 0.214]\n"
-           "                              [--csv per_frame.csv] [--json summary.json]\n"
-           "                              [--joint-noise M] [--jump-chance P] [--frame-rate HZ]"
-           "\n\n"
-           "Runs a recording through calibration (uniform scale from open-palm frames) and "
-           "retargeting onto\n"
-           "the simulated hand, and reports fingertip and pinch errors and timings.\n\nOptions:\n"
-        << format_options_help(specs);
+    std::cout << help_text(retarget_help(), specs);
     return 0;
   }
   if (args.positional().empty()) throw UsageError("name a recording");

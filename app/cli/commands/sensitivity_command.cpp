@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/world_option.h"
 #include "core/util/output_file.h"
@@ -53,9 +54,10 @@ studies::SensitivityReport run_analysis(const Arguments& args, const studies::Pr
 
 }  // namespace
 
-int run_sensitivity(const std::vector<std::string>& argv) {
-  const studies::SensitivityOptions defaults;
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> sensitivity_options() {
+  return {
       {"protocol", "FILE", "the study protocol (JSON)"},
       {"work", "DIR", "where each point's study database is written while it is analysed"},
       {"participants", "N", "participants in each study", "20"},
@@ -80,18 +82,26 @@ int run_sensitivity(const std::vector<std::string>& argv) {
       {"plot", "FILE", "draw mu* against sigma per output (.svg or .png)"},
       {"json", "OUT", "write every index and every point as JSON (- for standard output)"},
   };
+}
+
+CommandHelp sensitivity_help() {
+  return {"sensitivity",
+          {"protocol work [trajectories] [plot] [json]", "protocol from [plot]"},
+          "How the simulated studies' conclusions hang on the participant model's parameters: a "
+          "Morris design over the parameters' ranges (docs/simulated-participants.md), a whole "
+          "simulated study at each point (the same population seed at every point), and per "
+          "output test each parameter's mu* and sigma in the statistic's units over the "
+          "parameter's range. Prints a Markdown table per output."};
+}
+
+}  // namespace
+
+int run_sensitivity(const std::vector<std::string>& argv) {
+  const studies::SensitivityOptions defaults;
+  const std::vector<OptionSpec> specs = sensitivity_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sensitivity --protocol FILE --work DIR [--trajectories R] "
-                 "[--plot FILE] [--json OUT]\n"
-                 "       handlab-cli sensitivity --protocol FILE --from JSON [--plot FILE]\n\n"
-                 "How the simulated studies' conclusions hang on the participant model's "
-                 "parameters: a Morris design over the parameters' ranges "
-                 "(docs/simulated-participants.md), a whole simulated study at each point (the "
-                 "same population seed at every point), and per output test each parameter's "
-                 "mu* and sigma in the statistic's units over the parameter's range. Prints a "
-                 "Markdown table per output.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(sensitivity_help(), specs);
     return 0;
   }
   args.require({"protocol"});

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/nearest_word.h"
 #include "app/cli/world_option.h"
@@ -18,8 +19,8 @@
 namespace handlab::cli {
 namespace {
 
-int session_run(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> session_run_options() {
+  return {
       {"db", "DB", "the study database"},
       {"participant", "ID", "an enrolled participant"},
       {"tracker", "scripted|simulated|FILE",
@@ -35,14 +36,21 @@ int session_run(const std::vector<std::string>& argv) {
       {"quiet", "", "no line per trial"},
       {"json", "OUT", "write a summary as JSON (- for standard output)"},
   };
+}
+
+CommandHelp session_run_help() {
+  return {"session run",
+          {"db participant [tracker] [seed] [resume] [world] [quiet] [json]"},
+          "Runs the participant's schedule headless: tracker -> retargeting -> hand-cube physics "
+          "-> task, frames logged at 120 Hz, questionnaire where the protocol asks it (the "
+          "scripted participant answers the middle of the scale)."};
+}
+
+int session_run(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = session_run_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli session run --db DB --participant ID --tracker "
-                 "scripted|FILE [--resume]\n\nRuns the participant's schedule headless: "
-                 "tracker -> retargeting -> hand-cube physics -> task, frames logged at 120 Hz, "
-                 "questionnaire where the protocol asks it (the scripted participant answers "
-                 "the middle of the scale).\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(session_run_help(), specs);
     return 0;
   }
   args.require({"db", "participant"});
@@ -53,18 +61,16 @@ int session_run(const std::vector<std::string>& argv) {
                      "' is none of them" + did_you_mean(tracker, {"scripted", "simulated"}));
   store::StudyStore store(args.text("db"));
   const std::uint64_t seed = args.seed("seed");
-  const studies::TrackerKind kind = tracker == "scripted" ? studies::TrackerKind::scripted()
-                                    : tracker == "simulated"
-                                        ? studies::TrackerKind::simulated(seed)
-                                        : studies::TrackerKind::recording(tracker);
+  const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
+                                   : tracker == "simulated" ? studies::simulated_tracker(seed)
+                                                            : studies::recording_tracker(tracker);
   studies::PipelineTrialDriver driver(kind, 120.0, world_kind(args));
-  studies::SessionRunner runner(
-      store, driver,
-      kind.is_simulated() ? studies::simulated_responder(seed) : studies::fixed_responder());
+  studies::SessionRunner runner(store, driver,
+                                kind->own_answers().value_or(studies::fixed_responder()));
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   const auto start = std::chrono::steady_clock::now();
   const studies::SessionReport report = runner.run(
-      args.text("participant"), world == "soft" ? kind.name() + " (soft hand)" : kind.name(),
+      args.text("participant"), world == "soft" ? kind->name() + " (soft hand)" : kind->name(),
       args.flag("resume"), [&](const std::string& line) {
         if (!quiet) std::cout << line << std::endl;
       });
@@ -96,22 +102,30 @@ int session_run(const std::vector<std::string>& argv) {
   return 0;
 }
 
-int session_decision(const std::vector<std::string>& argv, bool redo) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> session_decision_options() {
+  return {
       {"db", "DB", "the study database"},
       {"participant", "ID", "an enrolled participant"},
       {"trial", "N", "the trial's number in the schedule (1-based, as status shows it)"},
       {"reason", "TEXT", "why: kept in the record"},
   };
+}
+
+CommandHelp session_decision_help(bool redo) {
+  return redo ? CommandHelp{"session redo",
+                            {"db participant trial reason"},
+                            "Marks a trial's result as redone (kept) so the next session run "
+                            "runs it again."}
+              : CommandHelp{"session skip",
+                            {"db participant trial reason"},
+                            "Records a planned trial as skipped; runs go on past it."};
+}
+
+int session_decision(const std::vector<std::string>& argv, bool redo) {
+  const std::vector<OptionSpec> specs = session_decision_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << (redo ? "Usage: handlab-cli session redo --db DB --participant ID --trial N "
-                         "--reason TEXT\n\nMarks a trial's result as redone (kept) so the next "
-                         "session run runs it again.\n\nOptions:\n"
-                       : "Usage: handlab-cli session skip --db DB --participant ID --trial N "
-                         "--reason TEXT\n\nRecords a planned trial as skipped; runs go on "
-                         "past it.\n\nOptions:\n")
-              << format_options_help(specs);
+    std::cout << help_text(session_decision_help(redo), specs);
     return 0;
   }
   args.require({"db", "participant", "trial", "reason"});
@@ -133,12 +147,9 @@ int session_decision(const std::vector<std::string>& argv, bool redo) {
 
 int run_session(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
-    std::cout << "Usage: handlab-cli session run --db DB --participant ID --tracker "
-                 "scripted|FILE [--resume] [--json OUT]\n"
-                 "       handlab-cli session redo --db DB --participant ID --trial N --reason "
-                 "TEXT\n"
-                 "       handlab-cli session skip --db DB --participant ID --trial N --reason "
-                 "TEXT\n";
+    std::cout << family_usage({{session_run_help(), session_run_options()},
+                               {session_decision_help(true), session_decision_options()},
+                               {session_decision_help(false), session_decision_options()}});
     return argv.empty() ? 2 : 0;
   }
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());

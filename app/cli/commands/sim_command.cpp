@@ -16,6 +16,7 @@
 
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/sim_grasp.h"
 #include "app/cli/commands/sim_pinches.h"
@@ -166,8 +167,8 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
               << " a step, " << p.factorizations << " factorisations\n";
 }
 
-int sim_bench(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> sim_bench_options() {
+  return {
       {"scale", "N", "the flesh mesh: 1 (the study's), 4 or 16 times more tets", "1"},
       {"cube", "METRES", "the cube's side", "0.01"},
       {"duration", "SECONDS", "how much of the script to run (default: to 0.5 s after the lift)"},
@@ -201,12 +202,21 @@ int sim_bench(const std::vector<std::string>& argv) {
        "write every step's time (ms), Newton and CG iterations, factorisations, contacts and "
        "line-search halvings"},
   };
+}
+
+CommandHelp sim_bench_help() {
+  return {"sim bench",
+          {"[scale] [cube] [json]"},
+          "Times the simulator's steps on the scripted pinch-and-lift of the cube (come down, "
+          "close thumb\n"
+          "and index, lift 10 cm)."};
+}
+
+int sim_bench(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = sim_bench_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n\n"
-                 "Times the simulator's steps on the scripted pinch-and-lift of the cube (come "
-                 "down, close thumb\nand index, lift 10 cm).\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(sim_bench_help(), specs);
     return 0;
   }
   const long scale = args.integer("scale");
@@ -322,7 +332,7 @@ class FrameWriter {
   render::OrbitCamera camera_;
 };
 
-int sim_pinch(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> sim_pinch_options() {
   std::vector<OptionSpec> specs = {
       {"cube", "METRES", "the cube's side (the study: 0.01 fine, 0.06 gross)", "0.01"},
       {"squeeze", "METRES", "how far inside the faces the pads' targets are", "0.003"},
@@ -347,16 +357,23 @@ int sim_pinch(const std::vector<std::string>& argv) {
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
   specs.push_back(physics_option());
+  return specs;
+}
+
+CommandHelp sim_pinch_help() {
+  return {"sim pinch",
+          {"[cube] [squeeze|closing] [jitter-from] [frames] [trace] [physics] [json]"},
+          "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and opens the "
+          "fingers.\n"
+          "Reports whether it was held, its slip between the pads, the flesh's deepest "
+          "penetration, the hold's peak grip and the cube's turn."};
+}
+
+int sim_pinch(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = sim_pinch_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sim pinch --cube 0.01|0.06 [--closing NAME=VALUE,...] "
-                 "[--jitter-from RECORDING] [--physics NAME=VALUE]... [--trace CSV] [--json "
-                 "OUT]\n\n"
-                 "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and "
-                 "opens the fingers.\nReports whether it was held, its slip between the pads, "
-                 "the flesh's deepest penetration, the hold's peak grip and the cube's turn.\n\n"
-                 "Options:\n"
-              << format_options_help(specs);
+    std::cout << help_text(sim_pinch_help(), specs);
     return 0;
   }
   const double squeeze = args.number("squeeze");
@@ -449,17 +466,12 @@ int sim_pinch(const std::vector<std::string>& argv) {
 
 int run_sim(const std::vector<std::string>& argv) {
   if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
-    std::cout << "Usage: handlab-cli sim bench [--scale 1|4|16] [--json OUT]\n"
-                 "       handlab-cli sim pinch --cube 0.01|0.06 [--closing NAME=VALUE,...] "
-                 "[--trace CSV] [--json OUT] [--frames DIR]\n"
-                 "       handlab-cli sim grasp [--cube SIDE]... [--grid single|pairs|none] "
-                 "[--draws N] [--closing NAME=VALUE,...] [--json OUT]\n"
-                 "       handlab-cli sim pinches --recording FILE... [--strategy naive|ours]... "
-                 "[--cube SIDE]... [--json OUT]\n"
-                 "       handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
-                 "[--json OUT]\n"
-                 "       handlab-cli sim settle [--cube SIDE] [--speed M/S] [--spin RAD/S] "
-                 "[--json OUT]\n";
+    std::cout << family_usage({{sim_bench_help(), sim_bench_options()},
+                               {sim_pinch_help(), sim_pinch_options()},
+                               {sim_grasp_help(), sim_grasp_options()},
+                               {sim_pinches_help(), sim_pinches_options()},
+                               {sim_replay_help(), sim_replay_options()},
+                               {sim_settle_help(), sim_settle_options()}});
     return 0;
   }
   if (argv.empty())

@@ -12,6 +12,7 @@
 
 #include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/progress_line.h"
 #include "core/hand/hand_shape.h"
 #include "core/retarget/recording_poses.h"
@@ -239,7 +240,7 @@ void apply_physics_option(const Arguments& args, sim::SimParameters& parameters)
   }
 }
 
-int sim_grasp(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> sim_grasp_options() {
   std::vector<OptionSpec> specs = {
       {"cube", "METRES", "a cube's side; repeatable (default: 0.01 and 0.06, the study's)", "",
        true},
@@ -265,28 +266,33 @@ int sim_grasp(const std::vector<std::string>& argv) {
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
   };
   specs.push_back(physics_option());
+  return specs;
+}
+
+CommandHelp sim_grasp_help() {
+  return {"sim grasp",
+          {"[cube] [grid] [factor] [draws] [closing] [jitter-from] [physics] [jobs] [json]"},
+          "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing as the "
+          "closing says on the intermediate hand it follows: each pad's target past its face "
+          "(over_closure, mm), the pinch's axis turned about the vertical and the faces' "
+          "horizontal (tilt_yaw, tilt_pitch, degrees), the pads moved along the faces "
+          "(offset_along, of the side), one digit first (lead, ms: the thumb before the index; "
+          "below 0 after), the closing's speed (closing_speed, cm/s of each pad), the lift's "
+          "peak acceleration (lift_acceleration, m/s2), the hold (hold, s) and a real "
+          "recording's tracker jitter laid on the hand (jitter, times it; --jitter-from). The "
+          "grid runs each factor alone at its levels from the scripted pinch (sim pinch), or "
+          "pairs of factors; --draws adds closings drawn from a distribution of people's "
+          "closings whose sources --json lists. Reports per closing whether the cube was held "
+          "through the lift and hold and released, its slip between the pads, the flesh's "
+          "deepest penetration, the hold's peak grip and the cube's turn; the hold rate per "
+          "factor and over the draws with its 95 % interval (docs/simulator.md)."};
+}
+
+int sim_grasp(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = sim_grasp_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli sim grasp [--cube SIDE]... [--grid single|pairs|none] "
-           "[--factor NAME]... [--draws N] [--closing NAME=VALUE,...] [--jitter-from "
-           "RECORDING] [--physics NAME=VALUE]... [--jobs J] [--json OUT]\n\n"
-           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing "
-           "as the closing says on the intermediate hand it follows: each pad's target "
-           "past its face (over_closure, mm), the pinch's axis turned about the vertical "
-           "and the faces' horizontal (tilt_yaw, tilt_pitch, degrees), the pads moved "
-           "along the faces (offset_along, of the side), one digit first (lead, ms: the "
-           "thumb before the index; below 0 after), the closing's speed (closing_speed, "
-           "cm/s of each pad), the lift's peak acceleration (lift_acceleration, m/s2), the hold "
-           "(hold, s) and a real recording's tracker jitter laid on "
-           "the hand (jitter, times it; --jitter-from). The grid runs each factor alone at "
-           "its levels from the scripted pinch (sim pinch), or pairs of factors; --draws "
-           "adds closings drawn from a distribution of people's closings whose sources "
-           "--json lists. Reports per closing whether the cube was held through the lift "
-           "and hold and released, its slip between the pads, the flesh's deepest "
-           "penetration, the hold's peak grip and the cube's turn; the hold rate per "
-           "factor and over the draws with its 95 % interval (docs/simulator.md).\n\nOptions:\n"
-        << format_options_help(specs);
+    std::cout << help_text(sim_grasp_help(), specs);
     return 0;
   }
   const std::vector<double> cubes = cube_sides(args);

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include "app/cli/command_help.h"
 
 #include "app/cli/arguments.h"
 #include "core/sim/hand_sim_model.h"
@@ -15,6 +16,9 @@
 namespace handlab::cli {
 
 int sim_grasp(const std::vector<std::string>& argv);
+// Its option table and help (the sim family lists every usage).
+std::vector<OptionSpec> sim_grasp_options();
+CommandHelp sim_grasp_help();
 
 // --closing over_closure=10,lead=100: one closing, in the factors' units (sim grasp, sim pinch);
 // throws UsageError naming what is wrong.

@@ -14,6 +14,7 @@
 
 #include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/sim_grasp.h"
 #include "app/cli/progress_line.h"
 #include "core/hand/flesh.h"
@@ -162,7 +163,7 @@ void write_rows_json(const std::vector<PinchRow>& rows, const std::vector<std::s
 
 }  // namespace
 
-int sim_pinches(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> sim_pinches_options() {
   std::vector<OptionSpec> specs = {
       {"recording", "FILE", "a recording (.json.lz) whose closings to run; repeatable", "", true},
       {"strategy", "naive|ours", "a retargeting to run them by; repeatable (default: both)", "",
@@ -172,22 +173,29 @@ int sim_pinches(const std::vector<std::string>& argv) {
       {"json", "OUT", "write every pinch's closing and outcome as JSON (- for standard output)"},
   };
   specs.push_back(physics_option());
+  return specs;
+}
+
+CommandHelp sim_pinches_help() {
+  return {"sim pinches",
+          {"recording [strategy] [cube] [physics] [jobs] [json]"},
+          "Every closing of thumb and index in the recordings (the pads' aperture falling by 1 "
+          "cm or more), retargeted onto the 21.4 cm study hand, runs on the soft hand with a "
+          "cube placed where the pads reach its faces (the hand turned and moved so that the "
+          "cube rests on the floor between them), the fingers kept where the closing ends, then "
+          "lifted 10 cm and held 2 s. Reports per closing its moment, widest and least aperture, "
+          "the pads' speed and tilt, whether the cube was held and, if not, why: pushed away (a "
+          "quarter of its side along the floor by the closing's end, no grip as the lift "
+          "starts), squeezed out (no grip otherwise) or slipped at the lift (docs/simulator.md), "
+          "and how deep the skin but the pads' lies in the cube at the least aperture (other, "
+          "mm; below 0: clear of it)."};
+}
+
+int sim_pinches(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = sim_pinches_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli sim pinches --recording FILE... [--strategy naive|ours]... "
-           "[--cube SIDE]... [--physics NAME=VALUE]... [--jobs J] [--json OUT]\n\n"
-           "Every closing of thumb and index in the recordings (the pads' aperture falling by "
-           "1 cm or more), retargeted onto the 21.4 cm study hand, runs on the soft hand with "
-           "a cube placed where the pads reach its faces (the hand turned and moved so that "
-           "the cube rests on the floor between them), the fingers kept where the closing "
-           "ends, then lifted 10 cm and held 2 s. Reports per closing its moment, widest and "
-           "least aperture, the pads' speed and tilt, whether the cube was held and, if not, "
-           "why: pushed away (a quarter of its side along the floor by the closing's end, no "
-           "grip as the lift starts), squeezed out (no grip otherwise) or slipped at the lift "
-           "(docs/simulator.md), and how deep the skin but the pads' lies in the cube at the "
-           "least aperture (other, mm; below 0: clear of it).\n\nOptions:\n"
-        << format_options_help(specs);
+    std::cout << help_text(sim_pinches_help(), specs);
     return 0;
   }
   const std::vector<std::string> recordings = args.all("recording");

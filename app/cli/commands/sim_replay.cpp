@@ -14,6 +14,7 @@
 
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/recording_poses.h"
@@ -29,8 +30,8 @@ using stats::timing_quantile;
 
 }  // namespace
 
-int sim_replay(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> sim_replay_options() {
+  return {
       {"strategy", "naive|ours", "the retargeting", "ours"},
       {"hold", "", "hold the recording's first pose still instead of playing it"},
       {"duration", "SECONDS", "with --hold: how long (default: the recording's length)"},
@@ -41,15 +42,24 @@ int sim_replay(const std::vector<std::string>& argv) {
        "0.2"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
+}
+
+CommandHelp sim_replay_help() {
+  return {"sim replay",
+          {"RECORDING [strategy] [hold] [json]"},
+          "Plays a recording (its right hand, or its left), calibrated and retargeted onto the "
+          "21.4 cm study\n"
+          "hand, on the soft hand in free motion, one step of 1/120 s taking the latest frame; "
+          "reports the\n"
+          "step times, factorisations and CG iterations, and how fast the flesh still moves at "
+          "the end."};
+}
+
+int sim_replay(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = sim_replay_options();
   const Arguments args(specs, argv, 1);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sim replay RECORDING [--strategy naive|ours] [--hold] "
-                 "[--json OUT]\n\n"
-                 "Plays a recording (its right hand, or its left), calibrated and retargeted "
-                 "onto the 21.4 cm study\nhand, on the soft hand in free motion, one step of "
-                 "1/120 s taking the latest frame; reports the\nstep times, factorisations and "
-                 "CG iterations, and how fast the flesh still moves at the end.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(sim_replay_help(), specs);
     return 0;
   }
   if (args.positional().size() != 1) throw UsageError("name one recording");

@@ -12,6 +12,7 @@
 
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "core/task/cube_settle.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -161,8 +162,8 @@ void write_json(std::ostream& out, const Settings& s, const std::vector<Row>& ro
 
 }  // namespace
 
-int sim_settle(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> sim_settle_options() {
+  return {
       {"cube", "SIDE", "the cube's side (m; default: the study's fine cube, 0.01)"},
       {"speed", "M/S", "one kick's speed along the floor (default: " + listed(kGridSpeeds) + ")"},
       {"spin", "RAD/S", "one kick's backspin over its edges (default: " + listed(kGridSpins) + ")"},
@@ -174,15 +175,25 @@ int sim_settle(const std::vector<std::string>& argv) {
       {"floor-stiffening", "N/M2", "k3 (default: the simulator's)"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
+}
+
+CommandHelp sim_settle_help() {
+  return {"sim settle",
+          {"[cube] [speed] [spin] [json]"},
+          "Kicks the simulator's cube resting on the floor and follows it alone: when it comes "
+          "to rest\n"
+          "(within 0.1 mm and 0.01 rad of where it ends, from then on), how far it went, how "
+          "high its\n"
+          "centre rose and its most energy, beside the furthest its starting energy could slide "
+          "it\n"
+          "(E0 / (mu m g))."};
+}
+
+int sim_settle(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = sim_settle_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli sim settle [--cube SIDE] [--speed M/S] [--spin RAD/S] "
-                 "[--json OUT]\n\n"
-                 "Kicks the simulator's cube resting on the floor and follows it alone: when it "
-                 "comes to rest\n(within 0.1 mm and 0.01 rad of where it ends, from then on), how "
-                 "far it went, how high its\ncentre rose and its most energy, beside the furthest "
-                 "its starting energy could slide it\n(E0 / (mu m g)).\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(sim_settle_help(), specs);
     return 0;
   }
   const Settings settings = parse(args);

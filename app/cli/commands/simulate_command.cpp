@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/simulate_slurm.h"
 #include "app/cli/progress_line.h"
@@ -107,8 +108,10 @@ std::vector<int> shard_members(const Arguments& args, int participants) {
 
 }  // namespace
 
-int run_simulate(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+namespace {
+
+std::vector<OptionSpec> simulate_options() {
+  return {
       {"protocol", "FILE", "the study protocol (JSON, docs/study.md)"},
       {"participants", "N", "how many simulated participants to enrol", "20"},
       {"seed", "S", "the population seed: the same seed gives the same database content", "0"},
@@ -136,6 +139,23 @@ int run_simulate(const std::vector<std::string>& argv) {
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the outcome per condition as JSON (- for standard output)"},
   };
+}
+
+CommandHelp simulate_help() {
+  return {"simulate",
+          {"protocol participants seed db [jobs] [world] [shard|only]",
+           "protocol participants seed slurm [studies] [per-task] [dry-run]", "status"},
+          "Enrols N participants drawn from the study population (covariates stored like real "
+          "ones, marked simulated) and runs every session with the closed-loop participant model "
+          "(docs/simulated-participants.md): its own tracked hand -> retargeting -> physics -> "
+          "task, questionnaires answered from what it experienced. On a Slurm cluster, the study "
+          "(or a series) as a job array of shards and a merge job (docs/cluster.md)."};
+}
+
+}  // namespace
+
+int run_simulate(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = simulate_options();
   std::vector<OptionSpec> all_specs = specs;  // the Slurm settings after --studies
   const auto after_studies = std::find_if(all_specs.begin(), all_specs.end(),
                                           [](const OptionSpec& o) { return o.name == "studies"; });
@@ -143,19 +163,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   all_specs.insert(after_studies + 1, slurm_specs.begin(), slurm_specs.end());
   const Arguments args(all_specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli simulate --protocol FILE --participants N --seed S --db OUT "
-                 "[--jobs J] [--world proxy|soft] [--shard K/M | --only ID,...]\n"
-                 "       handlab-cli simulate --protocol FILE --participants N --seed S --slurm "
-                 "DIR [--studies K] [--per-task K] [--dry-run]\n"
-                 "       handlab-cli simulate --status DIR\n\nEnrols N participants drawn from the "
-                 "study population (covariates stored like real ones, marked simulated) and runs "
-                 "every session with the closed-loop participant model "
-                 "(docs/simulated-participants.md): its own tracked hand -> retargeting -> "
-                 "physics -> task, questionnaires answered from what it experienced. On a Slurm "
-                 "cluster, the study (or a series) as a job array of shards and a merge job "
-                 "(docs/cluster.md).\n\n"
-                 "Options:\n"
-              << format_options_help(all_specs);
+    std::cout << help_text(simulate_help(), all_specs);
     return 0;
   }
   if (args.has("status")) {

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/store/study_store.h"
 #include "core/util/count_text.h"
@@ -13,16 +14,24 @@
 namespace handlab::cli {
 namespace {
 
-int study_create(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> study_create_options() {
+  return {
       {"protocol", "FILE", "the study protocol (JSON; docs/study.md)"},
       {"db", "DB", "the study database to create (must not exist)"},
   };
+}
+
+CommandHelp study_create_help() {
+  return {"study create",
+          {"protocol db"},
+          "Creates a study database holding the protocol's exact text and SHA-256."};
+}
+
+int study_create(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = study_create_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli study create --protocol FILE --db DB\n\nCreates a study "
-                 "database holding the protocol's exact text and SHA-256.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(study_create_help(), specs);
     return 0;
   }
   args.require({"protocol", "db"});
@@ -36,17 +45,25 @@ int study_create(const std::vector<std::string>& argv) {
   return 0;
 }
 
-int study_status(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> study_status_options() {
+  return {
       {"db", "DB", "the study database"},
       {"json", "OUT", "write the status as JSON (- for standard output)"},
   };
+}
+
+CommandHelp study_status_help() {
+  return {"study status",
+          {"db [json]"},
+          "Per participant: trials planned, completed (ended by success or timeout), skipped, "
+          "aborted (interrupted attempts, run again) and the next trial."};
+}
+
+int study_status(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = study_status_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli study status --db DB [--json OUT]\n\nPer participant: "
-                 "trials planned, completed (ended by success or timeout), skipped, aborted "
-                 "(interrupted attempts, run again) and the next trial.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(study_status_help(), specs);
     return 0;
   }
   args.require({"db"});
@@ -112,19 +129,26 @@ int study_status(const std::vector<std::string>& argv) {
   return 0;
 }
 
-int study_info(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
+std::vector<OptionSpec> study_info_options() {
+  return {
       {"db", "DB", "the study database"},
       {"json", "OUT", "write it as JSON (- for standard output)"},
   };
+}
+
+CommandHelp study_info_help() {
+  return {"study info",
+          {"db [json]"},
+          "The study: its name, protocol (SHA-256), seed, conditions, planned size, the file's "
+          "schema, and each handlab version and commit that created it or opened it with write "
+          "access."};
+}
+
+int study_info(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = study_info_options();
   const Arguments args(specs, argv);
   if (args.help_requested()) {
-    std::cout
-        << "Usage: handlab-cli study info --db DB [--json OUT]\n\nThe study: its name, "
-           "protocol (SHA-256), seed, conditions, planned size, the file's schema, and "
-           "each handlab version and commit that created it or opened it with write access.\n\n"
-           "Options:\n"
-        << format_options_help(specs);
+    std::cout << help_text(study_info_help(), specs);
     return 0;
   }
   args.require({"db"});
@@ -171,9 +195,9 @@ int study_info(const std::vector<std::string>& argv) {
 
 int run_study(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
-    std::cout << "Usage: handlab-cli study create --protocol FILE --db DB\n"
-                 "       handlab-cli study status --db DB [--json OUT]\n"
-                 "       handlab-cli study info --db DB [--json OUT]\n";
+    std::cout << family_usage({{study_create_help(), study_create_options()},
+                               {study_status_help(), study_status_options()},
+                               {study_info_help(), study_info_options()}});
     return argv.empty() ? 2 : 0;
   }
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());

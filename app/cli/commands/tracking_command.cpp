@@ -6,6 +6,7 @@
 #include <map>
 
 #include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/tracking/hand_fitting.h"
 #include "core/tracking/recording_io.h"
@@ -15,20 +16,24 @@
 namespace handlab::cli {
 namespace {
 
+std::vector<OptionSpec> tracking_info_options() {
+  return {{"json", "OUT", "write the figures as JSON (- for standard output)"},
+          {"fit", "", "also fit every hand with the tracked skeleton measured from the recording"}};
+}
+
+CommandHelp tracking_info_help() {
+  return {"tracking info",
+          {"FILE [json] [fit]"},
+          "Format, frames, hands, duration, frame rate, rejected frames and the thumb-index tip "
+          "distance range of a recording (.json, .json.lz, .hlrec)."};
+}
+
 int tracking_info(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
-      {"json", "OUT", "write the figures as JSON (- for standard output)"},
-      {"fit", "", "also fit every hand with the tracked skeleton measured from the recording"}};
+  const std::vector<OptionSpec> specs = tracking_info_options();
   const Arguments args(specs, argv, 1);
   if (args.help_requested() || args.positional().empty()) {
-    if (!args.help_requested())
-      throw UsageError("name a recording: handlab-cli tracking info FILE");
-    std::cout << "Usage: handlab-cli tracking info FILE [--json OUT]\n\nFormat, frames, hands, "
-                 "duration, frame "
-                 "rate, rejected frames and the thumb-index tip distance range of a recording "
-                 "(.json, .json.lz, "
-                 ".hlrec).\n\nOptions:\n"
-              << format_options_help(specs);
+    if (!args.help_requested()) throw UsageError("name a recording");
+    std::cout << help_text(tracking_info_help(), specs);
     return 0;
   }
   const tracking::Recording r = tracking::read_recording(args.positional()[0]);
@@ -124,20 +129,26 @@ int tracking_info(const std::vector<std::string>& argv) {
   return 0;
 }
 
+std::vector<OptionSpec> tracking_convert_options() {
+  return {{"out", "FILE", "CSV (one row per hand per frame) or .hlrec"}};
+}
+
+CommandHelp tracking_convert_help() {
+  return {"tracking convert",
+          {"FILE out"},
+          "Writes every hand of every frame with all its joints (metres, seconds), or handlab's "
+          "own recording."};
+}
+
 int tracking_convert(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = {
-      {"out", "FILE", "CSV (one row per hand per frame) or .hlrec"}};
+  const std::vector<OptionSpec> specs = tracking_convert_options();
   const Arguments args(specs, argv, 1);
   if (args.help_requested()) {
-    std::cout << "Usage: handlab-cli tracking convert FILE --out frames.csv|frames.hlrec\n\nWrites "
-                 "every hand of "
-                 "every frame with all its joints (metres, seconds), or handlab's own "
-                 "recording.\n\nOptions:\n"
-              << format_options_help(specs);
+    std::cout << help_text(tracking_convert_help(), specs);
     return 0;
   }
   if (args.positional().empty() || !args.has("out"))
-    throw UsageError("usage: handlab-cli tracking convert FILE --out OUT");
+    throw UsageError("name a recording and --out FILE");
   const tracking::Recording r = tracking::read_recording(args.positional()[0]);
   const std::string out_path = args.text("out");
   if (out_path.size() > 6 && out_path.compare(out_path.size() - 6, 6, ".hlrec") == 0) {
@@ -176,11 +187,10 @@ int tracking_convert(const std::vector<std::string>& argv) {
 
 int run_tracking(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
-    std::cout << "Usage: handlab-cli tracking info FILE [--json OUT]\n"
-                 "       handlab-cli tracking convert FILE --out frames.csv\n\n"
-                 "Reads Leap Motion recordings (LeapJS Playback .json/.json.lz, formatVersion 0.1, "
-                 "1, 2) and "
-                 "handlab's .hlrec.\n";
+    std::cout << family_usage({{tracking_info_help(), tracking_info_options()},
+                               {tracking_convert_help(), tracking_convert_options()}})
+              << "\nReads Leap Motion recordings (LeapJS Playback .json/.json.lz, formatVersion "
+                 "0.1, 1, 2) and handlab's .hlrec.\n";
     return argv.empty() ? 2 : 0;
   }
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
