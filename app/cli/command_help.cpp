@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,24 +16,23 @@ const OptionSpec* find(const std::vector<OptionSpec>& options, const std::string
 
 // An option's name, or a word written as it is: operands are upper case or hold a dot.
 bool is_name(const std::string& word) {
-  return !word.empty() && std::islower(static_cast<unsigned char>(word[0])) &&
+  return !word.empty() && word != "options" && std::islower(static_cast<unsigned char>(word[0])) &&
          word.find('.') == std::string::npos;
 }
 
 // "--name VALUE" ("..." after a repeatable one), or the word itself.
 std::string spelled(const std::string& word, const std::vector<OptionSpec>& options,
-                    std::set<std::string>& named, const std::string& command) {
+                    const std::string& command) {
   if (!is_name(word)) return word;
   const OptionSpec* o = find(options, word);
   if (!o) throw std::logic_error(command + "'s usage names --" + word + ", which it lacks");
-  named.insert(word);
   return "--" + o->name + (o->value_name.empty() ? "" : " " + o->value_name) +
          (o->repeatable ? "..." : "");
 }
 
 // One form: its words, each group's alternatives spelled and joined by " | ".
 std::string form_line(const std::string& form, const std::vector<OptionSpec>& options,
-                      std::set<std::string>& named, const std::string& command) {
+                      const std::string& command) {
   std::istringstream words(form);
   std::string word, line;
   while (words >> word) {
@@ -43,8 +41,8 @@ std::string form_line(const std::string& form, const std::vector<OptionSpec>& op
     std::string inner = group ? word.substr(1, word.size() - 2) : word, out;
     for (std::size_t start = 0; start <= inner.size();) {
       const std::size_t bar = std::min(inner.find('|', start), inner.size());
-      out += (out.empty() ? "" : " | ") +
-             spelled(inner.substr(start, bar - start), options, named, command);
+      out +=
+          (out.empty() ? "" : " | ") + spelled(inner.substr(start, bar - start), options, command);
       start = bar + 1;
     }
     line += (line.empty() ? "" : " ") + (group ? std::string(1, open) + out + close : out);
@@ -56,11 +54,8 @@ std::string form_line(const std::string& form, const std::vector<OptionSpec>& op
 
 std::string usage_lines(const CommandHelp& help, const std::vector<OptionSpec>& options) {
   std::vector<std::string> lines;
-  for (const std::string& form : help.forms) {
-    std::set<std::string> named;
-    lines.push_back(form_line(form, options, named, help.command));
-    if (named.size() < options.size()) lines.back() += " [options]";
-  }
+  for (const std::string& form : help.forms)
+    lines.push_back(form_line(form, options, help.command));
   if (lines.empty()) lines.push_back("[options]");
   std::string out;
   for (std::size_t i = 0; i < lines.size(); ++i)

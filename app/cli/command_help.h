@@ -13,9 +13,8 @@ namespace handlab::cli {
 struct CommandHelp {
   std::string command;  // as typed after handlab-cli: "merge", "sim grasp"
   // Each a way to call it, over the table's option names: `name` is "--name VALUE", `[name]`
-  // optional, `(a|b)` and `[a|b]` one of several; anything else (FILE, PART.db..., ...) is
-  // written as it is. A form that leaves options out ends with "[options]"; none at
-  // all is "[options]".
+  // optional, `(a|b)` and `[a|b]` one of several; anything else (FILE, PART.db..., [options])
+  // is written as it is. No form at all is "[options]".
   std::vector<std::string> forms;
   std::string about;  // what it does: paragraphs, blank-line separated
 };

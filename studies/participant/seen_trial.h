@@ -1,6 +1,6 @@
 // What a simulated participant knows of a trial before it starts, besides who it is and what it
-// remembers: the trial's place in its session and how the simulated hand looks. The trial
-// driver builds it from the trial's condition (seen_trial_of, studies/session/trial_driver.cpp),
+// remembers: the trial's place in its session and how the simulated hand looks. The simulated
+// tracker builds it from the trial's condition (seen_trial_of, studies/session/trial_display.cpp),
 // the one place where a condition is reduced to what a person sees; the participant and its
 // questionnaire answers are built from this alone. Nothing of the strategy, the condition or
 // its label has a field here (SimulatedParticipantBlinding).

@@ -85,9 +85,9 @@ std::string progress_line(const std::string& participant_id, const store::Planne
   return line.str();
 }
 
-// The trial's costs in the session's totals.
+// The trial's costs in the session's totals (the simulator's only where it ran).
 void tally(const TrialSetup& setup, const TrialRun& run, SessionReport& report) {
-  report.simulator[setup.condition.label] += run.simulator;
+  if (run.simulator.steps > 0) report.simulator[setup.condition.label] += run.simulator;
   if (run.experience && !run.aborted)
     report.participant_time[std::round(run.experience->cube_size * 1e3) / 1e3] +=
         run.experience->time;
@@ -143,7 +143,7 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
       apply_decisions(participant_id, s.id);  // those made while paused
     }
     const std::optional<store::PlannedTrialRow> next = store_.next_trial(participant_id);
-    if (!next || !run_trial(s, *next, report, progress)) break;
+    if (!next || !run_planned_trial(s, *next, report, progress)) break;
   }
   report.schedule_complete = !store_.next_trial(participant_id).has_value();
   store_.end_session(s.id, report.schedule_complete ? "finished" : "stopped");
@@ -151,8 +151,9 @@ SessionReport SessionRunner::run(const std::string& participant_id, const std::s
 }
 
 // Runs and stores one trial; false when the experimenter stopped it.
-bool SessionRunner::run_trial(Session& s, const store::PlannedTrialRow& next, SessionReport& report,
-                              const std::function<void(const std::string&)>& progress) {
+bool SessionRunner::run_planned_trial(Session& s, const store::PlannedTrialRow& next,
+                                      SessionReport& report,
+                                      const std::function<void(const std::string&)>& progress) {
   const TrialSetup setup = setup_of(s.protocol, s.conditions, s.participant, next, s.calibration,
                                     store_.participant_memory(s.participant_id).value_or(""));
   const std::int64_t trial = store_.begin_trial(next.id, s.id);

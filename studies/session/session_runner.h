@@ -49,8 +49,9 @@ class SessionRunner {
 
  private:
   struct Session;  // what the session's trials share
-  bool run_trial(Session& session, const store::PlannedTrialRow& next, SessionReport& report,
-                 const std::function<void(const std::string&)>& progress);
+  bool run_planned_trial(Session& session, const store::PlannedTrialRow& next,
+                         SessionReport& report,
+                         const std::function<void(const std::string&)>& progress);
   void apply_decisions(const std::string& participant_id, std::int64_t session);
 
   bool log_frames_ = true;

@@ -13,8 +13,12 @@ namespace {
 
 class SimulatedSource : public TrialFrameSource {
  public:
-  explicit SimulatedSource(std::unique_ptr<SimulatedParticipant> participant)
-      : participant_(std::move(participant)) {}
+  // `own` outlives the participant, which holds it by reference.
+  SimulatedSource(std::shared_ptr<const OwnHand> own, const SimulatedPerson& person,
+                  const SeenTrial& trial, ParticipantMemory memory)
+      : own_(std::move(own)),
+        participant_(
+            std::make_unique<SimulatedParticipant>(person, *own_, trial, std::move(memory))) {}
   std::optional<tracking::TrackedFrame> next(const Observation& shown) override {
     return participant_->act(shown);
   }
@@ -24,6 +28,7 @@ class SimulatedSource : public TrialFrameSource {
   }
 
  private:
+  std::shared_ptr<const OwnHand> own_;
   std::unique_ptr<SimulatedParticipant> participant_;
 };
 
@@ -44,10 +49,10 @@ class Simulated : public Tracker {
   std::unique_ptr<TrialFrameSource> open(const TrialSetup& setup, const hand::Skeleton&,
                                          double rate_hz, TrialCache& cache) const override {
     const std::string& memory = setup.participant_memory;
-    return std::make_unique<SimulatedSource>(std::make_unique<SimulatedParticipant>(
-        simulated_person(setup.participant, seed_, model_),
-        cache.own_hand(setup.participant.hand_length), seen_trial_of(setup, rate_hz),
-        memory.empty() ? ParticipantMemory{} : memory_from_json(memory)));
+    return std::make_unique<SimulatedSource>(
+        cache.own_hand(setup.participant.hand_length),
+        simulated_person(setup.participant, seed_, model_), seen_trial_of(setup, rate_hz),
+        memory.empty() ? ParticipantMemory{} : memory_from_json(memory));
   }
 
   std::optional<QuestionnaireResponder> own_answers() const override {

@@ -8,12 +8,12 @@ namespace handlab::studies {
 TrialCache::TrialCache() = default;
 TrialCache::~TrialCache() = default;
 
-const OwnHand& TrialCache::own_hand(double hand_length) {
+std::shared_ptr<const OwnHand> TrialCache::own_hand(double hand_length) {
   if (!own_hand_ || own_hand_length_ != hand_length) {
-    own_hand_ = std::make_unique<OwnHand>(hand_length);
+    own_hand_ = std::make_shared<const OwnHand>(hand_length);
     own_hand_length_ = hand_length;
   }
-  return *own_hand_;
+  return own_hand_;
 }
 
 std::optional<tracking::TrackedHandFitter> Tracker::fitter(

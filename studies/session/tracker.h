@@ -1,9 +1,10 @@
 // What drives a session's trials: the built-in scripted (open-loop) participant, a recording
 // replayed at the simulation rate for every trial, a simulated participant who sees the
 // display and acts in closed loop (docs/simulated-participants.md), or a live tracker. One
-// interface; what differs between them lives in their own files (*_tracker.cpp), so no code
-// asks which kind a tracker is. A tracker is immutable and shared between the sessions run
-// side by side; what a driver keeps between its trials is in its TrialCache.
+// interface; what differs between them lives in their own files (scripted_source.cpp,
+// recording_source.cpp, simulated_source.cpp, live_source.cpp), so no code asks which kind a
+// tracker is. A tracker is immutable and shared between the sessions run side by side; what
+// its sources keep between one driver's trials is in that driver's TrialCache.
 #pragma once
 
 #include <cstdint>
@@ -27,16 +28,16 @@ namespace handlab::studies {
 class OwnHand;
 class SessionControl;
 
-// What one driver keeps between its trials (one thread): the simulated participant's own hand,
-// built once a length.
+// What a tracker's sources keep between one driver's trials (one thread): the simulated
+// participant's own hand, built once a length and shared with the sources that use it.
 class TrialCache {
  public:
   TrialCache();
   ~TrialCache();
-  const OwnHand& own_hand(double hand_length);
+  std::shared_ptr<const OwnHand> own_hand(double hand_length);
 
  private:
-  std::unique_ptr<OwnHand> own_hand_;
+  std::shared_ptr<const OwnHand> own_hand_;
   double own_hand_length_ = 0.0;
 };
 

@@ -18,12 +18,6 @@ SeenHandGeometry seen_geometry(const hand::Skeleton& simulated) {
 
 }  // namespace
 
-task::SceneLayout trial_layout(const TrialSetup& setup) {
-  task::SceneLayout layout = setup.protocol->scene;
-  layout.cube_size = setup.condition.cube_size;
-  return layout;
-}
-
 Observation display_observation(const task::HandCubeWorld& world, const task::SceneLayout& layout,
                                 double time) {
   Observation o;

@@ -6,9 +6,9 @@ namespace handlab::studies {
 
 PipelineTrialDriver::PipelineTrialDriver(TrackerPtr tracker, double rate_hz, WorldKind world,
                                          int sim_threads)
-    : tracker_(tracker),
+    : tracker_(std::move(tracker)),
       rate_hz_(rate_hz),
-      rigs_(std::move(tracker), world, rate_hz, sim_threads) {}
+      rigs_(tracker_, world, rate_hz, sim_threads) {}
 
 // For the first condition's simulated hand: the runner rescales for conditions of other lengths.
 retarget::Calibration PipelineTrialDriver::calibrate(const Protocol& protocol,

@@ -46,18 +46,19 @@ const TrialRigFactory::SoftHand& TrialRigFactory::soft_hand(const hand::HandShap
 
 TrialRig TrialRigFactory::build(const TrialSetup& setup) {
   TrialRig rig;
-  rig.simulated = hand::build_simulated_hand(setup.condition.simulated_hand);
+  rig.simulated = std::make_unique<const hand::Skeleton>(
+      hand::build_simulated_hand(setup.condition.simulated_hand));
   rig.layout = trial_layout(setup);
   rig.timeout_s = setup.protocol->timeout_s;
   const StrategyMethod& strategy = setup.condition.strategy;
   std::optional<tracking::TrackedHandFitter> fitter;
   if (strategy.method == retarget::Strategy::kNaive) fitter = tracker_->fitter(setup.participant);
-  rig.retargeter = std::make_unique<retarget::Retargeter>(strategy.method, rig.simulated,
+  rig.retargeter = std::make_unique<retarget::Retargeter>(strategy.method, *rig.simulated,
                                                           setup.calibration, fitter, strategy.ours);
   const Eigen::Vector3d cube_start = task::cube_start_pose(rig.layout).translation();
   if (world_ == WorldKind::kSoftHand) {
     const SoftHand& hand =
-        soft_hand(setup.condition.simulated_hand, rig.simulated, rig.layout.cube_size);
+        soft_hand(setup.condition.simulated_hand, *rig.simulated, rig.layout.cube_size);
     sim::SimOptions options;
     options.threads = sim_threads_;
     auto world =
@@ -68,7 +69,7 @@ TrialRig TrialRigFactory::build(const TrialSetup& setup) {
   } else {
     task::GraspProxySettings settings;
     settings.cube_size = rig.layout.cube_size;
-    rig.world = std::make_unique<task::GraspProxyWorld>(rig.simulated, settings, cube_start);
+    rig.world = std::make_unique<task::GraspProxyWorld>(*rig.simulated, settings, cube_start);
   }
   task::TaskSettings task_settings;
   task_settings.layout = rig.layout;
@@ -76,7 +77,7 @@ TrialRig TrialRigFactory::build(const TrialSetup& setup) {
   task_settings.timeout = setup.protocol->timeout_s;
   rig.task = std::make_unique<task::CubeTask>(task_settings);
   rig.task->start(0.0);
-  rig.source = tracker_->open(setup, rig.simulated, rate_hz_, cache_);
+  rig.source = tracker_->open(setup, *rig.simulated, rate_hz_, cache_);
   return rig;
 }
 

@@ -25,8 +25,10 @@ namespace handlab::studies {
 // core/task/soft_hand_world.h, docs/simulator.md).
 enum class WorldKind { kGraspProxy, kSoftHand };
 
+// The retargeter and the grasp proxy hold the simulated hand by reference: it lives on the
+// heap, so the rig can move.
 struct TrialRig {
-  hand::Skeleton simulated;  // the condition's hand
+  std::unique_ptr<const hand::Skeleton> simulated;  // the condition's hand
   task::SceneLayout layout;  // the protocol's scene with the condition's cube
   double timeout_s = 0.0;
   std::unique_ptr<task::HandCubeWorld> world;

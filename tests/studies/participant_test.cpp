@@ -33,8 +33,9 @@ namespace {
 
 const std::string kSource = HANDLAB_SOURCE_DIR;
 
-// The participant of a trial as the driver builds it: from who it is, what it sees of the trial
-// (seen_trial_of, the one reduction of a condition) and what it remembers.
+// The participant of a trial as the simulated tracker builds it (simulated_source.cpp): from who it
+// is, what it sees of the trial (seen_trial_of, the one reduction of a condition) and what it
+// remembers.
 std::unique_ptr<SimulatedParticipant> participant_for(const TrialSetup& setup, std::uint64_t seed,
                                                       const OwnHand& own,
                                                       const ParticipantMemory& memory = {}) {

@@ -9,6 +9,7 @@
 #include "core/store/study_store.h"
 #include "studies/export/study_export.h"
 #include "studies/session/enrolment.h"
+#include "studies/session/session_control.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 #include "tests/support/study_protocol.h"
@@ -129,12 +130,45 @@ TEST(Enrolment, TheNextPersonTakesThePlaceAfterTheLastEvenWithAGap) {
   EXPECT_NE(conditions(plan), conditions(planned_rows(protocol, "P04", 2)));
 }
 
-TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) {
-  const std::string path = test::fresh_path("session_runner.db");
+// A new study of the paper's protocol, at `name` in the tests' folder, with P01 enrolled.
+std::string study_of_p01(const std::string& name) {
+  const std::string path = test::fresh_path(name);
   const Protocol protocol = read_protocol(kStudy);
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore db(path);
   db.add_participant(test::participant("P01", 0.18), planned_rows(protocol, "P01", 0));
+  return path;
+}
+
+// The session's report sums what its trials returned: a simulated participant's time by the
+// cube it saw, trial by trial as each TrialRun carried it; on the grasp proxy no simulator ran.
+TEST(SessionRunner, ItsReportSumsTheTrialsOwnTotals) {
+  store::StudyStore db(study_of_p01("session_report_totals.db"));
+  const TrackerPtr tracker = simulated_tracker(4);
+  PipelineTrialDriver driver(tracker);
+  SessionRunner runner(db, driver, *tracker->own_answers());
+  SessionControl control;
+  std::map<double, ActivityTime> seen;
+  control.trial_ended = [&](const TrialSetup& setup, const TrialRun& run) {
+    ASSERT_TRUE(run.experience);
+    seen[setup.condition.cube_size] += run.experience->time;
+  };
+  runner.attach(&control);
+  const SessionReport report = runner.run("P01", tracker->name(), false);
+  EXPECT_TRUE(report.schedule_complete);
+  EXPECT_TRUE(report.simulator.empty()) << "the grasp proxy runs no simulator";
+  ASSERT_EQ(report.participant_time.size(), 2u);
+  for (const auto& [cube, time] : seen) {
+    const ActivityTime& summed = report.participant_time.at(cube);
+    EXPECT_EQ(summed.trials, time.trials) << cube;
+    EXPECT_EQ(summed.total(), time.total()) << cube;
+    EXPECT_GT(summed.total(), 0.0) << cube;
+  }
+}
+
+TEST(SessionRunner, RunsTheScheduleStoresEverythingAndRefusesToRestartSilently) {
+  const std::string path = study_of_p01("session_runner.db");
+  store::StudyStore db(path);
   PipelineTrialDriver driver(scripted_tracker());
   SessionRunner runner(db, driver, fixed_responder());
   std::vector<std::string> lines;

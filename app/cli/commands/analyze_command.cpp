@@ -67,7 +67,8 @@ std::vector<OptionSpec> analyze_options() {
 
 CommandHelp analyze_help() {
   return {"analyze",
-          {"csv subject dv within", "csv subject within nonparametric", "db [json]"},
+          {"csv subject dv within [between] [covariate] [observed] [posthoc] [json]",
+           "csv subject within nonparametric [json]", "db [json]"},
           "Repeated-measures ANOVA (type 3, as afex::aov_ez) with Mauchly's test, Greenhouse-\n"
           "Geisser and Huynh-Feldt corrections, and pairwise comparisons of cell means (as\n"
           "emmeans on afex's multivariate model: Tukey, Bonferroni, Holm); or, with\n"

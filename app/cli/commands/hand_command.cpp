@@ -62,7 +62,7 @@ std::vector<OptionSpec> hand_options() {
 
 CommandHelp hand_help() {
   return {"hand",
-          {"[length] [out] [png]"},
+          {"[length] [out] [png] [options]"},
           "Builds the simulated hand (16 bones, skin) of the given size."};
 }
 

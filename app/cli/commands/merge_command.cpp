@@ -28,7 +28,7 @@ std::vector<OptionSpec> merge_options() {
 
 CommandHelp merge_help() {
   return {"merge",
-          {"out [partial] [update] PART.db..."},
+          {"out [partial] [update] [json] PART.db..."},
           "One study from several databases of the same protocol: the shards of a simulated "
           "study (simulate --shard, --slurm) or a study recorded on several lab machines. Every "
           "participant comes with everything stored of them (schedule, sessions, attempts, redos "

@@ -203,9 +203,11 @@ std::vector<OptionSpec> power_options() {
 
 CommandHelp power_help() {
   return {"power",
-          {"protocol (pilot|model|pipeline) [world] n sims [alpha] [seed] [target] [exact] [plot] "
-           "[json]",
-           "protocol pipeline slurm [per-task] [dry-run]"},
+          {"protocol (pilot|model) [n] [sims] [alpha] [target] [seed] [correction] [exact] [plot] "
+           "[json] [options]",
+           "protocol pipeline [world] [n] [sims] [alpha] [target] [seed] [correction] [plot] "
+           "[json] [options]",
+           "protocol pipeline slurm [per-task] [dry-run] [options]"},
           "For every N, simulates studies of the protocol's design from the model (or, with "
           "--pipeline, runs whole simulated studies) and analyses each as `analyze --db` does "
           "(RM-ANOVA with the sphericity correction, Tukey-adjusted pairwise comparisons, "

@@ -68,8 +68,7 @@ std::vector<OptionSpec> retarget_options() {
 
 CommandHelp retarget_help() {
   return {"retarget",
-          {"FILE [strategy] [hand] [sim-length] [csv] [json] [joint-noise] [jump-chance] "
-           "[frame-rate]"},
+          {"FILE [strategy] [hand] [sim-length] [csv] [json] [options]"},
           "Runs a recording through calibration (uniform scale from open-palm frames) and "
           "retargeting onto\n"
           "the simulated hand, and reports fingertip and pinch errors and timings."};

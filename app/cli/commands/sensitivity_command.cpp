@@ -86,7 +86,7 @@ std::vector<OptionSpec> sensitivity_options() {
 
 CommandHelp sensitivity_help() {
   return {"sensitivity",
-          {"protocol work [trajectories] [plot] [json]", "protocol from [plot]"},
+          {"protocol work [trajectories] [plot] [json] [options]", "protocol from [plot] [json]"},
           "How the simulated studies' conclusions hang on the participant model's parameters: a "
           "Morris design over the parameters' ranges (docs/simulated-participants.md), a whole "
           "simulated study at each point (the same population seed at every point), and per "

@@ -206,7 +206,7 @@ std::vector<OptionSpec> sim_bench_options() {
 
 CommandHelp sim_bench_help() {
   return {"sim bench",
-          {"[scale] [cube] [json]"},
+          {"[scale] [cube] [json] [options]"},
           "Times the simulator's steps on the scripted pinch-and-lift of the cube (come down, "
           "close thumb\n"
           "and index, lift 10 cm)."};
@@ -362,7 +362,8 @@ std::vector<OptionSpec> sim_pinch_options() {
 
 CommandHelp sim_pinch_help() {
   return {"sim pinch",
-          {"[cube] [squeeze|closing] [jitter-from] [frames] [trace] [physics] [json]"},
+          {"[cube] [squeeze] [frames] [trace] [physics] [json] [options]",
+           "[cube] closing [jitter-from] [frames] [trace] [physics] [json] [options]"},
           "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and opens the "
           "fingers.\n"
           "Reports whether it was held, its slip between the pads, the flesh's deepest "

@@ -271,7 +271,8 @@ std::vector<OptionSpec> sim_grasp_options() {
 
 CommandHelp sim_grasp_help() {
   return {"sim grasp",
-          {"[cube] [grid] [factor] [draws] [closing] [jitter-from] [physics] [jobs] [json]"},
+          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [jobs] [json]",
+           "[cube] closing [jitter-from] [physics] [json]"},
           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing as the "
           "closing says on the intermediate hand it follows: each pad's target past its face "
           "(over_closure, mm), the pinch's axis turned about the vertical and the faces' "

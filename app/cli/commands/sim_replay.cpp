@@ -46,7 +46,7 @@ std::vector<OptionSpec> sim_replay_options() {
 
 CommandHelp sim_replay_help() {
   return {"sim replay",
-          {"RECORDING [strategy] [hold] [json]"},
+          {"RECORDING [strategy] [hold] [json] [options]"},
           "Plays a recording (its right hand, or its left), calibrated and retargeted onto the "
           "21.4 cm study\n"
           "hand, on the soft hand in free motion, one step of 1/120 s taking the latest frame; "

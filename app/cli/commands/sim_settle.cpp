@@ -179,7 +179,7 @@ std::vector<OptionSpec> sim_settle_options() {
 
 CommandHelp sim_settle_help() {
   return {"sim settle",
-          {"[cube] [speed] [spin] [json]"},
+          {"[cube] [speed] [spin] [json] [options]"},
           "Kicks the simulator's cube resting on the floor and follows it alone: when it comes "
           "to rest\n"
           "(within 0.1 mm and 0.01 rad of where it ends, from then on), how far it went, how "

@@ -143,8 +143,9 @@ std::vector<OptionSpec> simulate_options() {
 
 CommandHelp simulate_help() {
   return {"simulate",
-          {"protocol participants seed db [jobs] [world] [shard|only]",
-           "protocol participants seed slurm [studies] [per-task] [dry-run]", "status"},
+          {"protocol [participants] [seed] db [jobs] [world] [shard|only] [frames] [set] [json]",
+           "protocol [participants] [seed] slurm [studies] [per-task] [dry-run] [options]",
+           "status [json]"},
           "Enrols N participants drawn from the study population (covariates stored like real "
           "ones, marked simulated) and runs every session with the closed-loop participant model "
           "(docs/simulated-participants.md): its own tracked hand -> retargeting -> physics -> "
