@@ -220,16 +220,10 @@ CommandHelp power_help() {
 
 }  // namespace
 
-int run_power(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = power_options();
-  std::vector<OptionSpec> all_specs = specs;
-  for (const OptionSpec& spec : slurm_option_specs()) all_specs.push_back(spec);
-  const Arguments args(all_specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(power_help(), all_specs);
-    return 0;
-  }
-  args.require({"protocol"});
+namespace {
+
+// The modes' refusals: --pipeline or one of --model and --pilot, Slurm with --pipeline.
+void check_modes(const Arguments& args) {
   const bool pipeline = args.flag("pipeline");
   if (pipeline && (args.has("model") || args.has("pilot") || args.flag("exact")))
     throw UsageError("--pipeline simulates participants: it takes no --model, --pilot or --exact");
@@ -240,47 +234,38 @@ int run_power(const std::vector<std::string>& argv) {
     throw UsageError("--per-task, --partition, --time, --mem and --dry-run go with --slurm");
   if (!pipeline && args.has("model") == args.has("pilot"))
     throw UsageError("give one of --model FILE or --pilot DB (or --pipeline)");
-  const std::string world = args.choice("world", {"proxy", "soft"});
-  const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
-  const power::PowerDesign design = studies::power_design(protocol);
-  power::PowerModel model;
-  if (args.has("model")) model = power::read_power_model(args.text("model"), design);
-  if (args.has("pilot")) model = studies::estimate_from_pilot(args.text("pilot"), protocol);
+}
+
+power::PowerOptions simulation_options(const Arguments& args) {
   power::PowerOptions options;
   options.n = parse_n(args.text("n"));
-  options.sims = pipeline && !args.has("sims") ? 5 : int(args.integer("sims"));
+  options.sims = args.flag("pipeline") && !args.has("sims") ? 5 : int(args.integer("sims"));
   if (options.sims < 1) throw UsageError("--sims must be 1 or more");
   options.alpha = args.number("alpha");
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
-  const double target = args.number("target");
-  if (!(target > 0 && target < 1)) throw UsageError("--target must be in (0, 1)");
   options.seed = args.seed("seed");
   options.threads = int(args.integer("jobs"));
   if (options.threads < 0) throw UsageError("--jobs must be 0 (all cores) or more");
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   options.correction = sphericity_correction(args.text("correction"));
-  const bool exact = args.flag("exact");
-  // An output on standard output is all that is printed there.
-  const bool to_stdout = args.text("json") == "-" || args.text("plot") == "-";
-  const bool quiet = args.flag("quiet") || to_stdout;
-  if (args.has("slurm")) {
-    submit_slurm_series(power_series(args, options), args.flag("dry-run"));
-    return 0;
-  }
-#ifndef HANDLAB_WITH_REPORT
-  if (args.has("plot")) throw UsageError("--plot needs handlab-cli built with Qt (the app)");
-#endif
+  return options;
+}
 
+// The power of every N: exact, from whole simulated studies, or simulated from the model.
+power::PowerReport compute_power(const Arguments& args, const studies::Protocol& protocol,
+                                 const power::PowerModel& model, const power::PowerOptions& options,
+                                 bool quiet) {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  power::PowerReport report;
+  const bool exact = args.flag("exact");
   ProgressLine progress(quiet || exact);
+  power::PowerReport report;
   if (exact) {
     report = power::exact_power(model, options);
-  } else if (pipeline) {
+  } else if (args.flag("pipeline")) {
     studies::PipelinePowerOptions po;
     po.power = options;
     if (args.has("from")) po.from_dir = args.text("from");
@@ -299,93 +284,144 @@ int run_power(const std::vector<std::string>& argv) {
     });
   }
   progress.finish();
-  const double seconds = elapsed();
-  if (!protocol.between.empty() && !pipeline)  // the model is of the within cells alone
+  return report;
+}
+
+void print_power(const Arguments& args, const power::PowerReport& report,
+                 const power::PowerOptions& options, double target, double seconds) {
+  const bool exact = args.flag("exact");
+  if (args.has("pilot"))
+    std::cout << "Note: these powers are for the pilot's own observed effects (observed power), "
+                 "which says nothing the pilot's p values do not; the power of the design is "
+                 "for the effect you want to detect: write it in a --model file.\n\n";
+  for (const std::string& note : report.notes) std::cout << "Note: " << note << "\n";
+  std::cout << (exact ? std::string("Exact power (noncentral F and t of the model's moments)")
+                : args.flag("pipeline")
+                    ? std::to_string(options.sims) + " whole simulated studies per N on the " +
+                          (args.text("world") == "soft" ? "soft hand" : "grasp proxy")
+                    : std::to_string(options.sims) + " simulated studies per N")
+            << ", alpha = " << options.alpha << ", " << std::fixed << std::setprecision(2)
+            << seconds << " s\n\n"
+            << std::defaultfloat;
+  print_table(report, report.effects, "effect", target);
+  std::cout << "\n";
+  print_table(report, report.contrasts, "contrast", target);
+  int warned = 0;
+  for (int w : report.warnings) warned += w;
+  if (warned) {
+    std::cout << "\n" << warned << " simulation(s) with warnings, e.g.:\n";
+    for (const std::string& e : report.warning_examples) std::cout << "  " << e << "\n";
+  }
+}
+
+void write_power_json(std::ostream& out, const Arguments& args, const power::PowerReport& report,
+                      const power::PowerOptions& options, double target, double seconds) {
+  const bool exact = args.flag("exact");
+  util::JsonWriter w(out);
+  w.begin_object();
+  w.key("n").begin_array();
+  for (int n : report.n) w.value(n);
+  w.end_array();
+  const auto effects = pointers(report.effects), contrasts = pointers(report.contrasts);
+  std::vector<const power::PowerEstimate*> all = effects;
+  all.insert(all.end(), contrasts.begin(), contrasts.end());
+  write_map(w, "effects", effects, &power::PowerEstimate::power);
+  write_map(w, "contrasts", contrasts, &power::PowerEstimate::power);
+  write_map(w, "mc_se", all, &power::PowerEstimate::mc_se);
+  write_map(w, "lower", all, &power::PowerEstimate::lower);
+  write_map(w, "upper", all, &power::PowerEstimate::upper);
+  w.key("n_for_target").begin_object();
+  for (const power::PowerEstimate* e : all) {
+    w.key(e->name);
+    if (const auto n = power::n_for_target(report, *e, target))
+      w.value(*n);
+    else
+      w.null();
+  }
+  w.end_object();
+  w.field("target", target).field("alpha", options.alpha).field("exact", exact);
+  w.field("pipeline", args.flag("pipeline"));
+  w.field("sims", exact ? 0 : options.sims).field("seed", options.seed);
+  w.field("seconds", seconds);
+  w.key("seconds_per_n").begin_array();
+  for (double s : report.seconds) w.value(s);
+  w.end_array();
+  w.key("warnings").begin_array();
+  for (int v : report.warnings) w.value(v);
+  w.end_array();
+  w.key("notes").begin_array();
+  for (const std::string& n : report.notes) w.value(n);
+  w.end_array();
+  w.field("observed_power", args.has("pilot"));
+  w.end_object();
+  out << "\n";
+}
+
+#ifdef HANDLAB_WITH_REPORT
+// --plot: the powers of the named effects (by default the main effects and interactions).
+void draw_power(const Arguments& args, const power::PowerReport& report,
+                const studies::Protocol& protocol, double target) {
+  std::vector<std::string> names = args.all("plot-name");
+  if (names.empty())
+    for (const power::PowerEstimate& e : report.effects)
+      if (e.name.find("repetition") == std::string::npos && e.name.find(" (") == std::string::npos)
+        names.push_back(e.name);
+  ensure_gui_application();
+  report::write_power_figure(report, names, target,
+                             "Power of " + protocol.name + (args.flag("exact") ? " (exact)" : ""),
+                             args.text("plot"));
+}
+#endif
+
+}  // namespace
+
+int run_power(const std::vector<std::string>& argv) {
+  const std::vector<OptionSpec> specs = power_options();
+  std::vector<OptionSpec> all_specs = specs;
+  for (const OptionSpec& spec : slurm_option_specs()) all_specs.push_back(spec);
+  const Arguments args(all_specs, argv);
+  if (args.help_requested()) {
+    std::cout << help_text(power_help(), all_specs);
+    return 0;
+  }
+  args.require({"protocol"});
+  check_modes(args);
+  args.choice("world", {"proxy", "soft"});
+  const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
+  const power::PowerDesign design = studies::power_design(protocol);
+  power::PowerModel model;
+  if (args.has("model")) model = power::read_power_model(args.text("model"), design);
+  if (args.has("pilot")) model = studies::estimate_from_pilot(args.text("pilot"), protocol);
+  const power::PowerOptions options = simulation_options(args);
+  const double target = args.number("target");
+  if (!(target > 0 && target < 1)) throw UsageError("--target must be in (0, 1)");
+  // An output on standard output is all that is printed there.
+  const bool to_stdout = args.text("json") == "-" || args.text("plot") == "-";
+  if (args.has("slurm")) {
+    submit_slurm_series(power_series(args, options), args.flag("dry-run"));
+    return 0;
+  }
+#ifndef HANDLAB_WITH_REPORT
+  if (args.has("plot")) throw UsageError("--plot needs handlab-cli built with Qt (the app)");
+#endif
+  const auto start = std::chrono::steady_clock::now();
+  power::PowerReport report =
+      compute_power(args, protocol, model, options, args.flag("quiet") || to_stdout);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!protocol.between.empty() && !args.flag("pipeline"))  // the model is of the within cells
     report.notes.insert(report.notes.begin(),
                         "the protocol's between-participants factors are not in the power "
                         "model: its groups are pooled, and the powers are of the within "
                         "effects");
-
-  if (!to_stdout) {
-    if (args.has("pilot"))
-      std::cout << "Note: these powers are for the pilot's own observed effects (observed power), "
-                   "which says nothing the pilot's p values do not; the power of the design is "
-                   "for the effect you want to detect: write it in a --model file.\n\n";
-    for (const std::string& note : report.notes) std::cout << "Note: " << note << "\n";
-    std::cout << (exact ? std::string("Exact power (noncentral F and t of the model's moments)")
-                  : pipeline
-                      ? std::to_string(options.sims) + " whole simulated studies per N on the " +
-                            (world == "soft" ? "soft hand" : "grasp proxy")
-                      : std::to_string(options.sims) + " simulated studies per N")
-              << ", alpha = " << options.alpha << ", " << std::fixed << std::setprecision(2)
-              << seconds << " s\n\n"
-              << std::defaultfloat;
-    print_table(report, report.effects, "effect", target);
-    std::cout << "\n";
-    print_table(report, report.contrasts, "contrast", target);
-    int warned = 0;
-    for (int w : report.warnings) warned += w;
-    if (warned) {
-      std::cout << "\n" << warned << " simulation(s) with warnings, e.g.:\n";
-      for (const std::string& e : report.warning_examples) std::cout << "  " << e << "\n";
-    }
-  }
+  if (!to_stdout) print_power(args, report, options, target, seconds);
 #ifdef HANDLAB_WITH_REPORT
-  if (args.has("plot")) {
-    std::vector<std::string> names = args.all("plot-name");
-    if (names.empty())
-      for (const power::PowerEstimate& e : report.effects)
-        if (e.name.find("repetition") == std::string::npos &&
-            e.name.find(" (") == std::string::npos)
-          names.push_back(e.name);
-    ensure_gui_application();
-    report::write_power_figure(report, names, target,
-                               "Power of " + protocol.name + (exact ? " (exact)" : ""),
-                               args.text("plot"));
-  }
+  if (args.has("plot")) draw_power(args, report, protocol, target);
 #endif
-  if (args.has("json")) {
+  if (args.has("json"))
     util::write_output(args.text("json"), [&](std::ostream& out) {
-      util::JsonWriter w(out);
-      w.begin_object();
-      w.key("n").begin_array();
-      for (int n : report.n) w.value(n);
-      w.end_array();
-      const auto effects = pointers(report.effects), contrasts = pointers(report.contrasts);
-      std::vector<const power::PowerEstimate*> all = effects;
-      all.insert(all.end(), contrasts.begin(), contrasts.end());
-      write_map(w, "effects", effects, &power::PowerEstimate::power);
-      write_map(w, "contrasts", contrasts, &power::PowerEstimate::power);
-      write_map(w, "mc_se", all, &power::PowerEstimate::mc_se);
-      write_map(w, "lower", all, &power::PowerEstimate::lower);
-      write_map(w, "upper", all, &power::PowerEstimate::upper);
-      w.key("n_for_target").begin_object();
-      for (const power::PowerEstimate* e : all) {
-        w.key(e->name);
-        if (const auto n = power::n_for_target(report, *e, target))
-          w.value(*n);
-        else
-          w.null();
-      }
-      w.end_object();
-      w.field("target", target).field("alpha", options.alpha).field("exact", exact);
-      w.field("pipeline", pipeline);
-      w.field("sims", exact ? 0 : options.sims).field("seed", options.seed);
-      w.field("seconds", seconds);
-      w.key("seconds_per_n").begin_array();
-      for (double s : report.seconds) w.value(s);
-      w.end_array();
-      w.key("warnings").begin_array();
-      for (int v : report.warnings) w.value(v);
-      w.end_array();
-      w.key("notes").begin_array();
-      for (const std::string& n : report.notes) w.value(n);
-      w.end_array();
-      w.field("observed_power", args.has("pilot"));
-      w.end_object();
-      out << "\n";
+      write_power_json(out, args, report, options, target, seconds);
     });
-  }
   return 0;
 }
 

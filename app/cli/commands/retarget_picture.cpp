@@ -26,14 +26,10 @@ void draw_sphere(render::DrawList& list, const Eigen::Vector3d& centre, double r
   list.items.push_back({sphere, model, color, render::Shading::kLit});
 }
 
-}  // namespace
-
-std::int64_t write_retarget_picture(const tracking::Recording& recording, tracking::Side side,
-                                    const hand::HandShape& shape,
-                                    const retarget::Calibration& calibration,
-                                    const tracking::TrackedHandFitter& fitter,
-                                    std::optional<std::int64_t> frame_id, const std::string& path) {
-  // The frame: the given one, or the first with the highest pinch strength.
+// The frame: the given one, or the first with the highest pinch strength.
+const tracking::TrackedFrame* chosen_frame(const tracking::Recording& recording,
+                                           tracking::Side side,
+                                           std::optional<std::int64_t> frame_id) {
   const tracking::TrackedFrame* chosen = nullptr;
   for (const auto& f : recording.frames) {
     const tracking::TrackedHand* h = f.hand(side);
@@ -43,6 +39,28 @@ std::int64_t write_retarget_picture(const tracking::Recording& recording, tracki
       chosen = &f;
   }
   if (!chosen) throw std::runtime_error("no such frame with that hand in the recording");
+  return chosen;
+}
+
+// The three panels, seen from in front, into `path`.
+void write_panels(const render::DrawList& list, const std::string& path) {
+  render::OrbitCamera camera;
+  camera.target = Eigen::Vector3f(0.0f, float(kPanelHeight), 0.0f);
+  camera.distance = 0.55f;
+  camera.pitch = 0.3f;
+  camera.yaw = 0.0f;
+  render::OffscreenRenderer renderer(1500, 600, 4);
+  render::write_png(renderer.render(list, camera), path);
+}
+
+}  // namespace
+
+std::int64_t write_retarget_picture(const tracking::Recording& recording, tracking::Side side,
+                                    const hand::HandShape& shape,
+                                    const retarget::Calibration& calibration,
+                                    const tracking::TrackedHandFitter& fitter,
+                                    std::optional<std::int64_t> frame_id, const std::string& path) {
+  const tracking::TrackedFrame* chosen = chosen_frame(recording, side, frame_id);
 
   const hand::Skeleton simulated = hand::build_simulated_hand(shape);
   const hand::HandSkin skin = hand::build_skin(simulated, shape);
@@ -94,13 +112,7 @@ std::int64_t write_retarget_picture(const tracking::Recording& recording, tracki
     draw_sphere(list, panel(i) * r.targets[0], 0.005, thumb_color);
     draw_sphere(list, panel(i) * r.targets[1], 0.005, index_color);
   }
-  render::OrbitCamera camera;
-  camera.target = Eigen::Vector3f(0.0f, float(kPanelHeight), 0.0f);
-  camera.distance = 0.55f;
-  camera.pitch = 0.3f;
-  camera.yaw = 0.0f;
-  render::OffscreenRenderer renderer(1500, 600, 4);
-  render::write_png(renderer.render(list, camera), path);
+  write_panels(list, path);
   return chosen->id;
 }
 

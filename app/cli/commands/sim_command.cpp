@@ -167,6 +167,41 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
               << " a step, " << p.factorizations << " factorisations\n";
 }
 
+// The solver's settings from --newton-iterations ... --threads, checked.
+sim::SimOptions solver_options(const Arguments& args) {
+  sim::SimOptions options;
+  options.newton_iterations = int(args.integer("newton-iterations"));
+  options.refactor_iterations = int(args.integer("refactor-iterations"));
+  if (options.newton_iterations < 1 || options.newton_iterations > 20)
+    throw UsageError("--newton-iterations must be 1 to 20");
+  if (options.refactor_iterations < 0) throw UsageError("--refactor-iterations must be >= 0");
+  options.linear_tolerance = args.number("linear-tolerance");
+  if (!(options.linear_tolerance > 0 && options.linear_tolerance < 1e-3))
+    throw UsageError("--linear-tolerance must be in (0, 1e-3) m");
+  options.max_linear_iterations = int(args.integer("max-linear-iterations"));
+  if (options.max_linear_iterations < 0) throw UsageError("--max-linear-iterations must be >= 0");
+  options.direct_steps = int(args.integer("direct-steps"));
+  if (options.direct_steps < 0) throw UsageError("--direct-steps must be >= 0");
+  options.refresh_steps = int(args.integer("refresh-steps"));
+  if (options.refresh_steps < 0) throw UsageError("--refresh-steps must be >= 0");
+  options.halfway_gap = args.number("halfway-gap");
+  if (!(options.halfway_gap >= 0)) throw UsageError("--halfway-gap must be >= 0");
+  options.threads = int(args.integer("threads"));
+  if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
+  return options;
+}
+
+// --steps: every step's time and solver counts.
+void write_steps_csv(std::ostream& out, double time_step, const sim::PinchReport& report) {
+  out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
+         "halvings,direct_solves\n";
+  for (std::size_t i = 0; i < report.step_ms.size(); ++i)
+    out << i << ',' << double(i + 1) * time_step << ',' << report.step_ms[i] << ','
+        << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
+        << report.factorizations[i] << ',' << report.contacts[i] << ',' << report.halvings[i] << ','
+        << report.direct_solves[i] << '\n';
+}
+
 std::vector<OptionSpec> sim_bench_options() {
   return {
       {"scale", "N", "the flesh mesh: 1 (the study's), 4 or 16 times more tets", "1"},
@@ -226,25 +261,7 @@ int sim_bench(const std::vector<std::string>& argv) {
   const double duration =
       args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
   if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
-  sim::SimOptions options;
-  options.newton_iterations = int(args.integer("newton-iterations"));
-  options.refactor_iterations = int(args.integer("refactor-iterations"));
-  if (options.newton_iterations < 1 || options.newton_iterations > 20)
-    throw UsageError("--newton-iterations must be 1 to 20");
-  if (options.refactor_iterations < 0) throw UsageError("--refactor-iterations must be >= 0");
-  options.linear_tolerance = args.number("linear-tolerance");
-  if (!(options.linear_tolerance > 0 && options.linear_tolerance < 1e-3))
-    throw UsageError("--linear-tolerance must be in (0, 1e-3) m");
-  options.max_linear_iterations = int(args.integer("max-linear-iterations"));
-  if (options.max_linear_iterations < 0) throw UsageError("--max-linear-iterations must be >= 0");
-  options.direct_steps = int(args.integer("direct-steps"));
-  if (options.direct_steps < 0) throw UsageError("--direct-steps must be >= 0");
-  options.refresh_steps = int(args.integer("refresh-steps"));
-  if (options.refresh_steps < 0) throw UsageError("--refresh-steps must be >= 0");
-  options.halfway_gap = args.number("halfway-gap");
-  if (!(options.halfway_gap >= 0)) throw UsageError("--halfway-gap must be >= 0");
-  options.threads = int(args.integer("threads"));
-  if (options.threads < 1 || options.threads > 64) throw UsageError("--threads must be 1 to 64");
+  const sim::SimOptions options = solver_options(args);
   const long runs = args.integer("runs");
   if (runs < 1 || runs > 50) throw UsageError("--runs must be 1 to 50");
   sim::PinchReport report =
@@ -260,18 +277,10 @@ int sim_bench(const std::vector<std::string>& argv) {
       report.step_ms[i] = std::min(report.step_ms[i], again.step_ms[i]);
   }
   if (args.text("json") != "-") print_timing(setup, report);  // else the JSON alone
-  if (args.has("steps")) {
+  if (args.has("steps"))
     util::write_output(args.text("steps"), [&](std::ostream& out) {
-      out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
-             "halvings,direct_solves\n";
-      const double h = setup.model.parameters.time_step;
-      for (std::size_t i = 0; i < report.step_ms.size(); ++i)
-        out << i << ',' << double(i + 1) * h << ',' << report.step_ms[i] << ','
-            << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
-            << report.factorizations[i] << ',' << report.contacts[i] << ',' << report.halvings[i]
-            << ',' << report.direct_solves[i] << '\n';
+      write_steps_csv(out, setup.model.parameters.time_step, report);
     });
-  }
   if (args.has("json")) {
     util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
@@ -331,6 +340,53 @@ class FrameWriter {
   render::OffscreenRenderer renderer_;
   render::OrbitCamera camera_;
 };
+
+// --trace: a step's row.
+void write_trace_row(std::ostream& trace, const sim::PinchScene& setup,
+                     const sim::HandSimState& s) {
+  trace << s.time << ',' << s.cube_pose.position.y() << ','
+        << s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI << ','
+        << sim::grip_force(setup.model, s) << ','
+        << sim::flesh_forces_on_cube_faces(setup.model, s)[3] << ','  // its own +y: the top
+        << s.node_cube.size() + s.sample_cube.size();
+  const std::vector<sim::RigidPose> targets =
+      sim::bone_targets(setup.model, setup.skeleton, setup.script.target(s.time));
+  double offset = 0, turn = 0;  // the bones' largest from their targets
+  std::size_t farthest = 0;
+  for (std::size_t b = 0; b < targets.size(); ++b) {
+    const double away = (s.bone_pose[b].position - targets[b].position).norm();
+    if (away > offset) offset = away, farthest = b;
+    turn = std::max(turn, s.bone_pose[b].rotation.angularDistance(targets[b].rotation));
+  }
+  trace << ',' << offset * 1000 << ',' << turn * 180 / M_PI << ','
+        << setup.skeleton.bones[farthest].name << '\n';
+}
+
+void print_pinch(const sim::PinchScene& setup, const sim::PinchReport& r) {
+  std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
+            << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
+            << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
+            << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, top "
+            << r.top_load_before_closing_n << " N before the closing, "
+            << (r.released ? "released" : "NOT released") << " (the scripted pads miss their "
+            << "targets by " << setup.script.pinch_error * 1000 << " mm"
+            << (setup.script.placed_by_rule ? "; the hand placed by the pinch's rule" : "")
+            << ")\n";
+  print_timing(setup, r);
+}
+
+void write_pinch_json(std::ostream& out, const sim::PinchScene& setup, const sim::PinchReport& r) {
+  util::JsonWriter json(out);
+  json.begin_object()
+      .field("cube_size_m", setup.script.cube_size)
+      .field("placed_by_rule", setup.script.placed_by_rule)
+      .field("meets_pinch_rule", setup.script.pinch_meets_rule)
+      .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance)
+      .field("placement_pad_error_mm", 1000 * setup.script.placement_pad_error);
+  write_pinch_measures(json, r);
+  write_timing(json, setup, r);
+  json.end_object();
+}
 
 std::vector<OptionSpec> sim_pinch_options() {
   std::vector<OptionSpec> specs = {
@@ -411,22 +467,7 @@ int sim_pinch(const std::vector<std::string>& argv) {
              "bone_turn_deg,farthest_bone\n";
     observer = [&, frame = observer](const sim::HandSimState& s) {
       if (frame) frame(s);
-      trace << s.time << ',' << s.cube_pose.position.y() << ','
-            << s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI
-            << ',' << sim::grip_force(setup.model, s) << ','
-            << sim::flesh_forces_on_cube_faces(setup.model, s)[3] << ','  // its own +y: the top
-            << s.node_cube.size() + s.sample_cube.size();
-      const std::vector<sim::RigidPose> targets =
-          sim::bone_targets(setup.model, setup.skeleton, setup.script.target(s.time));
-      double offset = 0, turn = 0;  // the bones' largest from their targets
-      std::size_t farthest = 0;
-      for (std::size_t b = 0; b < targets.size(); ++b) {
-        const double away = (s.bone_pose[b].position - targets[b].position).norm();
-        if (away > offset) offset = away, farthest = b;
-        turn = std::max(turn, s.bone_pose[b].rotation.angularDistance(targets[b].rotation));
-      }
-      trace << ',' << offset * 1000 << ',' << turn * 180 / M_PI << ','
-            << setup.skeleton.bones[farthest].name << '\n';
+      write_trace_row(trace, setup, s);
     };
   }
   const sim::PinchReport r =
@@ -434,32 +475,10 @@ int sim_pinch(const std::vector<std::string>& argv) {
   if (args.has("trace"))
     util::write_output(args.text("trace"), [&](std::ostream& out) { out << trace.str(); });
   // With --json - (or --trace -) standard output is that alone.
-  if (args.text("json") != "-" && args.text("trace") != "-") {
-    std::cout << std::fixed << std::setprecision(3) << "cube " << setup.script.cube_size * 100
-              << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
-              << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
-              << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, top "
-              << r.top_load_before_closing_n << " N before the closing, "
-              << (r.released ? "released" : "NOT released") << " (the scripted pads miss their "
-              << "targets by " << setup.script.pinch_error * 1000 << " mm"
-              << (setup.script.placed_by_rule ? "; the hand placed by the pinch's rule" : "")
-              << ")\n";
-    print_timing(setup, r);
-  }
-  if (args.has("json")) {
-    util::write_output(args.text("json"), [&](std::ostream& out) {
-      util::JsonWriter json(out);
-      json.begin_object()
-          .field("cube_size_m", setup.script.cube_size)
-          .field("placed_by_rule", setup.script.placed_by_rule)
-          .field("meets_pinch_rule", setup.script.pinch_meets_rule)
-          .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance)
-          .field("placement_pad_error_mm", 1000 * setup.script.placement_pad_error);
-      write_pinch_measures(json, r);
-      write_timing(json, setup, r);
-      json.end_object();
-    });
-  }
+  if (args.text("json") != "-" && args.text("trace") != "-") print_pinch(setup, r);
+  if (args.has("json"))
+    util::write_output(args.text("json"),
+                       [&](std::ostream& out) { write_pinch_json(out, setup, r); });
   return 0;
 }
 

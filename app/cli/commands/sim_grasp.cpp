@@ -105,19 +105,8 @@ struct MapRun {
   std::shared_ptr<const sim::PoseJitter> jitter;
 };
 
-void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::ostream& out) {
-  util::JsonWriter json(out);
-  json.begin_object().key("physics").begin_array();
-  for (const std::string& item : run.physics) json.value(item);
-  json.end_array().key("jitter");
-  if (run.jitter)
-    json.begin_object()
-        .field("recording", run.jitter_from)
-        .field("root_rms_mm", 1000 * run.jitter->root_rms())
-        .field("angle_rms_deg", run.jitter->angle_rms() * 180 / M_PI)
-        .end_object();
-  else
-    json.null();
+// The factors, their levels and the human distribution's parameters with their sources.
+void write_factors(util::JsonWriter& json, const MapRun& run) {
   json.key("factors").begin_array();
   for (const sim::ClosingFactor& f : sim::closing_factors()) {
     json.begin_object().field("name", f.name).field("unit", f.unit).key("levels").begin_array();
@@ -139,34 +128,93 @@ void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::os
         .field("source", p.source)
         .field("assumption", p.assumption)
         .end_object();
-  json.end_array().end_object().key("cubes").begin_array();
-  for (const CubeMap& map : maps) {
-    json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
-    int held = 0, drawn = 0, drawn_held = 0;
-    for (const sim::GraspOutcome& o : map.outcomes) {
-      write_closing(json, o);
-      held += o.measures.held ? 1 : 0;
-      if (o.point.factor == "draw") {
-        ++drawn;
-        drawn_held += o.measures.held ? 1 : 0;
-      }
+  json.end_array().end_object();
+}
+
+// A cube's closings, how many held, and the draws' hold rate with its Wilson interval.
+void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
+  json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
+  int held = 0, drawn = 0, drawn_held = 0;
+  for (const sim::GraspOutcome& o : map.outcomes) {
+    write_closing(json, o);
+    held += o.measures.held ? 1 : 0;
+    if (o.point.factor == "draw") {
+      ++drawn;
+      drawn_held += o.measures.held ? 1 : 0;
     }
-    json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
-    if (drawn > 0) {
-      const stats::ProportionInterval ci = stats::wilson_interval(drawn_held, drawn);
-      json.key("draws")
-          .begin_object()
-          .field("run", drawn)
-          .field("held", drawn_held)
-          .field("hold_rate", double(drawn_held) / drawn)
-          .field("hold_rate_low", ci.low)
-          .field("hold_rate_high", ci.high)
-          .end_object();
-    }
-    json.end_object();
   }
+  json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
+  if (drawn > 0) {
+    const stats::ProportionInterval ci = stats::wilson_interval(drawn_held, drawn);
+    json.key("draws")
+        .begin_object()
+        .field("run", drawn)
+        .field("held", drawn_held)
+        .field("hold_rate", double(drawn_held) / drawn)
+        .field("hold_rate_low", ci.low)
+        .field("hold_rate_high", ci.high)
+        .end_object();
+  }
+  json.end_object();
+}
+
+void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::ostream& out) {
+  util::JsonWriter json(out);
+  json.begin_object().key("physics").begin_array();
+  for (const std::string& item : run.physics) json.value(item);
+  json.end_array().key("jitter");
+  if (run.jitter)
+    json.begin_object()
+        .field("recording", run.jitter_from)
+        .field("root_rms_mm", 1000 * run.jitter->root_rms())
+        .field("angle_rms_deg", run.jitter->angle_rms() * 180 / M_PI)
+        .end_object();
+  else
+    json.null();
+  write_factors(json, run);
+  json.key("cubes").begin_array();
+  for (const CubeMap& map : maps) write_cube_map(json, map);
   json.end_array().end_object();
   out << "\n";
+}
+
+// The grid's closings: --closing alone, each --factor (or every one) alone, or the pairs.
+std::vector<sim::ClosingPoint> grid_of(const Arguments& args, const std::string& grid, long draws,
+                                       bool with_jitter) {
+  if (args.has("closing")) {
+    if (args.has("factor") || args.has("grid") || draws > 0)
+      throw UsageError("give --closing alone, not with --factor, --grid or --draws");
+    return {{"closing", 0.0, parse_closing_option(args.text("closing"))}};
+  }
+  if (grid == "single") {
+    try {
+      for (const std::string& f : args.all("factor")) sim::closing_factor(f);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--factor: ") + e.what());
+    }
+    return sim::single_factor_grid(args.all("factor"), with_jitter);
+  }
+  if (args.has("factor"))
+    throw UsageError("--factor maps single factors: give it with --grid single");
+  return grid == "pairs" ? sim::factor_pairs_grid(with_jitter) : std::vector<sim::ClosingPoint>{};
+}
+
+// One cube's closings run side by side, with a progress line.
+CubeMap map_cube(const sim::PinchScene& scene, double side,
+                 const std::vector<sim::ClosingPoint>& points, int jobs, bool quiet,
+                 std::chrono::steady_clock::time_point start) {
+  ProgressLine progress(quiet);
+  CubeMap map;
+  map.cube_size = side;
+  map.outcomes = sim::run_grasp_map(scene, points, jobs, [&](int done) {
+    char text[120];
+    std::snprintf(text, sizeof text, "cube %.0f mm: closings %d/%zu  %.0f s", map.cube_size * 1000,
+                  done, points.size(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    progress.show(done, text);
+  });
+  progress.finish();
+  return map;
 }
 
 }  // namespace
@@ -303,23 +351,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
   const std::uint64_t seed = args.seed("seed");
   std::shared_ptr<const sim::PoseJitter> jitter;
   if (args.has("jitter-from")) jitter = recording_jitter(args.text("jitter-from"));
-  std::vector<sim::ClosingPoint> grid_points;
-  if (args.has("closing")) {
-    if (args.has("factor") || args.has("grid") || draws > 0)
-      throw UsageError("give --closing alone, not with --factor, --grid or --draws");
-    grid_points = {{"closing", 0.0, parse_closing_option(args.text("closing"))}};
-  } else if (grid == "single") {
-    try {
-      for (const std::string& f : args.all("factor")) sim::closing_factor(f);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--factor: ") + e.what());
-    }
-    grid_points = sim::single_factor_grid(args.all("factor"), jitter != nullptr);
-  } else if (args.has("factor")) {
-    throw UsageError("--factor maps single factors: give it with --grid single");
-  } else if (grid == "pairs") {
-    grid_points = sim::factor_pairs_grid(jitter != nullptr);
-  }
+  const std::vector<sim::ClosingPoint> grid_points = grid_of(args, grid, draws, jitter != nullptr);
   for (const sim::ClosingPoint& p : grid_points)
     if (p.closing.jitter > 0 && !jitter)
       throw UsageError("a closing with jitter needs --jitter-from RECORDING");
@@ -338,18 +370,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
     sim::PinchScene scene =
         sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters);
     scene.jitter = jitter;
-    ProgressLine progress(to_stdout);
-    CubeMap map;
-    map.cube_size = side;
-    map.outcomes = sim::run_grasp_map(scene, points, jobs, [&](int done) {
-      char text[120];
-      std::snprintf(
-          text, sizeof text, "cube %.0f mm: closings %d/%zu  %.0f s", side * 1000, done,
-          points.size(),
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      progress.show(done, text);
-    });
-    progress.finish();
+    CubeMap map = map_cube(scene, side, points, jobs, to_stdout, start);
     if (!to_stdout) {
       if (jitter && maps.empty())
         std::printf("jitter of %s: the wrist %.2f mm, the joints %.2f deg RMS\n",

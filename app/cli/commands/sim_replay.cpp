@@ -28,6 +28,53 @@ namespace {
 
 using stats::timing_quantile;
 
+// What replaying the poses on the soft hand cost and left.
+struct ReplayFigures {
+  int steps = 0;
+  std::vector<double> step_ms;
+  long factorizations = 0, linear_iterations = 0;
+  double fastest_at_end = 0.0;  // m/s: the fastest flesh node in the last 0.5 s
+};
+
+// The recording's poses (or its first, held) played on the soft hand for `duration` s, the
+// cube out of reach, each step taking the latest pose.
+ReplayFigures replay_poses(const retarget::RecordingPoses& replay, const sim::HandSimModel& model,
+                           bool hold, double duration, int threads) {
+  const hand::Skeleton& skeleton = replay.skeleton;
+  const std::vector<hand::HandPose>& poses = replay.poses;
+  const std::vector<double>& times = replay.times;
+  sim::SimOptions options;
+  options.threads = threads;
+  sim::HandSimulator simulator(model, options);
+  Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
+  root.linear() = poses.front().root_rotation;
+  root.translation() = poses.front().root_position;
+  sim::RigidPose cube;  // out of reach
+  cube.position = root.translation() + Eigen::Vector3d(1.0, 0, 0);
+  cube.position.y() = model.parameters.cube_size / 2;
+  sim::HandSimState state = sim::initial_state(model, skeleton, root, cube);
+  const double h = model.parameters.time_step;
+  ReplayFigures f;
+  f.steps = int(std::floor(duration / h));
+  std::size_t frame = 0;
+  for (int i = 0; i < f.steps; ++i) {
+    const double t = times.front() + double(i) * h;
+    while (!hold && frame + 1 < times.size() && times[frame + 1] <= t) ++frame;
+    const std::vector<sim::RigidPose> targets = sim::bone_targets(model, skeleton, poses[frame]);
+    const auto start = std::chrono::steady_clock::now();
+    const sim::SimStepReport r = simulator.step(state, targets);
+    f.step_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    f.factorizations += r.factorizations;
+    f.linear_iterations += r.linear_iterations;
+    if (double(f.steps - i) * h <= 0.5)
+      for (const Eigen::Vector3d& v : state.node_velocity)
+        f.fastest_at_end = std::max(f.fastest_at_end, v.norm());
+  }
+  return f;
+}
+
 }  // namespace
 
 std::vector<OptionSpec> sim_replay_options() {
@@ -70,62 +117,27 @@ int sim_replay(const std::vector<std::string>& argv) {
   const tracking::Recording recording = tracking::read_recording(args.positional()[0]);
   const retarget::RecordingPoses replay = retarget::retarget_recording(
       recording, strategy_name == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs);
-  const hand::HandShape& shape = replay.shape;  // the study's hand, 21.4 cm
-  const hand::Skeleton& skeleton = replay.skeleton;
-  const std::vector<hand::HandPose>& poses = replay.poses;
-  const std::vector<double>& times = replay.times;
-  const bool hold = args.flag("hold");
-  const double length = times.back() - times.front();
+  const bool hold = args.flag("hold");  // the poses are of the study's hand, 21.4 cm
+  const double length = replay.times.back() - replay.times.front();
   const double duration = hold && args.has("duration") ? args.number("duration") : length;
   if (!(duration > 0 && duration <= 600)) throw UsageError("--duration must be in (0, 600] s");
 
-  const hand::HandFlesh flesh = hand::build_flesh(skeleton, shape);
+  const hand::HandFlesh flesh = hand::build_flesh(replay.skeleton, replay.shape);
   sim::SimParameters parameters;
   parameters.stiffening_blend = args.number("stiffening-blend");
   if (!(parameters.stiffening_blend >= 0 && parameters.stiffening_blend < 1))
     throw UsageError("--stiffening-blend must be in [0, 1)");
-  const sim::HandSimModel model = sim::make_hand_sim_model(skeleton, flesh, parameters);
-  sim::SimOptions options;
-  options.threads = threads;
-  sim::HandSimulator simulator(model, options);
-  Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
-  root.linear() = poses.front().root_rotation;
-  root.translation() = poses.front().root_position;
-  sim::RigidPose cube;  // out of reach
-  cube.position = root.translation() + Eigen::Vector3d(1.0, 0, 0);
-  cube.position.y() = model.parameters.cube_size / 2;
-  sim::HandSimState state = sim::initial_state(model, skeleton, root, cube);
-
-  const double h = model.parameters.time_step;
-  const int steps = int(std::floor(duration / h));
-  std::vector<double> step_ms;
-  long factorizations = 0, linear_iterations = 0;
-  double fastest_at_end = 0.0;
-  std::size_t frame = 0;
-  for (int i = 0; i < steps; ++i) {
-    const double t = times.front() + double(i) * h;
-    while (!hold && frame + 1 < times.size() && times[frame + 1] <= t) ++frame;
-    const std::vector<sim::RigidPose> targets = sim::bone_targets(model, skeleton, poses[frame]);
-    const auto start = std::chrono::steady_clock::now();
-    const sim::SimStepReport r = simulator.step(state, targets);
-    step_ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
-    factorizations += r.factorizations;
-    linear_iterations += r.linear_iterations;
-    if (double(steps - i) * h <= 0.5)
-      for (const Eigen::Vector3d& v : state.node_velocity)
-        fastest_at_end = std::max(fastest_at_end, v.norm());
-  }
-  const double median = timing_quantile(step_ms, 0.5), p95 = timing_quantile(step_ms, 0.95);
+  const sim::HandSimModel model = sim::make_hand_sim_model(replay.skeleton, flesh, parameters);
+  const ReplayFigures f = replay_poses(replay, model, hold, duration, threads);
+  const double median = timing_quantile(f.step_ms, 0.5), p95 = timing_quantile(f.step_ms, 0.95);
   const std::string json_out = args.text("json");
   if (json_out != "-") {
     std::cout << std::fixed << std::setprecision(2) << recording.source << " (" << strategy_name
-              << (hold ? ", held still" : "") << "): " << steps << " steps, median " << median
-              << " ms, p95 " << p95 << " ms; " << factorizations << " factorisations, CG "
-              << double(linear_iterations) / steps
+              << (hold ? ", held still" : "") << "): " << f.steps << " steps, median " << median
+              << " ms, p95 " << p95 << " ms; " << f.factorizations << " factorisations, CG "
+              << double(f.linear_iterations) / f.steps
               << " a step; fastest flesh node in the last 0.5 s " << std::setprecision(3)
-              << fastest_at_end * 1000 << " mm/s\n";
+              << f.fastest_at_end * 1000 << " mm/s\n";
   }
   if (args.has("json")) {
     util::write_output(json_out, [&](std::ostream& out) {
@@ -136,12 +148,12 @@ int sim_replay(const std::vector<std::string>& argv) {
           .field("hold", hold)
           .field("threads", threads)
           .field("stiffening_blend", model.parameters.stiffening_blend)
-          .field("steps", steps)
+          .field("steps", f.steps)
           .field("step_ms_median", median)
           .field("step_ms_p95", p95)
-          .field("factorizations", static_cast<long long>(factorizations))
-          .field("linear_iterations_per_step", double(linear_iterations) / steps)
-          .field("fastest_node_last_half_second_m_s", fastest_at_end)
+          .field("factorizations", static_cast<long long>(f.factorizations))
+          .field("linear_iterations_per_step", double(f.linear_iterations) / f.steps)
+          .field("fastest_node_last_half_second_m_s", f.fastest_at_end)
           .end_object();
     });
   }

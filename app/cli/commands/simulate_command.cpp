@@ -155,6 +155,127 @@ CommandHelp simulate_help() {
 
 }  // namespace
 
+namespace {
+
+// The study's options from the command line, checked.
+studies::SimulationOptions simulation_options(const Arguments& args) {
+  studies::SimulationOptions options;
+  options.participants = int(args.integer("participants"));
+  if (options.participants < 1 || options.participants > 10000)
+    throw UsageError("--participants must be between 1 and 10000");
+  options.seed = args.seed("seed");
+  options.only = shard_members(args, options.participants);
+  options.jobs = job_count(args);
+  options.world = world_kind(args);
+  options.frames = args.flag("frames");
+  options.model = model_with_changes(args.all("set"));
+  return options;
+}
+
+// --slurm: the series of --studies studies from --seed on, as Slurm jobs.
+void submit_series(const Arguments& args, const studies::SimulationOptions& options) {
+  studies::SlurmSeries series = series_settings(args);
+  const long count = args.integer("studies");
+  if (count < 1 || count > 100000) throw UsageError("--studies must be between 1 and 100000");
+  for (long k = 0; k < count; ++k)
+    series.studies.push_back({options.participants, options.seed + std::uint64_t(k)});
+  series.simulate_options = {"--world", args.text("world")};
+  if (options.frames) series.simulate_options.push_back("--frames");
+  for (const std::string& s : args.all("set")) {
+    series.simulate_options.push_back("--set");
+    series.simulate_options.push_back(s);
+  }
+  submit_slurm_series(series, args.flag("dry-run"));
+}
+
+// Where the time went: the soft hand's steps, all trials (practice included).
+void print_simulator_totals(const studies::SimulationReport& report) {
+  sim::StepTotals all;
+  for (const auto& [label, t] : report.simulator) all += t;
+  if (all.steps == 0) return;
+  std::cout << "\n"
+            << std::left << std::setw(16) << "soft hand" << std::right << std::setw(10) << "steps"
+            << std::setw(12) << "factorising" << std::setw(9) << "passes" << std::setw(6) << "CG"
+            << std::setw(12) << "ms a step\n";
+  auto line = [](const std::string& what, const sim::StepTotals& t) {
+    const double steps = double(std::max(1L, t.steps));
+    std::cout << std::left << std::setw(16) << what << std::right << std::setw(10) << t.steps
+              << std::setw(11) << std::setprecision(1) << 100.0 * t.factorizing_steps / steps << "%"
+              << std::setw(9) << std::setprecision(2) << t.passes / steps << std::setw(6)
+              << std::setprecision(2) << t.linear_iterations / steps << std::setw(11)
+              << std::setprecision(2) << 1000.0 * t.seconds / steps << "\n";
+  };
+  for (const auto& [label, t] : report.simulator) line(label, t);
+  line("all", all);
+}
+
+void print_outcome(const studies::SimulationReport& report,
+                   const studies::SimulationOptions& options, const Arguments& args) {
+  std::cout << report.participants << " simulated participants, " << report.trials << " trials ("
+            << report.completed << " completed, " << report.timeouts << " timed out) in "
+            << std::fixed << std::setprecision(1) << report.seconds << " s for "
+            << report.simulated_seconds << " s of trials; " << args.text("db") << "\n"
+            << studies::kParticipantModelVersion << ", parameters sha256 "
+            << studies::model_sha256(options.model)
+            << (args.all("set").empty() ? "" : " (changed by --set)") << "\n\n";
+  std::cout << std::left << std::setw(16) << "condition" << std::right << std::setw(8) << "trials"
+            << std::setw(11) << "completed" << std::setw(9) << "success" << std::setw(9)
+            << "timeout" << std::setw(12) << "mean time" << std::setw(8) << "drops\n";
+  for (const studies::ConditionOutcome& c : report.conditions)
+    std::cout << std::left << std::setw(16) << c.condition << std::right << std::setw(8)
+              << c.planned << std::setw(11) << c.completed << std::setw(8) << std::setprecision(1)
+              << (c.planned ? 100.0 * c.completed / c.planned : 0.0) << "%" << std::setw(9)
+              << c.timeouts << std::setw(10) << std::setprecision(2) << c.mean_time_s << " s"
+              << std::setw(7) << c.drops << "\n";
+  print_participant_time(report);
+  print_simulator_totals(report);
+}
+
+void write_outcome_json(std::ostream& out, const studies::SimulationReport& report,
+                        const studies::SimulationOptions& options, const Arguments& args) {
+  util::JsonWriter w(out);
+  w.begin_object()
+      .field("db", args.text("db"))
+      .field("participants", report.participants)
+      .field("seed", options.seed)
+      .field("jobs", options.jobs)
+      .field("world", args.text("world"))
+      .field("model", studies::kParticipantModelVersion)
+      .field("model_sha256", studies::model_sha256(options.model))
+      .field("trials", report.trials)
+      .field("completed", report.completed)
+      .field("timeouts", report.timeouts)
+      .field("seconds", report.seconds)
+      .field("simulated_seconds", report.simulated_seconds)
+      .key("conditions")
+      .begin_array();
+  // The shared keys, and `trials` (the scheduled trials: simulate's name for planned).
+  for (const studies::ConditionOutcome& c : report.conditions) {
+    w.begin_object();
+    studies::write_condition_outcome_fields(w, c);
+    w.field("trials", c.planned).end_object();
+  }
+  w.end_array().key("simulator").begin_array();
+  for (const auto& [label, t] : report.simulator)
+    w.begin_object()
+        .field("condition", label)
+        .field("steps", static_cast<long long>(t.steps))
+        .field("factorizing_steps", static_cast<long long>(t.factorizing_steps))
+        .field("factorizations", static_cast<long long>(t.factorizations))
+        .field("passes", static_cast<long long>(t.passes))
+        .field("linear_iterations", static_cast<long long>(t.linear_iterations))
+        .field("direct_solves", static_cast<long long>(t.direct_solves))
+        .field("halvings", static_cast<long long>(t.halvings))
+        .field("seconds", t.seconds)
+        .end_object();
+  w.end_array();
+  write_participant_time(w, report);
+  w.end_object();
+  out << "\n";
+}
+
+}  // namespace
+
 int run_simulate(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = simulate_options();
   std::vector<OptionSpec> all_specs = specs;  // the Slurm settings after --studies
@@ -172,10 +293,8 @@ int run_simulate(const std::vector<std::string>& argv) {
     return 0;
   }
   const bool slurm = args.has("slurm");
-  if (slurm)
-    args.require({"protocol"});
-  else
-    args.require({"protocol", "db"});
+  args.require(slurm ? std::initializer_list<const char*>{"protocol"}
+                     : std::initializer_list<const char*>{"protocol", "db"});
   if (slurm && (args.has("db") || args.has("shard") || args.has("only")))
     throw UsageError(
         "--slurm writes the study's parts and merges them: no --db, --shard or --only");
@@ -183,31 +302,10 @@ int run_simulate(const std::vector<std::string>& argv) {
     throw UsageError(
         "--studies, --per-task, --partition, --time, --mem and --dry-run go with "
         "--slurm");
-  studies::SimulationOptions options;
-  options.participants = int(args.integer("participants"));
-  if (options.participants < 1 || options.participants > 10000)
-    throw UsageError("--participants must be between 1 and 10000");
-  options.seed = args.seed("seed");
-  options.only = shard_members(args, options.participants);
-  options.jobs = job_count(args);
-  options.world = world_kind(args);
-  const std::string world = args.text("world");
-  options.frames = args.flag("frames");
-  options.model = model_with_changes(args.all("set"));
+  const studies::SimulationOptions options = simulation_options(args);
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   if (slurm) {
-    studies::SlurmSeries series = series_settings(args);
-    const long count = args.integer("studies");
-    if (count < 1 || count > 100000) throw UsageError("--studies must be between 1 and 100000");
-    for (long k = 0; k < count; ++k)
-      series.studies.push_back({options.participants, options.seed + std::uint64_t(k)});
-    series.simulate_options = {"--world", world};
-    if (options.frames) series.simulate_options.push_back("--frames");
-    for (const std::string& s : args.all("set")) {
-      series.simulate_options.push_back("--set");
-      series.simulate_options.push_back(s);
-    }
-    submit_slurm_series(series, args.flag("dry-run"));
+    submit_series(args, options);
     return 0;
   }
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
@@ -222,88 +320,10 @@ int run_simulate(const std::vector<std::string>& argv) {
           progress.show(p.participants_done, text);
         });
   }
-
-  if (args.text("json") != "-") {
-    std::cout << report.participants << " simulated participants, " << report.trials << " trials ("
-              << report.completed << " completed, " << report.timeouts << " timed out) in "
-              << std::fixed << std::setprecision(1) << report.seconds << " s for "
-              << report.simulated_seconds << " s of trials; " << args.text("db") << "\n"
-              << studies::kParticipantModelVersion << ", parameters sha256 "
-              << studies::model_sha256(options.model)
-              << (args.all("set").empty() ? "" : " (changed by --set)") << "\n\n";
-    std::cout << std::left << std::setw(16) << "condition" << std::right << std::setw(8) << "trials"
-              << std::setw(11) << "completed" << std::setw(9) << "success" << std::setw(9)
-              << "timeout" << std::setw(12) << "mean time" << std::setw(8) << "drops\n";
-    for (const studies::ConditionOutcome& c : report.conditions)
-      std::cout << std::left << std::setw(16) << c.condition << std::right << std::setw(8)
-                << c.planned << std::setw(11) << c.completed << std::setw(8) << std::setprecision(1)
-                << (c.planned ? 100.0 * c.completed / c.planned : 0.0) << "%" << std::setw(9)
-                << c.timeouts << std::setw(10) << std::setprecision(2) << c.mean_time_s << " s"
-                << std::setw(7) << c.drops << "\n";
-    print_participant_time(report);
-    sim::StepTotals all;
-    for (const auto& [label, t] : report.simulator) all += t;
-    if (all.steps > 0) {
-      // Where the time went: the soft hand's steps, all trials (practice included).
-      std::cout << "\n"
-                << std::left << std::setw(16) << "soft hand" << std::right << std::setw(10)
-                << "steps" << std::setw(12) << "factorising" << std::setw(9) << "passes"
-                << std::setw(6) << "CG" << std::setw(12) << "ms a step\n";
-      auto line = [](const std::string& what, const sim::StepTotals& t) {
-        const double steps = double(std::max(1L, t.steps));
-        std::cout << std::left << std::setw(16) << what << std::right << std::setw(10) << t.steps
-                  << std::setw(11) << std::setprecision(1) << 100.0 * t.factorizing_steps / steps
-                  << "%" << std::setw(9) << std::setprecision(2) << t.passes / steps << std::setw(6)
-                  << std::setprecision(2) << t.linear_iterations / steps << std::setw(11)
-                  << std::setprecision(2) << 1000.0 * t.seconds / steps << "\n";
-      };
-      for (const auto& [label, t] : report.simulator) line(label, t);
-      line("all", all);
-    }
-  }
-  if (args.has("json")) {
-    util::write_output(args.text("json"), [&](std::ostream& out) {
-      util::JsonWriter w(out);
-      w.begin_object()
-          .field("db", args.text("db"))
-          .field("participants", report.participants)
-          .field("seed", options.seed)
-          .field("jobs", options.jobs)
-          .field("world", world)
-          .field("model", studies::kParticipantModelVersion)
-          .field("model_sha256", studies::model_sha256(options.model))
-          .field("trials", report.trials)
-          .field("completed", report.completed)
-          .field("timeouts", report.timeouts)
-          .field("seconds", report.seconds)
-          .field("simulated_seconds", report.simulated_seconds)
-          .key("conditions")
-          .begin_array();
-      // The shared keys, and `trials` (the scheduled trials: simulate's name for planned).
-      for (const studies::ConditionOutcome& c : report.conditions) {
-        w.begin_object();
-        studies::write_condition_outcome_fields(w, c);
-        w.field("trials", c.planned).end_object();
-      }
-      w.end_array().key("simulator").begin_array();
-      for (const auto& [label, t] : report.simulator)
-        w.begin_object()
-            .field("condition", label)
-            .field("steps", static_cast<long long>(t.steps))
-            .field("factorizing_steps", static_cast<long long>(t.factorizing_steps))
-            .field("factorizations", static_cast<long long>(t.factorizations))
-            .field("passes", static_cast<long long>(t.passes))
-            .field("linear_iterations", static_cast<long long>(t.linear_iterations))
-            .field("direct_solves", static_cast<long long>(t.direct_solves))
-            .field("halvings", static_cast<long long>(t.halvings))
-            .field("seconds", t.seconds)
-            .end_object();
-      w.end_array();
-      write_participant_time(w, report);
-      w.end_object();
-      out << "\n";
-    });
-  }
+  if (args.text("json") != "-") print_outcome(report, options, args);
+  if (args.has("json"))
+    util::write_output(args.text("json"),
+                       [&](std::ostream& out) { write_outcome_json(out, report, options, args); });
   return 0;
 }
 

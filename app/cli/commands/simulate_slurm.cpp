@@ -172,71 +172,79 @@ void submit_slurm_series(const studies::SlurmSeries& series, bool dry_run) {
             << "\nprogress: handlab-cli simulate --status " << series.dir << "\n";
 }
 
+namespace {
+
+// A row per study (up to 20 of them), the totals, and what to do next.
+void print_series_table(const studies::SlurmSeries& series, const studies::SeriesStatus& status) {
+  const std::size_t n = status.studies.size();
+  std::cout << series.dir << ": " << n << (n == 1 ? " study, " : " studies, ")
+            << studies::array_tasks(series) << " parts\n";
+  std::printf("%-4s %-22s %6s %8s %8s %8s  %s\n", "N", "seed", "done", "running", "stopped",
+              "missing", "merged");
+  int total[4] = {0, 0, 0, 0}, merged = 0;
+  for (const auto& s : status.studies) {
+    int count[4] = {0, 0, 0, 0};
+    for (studies::PartState p : s.parts) ++count[int(p)];
+    for (int k = 0; k < 4; ++k) total[k] += count[k];
+    merged += s.merged;
+    if (n <= 20)
+      std::printf("%-4d %-22llu %6d %8d %8d %8d  %s\n", s.study.participants,
+                  static_cast<unsigned long long>(s.study.seed), count[0], count[1], count[2],
+                  count[3],
+                  s.merged           ? "yes"
+                  : s.merged_partial ? "partial"
+                                     : "no");
+  }
+  if (n > 20)
+    std::printf("%-27s %6d %8d %8d %8d  %d of %zu\n", "all", total[0], total[1], total[2], total[3],
+                merged, n);
+  if (status.unfinished_tasks.empty()) {
+    std::cout << "every part is done";
+    if (merged < int(n))
+      std::cout << "; " << util::count_text(int(n) - merged, "study", "studies")
+                << " not merged whole: sbatch " << series.dir << "/merge.sh (or bash it)";
+    std::cout << "\n";
+    return;
+  }
+  std::cout << "unfinished array tasks: " << studies::index_ranges(status.unfinished_tasks) << "\n";
+  if (total[2] > 0)
+    std::cout << "stopped parts: their tasks' logs are in " << series.dir << "/logs\n";
+  std::cout << "once none of the series' jobs runs, rerun them (JOB: the job ids sbatch "
+               "printed for the lines before):\n";
+  for (const std::string& c : studies::rerun_commands(series, status.unfinished_tasks))
+    std::cout << "  " << c << "\n";
+}
+
+void write_series_json(std::ostream& out, const studies::SlurmSeries& series,
+                       const studies::SeriesStatus& status) {
+  util::JsonWriter w(out);
+  w.begin_object().field("dir", series.dir).key("studies").begin_array();
+  for (const auto& s : status.studies) {
+    w.begin_object()
+        .field("participants", s.study.participants)
+        .field("seed", std::to_string(s.study.seed))
+        .field("path", s.path)
+        .field("merged", s.merged)
+        .field("merged_partial", s.merged_partial)
+        .key("parts")
+        .begin_array();
+    for (studies::PartState p : s.parts) w.value(state_name(p));
+    w.end_array().end_object();
+  }
+  w.end_array().key("unfinished_tasks").begin_array();
+  for (int i : status.unfinished_tasks) w.value(i);
+  w.end_array().end_object();
+  out << "\n";
+}
+
+}  // namespace
+
 void print_series_status(const std::string& dir, const std::string& json) {
   const studies::SlurmSeries series = studies::read_slurm_series(dir);
   const studies::SeriesStatus status = studies::series_status(series);
-  if (json != "-") {
-    // A row per study (up to 20 of them), and the totals.
-    const std::size_t n = status.studies.size();
-    std::cout << series.dir << ": " << n << (n == 1 ? " study, " : " studies, ")
-              << studies::array_tasks(series) << " parts\n";
-    std::printf("%-4s %-22s %6s %8s %8s %8s  %s\n", "N", "seed", "done", "running", "stopped",
-                "missing", "merged");
-    int total[4] = {0, 0, 0, 0}, merged = 0;
-    for (const auto& s : status.studies) {
-      int count[4] = {0, 0, 0, 0};
-      for (studies::PartState p : s.parts) ++count[int(p)];
-      for (int k = 0; k < 4; ++k) total[k] += count[k];
-      merged += s.merged;
-      if (n <= 20)
-        std::printf("%-4d %-22llu %6d %8d %8d %8d  %s\n", s.study.participants,
-                    static_cast<unsigned long long>(s.study.seed), count[0], count[1], count[2],
-                    count[3],
-                    s.merged           ? "yes"
-                    : s.merged_partial ? "partial"
-                                       : "no");
-    }
-    if (n > 20)
-      std::printf("%-27s %6d %8d %8d %8d  %d of %zu\n", "all", total[0], total[1], total[2],
-                  total[3], merged, n);
-    if (status.unfinished_tasks.empty()) {
-      std::cout << "every part is done";
-      if (merged < int(n))
-        std::cout << "; " << util::count_text(int(n) - merged, "study", "studies")
-                  << " not merged whole: sbatch " << series.dir << "/merge.sh (or bash it)";
-      std::cout << "\n";
-    } else {
-      std::cout << "unfinished array tasks: " << studies::index_ranges(status.unfinished_tasks)
-                << "\n";
-      if (total[2] > 0)
-        std::cout << "stopped parts: their tasks' logs are in " << series.dir << "/logs\n";
-      std::cout << "once none of the series' jobs runs, rerun them (JOB: the job ids sbatch "
-                   "printed for the lines before):\n";
-      for (const std::string& c : studies::rerun_commands(series, status.unfinished_tasks))
-        std::cout << "  " << c << "\n";
-    }
-  }
-  if (json.empty()) return;
-  util::write_output(json, [&](std::ostream& out) {
-    util::JsonWriter w(out);
-    w.begin_object().field("dir", series.dir).key("studies").begin_array();
-    for (const auto& s : status.studies) {
-      w.begin_object()
-          .field("participants", s.study.participants)
-          .field("seed", std::to_string(s.study.seed))
-          .field("path", s.path)
-          .field("merged", s.merged)
-          .field("merged_partial", s.merged_partial)
-          .key("parts")
-          .begin_array();
-      for (studies::PartState p : s.parts) w.value(state_name(p));
-      w.end_array().end_object();
-    }
-    w.end_array().key("unfinished_tasks").begin_array();
-    for (int i : status.unfinished_tasks) w.value(i);
-    w.end_array().end_object();
-    out << "\n";
-  });
+  if (json != "-") print_series_table(series, status);
+  if (!json.empty())
+    util::write_output(json, [&](std::ostream& out) { write_series_json(out, series, status); });
 }
 
 }  // namespace handlab::cli

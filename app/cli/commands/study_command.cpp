@@ -59,6 +59,63 @@ CommandHelp study_status_help() {
           "aborted (interrupted attempts, run again) and the next trial."};
 }
 
+void print_status(const store::StudyInfo& info, const std::string& db,
+                  const std::vector<studies::ParticipantStatus>& status,
+                  const store::StudyCompleteness& completeness) {
+  std::cout << "study " << info.name << " (" << db << "), "
+            << util::count_text(int(status.size()), "participant") << "\n";
+  if (completeness.partial())
+    std::cout << "partial study: " << completeness.describe()
+              << "; merge the missing parts in (merge --update, docs/cluster.md)\n";
+  for (const auto& p : status) {
+    std::cout << "  " << p.id << ": " << p.trials_completed << "/" << p.trials_planned
+              << " completed, " << p.trials_skipped << " skipped, " << p.trials_aborted
+              << " aborted, next: ";
+    if (p.next)
+      std::cout << "trial " << p.next->position + 1
+                << (p.next->practice ? " (practice) "
+                                     : " (block " + std::to_string(p.next->block) + ") ")
+                << p.next_condition << "\n";
+    else
+      std::cout << "none (schedule complete)\n";
+  }
+}
+
+void write_status_json(std::ostream& out, const store::StudyInfo& info,
+                       const std::vector<studies::ParticipantStatus>& status,
+                       const store::StudyCompleteness& completeness) {
+  util::JsonWriter w(out);
+  w.begin_object().field("study", info.name).field("protocol_sha256", info.protocol_sha256);
+  w.field("partial", completeness.partial()).field("planned_participants", completeness.planned);
+  w.key("missing_places").begin_array();
+  for (int place : completeness.missing_places) w.value(place + 1);
+  w.end_array();
+  w.key("participants").begin_array();
+  for (const auto& p : status) {
+    w.begin_object()
+        .field("id", p.id)
+        .field("trials_planned", p.trials_planned)
+        .field("trials_completed", p.trials_completed)
+        .field("trials_skipped", p.trials_skipped)
+        .field("trials_aborted", p.trials_aborted);
+    w.key("next");
+    if (p.next) {
+      w.begin_object()
+          .field("trial", p.next->position + 1)
+          .field("block", p.next->block)
+          .field("order", p.next->order)
+          .field("practice", p.next->practice)
+          .field("condition", p.next_condition)
+          .end_object();
+    } else {
+      w.null();
+    }
+    w.end_object();
+  }
+  w.end_array().end_object();
+  out << "\n";
+}
+
 int study_status(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = study_status_options();
   const Arguments args(specs, argv);
@@ -72,60 +129,10 @@ int study_status(const std::vector<std::string>& argv) {
   const std::vector<studies::ParticipantStatus> status = studies::study_status(store);
   const store::StudyCompleteness completeness = store.completeness();
   const std::string json = args.text("json");
-  if (json != "-") {
-    std::cout << "study " << info.name << " (" << args.text("db") << "), "
-              << util::count_text(int(status.size()), "participant") << "\n";
-    if (completeness.partial())
-      std::cout << "partial study: " << completeness.describe()
-                << "; merge the missing parts in (merge --update, docs/cluster.md)\n";
-    for (const auto& p : status) {
-      std::cout << "  " << p.id << ": " << p.trials_completed << "/" << p.trials_planned
-                << " completed, " << p.trials_skipped << " skipped, " << p.trials_aborted
-                << " aborted, next: ";
-      if (p.next)
-        std::cout << "trial " << p.next->position + 1
-                  << (p.next->practice ? " (practice) "
-                                       : " (block " + std::to_string(p.next->block) + ") ")
-                  << p.next_condition << "\n";
-      else
-        std::cout << "none (schedule complete)\n";
-    }
-  }
-  if (!json.empty()) {
-    util::write_output(json, [&](std::ostream& out) {
-      util::JsonWriter w(out);
-      w.begin_object().field("study", info.name).field("protocol_sha256", info.protocol_sha256);
-      w.field("partial", completeness.partial())
-          .field("planned_participants", completeness.planned);
-      w.key("missing_places").begin_array();
-      for (int place : completeness.missing_places) w.value(place + 1);
-      w.end_array();
-      w.key("participants").begin_array();
-      for (const auto& p : status) {
-        w.begin_object()
-            .field("id", p.id)
-            .field("trials_planned", p.trials_planned)
-            .field("trials_completed", p.trials_completed)
-            .field("trials_skipped", p.trials_skipped)
-            .field("trials_aborted", p.trials_aborted);
-        w.key("next");
-        if (p.next) {
-          w.begin_object()
-              .field("trial", p.next->position + 1)
-              .field("block", p.next->block)
-              .field("order", p.next->order)
-              .field("practice", p.next->practice)
-              .field("condition", p.next_condition)
-              .end_object();
-        } else {
-          w.null();
-        }
-        w.end_object();
-      }
-      w.end_array().end_object();
-      out << "\n";
-    });
-  }
+  if (json != "-") print_status(info, args.text("db"), status, completeness);
+  if (!json.empty())
+    util::write_output(
+        json, [&](std::ostream& out) { write_status_json(out, info, status, completeness); });
   return 0;
 }
 

@@ -28,6 +28,109 @@ CommandHelp tracking_info_help() {
           "distance range of a recording (.json, .json.lz, .hlrec)."};
 }
 
+// A recording's figures: its frames, hands, length in time and thumb-index range.
+struct RecordingFigures {
+  std::size_t with_hands = 0, left = 0, right = 0;
+  double lo = INFINITY, hi = -INFINITY;  // m: the thumb-index tip distance's range
+  double duration = 0.0, fps = 0.0;
+  std::map<std::string, int> reasons;  // rejected frames, by reason
+};
+
+RecordingFigures figures_of(const tracking::Recording& r) {
+  RecordingFigures g;
+  for (const auto& f : r.frames) {
+    g.with_hands += !f.hands.empty();
+    for (const auto& h : f.hands) {
+      (h.side == tracking::Side::kLeft ? g.left : g.right) += 1;
+      g.lo = std::min(g.lo, tracking::thumb_index_distance(h));
+      g.hi = std::max(g.hi, tracking::thumb_index_distance(h));
+    }
+  }
+  g.duration = r.frames.size() > 1 ? r.frames.back().timestamp - r.frames.front().timestamp : 0.0;
+  g.fps = g.duration > 0 ? double(r.frames.size() - 1) / g.duration : 0.0;
+  for (const auto& rej : r.rejected) ++g.reasons[rej.reason];
+  return g;
+}
+
+// --fit: each hand fitted with the skeleton measured from the recording.
+struct FitFigures {
+  std::string side;
+  double hand_length, mean_rms, max;
+  int frames;
+};
+
+std::vector<FitFigures> fits_of(const tracking::Recording& r) {
+  std::vector<FitFigures> fits;
+  for (tracking::Side side : {tracking::Side::kLeft, tracking::Side::kRight}) {
+    auto fitter = tracking::TrackedHandFitter::for_recording(r.frames, side);
+    if (!fitter) continue;
+    FitFigures figures{side == tracking::Side::kLeft ? "left" : "right",
+                       *tracking::estimate_hand_length(r.frames, side), 0, 0, 0};
+    for (const auto& f : r.frames)
+      if (const auto* h = f.hand(side)) {
+        const auto fit = fitter->fit(*h);
+        figures.mean_rms += fit.rms_residual;
+        figures.max = std::max(figures.max, fit.max_residual);
+        ++figures.frames;
+      }
+    figures.mean_rms /= std::max(figures.frames, 1);
+    fits.push_back(figures);
+  }
+  return fits;
+}
+
+void print_info(const tracking::Recording& r, const RecordingFigures& g,
+                const std::vector<FitFigures>& fits) {
+  std::cout << r.source << "\n  format version   " << r.format_version << "\n  frames           "
+            << r.frames_in_file << " (" << r.frames.size() << " read, " << g.with_hands
+            << " with hands)\n  hands            " << g.left << " left, " << g.right
+            << " right\n  duration         " << std::fixed << std::setprecision(3) << g.duration
+            << " s\n  mean frame rate  " << std::setprecision(1) << g.fps
+            << " Hz\n  rejected         " << r.rejected.size() << "\n";
+  for (const auto& [reason, count] : g.reasons)
+    std::cout << "    " << count << " x " << reason << "\n";
+  if (std::isfinite(g.lo))
+    std::cout << "  thumb-index tip  " << g.lo * 1000 << " to " << g.hi * 1000 << " mm\n";
+  for (const auto& f : fits)
+    std::cout << "  fit, " << std::left << std::setw(11) << (f.side + " hand") << "hand length "
+              << f.hand_length * 100 << " cm, residual mean " << f.mean_rms * 1000 << " mm, max "
+              << f.max * 1000 << " mm over " << f.frames << " frames\n";
+}
+
+void write_info_json(std::ostream& out, const tracking::Recording& r, const RecordingFigures& g,
+                     const std::vector<FitFigures>& fits) {
+  util::JsonWriter json(out);
+  json.begin_object().field("source", r.source).field("format_version", r.format_version);
+  json.field("frames", r.frames_in_file)
+      .field("frames_read", r.frames.size())
+      .field("frames_with_hands", g.with_hands);
+  json.key("hands").begin_object().field("left", g.left).field("right", g.right).end_object();
+  json.field("duration_s", g.duration).field("fps_mean", g.fps);
+  json.key("rejected").begin_array();
+  for (const auto& rej : r.rejected)
+    json.begin_object().field("frame", rej.index).field("reason", rej.reason).end_object();
+  json.end_array();
+  json.key("thumb_index_mm").begin_object();
+  if (std::isfinite(g.lo))
+    json.field("min", g.lo * 1000).field("max", g.hi * 1000);
+  else
+    json.key("min").null().key("max").null();
+  json.end_object();
+  if (!fits.empty()) {
+    json.key("fit").begin_array();
+    for (const auto& f : fits)
+      json.begin_object()
+          .field("side", f.side)
+          .field("hand_length_m", f.hand_length)
+          .field("frames", f.frames)
+          .field("residual_mean_mm", f.mean_rms * 1000)
+          .field("residual_max_mm", f.max * 1000)
+          .end_object();
+    json.end_array();
+  }
+  json.end_object();
+}
+
 int tracking_info(const std::vector<std::string>& argv) {
   const std::vector<OptionSpec> specs = tracking_info_options();
   const Arguments args(specs, argv, 1);
@@ -37,95 +140,12 @@ int tracking_info(const std::vector<std::string>& argv) {
     return 0;
   }
   const tracking::Recording r = tracking::read_recording(args.positional()[0]);
-  std::size_t with_hands = 0, left = 0, right = 0;
-  double lo = INFINITY, hi = -INFINITY;
-  for (const auto& f : r.frames) {
-    with_hands += !f.hands.empty();
-    for (const auto& h : f.hands) {
-      (h.side == tracking::Side::kLeft ? left : right) += 1;
-      lo = std::min(lo, tracking::thumb_index_distance(h));
-      hi = std::max(hi, tracking::thumb_index_distance(h));
-    }
-  }
-  const double duration =
-      r.frames.size() > 1 ? r.frames.back().timestamp - r.frames.front().timestamp : 0.0;
-  const double fps = duration > 0 ? double(r.frames.size() - 1) / duration : 0.0;
-  struct FitFigures {
-    std::string side;
-    double hand_length, mean_rms, max;
-    int frames;
-  };
-  std::vector<FitFigures> fits;
-  if (args.flag("fit")) {
-    for (tracking::Side side : {tracking::Side::kLeft, tracking::Side::kRight}) {
-      auto fitter = tracking::TrackedHandFitter::for_recording(r.frames, side);
-      if (!fitter) continue;
-      FitFigures figures{side == tracking::Side::kLeft ? "left" : "right",
-                         *tracking::estimate_hand_length(r.frames, side), 0, 0, 0};
-      for (const auto& f : r.frames)
-        if (const auto* h = f.hand(side)) {
-          const auto fit = fitter->fit(*h);
-          figures.mean_rms += fit.rms_residual;
-          figures.max = std::max(figures.max, fit.max_residual);
-          ++figures.frames;
-        }
-      figures.mean_rms /= std::max(figures.frames, 1);
-      fits.push_back(figures);
-    }
-  }
-  std::map<std::string, int> reasons;
-  for (const auto& rej : r.rejected) ++reasons[rej.reason];
-
-  if (args.text("json") != "-") {
-    std::cout << r.source << "\n  format version   " << r.format_version << "\n  frames           "
-              << r.frames_in_file << " (" << r.frames.size() << " read, " << with_hands
-              << " with hands)\n  hands            " << left << " left, " << right
-              << " right\n  duration         " << std::fixed << std::setprecision(3) << duration
-              << " s\n  mean frame rate  " << std::setprecision(1) << fps
-              << " Hz\n  rejected         " << r.rejected.size() << "\n";
-    for (const auto& [reason, count] : reasons)
-      std::cout << "    " << count << " x " << reason << "\n";
-    if (std::isfinite(lo))
-      std::cout << "  thumb-index tip  " << lo * 1000 << " to " << hi * 1000 << " mm\n";
-    for (const auto& f : fits)
-      std::cout << "  fit, " << std::left << std::setw(11) << (f.side + " hand") << "hand length "
-                << f.hand_length * 100 << " cm, residual mean " << f.mean_rms * 1000 << " mm, max "
-                << f.max * 1000 << " mm over " << f.frames << " frames\n";
-  }
-  if (args.has("json")) {
-    util::write_output(args.text("json"), [&](std::ostream& out) {
-      util::JsonWriter json(out);
-      json.begin_object().field("source", r.source).field("format_version", r.format_version);
-      json.field("frames", r.frames_in_file)
-          .field("frames_read", r.frames.size())
-          .field("frames_with_hands", with_hands);
-      json.key("hands").begin_object().field("left", left).field("right", right).end_object();
-      json.field("duration_s", duration).field("fps_mean", fps);
-      json.key("rejected").begin_array();
-      for (const auto& rej : r.rejected)
-        json.begin_object().field("frame", rej.index).field("reason", rej.reason).end_object();
-      json.end_array();
-      json.key("thumb_index_mm").begin_object();
-      if (std::isfinite(lo))
-        json.field("min", lo * 1000).field("max", hi * 1000);
-      else
-        json.key("min").null().key("max").null();
-      json.end_object();
-      if (!fits.empty()) {
-        json.key("fit").begin_array();
-        for (const auto& f : fits)
-          json.begin_object()
-              .field("side", f.side)
-              .field("hand_length_m", f.hand_length)
-              .field("frames", f.frames)
-              .field("residual_mean_mm", f.mean_rms * 1000)
-              .field("residual_max_mm", f.max * 1000)
-              .end_object();
-        json.end_array();
-      }
-      json.end_object();
-    });
-  }
+  const RecordingFigures figures = figures_of(r);
+  const std::vector<FitFigures> fits = args.flag("fit") ? fits_of(r) : std::vector<FitFigures>{};
+  if (args.text("json") != "-") print_info(r, figures, fits);
+  if (args.has("json"))
+    util::write_output(args.text("json"),
+                       [&](std::ostream& out) { write_info_json(out, r, figures, fits); });
   return 0;
 }
 
