@@ -56,6 +56,7 @@ class Arguments {
   std::uint64_t seed(const std::string& name) const;
   const std::vector<std::string>& positional() const { return positional_; }
   bool help_requested() const { return help_; }
+  const std::vector<OptionSpec>& options() const { return specs_; }  // as declared
 
  private:
   const OptionSpec& spec(const std::string& name) const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -67,6 +68,11 @@ std::string usage_lines(const CommandHelp& help, const std::vector<OptionSpec>& 
 std::string help_text(const CommandHelp& help, const std::vector<OptionSpec>& options) {
   return usage_lines(help, options) + "\n" + help.about + "\n\nOptions:\n" +
          format_options_help(options);
+}
+
+int print_help(const CommandHelp& help, const Arguments& args) {
+  std::cout << help_text(help, args.options());
+  return 0;
 }
 
 std::string family_usage(const std::vector<Subcommand>& subcommands) {

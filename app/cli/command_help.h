@@ -26,6 +26,9 @@ std::string usage_lines(const CommandHelp& help, const std::vector<OptionSpec>& 
 // The usage lines, the about text and the options.
 std::string help_text(const CommandHelp& help, const std::vector<OptionSpec>& options);
 
+// --help: the command's help_text on standard output; returns its exit status, 0.
+int print_help(const CommandHelp& help, const Arguments& args);
+
 // A command of a family ("study create", "sim grasp") with its option table.
 struct Subcommand {
   CommandHelp help;

@@ -79,12 +79,8 @@ CommandHelp analyze_help() {
 }  // namespace
 
 int run_analyze(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = analyze_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(analyze_help(), specs);
-    return 0;
-  }
+  const Arguments args(analyze_options(), argv);
+  if (args.help_requested()) return print_help(analyze_help(), args);
   if (args.has("db")) {
     if (args.has("csv")) throw UsageError("give --csv or --db, not both");
     return analyze_database(args.text("db"), args.text("json"));

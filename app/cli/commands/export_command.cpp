@@ -36,12 +36,8 @@ CommandHelp export_help() {
 }  // namespace
 
 int run_export(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = export_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(export_help(), specs);
-    return 0;
-  }
+  const Arguments args(export_options(), argv);
+  if (args.help_requested()) return print_help(export_help(), args);
   args.require({"db", "out"});
   store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
   const std::filesystem::path dir = args.text("out");

@@ -116,12 +116,8 @@ CommandHelp grasps_help() {
 }  // namespace
 
 int run_grasps(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = grasps_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(grasps_help(), specs);
-    return 0;
-  }
+  const Arguments args(grasps_options(), argv);
+  if (args.help_requested()) return print_help(grasps_help(), args);
   args.require({"db"});
   const std::string by = args.choice("by", {"cube", "condition"});
   store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);

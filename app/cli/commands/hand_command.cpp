@@ -165,12 +165,8 @@ void write_simulated_json(std::ostream& out, const hand::HandShape& shape,
 }  // namespace
 
 int run_hand(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = hand_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(hand_help(), specs);
-    return 0;
-  }
+  const Arguments args(hand_options(), argv);
+  if (args.help_requested()) return print_help(hand_help(), args);
   hand::HandShape shape = hand::HandShape::with_length(args.number("length"));
   if (shape.length < 0.10 || shape.length > 0.30)
     throw UsageError("--length must be between 0.10 and 0.30 m");

@@ -42,12 +42,8 @@ CommandHelp merge_help() {
 }  // namespace
 
 int run_merge(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = merge_options();
-  const Arguments args(specs, argv, 100000);
-  if (args.help_requested()) {
-    std::cout << help_text(merge_help(), specs);
-    return 0;
-  }
+  const Arguments args(merge_options(), argv, 100000);
+  if (args.help_requested()) return print_help(merge_help(), args);
   args.require({"out"});
   if (args.positional().empty()) throw UsageError("name the study databases to merge");
   const std::string out = args.text("out");

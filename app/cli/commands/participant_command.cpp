@@ -33,12 +33,8 @@ CommandHelp participant_add_help() {
 }
 
 int participant_add(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = participant_add_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(participant_add_help(), specs);
-    return 0;
-  }
+  const Arguments args(participant_add_options(), argv);
+  if (args.help_requested()) return print_help(participant_add_help(), args);
   args.require({"db", "id", "age", "sex", "handedness", "hand-length", "vr-experience"});
   store::Participant p;
   p.id = args.text("id");

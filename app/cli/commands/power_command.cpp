@@ -163,7 +163,7 @@ studies::SlurmSeries power_series(const Arguments& args, const power::PowerOptio
 namespace {
 
 std::vector<OptionSpec> power_options() {
-  return {
+  std::vector<OptionSpec> specs = {
       {"protocol", "FILE", "the study protocol (its factors and blocks make the design)"},
       {"model", "FILE", "the data's model: cell means, SDs, correlation, ... (docs/power.md)"},
       {"pilot", "DB", "estimate the model from a pilot study's database instead"},
@@ -199,6 +199,8 @@ std::vector<OptionSpec> power_options() {
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the results as JSON (- for standard output)"},
   };
+  for (const OptionSpec& spec : slurm_option_specs()) specs.push_back(spec);
+  return specs;
 }
 
 CommandHelp power_help() {
@@ -376,14 +378,8 @@ void draw_power(const Arguments& args, const power::PowerReport& report,
 }  // namespace
 
 int run_power(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = power_options();
-  std::vector<OptionSpec> all_specs = specs;
-  for (const OptionSpec& spec : slurm_option_specs()) all_specs.push_back(spec);
-  const Arguments args(all_specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(power_help(), all_specs);
-    return 0;
-  }
+  const Arguments args(power_options(), argv);
+  if (args.help_requested()) return print_help(power_help(), args);
   args.require({"protocol"});
   check_modes(args);
   args.choice("world", {"proxy", "soft"});

@@ -47,12 +47,8 @@ CommandHelp render_help() {
 }  // namespace
 
 int run_render(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = render_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(render_help(), specs);
-    return 0;
-  }
+  const Arguments args(render_options(), argv);
+  if (args.help_requested()) return print_help(render_help(), args);
   const long width = args.integer("width"), height = args.integer("height");
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
     throw UsageError("--width and --height must be between 16 and 8192 pixels");

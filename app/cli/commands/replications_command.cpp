@@ -43,12 +43,8 @@ CommandHelp replications_help() {
 }  // namespace
 
 int run_replications(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = replications_options();
-  const Arguments args(specs, argv, 1000);
-  if (args.help_requested()) {
-    std::cout << help_text(replications_help(), specs);
-    return 0;
-  }
+  const Arguments args(replications_options(), argv, 1000);
+  if (args.help_requested()) return print_help(replications_help(), args);
   if (args.positional().empty()) throw UsageError("give one or more study databases");
   studies::SeriesOptions options;
   options.alpha = args.number("alpha");

@@ -41,12 +41,8 @@ CommandHelp report_help() {
 }  // namespace
 
 int run_report(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = report_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(report_help(), specs);
-    return 0;
-  }
+  const Arguments args(report_options(), argv);
+  if (args.help_requested()) return print_help(report_help(), args);
   if (!args.has("db")) throw UsageError("name the study database (--db DB)");
   if (!args.has("out")) throw UsageError("name the folder to write into (--out DIR)");
   report::ReportRequest request;

@@ -302,12 +302,8 @@ void draw_picture(const Arguments& args, const tracking::Recording& recording, t
 }  // namespace
 
 int run_retarget(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = retarget_options();
-  const Arguments args(specs, argv, 1);
-  if (args.help_requested()) {
-    std::cout << help_text(retarget_help(), specs);
-    return 0;
-  }
+  const Arguments args(retarget_options(), argv, 1);
+  if (args.help_requested()) return print_help(retarget_help(), args);
   if (args.positional().empty()) throw UsageError("name a recording");
   RetargetRun run;
   run.strategy = args.choice("strategy", {"naive", "ours"});

@@ -98,12 +98,8 @@ CommandHelp sensitivity_help() {
 
 int run_sensitivity(const std::vector<std::string>& argv) {
   const studies::SensitivityOptions defaults;
-  const std::vector<OptionSpec> specs = sensitivity_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(sensitivity_help(), specs);
-    return 0;
-  }
+  const Arguments args(sensitivity_options(), argv);
+  if (args.help_requested()) return print_help(sensitivity_help(), args);
   args.require({"protocol"});
   if (args.has("from") && args.has("work"))
     throw UsageError("--from reads an analysis run before: it takes no --work");

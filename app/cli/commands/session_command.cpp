@@ -47,12 +47,8 @@ CommandHelp session_run_help() {
 }
 
 int session_run(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = session_run_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(session_run_help(), specs);
-    return 0;
-  }
+  const Arguments args(session_run_options(), argv);
+  if (args.help_requested()) return print_help(session_run_help(), args);
   args.require({"db", "participant"});
   const std::string tracker = args.text("tracker");
   const std::string world = args.choice("world", {"proxy", "soft"});
@@ -122,12 +118,8 @@ CommandHelp session_decision_help(bool redo) {
 }
 
 int session_decision(const std::vector<std::string>& argv, bool redo) {
-  const std::vector<OptionSpec> specs = session_decision_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(session_decision_help(redo), specs);
-    return 0;
-  }
+  const Arguments args(session_decision_options(), argv);
+  if (args.help_requested()) return print_help(session_decision_help(redo), args);
   args.require({"db", "participant", "trial", "reason"});
   store::StudyStore store(args.text("db"));
   const std::string id = args.text("participant");

@@ -248,12 +248,8 @@ CommandHelp sim_bench_help() {
 }
 
 int sim_bench(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = sim_bench_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(sim_bench_help(), specs);
-    return 0;
-  }
+  const Arguments args(sim_bench_options(), argv);
+  if (args.help_requested()) return print_help(sim_bench_help(), args);
   const long scale = args.integer("scale");
   if (scale != 1 && scale != 4 && scale != 16) throw UsageError("--scale must be 1, 4 or 16");
   const sim::PinchScene setup = sim::make_pinch_scene(
@@ -427,12 +423,8 @@ CommandHelp sim_pinch_help() {
 }
 
 int sim_pinch(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = sim_pinch_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(sim_pinch_help(), specs);
-    return 0;
-  }
+  const Arguments args(sim_pinch_options(), argv);
+  if (args.help_requested()) return print_help(sim_pinch_help(), args);
   const double squeeze = args.number("squeeze");
   if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
   sim::SimParameters parameters = simulator_parameters(args);

@@ -338,12 +338,8 @@ CommandHelp sim_grasp_help() {
 }
 
 int sim_grasp(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = sim_grasp_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(sim_grasp_help(), specs);
-    return 0;
-  }
+  const Arguments args(sim_grasp_options(), argv);
+  if (args.help_requested()) return print_help(sim_grasp_help(), args);
   const std::vector<double> cubes = cube_sides(args);
   const std::string grid = args.choice("grid", {"single", "pairs", "none"});
   const long draws = args.integer("draws");

@@ -192,12 +192,8 @@ CommandHelp sim_pinches_help() {
 }
 
 int sim_pinches(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = sim_pinches_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(sim_pinches_help(), specs);
-    return 0;
-  }
+  const Arguments args(sim_pinches_options(), argv);
+  if (args.help_requested()) return print_help(sim_pinches_help(), args);
   const std::vector<std::string> recordings = args.all("recording");
   if (recordings.empty()) throw UsageError("name recordings with --recording FILE");
   std::vector<std::string> strategies;

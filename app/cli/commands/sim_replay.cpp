@@ -103,12 +103,8 @@ CommandHelp sim_replay_help() {
 }
 
 int sim_replay(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = sim_replay_options();
-  const Arguments args(specs, argv, 1);
-  if (args.help_requested()) {
-    std::cout << help_text(sim_replay_help(), specs);
-    return 0;
-  }
+  const Arguments args(sim_replay_options(), argv, 1);
+  if (args.help_requested()) return print_help(sim_replay_help(), args);
   if (args.positional().size() != 1) throw UsageError("name one recording");
   const std::string strategy_name = args.choice("strategy", {"naive", "ours"});
   const int threads = int(args.integer("threads"));

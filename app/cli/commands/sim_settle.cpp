@@ -190,12 +190,8 @@ CommandHelp sim_settle_help() {
 }
 
 int sim_settle(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = sim_settle_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(sim_settle_help(), specs);
-    return 0;
-  }
+  const Arguments args(sim_settle_options(), argv);
+  if (args.help_requested()) return print_help(sim_settle_help(), args);
   const Settings settings = parse(args);
   std::vector<Row> rows;
   for (double v : settings.speeds)

@@ -111,7 +111,7 @@ std::vector<int> shard_members(const Arguments& args, int participants) {
 namespace {
 
 std::vector<OptionSpec> simulate_options() {
-  return {
+  std::vector<OptionSpec> specs = {
       {"protocol", "FILE", "the study protocol (JSON, docs/study.md)"},
       {"participants", "N", "how many simulated participants to enrol", "20"},
       {"seed", "S", "the population seed: the same seed gives the same database content", "0"},
@@ -139,6 +139,12 @@ std::vector<OptionSpec> simulate_options() {
       {"quiet", "", "no progress line"},
       {"json", "OUT", "write the outcome per condition as JSON (- for standard output)"},
   };
+  // The Slurm settings after --studies.
+  const auto after_studies = std::find_if(specs.begin(), specs.end(),
+                                          [](const OptionSpec& o) { return o.name == "studies"; });
+  const std::vector<OptionSpec> slurm_specs = slurm_option_specs();
+  specs.insert(after_studies + 1, slurm_specs.begin(), slurm_specs.end());
+  return specs;
 }
 
 CommandHelp simulate_help() {
@@ -277,17 +283,8 @@ void write_outcome_json(std::ostream& out, const studies::SimulationReport& repo
 }  // namespace
 
 int run_simulate(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = simulate_options();
-  std::vector<OptionSpec> all_specs = specs;  // the Slurm settings after --studies
-  const auto after_studies = std::find_if(all_specs.begin(), all_specs.end(),
-                                          [](const OptionSpec& o) { return o.name == "studies"; });
-  const std::vector<OptionSpec> slurm_specs = slurm_option_specs();
-  all_specs.insert(after_studies + 1, slurm_specs.begin(), slurm_specs.end());
-  const Arguments args(all_specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(simulate_help(), all_specs);
-    return 0;
-  }
+  const Arguments args(simulate_options(), argv);
+  if (args.help_requested()) return print_help(simulate_help(), args);
   if (args.has("status")) {
     print_series_status(args.text("status"), args.has("json") ? args.text("json") : "");
     return 0;

@@ -28,12 +28,8 @@ CommandHelp study_create_help() {
 }
 
 int study_create(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = study_create_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(study_create_help(), specs);
-    return 0;
-  }
+  const Arguments args(study_create_options(), argv);
+  if (args.help_requested()) return print_help(study_create_help(), args);
   args.require({"protocol", "db"});
   const studies::Protocol protocol = studies::read_protocol(args.text("protocol"));
   store::StudyStore::create(args.text("db"), studies::study_definition(protocol));
@@ -117,12 +113,8 @@ void write_status_json(std::ostream& out, const store::StudyInfo& info,
 }
 
 int study_status(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = study_status_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(study_status_help(), specs);
-    return 0;
-  }
+  const Arguments args(study_status_options(), argv);
+  if (args.help_requested()) return print_help(study_status_help(), args);
   args.require({"db"});
   store::StudyStore store(args.text("db"));
   const store::StudyInfo info = store.study();
@@ -152,12 +144,8 @@ CommandHelp study_info_help() {
 }
 
 int study_info(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = study_info_options();
-  const Arguments args(specs, argv);
-  if (args.help_requested()) {
-    std::cout << help_text(study_info_help(), specs);
-    return 0;
-  }
+  const Arguments args(study_info_options(), argv);
+  if (args.help_requested()) return print_help(study_info_help(), args);
   args.require({"db"});
   store::StudyStore store(args.text("db"), store::StudyStore::Access::kReadOnly);
   const store::StudyInfo info = store.study();

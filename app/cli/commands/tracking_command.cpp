@@ -132,13 +132,9 @@ void write_info_json(std::ostream& out, const tracking::Recording& r, const Reco
 }
 
 int tracking_info(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = tracking_info_options();
-  const Arguments args(specs, argv, 1);
-  if (args.help_requested() || args.positional().empty()) {
-    if (!args.help_requested()) throw UsageError("name a recording");
-    std::cout << help_text(tracking_info_help(), specs);
-    return 0;
-  }
+  const Arguments args(tracking_info_options(), argv, 1);
+  if (args.help_requested()) return print_help(tracking_info_help(), args);
+  if (args.positional().empty()) throw UsageError("name a recording");
   const tracking::Recording r = tracking::read_recording(args.positional()[0]);
   const RecordingFigures figures = figures_of(r);
   const std::vector<FitFigures> fits = args.flag("fit") ? fits_of(r) : std::vector<FitFigures>{};
@@ -161,12 +157,8 @@ CommandHelp tracking_convert_help() {
 }
 
 int tracking_convert(const std::vector<std::string>& argv) {
-  const std::vector<OptionSpec> specs = tracking_convert_options();
-  const Arguments args(specs, argv, 1);
-  if (args.help_requested()) {
-    std::cout << help_text(tracking_convert_help(), specs);
-    return 0;
-  }
+  const Arguments args(tracking_convert_options(), argv, 1);
+  if (args.help_requested()) return print_help(tracking_convert_help(), args);
   if (args.positional().empty() || !args.has("out"))
     throw UsageError("name a recording and --out FILE");
   const tracking::Recording r = tracking::read_recording(args.positional()[0]);
