@@ -137,7 +137,9 @@ std::string format_options_help(const std::vector<OptionSpec>& specs) {
     else
       left += "  ";
     out << left << s.help;
-    if (!s.default_value.empty()) out << " (default " << s.default_value << ")";
+    // A help that says its default in words ("default: the machine's cores") keeps only that.
+    if (!s.default_value.empty() && s.help.find("default") == std::string::npos)
+      out << " (default " << s.default_value << ")";
     out << "\n";
   }
   out << "  --help                  show this help\n";

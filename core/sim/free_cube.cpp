@@ -1,6 +1,6 @@
 #include "core/sim/free_cube.h"
 
-#include "core/sim/hand_simulator.h"
+#include <utility>
 
 namespace handlab::sim {
 namespace {
@@ -19,10 +19,7 @@ SimOptions one_thread() {
 }  // namespace
 
 FreeCubeStepper::FreeCubeStepper(const SimParameters& parameters)
-    : model_(make_cube_sim_model(substepped(parameters))),
-      simulator_(std::make_unique<HandSimulator>(model_, one_thread())) {}
-
-FreeCubeStepper::~FreeCubeStepper() = default;
+    : model_(make_cube_sim_model(substepped(parameters))), solver_(model_, one_thread()) {}
 
 bool FreeCubeStepper::applies(const HandSimState& start, bool flesh_touching) {
   // Flat on its four corners and slower than this, it rests: a step with the hand keeps it
@@ -39,7 +36,10 @@ void FreeCubeStepper::step(const HandSimState& start, HandSimState& result) {
   cube.time = start.time;
   cube.cube_velocity = start.cube_velocity;
   cube.corner_floor = start.corner_floor;
-  for (int i = 0; i < kSubsteps; ++i) simulator_->step(cube, {});
+  for (int i = 0; i < kSubsteps; ++i) {
+    solver_.step(cube, {}, next_);
+    std::swap(cube, next_);
+  }
   result.cube_pose = cube.cube_pose;
   result.cube_velocity = cube.cube_velocity;
   result.corner_floor = cube.corner_floor;

@@ -6,21 +6,19 @@
 // cube's integration is finer, and only while nothing but the floor acts on it.
 #pragma once
 
-#include <memory>
-
 #include "core/sim/hand_sim_model.h"
 #include "core/sim/hand_sim_state.h"
+#include "core/sim/step_solver.h"
 
 namespace handlab::sim {
-
-class HandSimulator;
 
 class FreeCubeStepper {
  public:
   static constexpr int kSubsteps = 32;
 
   explicit FreeCubeStepper(const SimParameters& parameters);
-  ~FreeCubeStepper();
+  FreeCubeStepper(const FreeCubeStepper&) = delete;
+  FreeCubeStepper& operator=(const FreeCubeStepper&) = delete;
 
   // Whether the cube of a step from `start` is free and not resting: no flesh touched it in the
   // step (`flesh_touching`: inside it at the prediction or in a pass), and it did not lie still
@@ -33,7 +31,8 @@ class FreeCubeStepper {
 
  private:
   HandSimModel model_;  // the cube and the floor alone, its time step a substep
-  std::unique_ptr<HandSimulator> simulator_;
+  StepSolver solver_;   // one thread: six unknowns
+  HandSimState next_;   // a substep's result, kept for its buffers
 };
 
 }  // namespace handlab::sim

@@ -1,41 +1,16 @@
-// The step as a list of stages, each in its own file: predict; find contacts (contact.h); in
-// up to kFrictionPasses passes, evaluate the energy (flesh_energy.h, body_energies.h,
-// contact.h) into the Newton terms (newton_terms.h), solve for the increment (linear_solve.h),
-// search along it, and check the contacts the pass assumed (contact.h); velocities; friction
-// anchors for the next step; a cube that no flesh touches, not resting, again alone in
+// The step as two solvers side by side: the hand's and the cube's together (step_solver.h),
+// then, for a cube that no flesh touches and that is not resting, the cube alone again in
 // substeps (free_cube.h).
 #include "core/sim/hand_simulator.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "core/sim/body_energies.h"
-#include "core/sim/contact.h"
-#include "core/sim/flesh_energy.h"
 #include "core/sim/free_cube.h"
-#include "core/sim/increment.h"
-#include "core/sim/linear_solve.h"
-#include "core/sim/newton_matrix.h"
-#include "core/sim/newton_terms.h"
-#include "core/sim/thread_pool.h"
+#include "core/sim/step_solver.h"
 
 namespace handlab::sim {
 namespace {
-
-// How many times a step is taken again when its result disagrees with the contacts it
-// assumed (a point that entered a surface unseen, a slide that stopped, a stick that left the
-// cone).
-constexpr int kFrictionPasses = 4;
-// The largest rotation of a body in one Newton iteration (rad).
-constexpr double kMaxTurn = 0.25;
-
-// Where the step's Newton iterations are: the state and each body's rotation vector since the
-// step began (bones, then the cube).
-struct Iterate {
-  HandSimState state;
-  std::vector<Eigen::Vector3d> turned;
-};
 
 const SimOptions& checked(const SimOptions& options) {
   if (options.newton_iterations < 1)
@@ -53,118 +28,19 @@ void check_targets(const HandSimModel& model, const std::vector<RigidPose>& targ
       throw std::invalid_argument("HandSimulator::step: a target that is not a finite pose");
 }
 
-// Every body carried on by its velocity.
-Iterate predict(const HandSimModel& model, const HandSimState& start) {
-  const double h = model.parameters.time_step;
-  Iterate it{start, std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1))};
-  HandSimState& s = it.state;
-  for (int n = 0; n < model.node_count(); ++n)
-    s.node_position[std::size_t(n)] += h * s.node_velocity[std::size_t(n)];
-  auto carry = [&](RigidPose& pose, const RigidVelocity& v, Eigen::Vector3d& rotated) {
-    pose.position += h * v.linear;
-    rotated = h * v.angular;
-    pose.rotation = (rotation_from_vector(rotated) * pose.rotation).normalized();
-  };
-  for (int b = 0; b < model.bone_count(); ++b)
-    carry(s.bone_pose[std::size_t(b)], s.bone_velocity[std::size_t(b)], it.turned[std::size_t(b)]);
-  carry(s.cube_pose, s.cube_velocity, it.turned.back());
-  return it;
-}
-
-// The longest step along dq that no body turns by more than kMaxTurn in: the linearisation of
-// a rotation holds over a fraction of a radian, and a cube, symmetric under quarter turns, can
-// lower the energy by a turn of several radians that no physical step takes.
-double turn_limited_length(const HandSimModel& model, const Eigen::VectorXd& dq) {
-  double largest_turn = 0.0;
-  for (int b = 0; b <= model.bone_count(); ++b)
-    largest_turn = std::max(largest_turn, dq.segment<3>(3 * (bone_block(model, b) + 1)).norm());
-  return largest_turn > kMaxTurn ? kMaxTurn / largest_turn : 1.0;
-}
-
-// Velocities from the step taken.
-void finish(const HandSimModel& model, const HandSimState& start, Iterate& it) {
-  const double h = model.parameters.time_step;
-  HandSimState& s = it.state;
-  for (int n = 0; n < model.node_count(); ++n)
-    s.node_velocity[std::size_t(n)] =
-        (s.node_position[std::size_t(n)] - start.node_position[std::size_t(n)]) / h;
-  for (int b = 0; b < model.bone_count(); ++b) {
-    s.bone_velocity[std::size_t(b)].linear =
-        (s.bone_pose[std::size_t(b)].position - start.bone_pose[std::size_t(b)].position) / h;
-    s.bone_velocity[std::size_t(b)].angular = it.turned[std::size_t(b)] / h;
-  }
-  s.cube_velocity.linear = (s.cube_pose.position - start.cube_pose.position) / h;
-  // A cube that turned by more than kMaxTurn in the step spins faster than a step resolves:
-  // carried on, its next prediction would turn it by a good part of a quarter turn, where its
-  // contacts alias (the corners that touch the floor change places unseen) and the floor
-  // pushes it on instead of braking it. Its spin is bounded by kMaxTurn a step (30 rad/s at
-  // 120 Hz; game engines bound it likewise, Unity's default at 50 rad/s).
-  const double turn = it.turned.back().norm();
-  s.cube_velocity.angular = (turn > kMaxTurn ? kMaxTurn / turn : 1.0) * it.turned.back() / h;
-  s.time = start.time + h;
+int contact_count(const HandSimState& s) {
+  return int(s.node_cube.size() + s.sample_cube.size() + s.node_floor.size() +
+             s.corner_floor.size());
 }
 
 }  // namespace
 
 struct HandSimulator::Impl {
   const HandSimModel& model;
-  SimOptions options;
-  ThreadPool pool;
-  NewtonLayout layout;
-  SolverMemory memory;
-  // Within a step: the terms of the evaluation at hand, the part of the matrix's diagonal that
-  // the passes keep, the flesh's per-worker buffers, the contacts.
-  NewtonTerms terms;
-  NewtonDiagonal diagonal;
-  FleshBuffers flesh_buffers;
-  std::vector<Contact> contacts;
-  // The first pass's terms but the contacts' (energy and gradient; the matrix's terms are
-  // those before terms.first_contact_*): a step's later passes start where its first did,
-  // the tets' rotations as it found them, and only their contacts differ.
-  Eigen::VectorXd kept_gradient;
-  double kept_energy = 0.0;
+  StepSolver solver;
   std::unique_ptr<FreeCubeStepper> free_cube;  // made when first needed (a hand's model only)
 
-  Impl(const HandSimModel& m, const SimOptions& o) : model(m), options(o), pool(o.threads) {
-    analyze_newton_matrix(model, memory, layout);
-  }
-
-  // h^2 times the backward-Euler energy at the iterate, with `hessian` its gradient and
-  // Gauss-Newton Hessian (without, as the line search needs, the energy alone). `reuse`: kKeep
-  // keeps every term but the contacts'; kKept takes them from the last kKeep.
-  enum class Reuse { kNone, kKeep, kKept };
-  double evaluate(Iterate& it, const HandSimState& start, const std::vector<RigidPose>& targets,
-                  bool hessian, Reuse reuse = Reuse::kNone) {
-    terms.with_hessian = hessian;
-    if (reuse == Reuse::kKept) {
-      terms.gradient = kept_gradient;
-      terms.energy = kept_energy;
-      terms.springs.resize(terms.first_contact_spring);
-      terms.blocks.resize(terms.first_contact_block);
-    } else {
-      terms.clear(model.dof_count(), hessian);
-      if (hessian) {
-        diagonal.known = false;
-        ++memory.terms_found;
-      }
-      add_flesh(model, it.state, terms, pool, flesh_buffers);
-      add_coupling(model, it.state, terms, &layout);
-      add_joints(model, it.state, terms, &layout);
-      add_tracking(model, it.state, targets, terms);
-      add_gravity(model, it.state, terms);
-      add_kinetic(model, it.state, it.turned, start, terms);
-      if (hessian) {
-        terms.first_contact_spring = terms.springs.size();
-        terms.first_contact_block = terms.blocks.size();
-      }
-      if (reuse == Reuse::kKeep) {
-        kept_gradient = terms.gradient;
-        kept_energy = terms.energy;
-      }
-    }
-    add_contact_energies(model, it.state, contacts, terms);
-    return terms.energy;
-  }
+  Impl(const HandSimModel& m, const SimOptions& o) : model(m), solver(m, o) {}
 };
 
 HandSimulator::HandSimulator(const HandSimModel& model, SimOptions options)
@@ -176,65 +52,16 @@ const HandSimModel& HandSimulator::model() const {
 
 SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPose>& targets) {
   Impl& sim = *impl_;
-  const HandSimModel& model = sim.model;
-  check_targets(model, targets);
-  sim.terms.scale = model.parameters.time_step * model.parameters.time_step;
-  ++sim.memory.step;
-  sim.memory.solves_this_step = 0;
-  const HandSimState& start = state;
-  const Iterate predicted = predict(model, start);
-  find_contacts(model, predicted.state, sim.contacts);
-
-  // Newton on the step's energy, each step backtracked until the energy decreases (Armijo):
-  // contacts make the energy piecewise quadratic, and a full step that runs into a surface the
-  // linearisation did not see would land deep inside it. Every pass starts from the
-  // prediction, and (one Newton iteration a pass, so that its Hessian terms are still the
-  // first evaluation's) takes the flesh's terms from the first pass: only contacts differ.
-  SimStepReport report;
-  Iterate iterate = predicted, rotations_found;
-  for (int pass = 0; pass < kFrictionPasses; ++pass) {
-    using Reuse = Impl::Reuse;
-    if (pass > 0) iterate = rotations_found;
-    const bool kept = pass > 0 && sim.options.newton_iterations == 1;
-    double current =
-        sim.evaluate(iterate, start, targets, true, kept ? Reuse::kKept : Reuse::kKeep);
-    if (pass == 0) rotations_found = iterate;  // the prediction with its tets' rotations
-    for (int newton = 0; newton < sim.options.newton_iterations; ++newton) {
-      report.residual = sim.terms.gradient.lpNorm<Eigen::Infinity>() / sim.terms.scale;
-      const Eigen::VectorXd dq = solve_newton_step(model, sim.terms, sim.layout, sim.diagonal,
-                                                   sim.options, sim.pool, sim.memory, report);
-      const double slope = sim.terms.gradient.dot(dq);
-      Iterate trial = iterate;
-      double length = turn_limited_length(model, dq);
-      // Where the state already solves the step (CG's first residual within its tolerance, so
-      // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
-      for (int halving = 0; halving < 12 && slope < 0; ++halving, length *= 0.5) {
-        trial = iterate;
-        apply_increment(model, trial.state, trial.turned, dq, length);
-        if (sim.evaluate(trial, start, targets, false) <= current + 1e-4 * length * slope) break;
-        ++report.halvings;
-      }
-      iterate = std::move(trial);
-      report.newton_iterations += 1;
-      if (newton + 1 < sim.options.newton_iterations)
-        current = sim.evaluate(iterate, start, targets, true);
-    }
-    const bool entered = contacts_entered(model, iterate.state, sim.contacts);
-    if (!friction_changed(model, iterate.state, sim.contacts) && !entered) break;
+  check_targets(sim.model, targets);
+  HandSimState next;
+  SimStepReport report = sim.solver.step(state, targets, next);
+  if (sim.model.node_count() > 0 &&
+      FreeCubeStepper::applies(state, sim.solver.flesh_touched_cube())) {
+    if (!sim.free_cube) sim.free_cube = std::make_unique<FreeCubeStepper>(sim.model.parameters);
+    sim.free_cube->step(state, next);
   }
-  finish(model, start, iterate);
-  report.max_penetration = update_anchors(model, sim.contacts, iterate.state);
-  // `curved`: inside the cube at the prediction, or carried inside by a pass.
-  const bool flesh_touching = std::any_of(sim.contacts.begin(), sim.contacts.end(),
-                                          [](const Contact& c) { return on_cube(c) && c.curved; });
-  if (model.node_count() > 0 && FreeCubeStepper::applies(start, flesh_touching)) {
-    if (!sim.free_cube) sim.free_cube = std::make_unique<FreeCubeStepper>(model.parameters);
-    sim.free_cube->step(start, iterate.state);
-  }
-  const HandSimState& r = iterate.state;
-  report.contacts =
-      int(r.node_cube.size() + r.sample_cube.size() + r.node_floor.size() + r.corner_floor.size());
-  state = std::move(iterate.state);
+  report.contacts = contact_count(next);
+  state = std::move(next);
   return report;
 }
 

@@ -78,7 +78,8 @@ std::set<std::string> option_words(const std::string& text) {
 
 // Every command's usage is written from its option table (app/cli/command_help.h): each
 // option a usage line names is one its --help lists, a family's list of its subcommands says
-// what each subcommand's own --help says, and a usage that leaves options out says so.
+// what each subcommand's own --help says, a usage that leaves options out says so, and
+// each option says its default once.
 TEST(Cli, EveryUsageNamesOnlyTheOptionsItsTableHas) {
   const Result top = run_cli("--help");
   std::vector<std::string> commands;
@@ -110,6 +111,15 @@ TEST(Cli, EveryUsageNamesOnlyTheOptionsItsTableHas) {
       ASSERT_EQ(help.status, 0) << line;
       const std::string table = help.out.substr(help.out.find("\nOptions:\n"));
       const std::set<std::string> listed = option_words(table);
+      // An option says its default once: in its words, or as the table's value.
+      for (std::size_t at = table.find('\n'); at != std::string::npos;
+           at = table.find('\n', at + 1)) {
+        const std::string row = table.substr(at + 1, table.find('\n', at + 1) - at - 1);
+        const std::size_t first = row.find("default");
+        EXPECT_TRUE(first == std::string::npos ||
+                    row.find("default", first + 1) == std::string::npos)
+            << row;
+      }
       for (const std::string& word : option_words(line)) {
         EXPECT_TRUE(listed.count(word)) << line << ": " << word;
       }
