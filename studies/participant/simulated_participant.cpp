@@ -29,10 +29,11 @@ SimulatedParticipant::SimulatedParticipant(const SimulatedPerson& person, const 
       dt_(1.0 / trial.rate_hz) {
   const MotorParameters& m = person_.motor;
   // Practice shortens what every trial shares with the trials done.
-  practised_general_ = practice_factor(memory_.trials + 1, m.practice_rate, m.practice_floor);
-  reaction_time_ =
-      practised_general_ * random_.ex_gaussian(m.reaction_mu, m.reaction_sigma, m.reaction_tau);
-  for (int i = 0; i < 3; ++i) tremor_phase_[i] = 2 * std::numbers::pi * random_.uniform();
+  learnt_.practised_general =
+      practice_factor(memory_.trials + 1, m.practice_rate, m.practice_floor);
+  plan_.reaction_time = learnt_.practised_general *
+                        random_.ex_gaussian(m.reaction_mu, m.reaction_sigma, m.reaction_tau);
+  for (int i = 0; i < 3; ++i) plan_.tremor_phase[i] = 2 * std::numbers::pi * random_.uniform();
 }
 
 const char* SimulatedParticipant::phase_name() const {
@@ -41,11 +42,11 @@ const char* SimulatedParticipant::phase_name() const {
                                 "lift",          "check lift", "transport",   "check transport",
                                 "lower",         "release",    "wait rest",   "withdraw",
                                 "reopen",        "free cube",  "idle"};
-  return names[int(phase_)];
+  return names[int(phase_.phase)];
 }
 
 Activity SimulatedParticipant::activity() const {
-  switch (phase_) {
+  switch (phase_.phase) {
     case Phase::kReact:
       return Activity::kReact;
     case Phase::kReach:
@@ -113,7 +114,7 @@ SimulatedParticipant::Seen SimulatedParticipant::see(const Observation& o) const
     const Eigen::Vector3d axis = frame.linear().col(1);
     // In a tip pinch it watches the fingertips themselves.
     const double along =
-        pinch_ == Pinch::kTip
+        plan_.pinch == Pinch::kTip
             ? length
             : std::clamp(axis.dot(o.cube_position - frame.translation()), 0.2 * length, length);
     return Eigen::Vector3d(frame.translation() + along * axis);
@@ -147,18 +148,19 @@ Eigen::Vector3d SimulatedParticipant::grasp_point(const Observation& o) const {
   const double side = o.cube_size;
   const double bottom = o.cube_position.y() - 0.5 * side;
   const double height =
-      (pinch_ == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012)) - grasp_lower_;
-  return Eigen::Vector3d(o.cube_position.x() - aim_x_.correction(), bottom + height,
-                         o.cube_position.z() - aim_z_.correction());
+      (plan_.pinch == Pinch::kTip ? 0.5 * side : std::max(0.4 * side, side - 0.012)) -
+      learnt_.grasp_lower;
+  return Eigen::Vector3d(o.cube_position.x() - learnt_.aim_x.correction(), bottom + height,
+                         o.cube_position.z() - learnt_.aim_z.correction());
 }
 
 bool SimulatedParticipant::cube_at_rest(const Seen& s) {
-  if (resting_since_ < 0 || (s.cube - resting_at_).norm() > behaviour().rest_travel) {
-    resting_since_ = time_;
-    resting_at_ = s.cube;
+  if (phase_.resting_since < 0 || (s.cube - phase_.resting_at).norm() > behaviour().rest_travel) {
+    phase_.resting_since = time_;
+    phase_.resting_at = s.cube;
     return false;
   }
-  return time_ - resting_since_ >= behaviour().rest_look;
+  return time_ - phase_.resting_since >= behaviour().rest_look;
 }
 
 bool SimulatedParticipant::in_zone_b(const Seen& s, const Observation& o) {
@@ -171,8 +173,9 @@ double SimulatedParticipant::clearance(const Seen& s, const Observation& o) cons
 }
 
 double SimulatedParticipant::aperture_now() const {
-  const double u = aperture_duration_ > 0 ? (time_ - aperture_start_) / aperture_duration_ : 1.0;
-  return aperture_from_ + minimum_jerk(u) * (aperture_to_ - aperture_from_);
+  const double u =
+      plan_.aperture_duration > 0 ? (time_ - plan_.aperture_start) / plan_.aperture_duration : 1.0;
+  return plan_.aperture_from + minimum_jerk(u) * (plan_.aperture_to - plan_.aperture_from);
 }
 
 // Its own hand's opening: the margin over the object scales with the hand (body-scaled
@@ -185,20 +188,20 @@ double SimulatedParticipant::peak_aperture(double cube_size) const {
 }
 
 double SimulatedParticipant::grasp_paced(double duration, double practice) const {
-  return duration * (practice + std::min(caution_, 1.0) * (1 - practice));
+  return duration * (practice + std::min(learnt_.caution, 1.0) * (1 - practice));
 }
 
 double SimulatedParticipant::lift_time() const {
   const double height = behaviour().lift_height;
   return grasp_paced(fitts_time(person_.motor.fitts_a, person_.motor.fitts_b, height, height),
-                     practised_movement_);
+                     learnt_.practised_movement);
 }
 
 void SimulatedParticipant::grasp_failed() {
   // Post-error slowing (Rabbitt 1966): the grasps after a failed one give back practice's
   // speed-up, as people trade speed for accuracy by what errors cost them (Dean, Wu &
   // Maloney 2007).
-  caution_ += person_.motor.post_error_caution;
+  learnt_.caution += person_.motor.post_error_caution;
   experience_.caution_added += person_.motor.post_error_caution;
 }
 
@@ -213,21 +216,22 @@ double SimulatedParticipant::correction(double distance, double width) const {
 }
 
 void SimulatedParticipant::move_grip(const Eigen::Vector3d& target, double duration, bool noisy) {
-  const Eigen::Vector3d now = grip_.at(time_) + servo_;
-  servo_.setZero();
+  const Eigen::Vector3d now = plan_.grip.at(time_) + plan_.servo;
+  plan_.servo.setZero();
   Eigen::Vector3d end = target;
   if (noisy) {
     const MotorParameters& m = person_.motor;
     end += random_.normal3(m.noise_constant + m.noise_proportional * (target - now).norm());
   }
-  grip_ = MinimumJerkMove{now, end, time_, std::max(duration, dt_)};
+  plan_.grip = MinimumJerkMove{now, end, time_, std::max(duration, dt_)};
 }
 
 void SimulatedParticipant::move_aperture(double target, double duration) {
-  aperture_from_ = aperture_now();
-  aperture_to_ = std::clamp(target, hand_.min_aperture(pinch_), hand_.max_aperture(pinch_));
-  aperture_start_ = time_;
-  aperture_duration_ = std::max(duration, dt_);
+  plan_.aperture_from = aperture_now();
+  plan_.aperture_to =
+      std::clamp(target, hand_.min_aperture(plan_.pinch), hand_.max_aperture(plan_.pinch));
+  plan_.aperture_start = time_;
+  plan_.aperture_duration = std::max(duration, dt_);
 }
 
 void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
@@ -238,13 +242,13 @@ void SimulatedParticipant::plan_reach(const Observation& o, const Seen& s) {
   // The hand must end with the open pads either side of the cube: the clearance they leave
   // is the reach's tolerance.
   const double duration =
-      fitts((target - (grip_.at(time_) + servo_)).norm(),
+      fitts((target - (plan_.grip.at(time_) + plan_.servo)).norm(),
             std::max(peak_aperture(o.cube_size) - o.cube_size, behaviour().min_clearance));
   move_grip(target, duration, true);
   move_aperture(peak_aperture(o.cube_size), person_.motor.peak_aperture_at * duration);
-  corrections_this_move_ = 0;
-  servo_on_ = false;
-  phase_ = Phase::kReach;
+  plan_.corrections_this_move = 0;
+  plan_.servo_on = false;
+  phase_.phase = Phase::kReach;
 }
 
 void SimulatedParticipant::slipped(const Observation& o, const Seen& s) {
@@ -258,14 +262,14 @@ void SimulatedParticipant::slipped(const Observation& o, const Seen& s) {
   // stayed apart let it go: it grips harder (Johansson & Westling 1984). A closing that missed
   // or a cube that came to rest outside B says nothing of either.
   if (s.hand && s.aperture < o.cube_size) {
-    const double lower = lower_within(grasp_lower_ + person_.motor.regrasp_lower);
-    experience_.lowered += lower - grasp_lower_;
-    grasp_lower_ = lower;
+    const double lower = lower_within(learnt_.grasp_lower + person_.motor.regrasp_lower);
+    experience_.lowered += lower - learnt_.grasp_lower;
+    learnt_.grasp_lower = lower;
   } else {
     const double margin =
-        margin_within(extra_squeeze_ + person_.motor.regrasp_squeeze, o.cube_size);
-    experience_.squeeze_added += margin - extra_squeeze_;
-    extra_squeeze_ = margin;
+        margin_within(learnt_.extra_squeeze + person_.motor.regrasp_squeeze, o.cube_size);
+    experience_.squeeze_added += margin - learnt_.extra_squeeze;
+    learnt_.extra_squeeze = margin;
   }
   start_regrasp();
 }
@@ -283,12 +287,12 @@ double SimulatedParticipant::lower_within(double lower) const {
 }
 
 void SimulatedParticipant::start_regrasp() {
-  servo_on_ = false;
+  plan_.servo_on = false;
   const double cube = shown_.empty() ? 0.0 : shown_.back().cube_size;
   move_aperture(peak_aperture(cube), practised(behaviour().reopen_time));
-  move_grip(grip_.at(time_) + servo_ + up(behaviour().approach_height),
+  move_grip(plan_.grip.at(time_) + plan_.servo + up(behaviour().approach_height),
             practised(behaviour().reopen_rise_time), false);
-  phase_ = Phase::kReopen;
+  phase_.phase = Phase::kReopen;
 }
 
 // How the seen aperture follows its own, learnt while the virtual fingers touch nothing.
@@ -297,19 +301,20 @@ void SimulatedParticipant::learn_gain(const Observation& o, const Seen& s) {
   const OwnState own = own_at(o.time);
   if (own.aperture <= behaviour().gain_min_aperture) return;
   const double g = s.aperture / own.aperture;
-  gain_estimate_ = gain_samples_++ == 0 ? g
-                                        : (1 - behaviour().gain_smoothing) * gain_estimate_ +
-                                              behaviour().gain_smoothing * g;
+  learnt_.gain_estimate = learnt_.gain_samples++ == 0
+                              ? g
+                              : (1 - behaviour().gain_smoothing) * learnt_.gain_estimate +
+                                    behaviour().gain_smoothing * g;
 }
 
 // Continuous correction of the grip towards the grasp point it sees (the descent's own plan
 // sets the height).
 void SimulatedParticipant::servo(const Observation& o, const Seen& s) {
-  if (!servo_on_ || !s.hand) return;
+  if (!plan_.servo_on || !s.hand) return;
   const Eigen::Vector3d offset = s.grip - own_at(o.time).grip;
-  Eigen::Vector3d error = grasp_point(o) - offset - (grip_.to + servo_);
+  Eigen::Vector3d error = grasp_point(o) - offset - (plan_.grip.to + plan_.servo);
   error.y() = 0;
-  servo_ += behaviour().servo_gain * dt_ * error;
+  plan_.servo += behaviour().servo_gain * dt_ * error;
 }
 
 // A cube it sees caught on the hand while it goes for the cube (stuck to a fingertip, in a
@@ -318,21 +323,23 @@ void SimulatedParticipant::servo(const Observation& o, const Seen& s) {
 bool SimulatedParticipant::watch_for_caught_cube(const Observation* o, const Seen& s) {
   if (o && s.hand && !s.both_touching &&
       s.cube.y() - 0.5 * o->cube_size > behaviour().caught_height) {
-    if (off_floor_since_ < 0) off_floor_since_ = time_;
+    if (phase_.off_floor_since < 0) phase_.off_floor_since = time_;
   } else if (o) {
-    off_floor_since_ = -1;
+    phase_.off_floor_since = -1;
   }
-  caught_ = off_floor_since_ >= 0 && time_ - off_floor_since_ >= behaviour().caught_look;
-  const bool going_for_cube = phase_ == Phase::kReach || phase_ == Phase::kCheckReach ||
-                              phase_ == Phase::kDescend || phase_ == Phase::kCheckDescent ||
-                              phase_ == Phase::kReopen;
-  if (!going_for_cube || !caught_) return false;
+  phase_.caught =
+      phase_.off_floor_since >= 0 && time_ - phase_.off_floor_since >= behaviour().caught_look;
+  const bool going_for_cube = phase_.phase == Phase::kReach || phase_.phase == Phase::kCheckReach ||
+                              phase_.phase == Phase::kDescend ||
+                              phase_.phase == Phase::kCheckDescent ||
+                              phase_.phase == Phase::kReopen;
+  if (!going_for_cube || !phase_.caught) return false;
   ++experience_.corrections;
-  wipes_ = 0;
-  servo_on_ = false;
-  move_grip(grip_.at(time_) + servo_, dt_, false);  // it stops where it is
-  move_aperture(hand_.max_aperture(pinch_), practised(behaviour().reopen_time));
-  phase_ = Phase::kFreeCube;
+  phase_.wipes = 0;
+  plan_.servo_on = false;
+  move_grip(plan_.grip.at(time_) + plan_.servo, dt_, false);  // it stops where it is
+  move_aperture(hand_.max_aperture(plan_.pinch), practised(behaviour().reopen_time));
+  phase_.phase = Phase::kFreeCube;
   return true;
 }
 
@@ -344,11 +351,13 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
   const Eigen::Vector3d error = grasp_point(o) + up(behaviour().approach_height) - s.grip;
   const double tolerance =
       std::max(behaviour().min_tolerance, behaviour().reach_tolerance_share * clearance(s, o));
-  if (s.hand && error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections) {
-    ++corrections_this_move_;
+  if (s.hand && error.norm() > tolerance &&
+      plan_.corrections_this_move < behaviour().max_corrections) {
+    ++plan_.corrections_this_move;
     ++experience_.corrections;
-    move_grip(grip_.at(time_) + servo_ + error, correction(error.norm(), 2 * tolerance), true);
-    phase_ = Phase::kReach;
+    move_grip(plan_.grip.at(time_) + plan_.servo + error, correction(error.norm(), 2 * tolerance),
+              true);
+    phase_.phase = Phase::kReach;
     return;
   }
   const Eigen::Vector3d offset =
@@ -358,11 +367,11 @@ void SimulatedParticipant::check_reach(const Observation& o, const Seen& s) {
   // After its peak the grip closes while the hand comes down, to a little wider than the
   // cube it sees, so that the final closing is short.
   move_aperture((o.cube_size + 2 * behaviour().pre_contact_margin) /
-                    std::max(gain_estimate_, behaviour().min_gain),
+                    std::max(learnt_.gain_estimate, behaviour().min_gain),
                 descent);
-  servo_on_ = true;
-  corrections_this_move_ = 0;
-  phase_ = Phase::kDescend;
+  plan_.servo_on = true;
+  plan_.corrections_this_move = 0;
+  phase_.phase = Phase::kDescend;
 }
 
 void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
@@ -376,12 +385,12 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   const double depth = o.cube_position.y() + 0.5 * o.cube_size - target.y();
   const double vertical = std::max(behaviour().min_tolerance, share * depth);
   if (s.hand && (horizontal(error).norm() > across || std::abs(error.y()) > vertical) &&
-      corrections_this_move_ < behaviour().max_corrections) {
-    ++corrections_this_move_;
+      plan_.corrections_this_move < behaviour().max_corrections) {
+    ++plan_.corrections_this_move;
     ++experience_.corrections;
-    move_grip(grip_.at(time_) + servo_ + error,
+    move_grip(plan_.grip.at(time_) + plan_.servo + error,
               correction(error.norm(), 2 * std::min(across, vertical)), true);
-    phase_ = Phase::kDescend;
+    phase_.phase = Phase::kDescend;
     return;
   }
   ++experience_.grasp_attempts;
@@ -390,68 +399,69 @@ void SimulatedParticipant::check_descent(const Observation& o, const Seen& s) {
   // that, so that the digits arrive at the cube as their movement ends (Smeets & Brenner 1999).
   // The grip a slip taught it is added once the pads touch (the loading phase): grip force
   // builds up after contact (Johansson & Westling 1984), not in the transport of the digits.
-  expected_contact_ =
-      o.cube_size / std::max(gain_estimate_, behaviour().min_gain) + contact_.correction();
-  closing_touched_ = false;
-  move_aperture(expected_contact_ - behaviour().closing_past_contact,
-                grasp_paced(person_.motor.closing_time, practised_movement_));
-  phase_ = Phase::kClose;
+  learnt_.expected_contact = o.cube_size / std::max(learnt_.gain_estimate, behaviour().min_gain) +
+                             learnt_.contact.correction();
+  phase_.closing_touched = false;
+  move_aperture(learnt_.expected_contact - behaviour().closing_past_contact,
+                grasp_paced(person_.motor.closing_time, learnt_.practised_movement));
+  phase_.phase = Phase::kClose;
 }
 
 void SimulatedParticipant::closing_contact(const std::optional<double>& error) {
   experience_.contact_errors.push_back(error);
-  contact_ = after_closing(contact_, error, person_.motor.contact_rates);
+  learnt_.contact = after_closing(learnt_.contact, error, person_.motor.contact_rates);
 }
 
 void SimulatedParticipant::closing_aim(const Eigen::Vector3d& error) {
   experience_.aim_errors.push_back({error.x(), error.z()});
-  aim_x_ = adapt(aim_x_, person_.motor.contact_rates, error.x());
-  aim_z_ = adapt(aim_z_, person_.motor.contact_rates, error.z());
+  learnt_.aim_x = adapt(learnt_.aim_x, person_.motor.contact_rates, error.x());
+  learnt_.aim_z = adapt(learnt_.aim_z, person_.motor.contact_rates, error.z());
 }
 
 void SimulatedParticipant::close(const Observation* o, const Seen& s) {
   // The first pad seen on the cube: what its own aperture was there tells it how far off its
   // expectation was, for its next closing.
-  if (o && !closing_touched_ && (s.thumb_on || s.index_on)) {
-    closing_touched_ = true;
-    closing_contact(own_at(o->time).aperture - expected_contact_);
+  if (o && !phase_.closing_touched && (s.thumb_on || s.index_on)) {
+    phase_.closing_touched = true;
+    closing_contact(own_at(o->time).aperture - learnt_.expected_contact);
     closing_aim(s.grip - s.cube);
   }
   if (o && s.both_touching) {
     // Build up the grip (the loading phase) from where the hand is.
-    move_aperture(aperture_now() - behaviour().grip_loading - extra_squeeze_,
-                  grasp_paced(person_.motor.confirm_dwell, practised_general_));
-    touching_since_ = time_;
-    phase_ = Phase::kConfirm;
+    move_aperture(aperture_now() - behaviour().grip_loading - learnt_.extra_squeeze,
+                  grasp_paced(person_.motor.confirm_dwell, learnt_.practised_general));
+    phase_.touching_since = time_;
+    phase_.phase = Phase::kConfirm;
     return;
   }
-  if (phase_ == Phase::kClose && time_ >= aperture_start_ + aperture_duration_)
-    phase_ = Phase::kSlowClose;
-  if (phase_ != Phase::kSlowClose) return;
-  const double now = aperture_to_;
-  if (now <= hand_.min_aperture(pinch_) + 1e-4) {
+  if (phase_.phase == Phase::kClose && time_ >= plan_.aperture_start + plan_.aperture_duration)
+    phase_.phase = Phase::kSlowClose;
+  if (phase_.phase != Phase::kSlowClose) return;
+  const double now = plan_.aperture_to;
+  if (now <= hand_.min_aperture(plan_.pinch) + 1e-4) {
     ++experience_.time.missed_closings;
-    if (!closing_touched_) closing_contact(std::nullopt);
+    if (!phase_.closing_touched) closing_contact(std::nullopt);
     grasp_failed();
     start_regrasp();
     return;
   }
-  aperture_from_ = aperture_to_ =
-      std::max(now - behaviour().slow_closing * dt_, hand_.min_aperture(pinch_));
-  aperture_duration_ = 0.0;
+  plan_.aperture_from = plan_.aperture_to =
+      std::max(now - behaviour().slow_closing * dt_, hand_.min_aperture(plan_.pinch));
+  plan_.aperture_duration = 0.0;
 }
 
 void SimulatedParticipant::confirm(const Observation* o, const Seen& s) {
   if (o && !s.both_touching) {
-    touching_since_ = -1;
-    phase_ = Phase::kSlowClose;
+    phase_.touching_since = -1;
+    phase_.phase = Phase::kSlowClose;
     return;
   }
-  if (time_ - touching_since_ < grasp_paced(person_.motor.confirm_dwell, practised_general_))
+  if (time_ - phase_.touching_since <
+      grasp_paced(person_.motor.confirm_dwell, learnt_.practised_general))
     return;
-  servo_on_ = false;
-  move_grip(grip_.at(time_) + servo_ + up(behaviour().lift_height), lift_time(), false);
-  phase_ = Phase::kLift;
+  plan_.servo_on = false;
+  move_grip(plan_.grip.at(time_) + plan_.servo + up(behaviour().lift_height), lift_time(), false);
+  phase_.phase = Phase::kLift;
 }
 
 void SimulatedParticipant::check_lift(const Observation& o, const Seen& s) {
@@ -464,41 +474,42 @@ void SimulatedParticipant::check_lift(const Observation& o, const Seen& s) {
 
 // To over B, or a correction of the cube's place there; then down to set it on the floor.
 void SimulatedParticipant::aim_transport(const Observation& o, const Seen& s, bool first) {
-  if (first) corrections_this_move_ = 0;
+  if (first) plan_.corrections_this_move = 0;
   // The cube it sees, moved on by what its hand did since.
-  const Eigen::Vector3d own_now = grip_.at(time_) + servo_;
+  const Eigen::Vector3d own_now = plan_.grip.at(time_) + plan_.servo;
   const Eigen::Vector3d cube_now = s.cube + (own_now - own_at(o.time).grip);
   const Eigen::Vector3d error = horizontal(o.zone_b - cube_now);
   const double tolerance =
       std::max(behaviour().placement_tolerance,
                0.5 * (o.zone_size - o.cube_size) - behaviour().placement_margin);
-  if (first || (error.norm() > tolerance && corrections_this_move_ < behaviour().max_corrections)) {
+  if (first ||
+      (error.norm() > tolerance && plan_.corrections_this_move < behaviour().max_corrections)) {
     if (!first) {
-      ++corrections_this_move_;
+      ++plan_.corrections_this_move;
       ++experience_.corrections;
     }
     move_grip(own_now + error,
               first ? fitts(error.norm(), o.zone_size) : correction(error.norm(), 2 * tolerance),
               true);
-    phase_ = Phase::kTransport;
+    phase_.phase = Phase::kTransport;
     return;
   }
   const double drop = cube_now.y() - (0.5 * o.cube_size - behaviour().place_depth);
   // Down onto the floor, which stops the cube: no endpoint to hit (one bit, as the lift).
   move_grip(own_now - up(drop), fitts(std::abs(drop), std::abs(drop)), false);
-  phase_ = Phase::kLower;
+  phase_.phase = Phase::kLower;
 }
 
 void SimulatedParticipant::lower(const Observation* o, const Seen& s) {
   if (loss_seen(o, s)) {
     slipped(*o, s);
-  } else if (grip_.done(time_)) {
+  } else if (plan_.grip.done(time_)) {
     // Let go: the hand opens at least to its peak aperture, so that no finger stays hooked
     // on a large cube.
     const double cube = shown_.empty() ? 0.0 : shown_.back().cube_size;
-    move_aperture(std::max(aperture_to_ + behaviour().release_opening, peak_aperture(cube)),
+    move_aperture(std::max(plan_.aperture_to + behaviour().release_opening, peak_aperture(cube)),
                   practised(behaviour().reopen_time));
-    phase_ = Phase::kRelease;
+    phase_.phase = Phase::kRelease;
   }
 }
 
@@ -506,16 +517,16 @@ void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
   if (in_zone_b(s, o)) {
     // Set down where it should be: up and away; out sideways, from under the cube, if the
     // cube came up with the hand before.
-    const Eigen::Vector3d own_now = grip_.at(time_) + servo_;
+    const Eigen::Vector3d own_now = plan_.grip.at(time_) + plan_.servo;
     Eigen::Vector3d away = up(behaviour().withdraw_height);
-    if (slide_out_) {
+    if (phase_.slide_out) {
       // Away from the cube as it sees its pads and the cube (one frame, the scene's).
       const Eigen::Vector3d side = s.hand ? horizontal(s.grip - s.cube) : Eigen::Vector3d::Zero();
       away += behaviour().withdraw_height *
               (side.norm() > 1e-6 ? side.normalized() : Eigen::Vector3d::UnitZ());
     }
     move_grip(own_now + away, fitts(away.norm(), behaviour().withdraw_height), false);
-    phase_ = Phase::kWithdraw;
+    phase_.phase = Phase::kWithdraw;
   } else {
     ++experience_.losses;  // it came to rest outside B: pick it up again
     start_regrasp();
@@ -525,17 +536,17 @@ void SimulatedParticipant::wait_rest(const Observation& o, const Seen& s) {
 void SimulatedParticipant::withdraw(const Observation* o, const Seen& s) {
   // The cube coming up with the hand: still caught on it; put it down, open wide, and next
   // time slide the hand out from under it.
-  if (o && o->time > grip_.start &&
+  if (o && o->time > plan_.grip.start &&
       s.cube.y() - 0.5 * o->cube_size > behaviour().at_rest_over_floor) {
     ++experience_.corrections;
-    slide_out_ = true;
-    move_grip(grip_.at(time_) + servo_ - up(s.cube.y() - 0.5 * o->cube_size),
+    phase_.slide_out = true;
+    move_grip(plan_.grip.at(time_) + plan_.servo - up(s.cube.y() - 0.5 * o->cube_size),
               practised(behaviour().reopen_time), false);
-    move_aperture(hand_.max_aperture(pinch_), practised(behaviour().reopen_time));
-    phase_ = Phase::kRelease;
-  } else if (grip_.done(time_)) {
-    resting_since_ = -1;
-    phase_ = Phase::kIdle;
+    move_aperture(hand_.max_aperture(plan_.pinch), practised(behaviour().reopen_time));
+    phase_.phase = Phase::kRelease;
+  } else if (plan_.grip.done(time_)) {
+    phase_.resting_since = -1;
+    phase_.phase = Phase::kIdle;
   }
 }
 
@@ -547,9 +558,9 @@ void SimulatedParticipant::free_cube(const Observation& o, const Seen& s, bool c
     return;
   }
   ++experience_.corrections;
-  ++wipes_;
-  const double down = s.cube.y() - 0.5 * o.cube_size + wipes_ * behaviour().wipe_depth;
-  move_grip(grip_.at(time_) + servo_ - up(down), fitts(down, o.cube_size), false);
+  ++phase_.wipes;
+  const double down = s.cube.y() - 0.5 * o.cube_size + phase_.wipes * behaviour().wipe_depth;
+  move_grip(plan_.grip.at(time_) + plan_.servo - up(down), fitts(down, o.cube_size), false);
 }
 
 void SimulatedParticipant::update(const Observation* o) {
@@ -557,26 +568,26 @@ void SimulatedParticipant::update(const Observation* o) {
   Seen s;
   if (o) s = see(*o);
   last_seen_ = s;
-  const double aperture_end = aperture_start_ + aperture_duration_;
-  const double grip_end = grip_.start + grip_.duration;
+  const double aperture_end = plan_.aperture_start + plan_.aperture_duration;
+  const double grip_end = plan_.grip.start + plan_.grip.duration;
   if (o) learn_gain(*o, s);
   if (o) servo(*o, s);
   if (watch_for_caught_cube(o, s)) return;
   // Where a phase waits for the look at the end of a movement: the observation must show
   // the moment it ended.
   const bool looked = o && o->time >= grip_end;
-  switch (phase_) {
+  switch (phase_.phase) {
     case Phase::kReact:
-      if (t >= reaction_time_ && o) plan_reach(*o, s);
+      if (t >= plan_.reaction_time && o) plan_reach(*o, s);
       break;
     case Phase::kReach:
-      if (grip_.done(t)) phase_ = Phase::kCheckReach;
+      if (plan_.grip.done(t)) phase_.phase = Phase::kCheckReach;
       break;
     case Phase::kCheckReach:
       if (looked) check_reach(*o, s);
       break;
     case Phase::kDescend:
-      if (grip_.done(t)) phase_ = Phase::kCheckDescent;
+      if (plan_.grip.done(t)) phase_.phase = Phase::kCheckDescent;
       break;
     case Phase::kCheckDescent:
       if (looked) check_descent(*o, s);
@@ -592,8 +603,8 @@ void SimulatedParticipant::update(const Observation* o) {
     case Phase::kTransport:
       if (loss_seen(o, s)) {
         slipped(*o, s);
-      } else if (grip_.done(t)) {
-        phase_ = phase_ == Phase::kLift ? Phase::kCheckLift : Phase::kCheckTransport;
+      } else if (plan_.grip.done(t)) {
+        phase_.phase = phase_.phase == Phase::kLift ? Phase::kCheckLift : Phase::kCheckTransport;
       }
       break;
     case Phase::kCheckLift:
@@ -612,8 +623,8 @@ void SimulatedParticipant::update(const Observation* o) {
       break;
     case Phase::kRelease:
       if (t >= aperture_end) {
-        resting_since_ = -1;
-        phase_ = Phase::kWaitRest;
+        phase_.resting_since = -1;
+        phase_.phase = Phase::kWaitRest;
       }
       break;
     case Phase::kWaitRest:
@@ -623,11 +634,12 @@ void SimulatedParticipant::update(const Observation* o) {
       withdraw(o, s);
       break;
     case Phase::kReopen:
-      if (grip_.done(t) && t >= aperture_end && looked) plan_reach(*o, s);
+      if (plan_.grip.done(t) && t >= aperture_end && looked) plan_reach(*o, s);
       break;
     case Phase::kFreeCube:
-      if (grip_.done(t) && t >= aperture_end && o && o->time >= std::max(grip_end, aperture_end))
-        free_cube(*o, s, caught_);
+      if (plan_.grip.done(t) && t >= aperture_end && o &&
+          o->time >= std::max(grip_end, aperture_end))
+        free_cube(*o, s, phase_.caught);
       break;
     case Phase::kIdle:
       // The trial goes on, so the cube it left in B has slid out of it: it goes back for it.
@@ -644,34 +656,34 @@ void SimulatedParticipant::start(const Observation& first) {
   // At rest before the trial: over the near side of A, the fingers loosely open.
   const Eigen::Vector3d home =
       first.zone_a + Eigen::Vector3d(0, behaviour().home_height, behaviour().home_back);
-  pinch_ = first.cube_size < behaviour().tip_pinch_below ? Pinch::kTip : Pinch::kPad;
-  grip_ = MinimumJerkMove{home, home, 0.0, dt_};
-  aperture_from_ = aperture_to_ = behaviour().rest_aperture;
+  plan_.pinch = first.cube_size < behaviour().tip_pinch_below ? Pinch::kTip : Pinch::kPad;
+  plan_.grip = MinimumJerkMove{home, home, 0.0, dt_};
+  plan_.aperture_from = plan_.aperture_to = behaviour().rest_aperture;
   experience_.cube_size = first.cube_size;
   // What it remembers of this cube: practice with it, where its pads met it and where they
   // ended up against it (offsets, which people carry over; a changed gain between seen and
   // felt size they do not: Safstrom & Edin 2005), the grip margin and the pads' height its
   // slips taught it.
   const CubeMemory* cube = memory_.cube(first.cube_size);
-  practised_movement_ =
+  learnt_.practised_movement =
       practice_factor((cube ? cube->trials : 0) + 1, m.practice_rate, m.practice_floor);
   if (cube) {
-    contact_ = cube->contact;
-    aim_x_ = cube->aim_x;
-    aim_z_ = cube->aim_z;
-    extra_squeeze_ = margin_within(cube->grip_margin, first.cube_size);
-    grasp_lower_ = lower_within(cube->grasp_lower);
-    caution_ = std::max(0.0, cube->caution.correction());
+    learnt_.contact = cube->contact;
+    learnt_.aim_x = cube->aim_x;
+    learnt_.aim_z = cube->aim_z;
+    learnt_.extra_squeeze = margin_within(cube->grip_margin, first.cube_size);
+    learnt_.grasp_lower = lower_within(cube->grasp_lower);
+    learnt_.caution = std::max(0.0, cube->caution.correction());
   }
   // What it expects the trial to take: its own plan without errors.
   const double cube_size = first.cube_size;
   experience_.expected_time =
-      practised_general_ * (m.reaction_mu + m.reaction_tau) +
+      learnt_.practised_general * (m.reaction_mu + m.reaction_tau) +
       fitts((first.zone_a - home).norm(),
             std::max(peak_aperture(cube_size) - cube_size, behaviour().min_clearance)) +
       fitts(behaviour().approach_height, peak_aperture(cube_size) - cube_size) +
-      grasp_paced(m.closing_time, practised_movement_) +
-      grasp_paced(m.confirm_dwell, practised_general_) + lift_time() +
+      grasp_paced(m.closing_time, learnt_.practised_movement) +
+      grasp_paced(m.confirm_dwell, learnt_.practised_general) + lift_time() +
       fitts((first.zone_b - first.zone_a).norm(), first.zone_size) +
       fitts(behaviour().lift_height, behaviour().lift_height);
 }
@@ -688,7 +700,7 @@ tracking::TrackedFrame SimulatedParticipant::act(const Observation& shown) {
   experience_.time[activity()] += dt_;
 
   const double aperture = aperture_now();
-  const Eigen::Vector3d grip = grip_.at(time_) + servo_;
+  const Eigen::Vector3d grip = plan_.grip.at(time_) + plan_.servo;
   history_.push_back({time_, grip, aperture});
   while (history_.size() > 2 && history_[1].time <= time_ - m.visual_delay - 2 * dt_)
     history_.pop_front();
@@ -696,10 +708,10 @@ tracking::TrackedFrame SimulatedParticipant::act(const Observation& shown) {
   Eigen::Vector3d tremor;
   for (int i = 0; i < 3; ++i)
     tremor[i] = std::sqrt(2.0) * m.tremor_rms *
-                std::sin(2 * std::numbers::pi * m.tremor_hz * time_ + tremor_phase_[i]);
+                std::sin(2 * std::numbers::pi * m.tremor_hz * time_ + plan_.tremor_phase[i]);
   std::vector<Eigen::Vector3d> jitter(25);
   for (Eigen::Vector3d& j : jitter) j = random_.normal3(m.tracker_jitter);
-  return hand_.frame(hand_.pose(pinch_, grip + tremor, aperture), time_, frame_, jitter);
+  return hand_.frame(hand_.pose(plan_.pinch, grip + tremor, aperture), time_, frame_, jitter);
 }
 
 }  // namespace handlab::studies

@@ -14,6 +14,7 @@
 #include "studies/participant/own_hand.h"
 #include "studies/participant/participant_memory.h"
 #include "studies/participant/participant_model.h"
+#include "studies/participant/participant_state.h"
 #include "studies/participant/seen_trial.h"
 #include "studies/participant/trial_experience.h"
 
@@ -43,27 +44,7 @@ class SimulatedParticipant {
   double last_gap(bool thumb) const { return thumb ? last_seen_.thumb_gap : last_seen_.index_gap; }
 
  private:
-  enum class Phase {
-    kReact,
-    kReach,
-    kCheckReach,
-    kDescend,
-    kCheckDescent,
-    kClose,
-    kSlowClose,
-    kConfirm,
-    kLift,
-    kCheckLift,
-    kTransport,
-    kCheckTransport,
-    kLower,
-    kRelease,
-    kWaitRest,
-    kWithdraw,
-    kReopen,
-    kFreeCube,  // a cube caught on the hand: open wide, then wipe it off on the floor
-    kIdle
-  };
+  using Phase = PhaseState::Phase;
   struct OwnState {
     double time;
     Eigen::Vector3d grip;
@@ -92,7 +73,7 @@ class SimulatedParticipant {
   // Its first sight of the scene: the pinch for the cube, practice, what it expects.
   void start(const Observation& first);
   // A movement's duration with practice (trials with the cube it sees).
-  double practised(double duration) const { return duration * practised_movement_; }
+  double practised(double duration) const { return duration * learnt_.practised_movement; }
   // A part of the grasp (closing, loading, lift) at the pace its caution lets practice give:
   // `practice` the factor practice alone would apply.
   double grasp_paced(double duration, double practice) const;
@@ -145,40 +126,15 @@ class SimulatedParticipant {
   const OwnHand& hand_;
   SeenTrial trial_;
   ParticipantMemory memory_;
-  double practised_movement_ = 1.0, practised_general_ = 1.0;
-  TwoRateState contact_;           // m: learnt correction of where it expects a pad to touch
-  TwoRateState aim_x_, aim_z_;     // m: learnt shift of its aim across the floor
-  double expected_contact_ = 0.0;  // m: own aperture where it expects a pad to meet the cube
-  bool closing_touched_ = false;   // a pad seen on the cube since the closing began
   MotorRandom random_;
   double dt_;
   double time_ = 0.0;
   long frame_ = 0;
   std::deque<Observation> shown_;
   std::deque<OwnState> history_;
-  Pinch pinch_ = Pinch::kPad;
-  Phase phase_ = Phase::kReact;
-  double phase_since_ = 0.0;
-  double reaction_time_ = 0.0;
-  MinimumJerkMove grip_;
-  double aperture_from_ = 0.04, aperture_to_ = 0.04, aperture_start_ = 0.0,
-         aperture_duration_ = 0.0;
-  Eigen::Vector3d servo_ = Eigen::Vector3d::Zero();  // continuous visual correction
-  bool servo_on_ = false;
-  double gain_estimate_ = 1.0;  // seen aperture per own aperture, learnt while open
-  int gain_samples_ = 0;
-  double extra_squeeze_ = 0.0;     // m more loading after contact: the grip slips taught
-  double grasp_lower_ = 0.0;       // m lower on the cube than its first choice: slips taught
-  double caution_ = 0.0;           // share of practice's speed-up of the grasp given back
-  double off_floor_since_ = -1.0;  // the cube seen off the floor, not held, since then
-  bool caught_ = false;            // the cube seen caught on the hand
-  int wipes_ = 0;                  // of a caught cube on the floor, since it was seen caught
-  bool slide_out_ = false;         // the cube came up with the withdrawing hand: slide out
-  double touching_since_ = -1.0;
-  double resting_since_ = -1.0;  // since when the cube has stayed near resting_at_
-  Eigen::Vector3d resting_at_ = Eigen::Vector3d::Zero();
-  int corrections_this_move_ = 0;
-  Eigen::Vector3d tremor_phase_ = Eigen::Vector3d::Zero();
+  TrialLearning learnt_;
+  MovementPlan plan_;
+  PhaseState phase_;
   TrialExperience experience_;
   Seen last_seen_;
 };
