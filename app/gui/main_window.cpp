@@ -24,7 +24,7 @@
 #include <QSettings>
 #include <QStatusBar>
 #include <QTabWidget>
-#include <QTableWidget>
+#include <QTableView>
 #include <QVBoxLayout>
 
 #include "app/gui/analysis_page.h"
@@ -35,6 +35,7 @@
 #include "app/gui/session_page.h"
 #include "app/gui/session_worker.h"
 #include "app/gui/study_home.h"
+#include "app/gui/text_table_model.h"
 #include "app/report/figure_file.h"
 #include "app/report/report_files.h"
 #include "core/store/study_store.h"
@@ -199,22 +200,21 @@ QString MainWindow::open_study(const QString& path) {
   if (session_->session_running())
     return tr("Stop the running session before opening another study.");
   try {
-    {
-      store::StudyStore check(path.toStdString());
-      check.study();
-    }
-    study_ = QFileInfo(path).absoluteFilePath();
+    OpenStudy study{QFileInfo(path).absoluteFilePath(),
+                    std::make_shared<store::StudyStore>(path.toStdString())};
+    study.store->study();
+    study_ = std::move(study);
     home_->set_study(study_);
     participants_->set_study(study_);
     session_->set_study(study_);
-    analysis_->set_study(study_);
+    analysis_->set_study(study_.path);  // its analysis runs on a thread of its own
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
   }
-  remember_recent(study_);
-  setWindowTitle(tr("%1 — handlab").arg(QFileInfo(study_).fileName()));
-  setWindowFilePath(study_);
-  statusBar()->showMessage(tr("Opened %1").arg(study_), 5000);
+  remember_recent(study_.path);
+  setWindowTitle(tr("%1 — handlab").arg(QFileInfo(study_.path).fileName()));
+  setWindowFilePath(study_.path);
+  statusBar()->showMessage(tr("Opened %1").arg(study_.path), 5000);
   return {};
 }
 
@@ -235,7 +235,7 @@ QString MainWindow::show_study(const QString& path) {
 }
 
 void MainWindow::refresh_study() {
-  if (study_.isEmpty()) return;
+  if (!study_.is_open()) return;
   const QString own =
       session_->session_running() ? session_->participant_box()->currentText() : QString();
   // A view that cannot be read now says so; the session stores its trials on its own
@@ -279,17 +279,16 @@ void MainWindow::new_study_dialog() {
   QDialog summary(this);
   summary.setWindowTitle(tr("New Study from %1").arg(QFileInfo(protocol).fileName()));
   auto* layout = new QVBoxLayout(&summary);
-  auto* table = new QTableWidget(0, 2);
+  std::vector<TextRow> rows;
+  for (const auto& [label, value] : studies::protocol_summary(p))
+    rows.push_back({{QString::fromStdString(label), QString::fromStdString(value)}, {}, {}});
+  auto* table = new QTableView;
   table->setObjectName("protocol_summary");
+  table->setModel(new TextTableModel({tr("Item"), tr("Value")}, table));
+  static_cast<TextTableModel*>(table->model())->set_rows(std::move(rows));
   table->horizontalHeader()->hide();
   table->verticalHeader()->hide();
   table->horizontalHeader()->setStretchLastSection(true);
-  for (const auto& [label, value] : studies::protocol_summary(p)) {
-    const int row = table->rowCount();
-    table->insertRow(row);
-    table->setItem(row, 0, new QTableWidgetItem(QString::fromStdString(label)));
-    table->setItem(row, 1, new QTableWidgetItem(QString::fromStdString(value)));
-  }
   table->resizeColumnToContents(0);
   layout->addWidget(table);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
@@ -316,7 +315,7 @@ void MainWindow::open_study_dialog() {
 }
 
 QString MainWindow::export_table(const QString& path, Table table) {
-  if (study_.isEmpty()) return tr("No study is open.");
+  if (!study_.is_open()) return tr("No study is open.");
   // The frame log of a whole study is millions of rows: seconds, not a moment.
   const bool long_job = table == Table::kFrames;
   if (long_job) {
@@ -328,7 +327,7 @@ QString MainWindow::export_table(const QString& path, Table table) {
     if (long_job) QApplication::restoreOverrideCursor();
   });
   try {
-    store::StudyStore store(study_.toStdString());
+    store::StudyStore& store = *study_.store;
     util::write_output(path.toStdString(), [&](std::ostream& out) {
       switch (table) {
         case Table::kTrials:
@@ -363,14 +362,14 @@ void MainWindow::export_dialog(Table table) {
 }
 
 QString MainWindow::export_report(const QString& folder) {
-  if (study_.isEmpty()) return tr("No study is open.");
+  if (!study_.is_open()) return tr("No study is open.");
   QApplication::setOverrideCursor(Qt::WaitCursor);
   statusBar()->showMessage(tr("Writing the report…"));
   report::ReportFiles files;
   QString error;
   try {
     report::ReportRequest request;
-    request.database = study_.toStdString();
+    request.database = study_.path.toStdString();
     request.folder = folder.toStdString();
     files = report::write_report(request);
   } catch (const std::exception& e) {
@@ -406,19 +405,24 @@ QString MainWindow::open_data_table(const QString& path) {
   } catch (const std::exception& e) {
     return tr("%1: %2").arg(path, QString::fromStdString(e.what()));
   }
-  auto* table = new QTableWidget;
-  table->setObjectName("data_table");
+  auto* model = new TextTableModel;
   if (!rows.empty()) {
-    table->setColumnCount(int(rows.front().size()));
     QStringList header;
     for (const auto& h : rows.front()) header << QString::fromStdString(h);
-    table->setHorizontalHeaderLabels(header);
-    table->setRowCount(int(rows.size()) - 1);
-    for (std::size_t r = 1; r < rows.size(); ++r)
-      for (std::size_t c = 0; c < rows[r].size() && int(c) < table->columnCount(); ++c)
-        table->setItem(int(r - 1), int(c),
-                       new QTableWidgetItem(QString::fromStdString(rows[r][c])));
+    std::vector<TextRow> cells;
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+      TextRow row;
+      for (std::size_t c = 0; c < rows[r].size() && c < rows.front().size(); ++c)
+        row.cells << QString::fromStdString(rows[r][c]);
+      cells.push_back(std::move(row));
+    }
+    model->set_headers(header);
+    model->set_rows(std::move(cells));
   }
+  auto* table = new QTableView;
+  table->setObjectName("data_table");
+  model->setParent(table);
+  table->setModel(model);
   table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   auto* dock = new QDockWidget(QFileInfo(path).fileName(), this);
   dock->setObjectName("data_table_dock");

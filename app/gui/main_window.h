@@ -6,6 +6,8 @@
 
 #include <QMainWindow>
 
+#include "app/gui/open_study.h"
+
 class QTabWidget;
 
 namespace handlab::gui {
@@ -32,7 +34,7 @@ class MainWindow : public QMainWindow {
   QString create_study(const QString& protocol, const QString& database);
   // Kept for `handlab --study`: opens the study and shows its participants.
   QString show_study(const QString& path);
-  QString study_path() const { return study_; }
+  QString study_path() const { return study_.path; }
 
   enum class Table { kTrials, kQuestionnaire, kFrames };
   // Writes trials.csv, questionnaire.csv or frames.csv of the open study (studies::write_*_csv,
@@ -79,7 +81,7 @@ class MainWindow : public QMainWindow {
   void refresh_study();
   void show_error(const QString& title, const QString& error);
 
-  QString study_;
+  OpenStudy study_;  // its store shared with the pages
   QTabWidget* tabs_ = nullptr;
   StudyHome* home_ = nullptr;
   ParticipantsPage* participants_ = nullptr;

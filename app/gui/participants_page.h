@@ -6,18 +6,22 @@
 
 #include <QWidget>
 
+#include "app/gui/open_study.h"
+
 class QPushButton;
-class QTableWidget;
+class QTableView;
 class QLabel;
 
 namespace handlab::gui {
+
+class TextTableModel;
 
 class ParticipantsPage : public QWidget {
   Q_OBJECT
 
  public:
   explicit ParticipantsPage(QWidget* parent = nullptr);
-  void set_study(const QString& database);  // empty: none
+  void set_study(OpenStudy study);  // not open: none
   // Reads the database again; selects `select_id` (default: the selected participant).
   void refresh(const QString& select_id = {});
   QStringList ids() const;  // the enrolled, in the table's order
@@ -32,8 +36,10 @@ class ParticipantsPage : public QWidget {
     refresh();
   }
 
-  QTableWidget* table() const { return table_; }
-  QTableWidget* schedule() const { return schedule_; }
+  QTableView* table() const { return table_; }
+  QTableView* schedule() const { return schedule_; }
+  const TextTableModel& participant_rows() const { return *participants_; }
+  const TextTableModel& schedule_rows() const { return *trials_; }
   QPushButton* add_button() const { return add_; }
   QPushButton* replay_button() const { return replay_; }
 
@@ -44,10 +50,16 @@ class ParticipantsPage : public QWidget {
 
  private:
   void show_schedule();
+  int selected_row() const;
+  // A trial that ran (its status is not "planned") can be played back.
+  bool trial_ran(int row) const;
 
-  QString database_, in_session_;
-  QTableWidget* table_ = nullptr;
-  QTableWidget* schedule_ = nullptr;
+  OpenStudy study_;
+  QString in_session_;
+  TextTableModel* participants_ = nullptr;
+  TextTableModel* trials_ = nullptr;
+  QTableView* table_ = nullptr;
+  QTableView* schedule_ = nullptr;
   QLabel* schedule_title_ = nullptr;
   QPushButton *add_ = nullptr, *edit_ = nullptr, *replay_ = nullptr;
 };

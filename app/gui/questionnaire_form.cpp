@@ -18,6 +18,7 @@ QuestionnaireForm::QuestionnaireForm(const studies::Protocol& protocol, bool lar
   if (large)
     setStyleSheet(
         "QLabel, QRadioButton, QPushButton { font-size: 20pt; }"
+        "QLabel#anchor { font-size: 15pt; }"  // two lines under each point fit a 640 px window
         "QRadioButton::indicator { width: 28px; height: 28px; }");
   auto* layout = new QVBoxLayout(this);
   if (large) layout->setContentsMargins(48, 32, 48, 32);
@@ -43,6 +44,7 @@ QuestionnaireForm::QuestionnaireForm(const studies::Protocol& protocol, bool lar
       group->addButton(button, v);
       grid->addWidget(button, 0, v - 1, Qt::AlignHCenter);
       auto* label = new QLabel(anchor);
+      label->setObjectName("anchor");
       label->setAlignment(Qt::AlignHCenter | Qt::AlignTop);
       label->setWordWrap(true);
       grid->addWidget(label, 1, v - 1);

@@ -144,15 +144,14 @@ SessionPage::~SessionPage() {
   worker_.reset();  // the session stops before the live client whose frames it reads goes
 }
 
-void SessionPage::set_study(const QString& database) {
+void SessionPage::set_study(OpenStudy study) {
   worker_.reset();
   replay_->set_playing(false);
   replay_->hide();
-  database_ = database;
+  study_ = std::move(study);
   protocol_.reset();
-  if (!database.isEmpty()) {
-    store::StudyStore store(database.toStdString());
-    protocol_ = studies::stored_protocol(store);
+  if (study_.is_open()) {
+    protocol_ = studies::stored_protocol(*study_.store);
     view_->set_layout(protocol_->scene);
   }
   set_running(false);
@@ -176,10 +175,10 @@ void SessionPage::set_leap_address(const QString& address) {
 }
 
 QString SessionPage::replay_trial(const QString& participant, int position, int attempt) {
-  if (database_.isEmpty()) return tr("no study is open");
+  if (!study_.is_open()) return tr("no study is open");
   if (session_running()) return tr("a session is running: replay its trials after it");
   try {
-    store::StudyStore store(database_.toStdString());
+    store::StudyStore& store = *study_.store;
     replay_->load(studies::load_trial_replay(store, participant.toStdString(), position, attempt));
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
@@ -196,17 +195,18 @@ QString SessionPage::replay_trial(const QString& participant, int position, int 
 }
 
 QString SessionPage::start_session() {
-  if (database_.isEmpty()) return tr("no study is open");
+  if (!study_.is_open()) return tr("no study is open");
   if (session_running()) return tr("a session is running");
   if (setup_->participant_box()->currentText().isEmpty()) return tr("choose a participant");
   // A replay gives the view back to the session.
   replay_->set_playing(false);
   replay_->hide();
   SessionOptions options;
-  options.database = database_;
+  options.database = study_.path;  // the session's thread opens its own connection
+  options.protocol = *protocol_;
   if (const QString error = setup_->fill(options, live_stats_); !error.isEmpty()) return error;
   {
-    store::StudyStore store(database_.toStdString());
+    store::StudyStore& store = *study_.store;
     options.resume = store.has_started(options.participant);
     if (!store.next_trial(options.participant) && !store.has_running_session(options.participant))
       return tr("%1 has done every planned trial").arg(setup_->participant_box()->currentText());
@@ -300,7 +300,7 @@ QString SessionPage::redo_trial(int position, const QString& reason) {
     return {};
   }
   try {
-    store::StudyStore store(database_.toStdString());
+    store::StudyStore& store = *study_.store;
     store.redo_trial(setup_->participant_box()->currentText().toStdString(), position,
                      reason.toStdString());
   } catch (const std::exception& e) {
@@ -320,7 +320,7 @@ QString SessionPage::skip_trial(int position, const QString& reason) {
     return {};
   }
   try {
-    store::StudyStore store(database_.toStdString());
+    store::StudyStore& store = *study_.store;
     studies::skip_trial_between_sessions(store,
                                          setup_->participant_box()->currentText().toStdString(),
                                          position, reason.toStdString());
@@ -333,11 +333,11 @@ QString SessionPage::skip_trial(int position, const QString& reason) {
 }
 
 void SessionPage::set_running(bool running) {
-  start_->setEnabled(!running && !database_.isEmpty());
+  start_->setEnabled(!running && study_.is_open());
   pause_->setEnabled(running);
   stop_->setEnabled(running);
-  redo_->setEnabled(!database_.isEmpty());
-  skip_->setEnabled(!database_.isEmpty());
+  redo_->setEnabled(study_.is_open());
+  skip_->setEnabled(study_.is_open());
   setup_->set_running(running);
   if (!running) pause_->setChecked(false);
 }

@@ -11,6 +11,7 @@
 #include <QWidget>
 
 #include "app/gui/display_latency.h"
+#include "app/gui/open_study.h"
 #include "app/gui/session_setup.h"
 #include "core/hand/hand_shape.h"
 #include "core/render/hand_drawing.h"
@@ -46,7 +47,7 @@ class SessionPage : public QWidget {
   ~SessionPage() override;
 
   // The study the sessions run in (empty: none open).
-  void set_study(const QString& database);
+  void set_study(OpenStudy study);
   void set_participants(const QStringList& ids, const QString& selected = {});
   SceneView* view() const { return view_; }
   bool session_running() const;
@@ -101,7 +102,7 @@ class SessionPage : public QWidget {
   void set_running(bool running);
   void append_log(const QString& line);
 
-  QString database_;
+  OpenStudy study_;
   std::optional<studies::Protocol> protocol_;
   SceneView* view_ = nullptr;
   TrialReplayBar* replay_ = nullptr;

@@ -8,10 +8,7 @@
 namespace handlab::gui {
 
 SessionWorker::SessionWorker(SessionOptions options, QObject* parent)
-    : QObject(parent), options_(std::move(options)) {
-  store::StudyStore store(options_.database.toStdString());
-  protocol_ = studies::stored_protocol(store);
-}
+    : QObject(parent), options_(std::move(options)) {}
 
 SessionWorker::~SessionWorker() {
   closing_ = true;

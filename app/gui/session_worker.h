@@ -25,7 +25,8 @@
 namespace handlab::gui {
 
 struct SessionOptions {
-  QString database;
+  QString database;            // opened again on the session's thread
+  studies::Protocol protocol;  // the study's, as the window read it
   std::string participant;
   // A simulated participant answers the questionnaires itself; otherwise the dialog asks.
   studies::TrackerPtr tracker = studies::scripted_tracker();
@@ -76,7 +77,7 @@ class SessionWorker : public QObject {
   studies::SessionControl& control() { return control_; }
   // The newest step; the next one after this call emits step_ready again.
   SessionSnapshot snapshot() const;
-  const studies::Protocol& protocol() const { return protocol_; }
+  const studies::Protocol& protocol() const { return options_.protocol; }
   // The questionnaire's answers for the trial that asked (one per item, 1..scale).
   void answer(std::vector<int> values);
 
@@ -95,7 +96,6 @@ class SessionWorker : public QObject {
   void run();
 
   SessionOptions options_;
-  studies::Protocol protocol_;
   studies::SessionControl control_;
   mutable std::mutex mutex_;
   SessionSnapshot snapshot_;

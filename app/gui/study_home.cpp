@@ -5,13 +5,14 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QPushButton>
-#include <QTableWidget>
+#include <QTableView>
 #include <QVBoxLayout>
 
+#include "app/gui/text_table_model.h"
 #include "core/store/study_store.h"
 #include "studies/export/study_export.h"
+#include "studies/protocol/protocol_store.h"
 #include "studies/session/enrolment.h"
-#include "studies/session/session_runner.h"
 
 namespace handlab::gui {
 
@@ -53,8 +54,10 @@ StudyHome::StudyHome(QWidget* parent) : QWidget(parent) {
   });
   opened->addWidget(interrupted_label_);
   opened->addWidget(resume_);
-  summary_ = new QTableWidget(0, 2);
+  summary_rows_ = new TextTableModel({tr("Item"), tr("Value")}, this);
+  summary_ = new QTableView;
   summary_->setObjectName("study_summary");
+  summary_->setModel(summary_rows_);
   summary_->horizontalHeader()->hide();
   summary_->verticalHeader()->hide();
   summary_->horizontalHeader()->setStretchLastSection(true);
@@ -62,7 +65,7 @@ StudyHome::StudyHome(QWidget* parent) : QWidget(parent) {
   summary_->setWordWrap(true);
   opened->addWidget(summary_);
   layout->addWidget(open_);
-  set_study({});
+  set_study(OpenStudy{});
 }
 
 void StudyHome::set_recent(const QStringList& files) {
@@ -75,27 +78,25 @@ void StudyHome::set_recent(const QStringList& files) {
   }
 }
 
-void StudyHome::set_study(const QString& database, const QString& own_session) {
-  database_ = database;
+void StudyHome::set_study(OpenStudy study, const QString& own_session) {
+  study_ = std::move(study);
   interrupted_.clear();
-  none_->setVisible(database.isEmpty());
-  open_->setVisible(!database.isEmpty());
-  if (database.isEmpty()) {
+  none_->setVisible(!study_.is_open());
+  open_->setVisible(study_.is_open());
+  if (!study_.is_open()) {
     title_->setText(tr("No study open"));
+    summary_rows_->set_rows({});
     return;
   }
-  store::StudyStore store(database.toStdString());
+  store::StudyStore& store = *study_.store;
   const store::StudyInfo info = store.study();
-  title_->setText(
-      tr("Study %1 — %2").arg(QString::fromStdString(info.name), QFileInfo(database).fileName()));
-  summary_->setRowCount(0);
+  title_->setText(tr("Study %1 — %2")
+                      .arg(QString::fromStdString(info.name), QFileInfo(study_.path).fileName()));
+  std::vector<TextRow> rows;
   auto add = [&](const QString& label, const QString& value) {
-    const int row = summary_->rowCount();
-    summary_->insertRow(row);
-    summary_->setItem(row, 0, new QTableWidgetItem(label));
-    summary_->setItem(row, 1, new QTableWidgetItem(value));
+    rows.push_back({{label, value}, {}, {}});
   };
-  add(tr("File"), database);
+  add(tr("File"), study_.path);
   add(tr("Created"), QString::fromStdString(info.created_at));
   for (const auto& [label, value] : studies::protocol_summary(studies::stored_protocol(store)))
     add(QString::fromStdString(label), QString::fromStdString(value));
@@ -121,6 +122,7 @@ void StudyHome::set_study(const QString& database, const QString& own_session) {
         tr("%1: merged from only some of its parts; merge the rest in (handlab-cli merge "
            "--update) before reading its results as the study's")
             .arg(QString::fromStdString(completeness.describe())));
+  summary_rows_->set_rows(std::move(rows));
   summary_->resizeColumnToContents(0);
   summary_->resizeRowsToContents();
   interrupted_label_->setVisible(!interrupted_.isEmpty());

@@ -20,7 +20,7 @@
 #include <QSlider>
 #include <QSpinBox>
 #include <QTabWidget>
-#include <QTableWidget>
+#include <QTableView>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTextBrowser>
@@ -49,8 +49,12 @@
 #include "studies/protocol/protocol.h"
 #include "studies/session/enrolment.h"
 #include "studies/session/session_runner.h"
+#include "tests/app/view_cells.h"
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
+
+using handlab::gui::testing::view_cell;
+using handlab::gui::testing::view_rows;
 
 namespace handlab::gui {
 namespace {
@@ -98,7 +102,7 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   ASSERT_EQ(window.create_study(QString::fromStdString(test::study_with_practice()), db),
             QString());
   EXPECT_TRUE(window.windowTitle().startsWith("app_session.db"));
-  EXPECT_GT(window.home()->summary()->rowCount(), 10) << "the protocol's summary";
+  EXPECT_GT(view_rows(window.home()->summary()), 10) << "the protocol's summary";
 
   // Add P01 through the form.
   when_form_opens([](ParticipantForm* form) {
@@ -126,10 +130,10 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   });
   EXPECT_EQ(window.participants()->add_participant(), "");
   EXPECT_TRUE(refused);
-  ASSERT_EQ(window.participants()->table()->rowCount(), 1);
-  EXPECT_EQ(window.participants()->table()->item(0, 4)->text(), "18.4");
+  ASSERT_EQ(view_rows(window.participants()->table()), 1);
+  EXPECT_EQ(view_cell(window.participants()->table(), 0, 4), "18.4");
   window.participants()->select("P01");
-  EXPECT_EQ(window.participants()->schedule()->rowCount(), 24);
+  EXPECT_EQ(view_rows(window.participants()->schedule()), 24);
 
   // Set up: the scripted participant on the soft hand, as fast as it goes.
   SessionPage* page = scripted_session(window, studies::WorldKind::kSoftHand);
@@ -176,7 +180,7 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   EXPECT_EQ(questionnaires, 4);
   EXPECT_EQ(skins, 1u);
   EXPECT_GT(skin_triangles, 5000u);
-  EXPECT_EQ(window.participants()->table()->item(0, 9)->text(), "complete");
+  EXPECT_EQ(view_cell(window.participants()->table(), 0, 9), "complete");
 
   // The study file, reopened, holds what was done.
   store::StudyStore store(db.toStdString());
@@ -217,9 +221,9 @@ TEST(AppSession, RunsAWholeSessionFromTheWindow) {
   const auto rows = util::parse_csv(test::file_bytes(csv.toStdString()));
   EXPECT_EQ(rows.size(), 1u + 20u) << "header and the 20 block trials";
   ASSERT_EQ(window.open_data_table(csv), QString());
-  auto* table = window.findChild<QTableWidget*>("data_table");
+  auto* table = window.findChild<QTableView*>("data_table");
   ASSERT_NE(table, nullptr);
-  EXPECT_EQ(table->rowCount(), 20);
+  EXPECT_EQ(view_rows(table), 20);
   // File > Export Frames: a row for every logged step of those 20 trials.
   const QString frames_csv = QString::fromStdString(test::fresh_path("app_frames.csv"));
   ASSERT_EQ(window.export_table(frames_csv, MainWindow::Table::kFrames), QString());
@@ -302,7 +306,7 @@ TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
   enrol_p01(db, 31, 0.191);
   ASSERT_EQ(window.open_study(db), QString());
   window.participants()->select("P01");
-  EXPECT_EQ(window.participants()->schedule()->rowCount(), 36);
+  EXPECT_EQ(view_rows(window.participants()->schedule()), 36);
 
   SessionPage* page = scripted_session(window, studies::WorldKind::kGraspProxy);
   int questionnaires = 0;
@@ -320,7 +324,7 @@ TEST(AppSession, RunsASessionOfTheThreeByThreeDesignThroughTheTrialPanel) {
   EXPECT_TRUE(ended.front().front().toString().contains("every trial done"))
       << ended.front().front().toString().toStdString();
   EXPECT_EQ(questionnaires, 9);
-  EXPECT_EQ(window.participants()->table()->item(0, 9)->text(), "complete");
+  EXPECT_EQ(view_cell(window.participants()->table(), 0, 9), "complete");
 
   store::StudyStore store(db.toStdString());
   const auto plan = store.plan("P01");
@@ -360,10 +364,10 @@ TEST(AppSession, AMixedDesignGroupsAtEnrolmentAndAsksInTheParticipantsWindow) {
     QTest::mouseClick(form->buttons()->button(QDialogButtonBox::Ok), Qt::LeftButton);
   });
   ASSERT_EQ(window.participants()->add_participant(), "P01");
-  QTableWidget* table = window.participants()->table();
+  QTableView* table = window.participants()->table();
   EXPECT_FALSE(table->isColumnHidden(6));
-  EXPECT_EQ(table->horizontalHeaderItem(6)->text(), "Group");
-  EXPECT_EQ(table->item(0, 6)->text(), "experienced");
+  EXPECT_EQ(table->model()->headerData(6, Qt::Horizontal).toString(), "Group");
+  EXPECT_EQ(view_cell(table, 0, 6), "experienced");
 
   ParticipantWindow* seen = window.show_participant_window(-1);
   ASSERT_TRUE(QTest::qWaitForWindowExposed(seen));

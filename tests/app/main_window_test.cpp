@@ -12,11 +12,15 @@
 #include "core/render/scene_drawing.h"
 #include "core/store/study_store.h"
 #include "studies/session/session_runner.h"
+#include "tests/app/view_cells.h"
 #include "tests/support/test_participant.h"
 
 #include <QDockWidget>
-#include <QTableWidget>
+#include <QTableView>
 #include <filesystem>
+
+using handlab::gui::testing::view_cell;
+using handlab::gui::testing::view_rows;
 
 namespace handlab::gui {
 namespace {
@@ -130,14 +134,14 @@ TEST(MainWindow, ShowsAStudyDatabasesProgress) {
   window.show();
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
   ASSERT_EQ(window.show_study(QString::fromStdString(path)), QString());
-  QTableWidget* table = window.participants()->table();
-  ASSERT_EQ(table->rowCount(), 1);
-  EXPECT_EQ(table->item(0, 0)->text(), "P07");
-  EXPECT_EQ(table->item(0, 4)->text(), "20.0") << "hand length in cm";
-  EXPECT_EQ(table->item(0, 8)->text(), "1 / 20");
+  QTableView* table = window.participants()->table();
+  ASSERT_EQ(view_rows(table), 1);
+  EXPECT_EQ(view_cell(table, 0, 0), "P07");
+  EXPECT_EQ(view_cell(table, 0, 4), "20.0") << "hand length in cm";
+  EXPECT_EQ(view_cell(table, 0, 8), "1 / 20");
   // The skip opened a session it never ended: the app calls it interrupted.
-  EXPECT_TRUE(table->item(0, 9)->text().contains("resume at trial 2"))
-      << table->item(0, 9)->text().toStdString();
+  EXPECT_TRUE(view_cell(table, 0, 9).contains("resume at trial 2"))
+      << view_cell(table, 0, 9).toStdString();
   EXPECT_TRUE(window.windowTitle().startsWith("gui_study.db"));
 
   EXPECT_NE(window.show_study("/no/such/study.db"), QString());
@@ -162,11 +166,11 @@ TEST(MainWindow, SaysAStudyIsPartial) {
   window.show();
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
   ASSERT_EQ(window.show_study(QString::fromStdString(path)), QString());
-  auto* summary = window.findChild<QTableWidget*>("study_summary");
+  auto* summary = window.findChild<QTableView*>("study_summary");
   ASSERT_NE(summary, nullptr);
   QString said;
-  for (int row = 0; row < summary->rowCount(); ++row)
-    if (summary->item(row, 0)->text() == "Partial study") said = summary->item(row, 1)->text();
+  for (int row = 0; row < view_rows(summary); ++row)
+    if (view_cell(summary, row, 0) == "Partial study") said = view_cell(summary, row, 1);
   EXPECT_TRUE(said.startsWith("1 of 3 planned participants (missing enrolment places 1, 3)"))
       << said.toStdString();
 }
