@@ -10,16 +10,21 @@ TextTableModel::TextTableModel(QStringList headers, QObject* parent)
 void TextTableModel::set_headers(QStringList headers) {
   beginResetModel();
   headers_ = std::move(headers);
-  columns_ = int(headers_.size());
+  columns_ = width();
   endResetModel();
 }
 
 void TextTableModel::set_rows(std::vector<TextRow> rows) {
   beginResetModel();
   rows_ = std::move(rows);
-  columns_ = int(headers_.size());
-  for (const TextRow& r : rows_) columns_ = std::max(columns_, int(r.cells.size()));
+  columns_ = width();
   endResetModel();
+}
+
+int TextTableModel::width() const {
+  int columns = int(headers_.size());
+  for (const TextRow& r : rows_) columns = std::max(columns, int(r.cells.size()));
+  return columns;
 }
 
 QString TextTableModel::text(int row, int column) const {

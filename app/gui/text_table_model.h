@@ -36,6 +36,8 @@ class TextTableModel : public QAbstractTableModel {
   QVariant headerData(int section, Qt::Orientation orientation, int role) const override;
 
  private:
+  int width() const;  // the headers' or the widest row's
+
   QStringList headers_;
   std::vector<TextRow> rows_;
   int columns_ = 0;
