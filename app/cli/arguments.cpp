@@ -137,8 +137,8 @@ std::string format_options_help(const std::vector<OptionSpec>& specs) {
     else
       left += "  ";
     out << left << s.help;
-    // A help that says its default in words ("default: the machine's cores") keeps only that.
-    if (!s.default_value.empty() && s.help.find("default") == std::string::npos)
+    // A help that says its default in words ("default: the machine's cores") says it once.
+    if (!s.default_value.empty() && s.help.find("default:") == std::string::npos)
       out << " (default " << s.default_value << ")";
     out << "\n";
   }

@@ -1,5 +1,7 @@
 #include "app/gui/gui_options.h"
 
+#include <cmath>
+
 namespace handlab::gui {
 namespace {
 
@@ -82,7 +84,8 @@ GuiOptions read_gui_options(const QCommandLineParser& parser) {
     bool ok = false;
     o.measure_latency = number(parser, "measure-latency", ok);
     o.latency_json = parser.value("latency-json");
-    if (!ok || !(o.measure_latency > 0) || o.latency_json.isEmpty())
+    if (!ok || !std::isfinite(o.measure_latency) || !(o.measure_latency > 0) ||
+        o.latency_json.isEmpty())
       throw GuiUsageError("--measure-latency takes seconds and --latency-json");
   }
   if (parser.isSet("pinch")) {
@@ -100,7 +103,8 @@ GuiOptions read_gui_options(const QCommandLineParser& parser) {
     bool ok = false;
     o.screenshot_at_questionnaire = when == "questionnaire";
     if (!o.screenshot_at_questionnaire) o.screenshot_seconds = when.toDouble(&ok);
-    if (!o.screenshot_at_questionnaire && (!ok || *o.screenshot_seconds < 0))
+    if (!o.screenshot_at_questionnaire &&
+        (!ok || !std::isfinite(*o.screenshot_seconds) || *o.screenshot_seconds < 0))
       throw GuiUsageError("--screenshot-at takes seconds or 'questionnaire'");
   }
   o.serve_recording = parser.value("serve-recording");

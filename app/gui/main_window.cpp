@@ -199,16 +199,25 @@ void MainWindow::show_error(const QString& title, const QString& error) {
 QString MainWindow::open_study(const QString& path) {
   if (session_->session_running())
     return tr("Stop the running session before opening another study.");
+  auto show = [this](const OpenStudy& study) {
+    home_->set_study(study);
+    participants_->set_study(study);
+    session_->set_study(study);
+    analysis_->set_study(study.path);  // its analysis runs on a thread of its own
+  };
   try {
     OpenStudy study{QFileInfo(path).absoluteFilePath(),
                     std::make_shared<store::StudyStore>(path.toStdString())};
     study.store->study();
+    show(study);
     study_ = std::move(study);
-    home_->set_study(study_);
-    participants_->set_study(study_);
-    session_->set_study(study_);
-    analysis_->set_study(study_.path);  // its analysis runs on a thread of its own
   } catch (const std::exception& e) {
+    try {  // every page back on the study the window had open
+      show(study_);
+    } catch (const std::exception&) {
+      show(OpenStudy{});
+      study_ = {};
+    }
     return QString::fromStdString(e.what());
   }
   remember_recent(study_.path);

@@ -109,7 +109,7 @@ QStringList ParticipantsPage::ids() const {
 
 bool ParticipantsPage::trial_ran(int row) const {
   return row >= 0 && row < trials_->rowCount() &&
-         trials_->text(row, StudyTables::kStatusColumn) != StudyTables::tr("planned");
+         trials_->text(row, StudyTables::kScheduleStatusColumn) != StudyTables::tr("planned");
 }
 
 void ParticipantsPage::refresh(const QString& select_id) {
@@ -142,7 +142,8 @@ void ParticipantsPage::show_schedule() {
 
 QString ParticipantsPage::add_participant() {
   if (!study_.is_open()) return {};
-  store::StudyStore& store = *study_.store;
+  const auto open = study_.store;  // held through the form's event loop
+  store::StudyStore& store = *open;
   const studies::Protocol protocol = studies::stored_protocol(store);
   ParticipantForm form(store.participants(), nullptr, this, &protocol);
   if (form.exec() != QDialog::Accepted) return {};
@@ -161,7 +162,8 @@ QString ParticipantsPage::add_participant() {
 QString ParticipantsPage::edit_participant() {
   const QString id = selected();
   if (!study_.is_open() || id.isEmpty()) return {};
-  store::StudyStore& store = *study_.store;
+  const auto open = study_.store;  // held through the form's event loop
+  store::StudyStore& store = *open;
   const auto current = store.participant(id.toStdString());
   if (!current) return {};
   const studies::Protocol protocol = studies::stored_protocol(store);

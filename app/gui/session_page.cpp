@@ -145,15 +145,15 @@ SessionPage::~SessionPage() {
 }
 
 void SessionPage::set_study(OpenStudy study) {
+  // Read first: a study whose protocol cannot be read leaves the page as it was.
+  std::optional<studies::Protocol> protocol;
+  if (study.is_open()) protocol = studies::stored_protocol(*study.store);
   worker_.reset();
   replay_->set_playing(false);
   replay_->hide();
   study_ = std::move(study);
-  protocol_.reset();
-  if (study_.is_open()) {
-    protocol_ = studies::stored_protocol(*study_.store);
-    view_->set_layout(protocol_->scene);
-  }
+  protocol_ = std::move(protocol);
+  if (protocol_) view_->set_layout(protocol_->scene);
   set_running(false);
 }
 
@@ -195,7 +195,7 @@ QString SessionPage::replay_trial(const QString& participant, int position, int 
 }
 
 QString SessionPage::start_session() {
-  if (!study_.is_open()) return tr("no study is open");
+  if (!study_.is_open() || !protocol_) return tr("no study is open");
   if (session_running()) return tr("a session is running");
   if (setup_->participant_box()->currentText().isEmpty()) return tr("choose a participant");
   // A replay gives the view back to the session.

@@ -20,7 +20,8 @@ class StudyTables {
  public:
   static QStringList participant_headers();
   static QStringList schedule_headers();
-  static constexpr int kGroupColumn = 6, kStatusColumn = 6;
+  static constexpr int kGroupColumn = 6;           // of the participants
+  static constexpr int kScheduleStatusColumn = 6;  // of the schedule
   // `in_session`: the participant whose session this app runs ("in session", not interrupted).
   static std::vector<TextRow> participants(store::StudyStore& store, const QString& in_session);
   static std::vector<TextRow> schedule(store::StudyStore& store, const QString& participant);

@@ -63,8 +63,11 @@ QVariant TextTableModel::data(const QModelIndex& index, int role) const {
 }
 
 QVariant TextTableModel::headerData(int section, Qt::Orientation orientation, int role) const {
-  if (role != Qt::DisplayRole || orientation != Qt::Horizontal) return {};
-  return section < headers_.size() ? QVariant(headers_[section]) : QVariant();
+  // Rows are numbered as Qt's own models number them.
+  if (orientation == Qt::Vertical)
+    return QAbstractTableModel::headerData(section, orientation, role);
+  if (role != Qt::DisplayRole) return {};
+  return section >= 0 && section < headers_.size() ? QVariant(headers_[section]) : QVariant();
 }
 
 }  // namespace handlab::gui

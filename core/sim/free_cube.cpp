@@ -36,9 +36,10 @@ void FreeCubeStepper::step(const HandSimState& start, HandSimState& result) {
   cube.time = start.time;
   cube.cube_velocity = start.cube_velocity;
   cube.corner_floor = start.corner_floor;
+  HandSimState next;
   for (int i = 0; i < kSubsteps; ++i) {
-    solver_.step(cube, {}, next_);
-    std::swap(cube, next_);
+    solver_.step(cube, {}, next);
+    std::swap(cube, next);
   }
   result.cube_pose = cube.cube_pose;
   result.cube_velocity = cube.cube_velocity;

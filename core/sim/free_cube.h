@@ -32,7 +32,6 @@ class FreeCubeStepper {
  private:
   HandSimModel model_;  // the cube and the floor alone, its time step a substep
   StepSolver solver_;   // one thread: six unknowns
-  HandSimState next_;   // a substep's result, kept for its buffers
 };
 
 }  // namespace handlab::sim

@@ -4,7 +4,7 @@
 // iteration by default, as Verschoor et al. do). Contacts are found at the predicted state;
 // after the step each friction anchor sticks, or slides to the edge of Coulomb's cone; a cube
 // that no flesh touches and that is not resting is stepped again alone, in substeps
-// (free_cube.h). The stages are in their own files; hand_simulator.cpp lists them,
+// (free_cube.h). The stages are in their own files; step_solver.cpp lists them,
 // docs/simulator.md explains them.
 #pragma once
 
