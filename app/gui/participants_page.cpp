@@ -123,7 +123,8 @@ void ParticipantsPage::refresh(const QString& select_id) {
   table_->resizeColumnsToContents();
   if (!keep.isEmpty()) select(keep);
   if (selected_row() < 0 && participants_->rowCount() > 0) table_->selectRow(0);
-  show_schedule();
+  // A row selected after the reset has shown its schedule (selectionChanged); none: clear it.
+  if (selected_row() < 0) show_schedule();
   emit participants_changed(ids(), selected());
 }
 
