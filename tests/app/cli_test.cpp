@@ -217,6 +217,19 @@ TEST(CliTracking, InfoJsonAndBadFiles) {
   EXPECT_NE(bad.out.find("cut.json.lz"), std::string::npos) << bad.out;
 }
 
+// The recording read as OpenXR's 26 joints: the fit's residual is the mapping's error, and the
+// Leap's own joints fit the same on this recording (0.8 mm, at most 2.5 mm).
+TEST(CliTracking, InfoViaOpenXrFitsAsTheLeapsJoints) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
+  const Result r = run_cli("tracking info " + recording + " --fit --via-openxr --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* key : {"\"via_openxr\": true", "\"frames\": 307"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+  const Result text = run_cli("tracking info " + recording + " --fit --via-openxr");
+  EXPECT_NE(text.out.find("read through OpenXR's 26 joints"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("residual mean 0.8 mm, max 2.5 mm"), std::string::npos) << text.out;
+}
+
 TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";

@@ -9,6 +9,7 @@
 #include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "core/tracking/hand_fitting.h"
+#include "core/tracking/openxr_hand.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -17,13 +18,17 @@ namespace handlab::cli {
 namespace {
 
 std::vector<OptionSpec> tracking_info_options() {
-  return {{"json", "OUT", "write the figures as JSON (- for standard output)"},
-          {"fit", "", "also fit every hand with the tracked skeleton measured from the recording"}};
+  return {
+      {"json", "OUT", "write the figures as JSON (- for standard output)"},
+      {"fit", "", "also fit every hand with the tracked skeleton measured from the recording"},
+      {"via-openxr", "",
+       "read every hand as OpenXR's hand tracking gives it: its 26 joints (XR_EXT_hand_tracking), "
+       "then the tracked hand made from them"}};
 }
 
 CommandHelp tracking_info_help() {
   return {"tracking info",
-          {"FILE [json] [fit]"},
+          {"FILE [json] [fit] [via-openxr]"},
           "Format, frames, hands, duration, frame rate, rejected frames and the thumb-index tip "
           "distance range of a recording (.json, .json.lz, .hlrec)."};
 }
@@ -50,6 +55,13 @@ RecordingFigures figures_of(const tracking::Recording& r) {
   g.fps = g.duration > 0 ? double(r.frames.size() - 1) / g.duration : 0.0;
   for (const auto& rej : r.rejected) ++g.reasons[rej.reason];
   return g;
+}
+
+// --via-openxr: each hand as an OpenXR runtime would give it, then read back as a tracked hand.
+void pass_through_openxr(tracking::Recording& r) {
+  for (auto& f : r.frames)
+    for (auto& h : f.hands)
+      h = *tracking::tracked_hand_from_openxr(tracking::openxr_hand_from_tracked(h), h.id);
 }
 
 // --fit: each hand fitted with the skeleton measured from the recording.
@@ -80,8 +92,9 @@ std::vector<FitFigures> fits_of(const tracking::Recording& r) {
 }
 
 void print_info(const tracking::Recording& r, const RecordingFigures& g,
-                const std::vector<FitFigures>& fits) {
-  std::cout << r.source << "\n  format version   " << r.format_version << "\n  frames           "
+                const std::vector<FitFigures>& fits, bool via_openxr) {
+  std::cout << r.source << (via_openxr ? " (read through OpenXR's 26 joints)" : "")
+            << "\n  format version   " << r.format_version << "\n  frames           "
             << r.frames_in_file << " (" << r.frames.size() << " read, " << g.with_hands
             << " with hands)\n  hands            " << g.left << " left, " << g.right
             << " right\n  duration         " << std::fixed << std::setprecision(3) << g.duration
@@ -98,9 +111,10 @@ void print_info(const tracking::Recording& r, const RecordingFigures& g,
 }
 
 void write_info_json(std::ostream& out, const tracking::Recording& r, const RecordingFigures& g,
-                     const std::vector<FitFigures>& fits) {
+                     const std::vector<FitFigures>& fits, bool via_openxr) {
   util::JsonWriter json(out);
   json.begin_object().field("source", r.source).field("format_version", r.format_version);
+  json.field("via_openxr", via_openxr);
   json.field("frames", r.frames_in_file)
       .field("frames_read", r.frames.size())
       .field("frames_with_hands", g.with_hands);
@@ -135,13 +149,16 @@ int tracking_info(const std::vector<std::string>& argv) {
   const Arguments args(tracking_info_options(), argv, 1);
   if (args.help_requested()) return print_help(tracking_info_help(), args);
   if (args.positional().empty()) throw UsageError("name a recording");
-  const tracking::Recording r = tracking::read_recording(args.positional()[0]);
+  tracking::Recording r = tracking::read_recording(args.positional()[0]);
+  if (args.flag("via-openxr")) pass_through_openxr(r);
   const RecordingFigures figures = figures_of(r);
   const std::vector<FitFigures> fits = args.flag("fit") ? fits_of(r) : std::vector<FitFigures>{};
-  if (args.text("json") != "-") print_info(r, figures, fits);
+  const bool via_openxr = args.flag("via-openxr");
+  if (args.text("json") != "-") print_info(r, figures, fits, via_openxr);
   if (args.has("json"))
-    util::write_output(args.text("json"),
-                       [&](std::ostream& out) { write_info_json(out, r, figures, fits); });
+    util::write_output(args.text("json"), [&](std::ostream& out) {
+      write_info_json(out, r, figures, fits, via_openxr);
+    });
   return 0;
 }
 
