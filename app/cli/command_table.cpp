@@ -16,6 +16,10 @@ const std::vector<Command>& all_commands() {
        "recordings, kick one (bench, pinch, grasp, pinches, replay, settle)",
        run_sim},
       {"tracking", "read Leap Motion recordings: info, convert to CSV or .hlrec", run_tracking},
+      {"xr",
+       "the OpenXR runtime: its headset, hand tracking, graphics (list); its hands recorded "
+       "(hands)",
+       run_xr},
       {"render", "draw the task scene, or a moment of a stored trial, into a PNG (no display)",
        run_render},
       {"study", "create a study database from a protocol; show its progress and what wrote it",

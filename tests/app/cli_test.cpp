@@ -230,6 +230,27 @@ TEST(CliTracking, InfoViaOpenXrFitsAsTheLeapsJoints) {
   EXPECT_NE(text.out.find("residual mean 0.8 mm, max 2.5 mm"), std::string::npos) << text.out;
 }
 
+// Where no OpenXR runtime answers, each xr command says so in one line (the loader's own log
+// silenced) and fails; a real runtime is the `openxr` test's (tests/openxr).
+TEST(CliXr, WithoutARuntimeEachCommandSaysSoInOneLine) {
+  const std::string missing = std::string(HANDLAB_TEST_TMP) + "/no-such-runtime.json";
+  setenv("XR_RUNTIME_JSON", missing.c_str(), 1);
+  const Result list = run_cli("xr list");
+  const Result json = run_cli("xr list --json -");
+  const Result hands = run_cli("xr hands --seconds 1");
+  const Result zero = run_cli("xr hands --seconds 0");
+  unsetenv("XR_RUNTIME_JSON");
+  EXPECT_EQ(list.status, 1);
+  EXPECT_EQ(list.out,
+            "handlab-cli xr: no OpenXR runtime answered: XR_ERROR_RUNTIME_UNAVAILABLE (docs/hmd.md "
+            "says how to start one)\n");
+  EXPECT_NE(json.out.find("\"found\": false"), std::string::npos) << json.out;
+  EXPECT_EQ(hands.status, 1);
+  EXPECT_EQ(std::count(hands.out.begin(), hands.out.end(), '\n'), 1) << hands.out;
+  EXPECT_NE(hands.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << hands.out;
+  EXPECT_EQ(zero.status, 2) << zero.out;
+}
+
 TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string dir = std::string(HANDLAB_TEST_TMP) + "/";

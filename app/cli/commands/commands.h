@@ -25,6 +25,7 @@ int run_report(const std::vector<std::string>& args);
 int run_power(const std::vector<std::string>& args);
 int run_replications(const std::vector<std::string>& args);
 int run_sensitivity(const std::vector<std::string>& args);
+int run_xr(const std::vector<std::string>& args);
 
 // --correction auto|none|gg|hf (power, replications); UsageError otherwise.
 power::SphericityCorrection sphericity_correction(const std::string& option);

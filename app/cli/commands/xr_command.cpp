@@ -1,0 +1,179 @@
+// handlab-cli xr: the OpenXR runtime this machine has, and what it offers a study.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/cli/arguments.h"
+#include "app/cli/command_help.h"
+#include "app/cli/commands/commands.h"
+#include "core/tracking/recording_io.h"
+#include "core/util/json_writer.h"
+#include "core/util/output_file.h"
+#include "core/xr/openxr_hand_source.h"
+#include "core/xr/openxr_runtime.h"
+
+namespace handlab::cli {
+namespace {
+
+std::vector<OptionSpec> xr_list_options() {
+  return {{"json", "OUT", "write what was found as JSON (- for standard output)"}};
+}
+
+CommandHelp xr_list_help() {
+  return {"xr list",
+          {"[json]"},
+          "The OpenXR runtime the loader finds (XR_RUNTIME_JSON, else the active runtime), its "
+          "headset, whether it tracks hands (XR_EXT_hand_tracking) and which graphics it takes. "
+          "Exit status 1 where no runtime answers."};
+}
+
+const char* yes_no(bool b) {
+  return b ? "yes" : "no";
+}
+
+void print_runtime(const xr::OpenXrRuntimeInfo& info) {
+  std::cout << "OpenXR runtime   " << info.runtime_name << " " << info.runtime_version << "\n";
+  if (info.system_found)
+    std::cout << "headset          " << info.system_name
+              << " (orientation tracked: " << yes_no(info.orientation_tracking)
+              << ", position tracked: " << yes_no(info.position_tracking) << ")\n";
+  else
+    std::cout << "headset          none: " << info.system_error << "\n";
+  std::cout << "hand tracking    XR_EXT_hand_tracking "
+            << (info.hand_tracking_extension ? "offered" : "not offered")
+            << (info.system_found
+                    ? std::string("; the headset tracks hands: ") + yes_no(info.system_tracks_hands)
+                    : std::string())
+            << "\ngraphics         Vulkan (XR_KHR_vulkan_enable2): " << yes_no(info.vulkan2)
+            << ", OpenGL (XR_KHR_opengl_enable): " << yes_no(info.opengl)
+            << ", none (XR_MND_headless): " << yes_no(info.headless) << "\n";
+}
+
+void write_runtime_json(std::ostream& out, const xr::OpenXrRuntimeInfo& info) {
+  util::JsonWriter json(out);
+  json.begin_object().field("found", info.found);
+  if (!info.found) {
+    json.field("error", info.error).end_object();
+    return;
+  }
+  json.field("runtime_name", info.runtime_name).field("runtime_version", info.runtime_version);
+  json.field("hand_tracking_extension", info.hand_tracking_extension)
+      .field("vulkan2", info.vulkan2)
+      .field("opengl", info.opengl)
+      .field("headless", info.headless);
+  json.key("extensions").begin_array();
+  for (const std::string& e : info.extensions) json.value(e);
+  json.end_array();
+  json.key("system").begin_object().field("found", info.system_found);
+  if (info.system_found)
+    json.field("name", info.system_name)
+        .field("vendor_id", double(info.vendor_id))
+        .field("tracks_hands", info.system_tracks_hands)
+        .field("orientation_tracking", info.orientation_tracking)
+        .field("position_tracking", info.position_tracking);
+  else
+    json.field("error", info.system_error);
+  json.end_object().end_object();
+}
+
+int xr_list(const std::vector<std::string>& argv) {
+  const Arguments args(xr_list_options(), argv, 0);
+  if (args.help_requested()) return print_help(xr_list_help(), args);
+  const xr::OpenXrRuntimeInfo info = xr::probe_openxr_runtime();
+  if (args.has("json"))
+    util::write_output(args.text("json"),
+                       [&](std::ostream& out) { write_runtime_json(out, info); });
+  if (!info.found) throw std::runtime_error(info.error + " (docs/hmd.md says how to start one)");
+  if (args.text("json") != "-") print_runtime(info);
+  return 0;
+}
+
+std::vector<OptionSpec> xr_hands_options() {
+  return {{"seconds", "S", "how long to record", "5"},
+          {"out", "FILE", "the frames as handlab's recording (.hlrec), for tracking info --fit"},
+          {"json", "OUT", "write what was recorded as JSON (- for standard output)"}};
+}
+
+CommandHelp xr_hands_help() {
+  return {"xr hands",
+          {"[seconds] [out] [json]"},
+          "Records the hands the OpenXR runtime tracks (XR_EXT_hand_tracking, in a session with no "
+          "graphics: XR_MND_headless) as tracked frames: each hand's 26 joints read as the "
+          "tracked hand a session reads."};
+}
+
+struct HandRecording {
+  std::vector<tracking::TrackedFrame> frames;
+  int left = 0, right = 0;
+  double seconds = 0.0;
+};
+
+HandRecording record_hands(xr::OpenXrHandSource& source, double seconds) {
+  HandRecording r;
+  const auto start = std::chrono::steady_clock::now();
+  const auto end = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                               std::chrono::duration<double>(seconds));
+  while (!source.ended() && std::chrono::steady_clock::now() < end) {
+    if (!source.wait_for_frame(
+            std::min(end, std::chrono::steady_clock::now() + std::chrono::milliseconds(100))))
+      continue;
+    if (auto f = source.next()) {
+      for (const auto& h : f->hands) ++(h.side == tracking::Side::kLeft ? r.left : r.right);
+      r.frames.push_back(std::move(*f));
+    }
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+int xr_hands(const std::vector<std::string>& argv) {
+  const Arguments args(xr_hands_options(), argv, 0);
+  if (args.help_requested()) return print_help(xr_hands_help(), args);
+  const double seconds = args.number("seconds");
+  if (!(seconds > 0 && seconds <= 3600)) throw UsageError("--seconds must be between 0 and 3600");
+  std::string error;
+  auto source = xr::OpenXrHandSource::open(error);
+  if (!source) throw std::runtime_error(error + " (docs/hmd.md)");
+  const HandRecording r = record_hands(*source, seconds);
+  if (args.has("out")) tracking::write_hlrec(r.frames, args.text("out"));
+  const double rate =
+      r.frames.size() > 1
+          ? double(r.frames.size() - 1) / (r.frames.back().timestamp - r.frames.front().timestamp)
+          : 0.0;
+  if (args.has("json"))
+    util::write_output(args.text("json"), [&](std::ostream& out) {
+      util::JsonWriter json(out);
+      json.begin_object()
+          .field("runtime_name", source->runtime_name())
+          .field("frames", int(r.frames.size()))
+          .field("frame_rate_hz", std::isfinite(rate) ? rate : 0.0)
+          .field("left_hands", r.left)
+          .field("right_hands", r.right)
+          .field("ended_by_runtime", source->ended())
+          .end_object();
+    });
+  if (args.text("json") != "-")
+    std::cout << "OpenXR hands from " << source->runtime_name() << ": " << r.frames.size()
+              << " frames in " << r.seconds << " s (" << rate << " Hz), " << r.left << " left and "
+              << r.right << " right hands"
+              << (args.has("out") ? ", written to " + args.text("out") : std::string()) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_xr(const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    std::cout << family_usage(
+                     {{xr_list_help(), xr_list_options()}, {xr_hands_help(), xr_hands_options()}})
+              << "\nOpenXR: the headset and its hand tracking (docs/hmd.md).\n";
+    return argv.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "list") return xr_list(rest);
+  if (argv[0] == "hands") return xr_hands(rest);
+  throw UsageError("unknown xr command '" + argv[0] + "' (list, hands)");
+}
+
+}  // namespace handlab::cli

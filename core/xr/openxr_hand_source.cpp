@@ -1,0 +1,310 @@
+#include "core/xr/openxr_hand_source.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstring>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "core/tracking/openxr_hand.h"
+#include "core/xr/openxr_loader.h"
+
+#define XR_USE_TIMESPEC
+#include <openxr/openxr_platform.h>
+
+namespace handlab::xr {
+
+namespace {
+
+// The functions a hand session calls, from the loader.
+struct HandFunctions {
+  PFN_xrGetInstanceProperties instance_properties = nullptr;
+  PFN_xrGetSystem get_system = nullptr;
+  PFN_xrCreateSession create_session = nullptr;
+  PFN_xrDestroySession destroy_session = nullptr;
+  PFN_xrBeginSession begin_session = nullptr;
+  PFN_xrEndSession end_session = nullptr;
+  PFN_xrRequestExitSession request_exit = nullptr;
+  PFN_xrPollEvent poll_event = nullptr;
+  PFN_xrWaitFrame wait_frame = nullptr;
+  PFN_xrBeginFrame begin_frame = nullptr;
+  PFN_xrEndFrame end_frame = nullptr;
+  PFN_xrCreateReferenceSpace create_space = nullptr;
+  PFN_xrDestroySpace destroy_space = nullptr;
+  PFN_xrCreateHandTrackerEXT create_tracker = nullptr;
+  PFN_xrDestroyHandTrackerEXT destroy_tracker = nullptr;
+  PFN_xrLocateHandJointsEXT locate_joints = nullptr;
+  PFN_xrDestroyInstance destroy_instance = nullptr;
+  PFN_xrConvertTimespecTimeToTimeKHR convert_time = nullptr;
+
+  bool load(const OpenXrLoader& l, XrInstance i) {
+    instance_properties = l.get<PFN_xrGetInstanceProperties>(i, "xrGetInstanceProperties");
+    get_system = l.get<PFN_xrGetSystem>(i, "xrGetSystem");
+    create_session = l.get<PFN_xrCreateSession>(i, "xrCreateSession");
+    destroy_session = l.get<PFN_xrDestroySession>(i, "xrDestroySession");
+    begin_session = l.get<PFN_xrBeginSession>(i, "xrBeginSession");
+    end_session = l.get<PFN_xrEndSession>(i, "xrEndSession");
+    request_exit = l.get<PFN_xrRequestExitSession>(i, "xrRequestExitSession");
+    poll_event = l.get<PFN_xrPollEvent>(i, "xrPollEvent");
+    wait_frame = l.get<PFN_xrWaitFrame>(i, "xrWaitFrame");
+    begin_frame = l.get<PFN_xrBeginFrame>(i, "xrBeginFrame");
+    end_frame = l.get<PFN_xrEndFrame>(i, "xrEndFrame");
+    create_space = l.get<PFN_xrCreateReferenceSpace>(i, "xrCreateReferenceSpace");
+    destroy_space = l.get<PFN_xrDestroySpace>(i, "xrDestroySpace");
+    create_tracker = l.get<PFN_xrCreateHandTrackerEXT>(i, "xrCreateHandTrackerEXT");
+    destroy_tracker = l.get<PFN_xrDestroyHandTrackerEXT>(i, "xrDestroyHandTrackerEXT");
+    locate_joints = l.get<PFN_xrLocateHandJointsEXT>(i, "xrLocateHandJointsEXT");
+    destroy_instance = l.get<PFN_xrDestroyInstance>(i, "xrDestroyInstance");
+    convert_time = l.get<PFN_xrConvertTimespecTimeToTimeKHR>(i, "xrConvertTimespecTimeToTimeKHR");
+    return instance_properties && get_system && create_session && destroy_session &&
+           begin_session && end_session && request_exit && poll_event && wait_frame &&
+           begin_frame && end_frame && create_space && destroy_space && create_tracker &&
+           destroy_tracker && locate_joints && destroy_instance && convert_time;
+  }
+};
+
+tracking::OpenXrHand openxr_hand(const std::vector<XrHandJointLocationEXT>& joints,
+                                 tracking::Side side) {
+  tracking::OpenXrHand hand;
+  hand.side = side;
+  for (int j = 0; j < tracking::kOpenXrJointCount; ++j) {
+    const XrHandJointLocationEXT& in = joints[std::size_t(j)];
+    tracking::OpenXrJoint& out = hand.joints[std::size_t(j)];
+    out.position = {in.pose.position.x, in.pose.position.y, in.pose.position.z};
+    out.orientation = Eigen::Quaterniond(in.pose.orientation.w, in.pose.orientation.x,
+                                         in.pose.orientation.y, in.pose.orientation.z);
+    out.radius = in.radius;
+    out.position_valid = in.locationFlags & XR_SPACE_LOCATION_POSITION_VALID_BIT;
+    out.orientation_valid = in.locationFlags & XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+  }
+  return hand;
+}
+
+}  // namespace
+
+struct OpenXrHandSource::Session {
+  HandFunctions xr;
+  XrInstance instance = XR_NULL_HANDLE;
+  XrSession session = XR_NULL_HANDLE;
+  XrSpace space = XR_NULL_HANDLE;
+  XrHandTrackerEXT trackers[2] = {XR_NULL_HANDLE, XR_NULL_HANDLE};  // left, right
+  std::string runtime;
+
+  std::thread loop;
+  std::atomic<bool> stop{false};
+  mutable std::mutex mutex;
+  std::condition_variable arrived;
+  std::optional<tracking::TrackedFrame> newest;  // not yet taken by next()
+  bool running = false, ended = false;
+  XrTime first_time = 0;
+  std::int64_t frames = 0;
+
+  ~Session() {
+    stop = true;
+    if (loop.joinable()) loop.join();
+    for (XrHandTrackerEXT t : trackers)
+      if (t != XR_NULL_HANDLE) xr.destroy_tracker(t);
+    if (space != XR_NULL_HANDLE) xr.destroy_space(space);
+    if (session != XR_NULL_HANDLE) xr.destroy_session(session);
+    if (instance != XR_NULL_HANDLE) xr.destroy_instance(instance);
+  }
+
+  // Session state changes: begun when ready, ended when stopping; false once it exits.
+  bool handle_events(bool& session_running) {
+    auto event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+    while (xr.poll_event(instance, &event) == XR_SUCCESS) {
+      if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
+        const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+        if (changed.state == XR_SESSION_STATE_READY) {
+          auto begin = xr_struct<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
+          begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+          session_running = XR_SUCCEEDED(xr.begin_session(session, &begin));
+        } else if (changed.state == XR_SESSION_STATE_STOPPING) {
+          xr.end_session(session);
+          session_running = false;
+        } else if (changed.state == XR_SESSION_STATE_EXITING ||
+                   changed.state == XR_SESSION_STATE_LOSS_PENDING) {
+          return false;
+        }
+      } else if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
+        return false;
+      }
+      event = xr_struct<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+    }
+    return true;
+  }
+
+  tracking::TrackedFrame locate(XrTime time) {
+    tracking::TrackedFrame frame;
+    if (first_time == 0) first_time = time;
+    frame.timestamp = double(time - first_time) * 1e-9;
+    frame.id = ++frames;
+    for (int side = 0; side < 2; ++side) {
+      std::vector<XrHandJointLocationEXT> joints(tracking::kOpenXrJointCount);
+      auto locations = xr_struct<XrHandJointLocationsEXT>(XR_TYPE_HAND_JOINT_LOCATIONS_EXT);
+      locations.jointCount = std::uint32_t(joints.size());
+      locations.jointLocations = joints.data();
+      auto info = xr_struct<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
+      info.baseSpace = space;
+      info.time = time;
+      if (XR_FAILED(xr.locate_joints(trackers[side], &info, &locations)) || !locations.isActive)
+        continue;
+      const auto s = side == 0 ? tracking::Side::kLeft : tracking::Side::kRight;
+      if (auto hand = tracking::tracked_hand_from_openxr(openxr_hand(joints, s), side + 1))
+        frame.hands.push_back(*hand);
+    }
+    return frame;
+  }
+
+  // A session with no graphics has no frame loop to pace it (xrWaitFrame predicts no display
+  // time): the hands are located at the runtime's now, kRate times a second.
+  static constexpr double kRate = 120.0;
+  std::chrono::steady_clock::time_point next_tick{};
+
+  void frame() {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_tick) std::this_thread::sleep_until(next_tick);
+    next_tick =
+        std::max(now, next_tick) + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                       std::chrono::duration<double>(1.0 / kRate));
+    timespec monotonic{};
+    clock_gettime(CLOCK_MONOTONIC, &monotonic);
+    XrTime time = 0;
+    if (XR_FAILED(xr.convert_time(instance, &monotonic, &time))) return;
+    tracking::TrackedFrame f = locate(time);
+    {
+      std::lock_guard lock(mutex);
+      newest = std::move(f);
+      running = true;
+    }
+    arrived.notify_all();
+  }
+
+  void run() {
+    bool session_running = false, exit_requested = false;
+    const auto give_up = [&] { return std::chrono::steady_clock::now(); };
+    auto stop_deadline = give_up();
+    while (true) {
+      if (!handle_events(session_running)) break;
+      if (stop && !exit_requested) {
+        if (!session_running) break;
+        xr.request_exit(session);
+        exit_requested = true;
+        stop_deadline = give_up() + std::chrono::seconds(1);
+      }
+      if (exit_requested && give_up() > stop_deadline) break;
+      if (session_running)
+        frame();
+      else
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    {
+      std::lock_guard lock(mutex);
+      ended = true;
+    }
+    arrived.notify_all();
+  }
+};
+
+namespace {
+
+// The instance, system, headless session, LOCAL space and both hands' trackers; "" or why not.
+std::string make_session(OpenXrHandSource::Session& s) {
+  const OpenXrLoader& loader = OpenXrLoader::instance();
+  if (!loader.available()) return loader.error();
+  const char* extensions[] = {"XR_EXT_hand_tracking", "XR_MND_headless",
+                              "XR_KHR_convert_timespec_time"};
+  auto create = xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
+  std::strncpy(create.applicationInfo.applicationName, "handlab", XR_MAX_APPLICATION_NAME_SIZE - 1);
+  create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  create.enabledExtensionCount = 3;
+  create.enabledExtensionNames = extensions;
+  auto create_instance = loader.get<PFN_xrCreateInstance>(XR_NULL_HANDLE, "xrCreateInstance");
+  XrResult r =
+      create_instance ? create_instance(&create, &s.instance) : XR_ERROR_RUNTIME_UNAVAILABLE;
+  if (XR_FAILED(r))
+    return "no OpenXR runtime with hand tracking and headless sessions (XR_EXT_hand_tracking, "
+           "XR_MND_headless): " +
+           result_name(r);
+  if (!s.xr.load(loader, s.instance)) return "the OpenXR runtime lacks a function hands need";
+  auto properties = xr_struct<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
+  if (XR_SUCCEEDED(s.xr.instance_properties(s.instance, &properties)))
+    s.runtime = properties.runtimeName;
+  auto system_info = xr_struct<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
+  system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  if (XR_FAILED(r = s.xr.get_system(s.instance, &system_info, &system)))
+    return "no headset: " + result_name(r);
+  auto session_info = xr_struct<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
+  session_info.systemId = system;
+  if (XR_FAILED(r = s.xr.create_session(s.instance, &session_info, &s.session)))
+    return "the OpenXR runtime made no session: " + result_name(r);
+  auto space_info = xr_struct<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
+  space_info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_LOCAL;
+  space_info.poseInReferenceSpace.orientation.w = 1.0f;
+  if (XR_FAILED(r = s.xr.create_space(s.session, &space_info, &s.space)))
+    return "no LOCAL space: " + result_name(r);
+  for (int side = 0; side < 2; ++side) {
+    auto tracker = xr_struct<XrHandTrackerCreateInfoEXT>(XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT);
+    tracker.hand = side == 0 ? XR_HAND_LEFT_EXT : XR_HAND_RIGHT_EXT;
+    tracker.handJointSet = XR_HAND_JOINT_SET_DEFAULT_EXT;
+    if (XR_FAILED(r = s.xr.create_tracker(s.session, &tracker, &s.trackers[side])))
+      return std::string("the OpenXR runtime tracks no ") + (side == 0 ? "left" : "right") +
+             " hand: " + result_name(r);
+  }
+  return "";
+}
+
+}  // namespace
+
+std::unique_ptr<OpenXrHandSource> OpenXrHandSource::open(std::string& error,
+                                                         std::chrono::milliseconds start_timeout) {
+  auto s = std::make_unique<Session>();
+  error = make_session(*s);
+  if (!error.empty()) return nullptr;
+  s->loop = std::thread([raw = s.get()] { raw->run(); });
+  std::unique_lock lock(s->mutex);
+  if (!s->arrived.wait_for(lock, start_timeout, [&] { return s->running || s->ended; }) ||
+      !s->running) {
+    lock.unlock();
+    error =
+        "the OpenXR session did not start within " + std::to_string(start_timeout.count()) + " ms";
+    return nullptr;
+  }
+  lock.unlock();
+  return std::unique_ptr<OpenXrHandSource>(new OpenXrHandSource(std::move(s)));
+}
+
+OpenXrHandSource::OpenXrHandSource(std::unique_ptr<Session> session)
+    : session_(std::move(session)) {}
+
+OpenXrHandSource::~OpenXrHandSource() = default;
+
+std::optional<tracking::TrackedFrame> OpenXrHandSource::next() {
+  std::lock_guard lock(session_->mutex);
+  std::optional<tracking::TrackedFrame> f;
+  f.swap(session_->newest);
+  return f;
+}
+
+bool OpenXrHandSource::wait_for_frame(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(session_->mutex);
+  return session_->arrived.wait_until(lock, deadline, [&] {
+    return session_->newest.has_value() || session_->ended;
+  }) && session_->newest.has_value();
+}
+
+bool OpenXrHandSource::ended() const {
+  std::lock_guard lock(session_->mutex);
+  return session_->ended;
+}
+
+std::string OpenXrHandSource::runtime_name() const {
+  return session_->runtime;
+}
+
+}  // namespace handlab::xr

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# handlab against a real OpenXR runtime: Monado (scripts/build-monado.sh builds it once into a
+# cache), its null compositor and Vulkan on the CPU (lavapipe).
+#  1. the simulated headset: `xr list` finds the runtime and its headset; `xr hands` says in
+#     one line that it tracks no hands;
+#  2. the remote driver, fed two hands over its TCP socket by remote_hands.c (built against
+#     Monado's own header): `xr hands` records them through XR_EXT_hand_tracking at 120 Hz, and
+#     the tracked skeleton fits the joints the runtime gives (`tracking info --fit`).
+# Usage: openxr-test.sh HANDLAB_CLI SOURCE_DIR WORK_DIR
+set -euo pipefail
+cli=$1 source=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "openxr-test: $*" >&2; exit 1; }
+
+manifest=$("$source/scripts/build-monado.sh") || fail "Monado could not be built (above)"
+monado=$(dirname "$(dirname "$manifest")")
+export XR_RUNTIME_JSON=$manifest XRT_COMPOSITOR_NULL=1 XRT_LOG=warning
+export VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
+[ -f "$VK_ICD_FILENAMES" ] || fail "no lavapipe ($VK_ICD_FILENAMES: mesa-vulkan-drivers)"
+json_has() { grep -q -- "$2" "$1" || fail "$1 lacks $2: $(cat "$1")"; }
+
+# 1. The simulated headset.
+export XDG_CONFIG_HOME=$work/simulated SIMULATED_ENABLE=1
+"$cli" xr list --json "$work/list.json" >"$work/list.txt" 2>"$work/list.log" ||
+  fail "xr list: $(tail -1 "$work/list.log")"
+json_has "$work/list.json" '"runtime_name": "Monado'
+json_has "$work/list.json" '"name": "Monado: Simulated HMD"'
+json_has "$work/list.json" '"hand_tracking_extension": true'
+json_has "$work/list.json" '"tracks_hands": false'
+if "$cli" xr hands --seconds 1 >"$work/none.txt" 2>"$work/none.log"; then
+  fail "xr hands ran on a runtime without hands"
+fi
+grep -q '^handlab-cli xr: the OpenXR runtime tracks no left hand' "$work/none.log" ||
+  fail "xr hands without hands: $(cat "$work/none.log")"
+unset SIMULATED_ENABLE
+
+# 2. The remote driver, two hands over its socket.
+port=$((42000 + $$ % 1000))
+mkdir -p "$work/remote/monado"
+echo "{\"active\": \"remote\", \"remote\": {\"version\": 0, \"port\": $port, \"view_count\": 2}}" \
+  >"$work/remote/monado/config_v0.json"
+export XDG_CONFIG_HOME=$work/remote
+remote=$monado/monado-598080453/src/xrt
+cc -O2 -I"$remote/drivers/remote" -I"$remote/include" -I"$remote/auxiliary" \
+  "$source/tests/openxr/remote_hands.c" -lm -o "$work/remote_hands"
+"$work/remote_hands" "$port" 5 &
+driver=$!
+"$cli" xr hands --seconds 3 --out "$work/hands.hlrec" --json "$work/hands.json" \
+  >"$work/hands.txt" 2>"$work/hands.log" || fail "xr hands: $(tail -1 "$work/hands.log")"
+wait "$driver" || fail "the remote driver's client failed"
+json_has "$work/hands.json" '"runtime_name": "Monado'
+python3 - "$work/hands.json" <<'EOF' || fail "xr hands: $(cat "$work/hands.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert 300 <= r["frames"] <= 400, r             # 3 s at 120 Hz
+assert abs(r["frame_rate_hz"] - 120) < 2, r
+assert r["left_hands"] >= 300 and r["right_hands"] >= 300, r
+EOF
+"$cli" tracking info "$work/hands.hlrec" --fit --json "$work/fit.json" >"$work/fit.txt" ||
+  fail "tracking info of the recorded hands"
+python3 - "$work/fit.json" <<'EOF' || fail "the fit of the runtime's hands: $(cat "$work/fit.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+# The fingers closed and opened: the thumb's tip came within 3 cm of the index's and went 9 cm off.
+assert r["thumb_index_mm"]["min"] < 30 and r["thumb_index_mm"]["max"] > 90, r
+fits = {f["side"]: f for f in r["fit"]}
+for side in ("left", "right"):
+    f = fits[side]
+    assert f["frames"] >= 300, f
+    assert f["residual_mean_mm"] < 2.0 and f["residual_max_mm"] < 10.0, f  # 1.2 and 6.3 mm
+EOF
+cat "$work/hands.txt" "$work/fit.txt"
+echo "openxr-test: passed"

@@ -1,0 +1,69 @@
+// Drives Monado's remote driver (src/xrt/drivers/remote) as its debugging UI does: connects to
+// the hub's TCP port and sends the state of a head and two hands, 100 times a second for the
+// given seconds. Each hand's fingers close and open (curl 0 to 1 and back, every 2 s), the
+// index a quarter of a cycle ahead, so that the runtime's hand joints move.
+// Built against Monado's own header (r_interface.h) by tests/openxr/openxr-test.sh.
+#include <arpa/inet.h>
+#include <math.h>
+#include <netinet/in.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "r_interface.h"
+
+static void hand(struct r_remote_controller_data* c, float x, double t) {
+  memset(c, 0, sizeof(*c));
+  c->pose.orientation.w = 1.0f;
+  c->pose.position.x = x;
+  c->pose.position.y = -0.3f;
+  c->pose.position.z = -0.4f;
+  for (int f = 0; f < 5; ++f) {
+    const double phase = 2 * M_PI * t / 2.0 + (f == 3 ? M_PI / 2 : 0.0);
+    c->hand_curl[f] = (float)(0.5 - 0.5 * cos(phase));
+  }
+  c->hand_tracking_active = true;
+  c->active = true;
+}
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    fprintf(stderr, "usage: remote_hands PORT SECONDS\n");
+    return 2;
+  }
+  const int port = atoi(argv[1]);
+  const double seconds = atof(argv[2]);
+  struct sockaddr_in address = {0};
+  address.sin_family = AF_INET;
+  address.sin_port = htons((uint16_t)port);
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  int fd = -1;
+  for (int attempt = 0; attempt < 500; ++attempt) {  // the hub listens once the runtime starts
+    fd = socket(AF_INET, SOCK_STREAM, 0);
+    if (connect(fd, (struct sockaddr*)&address, sizeof(address)) == 0) break;
+    close(fd);
+    fd = -1;
+    usleep(20000);
+  }
+  if (fd < 0) {
+    fprintf(stderr, "remote_hands: no hub on port %d\n", port);
+    return 1;
+  }
+  const int steps = (int)(seconds * 100);
+  for (int i = 0; i < steps; ++i) {
+    const double t = i / 100.0;
+    struct r_remote_data data;
+    memset(&data, 0, sizeof(data));
+    data.header = R_HEADER_VALUE;
+    data.head.center.orientation.w = 1.0f;
+    hand(&data.left, -0.1f, t);
+    hand(&data.right, 0.1f, t);
+    if (send(fd, &data, sizeof(data), MSG_NOSIGNAL) != (ssize_t)sizeof(data)) break;  // runtime left
+    usleep(10000);
+  }
+  close(fd);
+  return 0;
+}
