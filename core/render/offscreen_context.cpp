@@ -93,6 +93,10 @@ OffscreenRenderer::OffscreenRenderer(int width, int height, int samples)
 OffscreenRenderer::~OffscreenRenderer() = default;
 
 Image OffscreenRenderer::render(const DrawList& list, const OrbitCamera& camera) {
+  return render(list, view_camera(camera, float(impl_->width) / float(impl_->height)));
+}
+
+Image OffscreenRenderer::render(const DrawList& list, const ViewCamera& camera) {
   Impl& s = *impl_;
   OSMesaMakeCurrent(s.context, s.buffer.data(), GL_UNSIGNED_BYTE, s.width, s.height);
   s.gl->BindFramebuffer(GL_FRAMEBUFFER, s.fbo);

@@ -7,6 +7,7 @@
 #include "core/render/draw_list.h"
 #include "core/render/image.h"
 #include "core/render/orbit_camera.h"
+#include "core/render/view_camera.h"
 
 namespace handlab::render {
 
@@ -20,6 +21,7 @@ class OffscreenRenderer {
   OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
 
   Image render(const DrawList& list, const OrbitCamera& camera);
+  Image render(const DrawList& list, const ViewCamera& camera);
 
  private:
   struct Impl;

@@ -1,5 +1,7 @@
 #include "core/render/orbit_camera.h"
 
+#include "core/render/view_camera.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,12 +53,8 @@ void OrbitCamera::zoom(float steps) {
 
 bool project_to_pixel(const OrbitCamera& camera, int width, int height,
                       const Eigen::Vector3f& world, Eigen::Vector2f* pixel) {
-  const Eigen::Vector4f clip =
-      camera.projection(float(width) / float(height)) * camera.view() * world.homogeneous();
-  if (clip.w() <= 0.0f) return false;
-  const Eigen::Vector2f ndc = clip.head<2>() / clip.w();
-  *pixel = Eigen::Vector2f(0.5f * (ndc.x() + 1.0f) * width, 0.5f * (1.0f - ndc.y()) * height);
-  return true;
+  return project_to_pixel(view_camera(camera, float(width) / float(height)), width, height, world,
+                          pixel);
 }
 
 }  // namespace handlab::render

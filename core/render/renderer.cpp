@@ -266,11 +266,15 @@ Renderer::Renderer(const GlLoader& loader) : impl_(std::make_unique<Impl>(loader
 Renderer::~Renderer() = default;
 
 void Renderer::render(const DrawList& list, const OrbitCamera& camera, int width, int height) {
+  render(list, view_camera(camera, height > 0 ? float(width) / float(height) : 1.0f), width,
+         height);
+}
+
+void Renderer::render(const DrawList& list, const ViewCamera& camera, int width, int height) {
   auto& gl = impl_->gl;
   impl_->evict_expired();
-  const float aspect = height > 0 ? float(width) / float(height) : 1.0f;
-  const Eigen::Matrix4f view_projection = camera.projection(aspect) * camera.view();
-  const Eigen::Vector3f eye = camera.eye();
+  const Eigen::Matrix4f view_projection = camera.projection * camera.view;
+  const Eigen::Vector3f eye = camera.eye;
   // Clipping stays enabled and is switched by its plane: drivers differ in whether a
   // distance the shader writes clips while GL_CLIP_DISTANCE0 is disabled.
   const Eigen::Vector4f above_ground(0.0f, 1.0f, 0.0f, 0.0f), nowhere(0.0f, 0.0f, 0.0f, 1.0f);

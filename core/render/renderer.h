@@ -8,6 +8,7 @@
 #include "core/render/draw_list.h"
 #include "core/render/gl_loader.h"
 #include "core/render/orbit_camera.h"
+#include "core/render/view_camera.h"
 
 namespace handlab::render {
 
@@ -20,6 +21,7 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   void render(const DrawList& list, const OrbitCamera& camera, int width, int height);
+  void render(const DrawList& list, const ViewCamera& camera, int width, int height);
 
   // "vendor / renderer / version" of the context, for logs.
   std::string context_description() const;

@@ -11,61 +11,11 @@
 #include <vector>
 
 #include "core/tracking/openxr_hand.h"
-#include "core/xr/openxr_loader.h"
-
-#define XR_USE_TIMESPEC
-#include <openxr/openxr_platform.h>
+#include "core/xr/openxr_functions.h"
 
 namespace handlab::xr {
 
 namespace {
-
-// The functions a hand session calls, from the loader.
-struct HandFunctions {
-  PFN_xrGetInstanceProperties instance_properties = nullptr;
-  PFN_xrGetSystem get_system = nullptr;
-  PFN_xrCreateSession create_session = nullptr;
-  PFN_xrDestroySession destroy_session = nullptr;
-  PFN_xrBeginSession begin_session = nullptr;
-  PFN_xrEndSession end_session = nullptr;
-  PFN_xrRequestExitSession request_exit = nullptr;
-  PFN_xrPollEvent poll_event = nullptr;
-  PFN_xrWaitFrame wait_frame = nullptr;
-  PFN_xrBeginFrame begin_frame = nullptr;
-  PFN_xrEndFrame end_frame = nullptr;
-  PFN_xrCreateReferenceSpace create_space = nullptr;
-  PFN_xrDestroySpace destroy_space = nullptr;
-  PFN_xrCreateHandTrackerEXT create_tracker = nullptr;
-  PFN_xrDestroyHandTrackerEXT destroy_tracker = nullptr;
-  PFN_xrLocateHandJointsEXT locate_joints = nullptr;
-  PFN_xrDestroyInstance destroy_instance = nullptr;
-  PFN_xrConvertTimespecTimeToTimeKHR convert_time = nullptr;
-
-  bool load(const OpenXrLoader& l, XrInstance i) {
-    instance_properties = l.get<PFN_xrGetInstanceProperties>(i, "xrGetInstanceProperties");
-    get_system = l.get<PFN_xrGetSystem>(i, "xrGetSystem");
-    create_session = l.get<PFN_xrCreateSession>(i, "xrCreateSession");
-    destroy_session = l.get<PFN_xrDestroySession>(i, "xrDestroySession");
-    begin_session = l.get<PFN_xrBeginSession>(i, "xrBeginSession");
-    end_session = l.get<PFN_xrEndSession>(i, "xrEndSession");
-    request_exit = l.get<PFN_xrRequestExitSession>(i, "xrRequestExitSession");
-    poll_event = l.get<PFN_xrPollEvent>(i, "xrPollEvent");
-    wait_frame = l.get<PFN_xrWaitFrame>(i, "xrWaitFrame");
-    begin_frame = l.get<PFN_xrBeginFrame>(i, "xrBeginFrame");
-    end_frame = l.get<PFN_xrEndFrame>(i, "xrEndFrame");
-    create_space = l.get<PFN_xrCreateReferenceSpace>(i, "xrCreateReferenceSpace");
-    destroy_space = l.get<PFN_xrDestroySpace>(i, "xrDestroySpace");
-    create_tracker = l.get<PFN_xrCreateHandTrackerEXT>(i, "xrCreateHandTrackerEXT");
-    destroy_tracker = l.get<PFN_xrDestroyHandTrackerEXT>(i, "xrDestroyHandTrackerEXT");
-    locate_joints = l.get<PFN_xrLocateHandJointsEXT>(i, "xrLocateHandJointsEXT");
-    destroy_instance = l.get<PFN_xrDestroyInstance>(i, "xrDestroyInstance");
-    convert_time = l.get<PFN_xrConvertTimespecTimeToTimeKHR>(i, "xrConvertTimespecTimeToTimeKHR");
-    return instance_properties && get_system && create_session && destroy_session &&
-           begin_session && end_session && request_exit && poll_event && wait_frame &&
-           begin_frame && end_frame && create_space && destroy_space && create_tracker &&
-           destroy_tracker && locate_joints && destroy_instance && convert_time;
-  }
-};
 
 tracking::OpenXrHand openxr_hand(const std::vector<XrHandJointLocationEXT>& joints,
                                  tracking::Side side) {
@@ -87,7 +37,7 @@ tracking::OpenXrHand openxr_hand(const std::vector<XrHandJointLocationEXT>& join
 }  // namespace
 
 struct OpenXrHandSource::Session {
-  HandFunctions xr;
+  OpenXrFunctions xr;
   XrInstance instance = XR_NULL_HANDLE;
   XrSession session = XR_NULL_HANDLE;
   XrSpace space = XR_NULL_HANDLE;
@@ -107,7 +57,7 @@ struct OpenXrHandSource::Session {
     stop = true;
     if (loop.joinable()) loop.join();
     for (XrHandTrackerEXT t : trackers)
-      if (t != XR_NULL_HANDLE) xr.destroy_tracker(t);
+      if (t != XR_NULL_HANDLE) xr.destroy_hand_tracker(t);
     if (space != XR_NULL_HANDLE) xr.destroy_space(space);
     if (session != XR_NULL_HANDLE) xr.destroy_session(session);
     if (instance != XR_NULL_HANDLE) xr.destroy_instance(instance);
@@ -151,7 +101,8 @@ struct OpenXrHandSource::Session {
       auto info = xr_struct<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
       info.baseSpace = space;
       info.time = time;
-      if (XR_FAILED(xr.locate_joints(trackers[side], &info, &locations)) || !locations.isActive)
+      if (XR_FAILED(xr.locate_hand_joints(trackers[side], &info, &locations)) ||
+          !locations.isActive)
         continue;
       const auto s = side == 0 ? tracking::Side::kLeft : tracking::Side::kRight;
       if (auto hand = tracking::tracked_hand_from_openxr(openxr_hand(joints, s), side + 1))
@@ -230,7 +181,8 @@ std::string make_session(OpenXrHandSource::Session& s) {
     return "no OpenXR runtime with hand tracking and headless sessions (XR_EXT_hand_tracking, "
            "XR_MND_headless): " +
            result_name(r);
-  if (!s.xr.load(loader, s.instance)) return "the OpenXR runtime lacks a function hands need";
+  if (!s.xr.load(loader, s.instance) || !s.xr.create_hand_tracker || !s.xr.convert_time)
+    return "the OpenXR runtime lacks a function hands need";
   auto properties = xr_struct<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
   if (XR_SUCCEEDED(s.xr.instance_properties(s.instance, &properties)))
     s.runtime = properties.runtimeName;
@@ -252,7 +204,7 @@ std::string make_session(OpenXrHandSource::Session& s) {
     auto tracker = xr_struct<XrHandTrackerCreateInfoEXT>(XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT);
     tracker.hand = side == 0 ? XR_HAND_LEFT_EXT : XR_HAND_RIGHT_EXT;
     tracker.handJointSet = XR_HAND_JOINT_SET_DEFAULT_EXT;
-    if (XR_FAILED(r = s.xr.create_tracker(s.session, &tracker, &s.trackers[side])))
+    if (XR_FAILED(r = s.xr.create_hand_tracker(s.session, &tracker, &s.trackers[side])))
       return std::string("the OpenXR runtime tracks no ") + (side == 0 ? "left" : "right") +
              " hand: " + result_name(r);
   }

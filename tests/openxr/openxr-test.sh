@@ -2,7 +2,9 @@
 # handlab against a real OpenXR runtime: Monado (scripts/build-monado.sh builds it once into a
 # cache), its null compositor and Vulkan on the CPU (lavapipe).
 #  1. the simulated headset: `xr list` finds the runtime and its headset; `xr hands` says in
-#     one line that it tracks no hands;
+#     one line that it tracks no hands; `xr show` draws the task scene into both eyes'
+#     swapchains, paced by the runtime, and reads each image back before releasing it: the
+#     cube where each eye's projection puts it, every frame as drawn, the session ended cleanly;
 #  2. the remote driver, fed two hands over its TCP socket by remote_hands.c (built against
 #     Monado's own header): `xr hands` records them through XR_EXT_hand_tracking at 120 Hz, and
 #     the tracked skeleton fits the joints the runtime gives (`tracking info --fit`).
@@ -32,6 +34,25 @@ if "$cli" xr hands --seconds 1 >"$work/none.txt" 2>"$work/none.log"; then
 fi
 grep -q '^handlab-cli xr: the OpenXR runtime tracks no left hand' "$work/none.log" ||
   fail "xr hands without hands: $(cat "$work/none.log")"
+"$cli" xr show --seconds 2 --screenshot "$work/eyes" --json "$work/show.json" \
+  >"$work/show.txt" 2>"$work/show.log" || fail "xr show: $(tail -1 "$work/show.log")"
+python3 - "$work/show.json" <<'EOF' || fail "xr show: $(cat "$work/show.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+n = r["frames_drawn"]
+assert n >= 10, r
+# Every frame waited for once, begun once and ended once; at most the first not drawn.
+assert r["frames_waited"] == r["frames_begun"] == r["frames_ended"], r
+assert r["frames_ended"] - n <= 1, r
+assert r["cube_seen_left"] == n and r["cube_seen_right"] == n, r
+assert r["read_back_as_drawn"] == n, r
+assert r["end_state"] == "exiting", r
+EOF
+for eye in left right; do
+  [ -s "$work/eyes/eye-$eye.png" ] || fail "no picture of the $eye eye's swapchain image"
+done
+cmp -s "$work/eyes/eye-left.png" "$work/eyes/eye-right.png" &&
+  fail "both eyes' images are the same: no stereo"
 unset SIMULATED_ENABLE
 
 # 2. The remote driver, two hands over its socket.
@@ -69,5 +90,5 @@ for side in ("left", "right"):
     assert f["frames"] >= 300, f
     assert f["residual_mean_mm"] < 2.0 and f["residual_max_mm"] < 10.0, f  # 1.2 and 6.3 mm
 EOF
-cat "$work/hands.txt" "$work/fit.txt"
+cat "$work/show.txt" "$work/hands.txt" "$work/fit.txt"
 echo "openxr-test: passed"
