@@ -259,4 +259,26 @@ std::string OpenXrHandSource::runtime_name() const {
   return session_->runtime;
 }
 
+namespace {
+
+class SharedView : public tracking::LiveFrameSource {
+ public:
+  explicit SharedView(std::shared_ptr<OpenXrHandSource> source) : source_(std::move(source)) {
+    source_->next();
+  }
+  std::optional<tracking::TrackedFrame> next() override { return source_->next(); }
+  bool wait_for_frame(std::chrono::steady_clock::time_point deadline) override {
+    return source_->wait_for_frame(deadline);
+  }
+
+ private:
+  std::shared_ptr<OpenXrHandSource> source_;
+};
+
+}  // namespace
+
+std::unique_ptr<tracking::LiveFrameSource> view_of(std::shared_ptr<OpenXrHandSource> source) {
+  return std::make_unique<SharedView>(std::move(source));
+}
+
 }  // namespace handlab::xr

@@ -38,4 +38,8 @@ class OpenXrHandSource : public tracking::LiveFrameSource {
   std::unique_ptr<Session> session_;
 };
 
+// A view of a shared source for one user at a time (a session's calibration, then each trial):
+// frames that came before the view was made are not its own.
+std::unique_ptr<tracking::LiveFrameSource> view_of(std::shared_ptr<OpenXrHandSource> source);
+
 }  // namespace handlab::xr

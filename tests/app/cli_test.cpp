@@ -239,7 +239,21 @@ TEST(CliXr, WithoutARuntimeEachCommandSaysSoInOneLine) {
   const Result json = run_cli("xr list --json -");
   const Result hands = run_cli("xr hands --seconds 1");
   const Result zero = run_cli("xr hands --seconds 0");
+  const std::string db = handlab::test::fresh_path("cli_xr.db");
+  ASSERT_EQ(run_cli("study create --protocol " + std::string(HANDLAB_SOURCE_DIR) +
+                    "/tests/openxr/headset-protocol.json --db " + db)
+                .status,
+            0);
+  ASSERT_EQ(run_cli("participant add --db " + db +
+                    " --id P1 --age 30 --sex F --handedness right --hand-length 0.18 "
+                    "--vr-experience none")
+                .status,
+            0);
+  const Result session = run_cli("session run --db " + db + " --participant P1 --tracker openxr");
   unsetenv("XR_RUNTIME_JSON");
+  EXPECT_EQ(session.status, 1);
+  EXPECT_EQ(std::count(session.out.begin(), session.out.end(), '\n'), 1) << session.out;
+  EXPECT_NE(session.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << session.out;
   EXPECT_EQ(list.status, 1);
   EXPECT_EQ(list.out,
             "handlab-cli xr: no OpenXR runtime answered: XR_ERROR_RUNTIME_UNAVAILABLE (docs/hmd.md "

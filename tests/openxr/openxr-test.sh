@@ -7,7 +7,10 @@
 #     cube where each eye's projection puts it, every frame as drawn, the session ended cleanly;
 #  2. the remote driver, fed two hands over its TCP socket by remote_hands.c (built against
 #     Monado's own header): `xr hands` records them through XR_EXT_hand_tracking at 120 Hz, and
-#     the tracked skeleton fits the joints the runtime gives (`tracking info --fit`).
+#     the tracked skeleton fits the joints the runtime gives (`tracking info --fit`);
+#  3. a session on the remote driver's right hand, held open: `session run --tracker openxr`
+#     calibrates with the open palm and runs two trials in real time, their frames logged at
+#     120 Hz and exported as a Leap session's are.
 # Usage: openxr-test.sh HANDLAB_CLI SOURCE_DIR WORK_DIR
 set -euo pipefail
 cli=$1 source=$2 work=$3
@@ -90,5 +93,28 @@ for side in ("left", "right"):
     assert f["frames"] >= 300, f
     assert f["residual_mean_mm"] < 2.0 and f["residual_max_mm"] < 10.0, f  # 1.2 and 6.3 mm
 EOF
-cat "$work/show.txt" "$work/hands.txt" "$work/fit.txt"
+# 3. A session with OpenXR hands.
+"$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" --db "$work/study.db" \
+  >/dev/null
+"$cli" participant add --db "$work/study.db" --id P1 --age 30 --sex F --handedness right \
+  --hand-length 0.18 --vr-experience none >/dev/null
+"$work/remote_hands" "$port" 30 open &
+driver=$!
+timeout 120 "$cli" session run --db "$work/study.db" --participant P1 --tracker openxr \
+  --json "$work/session.json" >"$work/session.txt" 2>"$work/session.log" ||
+  fail "session run --tracker openxr: $(tail -1 "$work/session.log")"
+kill "$driver" 2>/dev/null || true
+json_has "$work/session.json" '"trials_run": 2'
+json_has "$work/session.json" '"schedule_complete": true'
+"$cli" export --db "$work/study.db" --out "$work/export" --frames >/dev/null
+python3 - "$work/export/frames.csv" <<'EOF' || fail "the session's frames: $(head -3 "$work/export/frames.csv")"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+for manipulation in ("gross", "fine"):
+    trial = [r for r in rows if r["manipulation"] == manipulation]
+    assert len(trial) == 240, (manipulation, len(trial))  # 2 s at 120 Hz
+    # The runtime's open hand, retargeted: the pads apart, the hand above the floor.
+    assert all(float(r["aperture"]) > 0.05 and float(r["index_tip_y"]) > 0.02 for r in trial), trial[0]
+EOF
+cat "$work/show.txt" "$work/hands.txt" "$work/fit.txt" "$work/session.txt"
 echo "openxr-test: passed"

@@ -1,7 +1,9 @@
 // Drives Monado's remote driver (src/xrt/drivers/remote) as its debugging UI does: connects to
 // the hub's TCP port and sends the state of a head and two hands, 100 times a second for the
 // given seconds. Each hand's fingers close and open (curl 0 to 1 and back, every 2 s), the
-// index a quarter of a cycle ahead, so that the runtime's hand joints move.
+// index a quarter of a cycle ahead, so that the runtime's hand joints move; with a third
+// argument `open`, the right hand alone, held open and still (an open palm, as a session's
+// calibration asks).
 // Built against Monado's own header (r_interface.h) by tests/openxr/openxr-test.sh.
 #include <arpa/inet.h>
 #include <math.h>
@@ -15,6 +17,8 @@
 
 #include "r_interface.h"
 
+static int held_open = 0;
+
 static void hand(struct r_remote_controller_data* c, float x, double t) {
   memset(c, 0, sizeof(*c));
   c->pose.orientation.w = 1.0f;
@@ -23,17 +27,18 @@ static void hand(struct r_remote_controller_data* c, float x, double t) {
   c->pose.position.z = -0.4f;
   for (int f = 0; f < 5; ++f) {
     const double phase = 2 * M_PI * t / 2.0 + (f == 3 ? M_PI / 2 : 0.0);
-    c->hand_curl[f] = (float)(0.5 - 0.5 * cos(phase));
+    c->hand_curl[f] = held_open ? 0.0f : (float)(0.5 - 0.5 * cos(phase));
   }
   c->hand_tracking_active = true;
   c->active = true;
 }
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    fprintf(stderr, "usage: remote_hands PORT SECONDS\n");
+  if (argc != 3 && !(argc == 4 && strcmp(argv[3], "open") == 0)) {
+    fprintf(stderr, "usage: remote_hands PORT SECONDS [open]\n");
     return 2;
   }
+  held_open = argc == 4;
   const int port = atoi(argv[1]);
   const double seconds = atof(argv[2]);
   struct sockaddr_in address = {0};
@@ -60,6 +65,7 @@ int main(int argc, char** argv) {
     data.header = R_HEADER_VALUE;
     data.head.center.orientation.w = 1.0f;
     hand(&data.left, -0.1f, t);
+    data.left.active = data.left.hand_tracking_active = !held_open;
     hand(&data.right, 0.1f, t);
     if (send(fd, &data, sizeof(data), MSG_NOSIGNAL) != (ssize_t)sizeof(data)) break;  // runtime left
     usleep(10000);

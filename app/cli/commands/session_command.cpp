@@ -13,6 +13,7 @@
 #include "core/util/count_text.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
+#include "core/xr/openxr_hand_source.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 
@@ -23,10 +24,12 @@ std::vector<OptionSpec> session_run_options() {
   return {
       {"db", "DB", "the study database"},
       {"participant", "ID", "an enrolled participant"},
-      {"tracker", "scripted|simulated|FILE",
+      {"tracker", "scripted|simulated|openxr|FILE",
        "scripted: the built-in open-loop pick-and-place motion at the participant's hand size; "
-       "simulated: the closed-loop participant model (docs/simulated-participants.md); or a "
-       "recording (.json, .json.lz, .hlrec) replayed for every trial",
+       "simulated: the closed-loop participant model (docs/simulated-participants.md); openxr: "
+       "the hands of the OpenXR runtime (XR_EXT_hand_tracking; in real time, calibrated with an "
+       "open palm; docs/hmd.md); or a recording (.json, .json.lz, .hlrec) replayed for every "
+       "trial",
        "scripted"},
       {"seed", "S", "with --tracker simulated: the population seed of the model's parameters", "0"},
       {"resume", "",
@@ -46,19 +49,33 @@ CommandHelp session_run_help() {
           "scripted participant answers the middle of the scale)."};
 }
 
+// The OpenXR runtime's hands, one source for the whole session (a runtime's session is not
+// made again for every trial), opened before the session starts so that a missing runtime is
+// said at once.
+studies::TrackerPtr openxr_tracker() {
+  std::string error;
+  std::shared_ptr<xr::OpenXrHandSource> source = xr::OpenXrHandSource::open(error);
+  if (!source) throw std::runtime_error(error + " (docs/hmd.md)");
+  return studies::live_tracker("openxr " + source->runtime_name(),
+                               [source] { return xr::view_of(source); });
+}
+
 int session_run(const std::vector<std::string>& argv) {
   const Arguments args(session_run_options(), argv);
   if (args.help_requested()) return print_help(session_run_help(), args);
   args.require({"db", "participant"});
   const std::string tracker = args.text("tracker");
   const std::string world = args.choice("world", {"proxy", "soft"});
-  if (tracker != "scripted" && tracker != "simulated" && !std::filesystem::exists(tracker))
-    throw UsageError("--tracker must be scripted, simulated or a recording file; '" + tracker +
-                     "' is none of them" + did_you_mean(tracker, {"scripted", "simulated"}));
+  if (tracker != "scripted" && tracker != "simulated" && tracker != "openxr" &&
+      !std::filesystem::exists(tracker))
+    throw UsageError("--tracker must be scripted, simulated, openxr or a recording file; '" +
+                     tracker + "' is none of them" +
+                     did_you_mean(tracker, {"scripted", "simulated", "openxr"}));
   store::StudyStore store(args.text("db"));
   const std::uint64_t seed = args.seed("seed");
   const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
                                    : tracker == "simulated" ? studies::simulated_tracker(seed)
+                                   : tracker == "openxr"    ? openxr_tracker()
                                                             : studies::recording_tracker(tracker);
   studies::PipelineTrialDriver driver(kind, 120.0, world_kind(args));
   studies::SessionRunner runner(store, driver,
