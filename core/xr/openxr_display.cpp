@@ -11,19 +11,6 @@ namespace handlab::xr {
 
 namespace {
 
-// A host-visible buffer of `size` bytes, mapped.
-struct HostBuffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* data = nullptr;
-};
-
-struct Eye {
-  XrSwapchain swapchain = XR_NULL_HANDLE;
-  std::vector<XrSwapchainImageVulkan2KHR> images;
-  HostBuffer upload, read_back;
-};
-
 const char* state_name(XrSessionState s) {
   switch (s) {
     case XR_SESSION_STATE_IDLE:
@@ -61,6 +48,18 @@ render::ViewCamera camera_of(const XrView& v) {
 }  // namespace
 
 struct OpenXrDisplay::Session {
+  // A host-visible buffer, mapped.
+  struct HostBuffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    void* data = nullptr;
+  };
+  struct Eye {
+    XrSwapchain swapchain = XR_NULL_HANDLE;
+    std::vector<XrSwapchainImageVulkan2KHR> images;
+    HostBuffer upload, read_back;
+  };
+
   OpenXrFunctions xr;
   VulkanFunctions vk;
   XrInstance instance = XR_NULL_HANDLE;

@@ -5,6 +5,7 @@
 #     one line that it tracks no hands; `xr show` draws the task scene into both eyes'
 #     swapchains, paced by the runtime, and reads each image back before releasing it: the
 #     cube where each eye's projection puts it, every frame as drawn, the session ended cleanly;
+#     `session run --display headset` shows a scripted participant's two trials there;
 #  2. the remote driver, fed two hands over its TCP socket by remote_hands.c (built against
 #     Monado's own header): `xr hands` records them through XR_EXT_hand_tracking at 120 Hz, and
 #     the tracked skeleton fits the joints the runtime gives (`tracking info --fit`);
@@ -56,6 +57,25 @@ for eye in left right; do
 done
 cmp -s "$work/eyes/eye-left.png" "$work/eyes/eye-right.png" &&
   fail "both eyes' images are the same: no stereo"
+"$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" \
+  --db "$work/shown.db" >/dev/null
+"$cli" participant add --db "$work/shown.db" --id P1 --age 30 --sex F --handedness right \
+  --hand-length 0.18 --vr-experience none >/dev/null
+timeout 120 "$cli" session run --db "$work/shown.db" --participant P1 --display headset \
+  --json "$work/shown.json" >"$work/shown.txt" 2>"$work/shown.log" ||
+  fail "session run --display headset: $(tail -1 "$work/shown.log")"
+python3 - "$work/shown.json" <<'EOF' || fail "session run --display headset: $(cat "$work/shown.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["trials_run"] == 2 and r["schedule_complete"], r
+h = r["headset"]
+n = h["frames_shown"]
+assert n >= 20, h  # two 2-second trials in real time, at the runtime's pace
+assert h["frames_waited"] == h["frames_begun"] == h["frames_ended"], h
+assert h["read_back_as_drawn"] == n, h
+# The cube where each eye's projection puts it, but where the hand covers its centre.
+assert h["cube_seen_left"] >= n / 2 and h["cube_seen_right"] >= n / 2, h
+EOF
 unset SIMULATED_ENABLE
 
 # 2. The remote driver, two hands over its socket.
@@ -116,5 +136,5 @@ for manipulation in ("gross", "fine"):
     # The runtime's open hand, retargeted: the pads apart, the hand above the floor.
     assert all(float(r["aperture"]) > 0.05 and float(r["index_tip_y"]) > 0.02 for r in trial), trial[0]
 EOF
-cat "$work/show.txt" "$work/hands.txt" "$work/fit.txt" "$work/session.txt"
+cat "$work/show.txt" "$work/shown.txt" "$work/hands.txt" "$work/fit.txt" "$work/session.txt"
 echo "openxr-test: passed"

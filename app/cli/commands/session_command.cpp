@@ -3,17 +3,21 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/nearest_word.h"
+#include "app/cli/session_headset.h"
 #include "app/cli/world_option.h"
 #include "core/store/study_store.h"
 #include "core/util/count_text.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
 #include "core/xr/openxr_hand_source.h"
+#include "studies/session/session_control.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 
@@ -36,6 +40,10 @@ std::vector<OptionSpec> session_run_options() {
        "continue a started schedule (after a crash: the interrupted trial is "
        "kept as aborted and run again)"},
       world_option(),
+      {"display", "none|headset",
+       "headset: the participant's view in the OpenXR headset, the session in real time "
+       "(docs/hmd.md)",
+       "none"},
       {"quiet", "", "no line per trial"},
       {"json", "OUT", "write a summary as JSON (- for standard output)"},
   };
@@ -43,10 +51,52 @@ std::vector<OptionSpec> session_run_options() {
 
 CommandHelp session_run_help() {
   return {"session run",
-          {"db participant [tracker] [seed] [resume] [world] [quiet] [json]"},
+          {"db participant [tracker] [seed] [resume] [world] [display] [quiet] [json]"},
           "Runs the participant's schedule headless: tracker -> retargeting -> hand-cube physics "
           "-> task, frames logged at 120 Hz, questionnaire where the protocol asks it (the "
           "scripted participant answers the middle of the scale)."};
+}
+
+void print_session_report(const std::string& participant, const studies::SessionReport& report,
+                          double seconds, const std::optional<xr::HeadsetCounts>& shown) {
+  if (report.aborted_before)
+    std::cout << util::count_text(report.aborted_before, "interrupted trial")
+              << " marked aborted, run again\n";
+  if (report.stopped) std::cout << "the session stopped before its schedule's end\n";
+  char duration[32];
+  std::snprintf(duration, sizeof duration, "%.1f s", seconds);
+  std::cout << participant << ": " << util::count_text(report.trials_run, "trial") << " run in "
+            << duration << "; schedule " << (report.schedule_complete ? "complete" : "open")
+            << "\n";
+  if (shown)
+    std::cout << "headset: " << shown->shown << " frames shown, the cube at its pixel in "
+              << shown->cube_seen[0] << " (left) and " << shown->cube_seen[1] << " (right)\n";
+}
+
+void write_session_json(std::ostream& out, const std::string& participant,
+                        const studies::SessionReport& report, double seconds,
+                        const std::optional<xr::HeadsetCounts>& shown) {
+  util::JsonWriter w(out);
+  w.begin_object()
+      .field("participant", participant)
+      .field("trials_run", report.trials_run)
+      .field("aborted_before", report.aborted_before)
+      .field("schedule_complete", report.schedule_complete)
+      .field("stopped", report.stopped)
+      .field("seconds", seconds);
+  if (shown)
+    w.key("headset")
+        .begin_object()
+        .field("frames_shown", int(shown->shown))
+        .field("frames_waited", int(shown->loop.waits))
+        .field("frames_begun", int(shown->loop.begins))
+        .field("frames_ended", int(shown->loop.ends))
+        .field("cube_seen_left", int(shown->cube_seen[0]))
+        .field("cube_seen_right", int(shown->cube_seen[1]))
+        .field("read_back_as_drawn", int(shown->read_back_as_drawn))
+        .end_object();
+  w.end_object();
+  out << "\n";
 }
 
 // The OpenXR runtime's hands, one source for the whole session (a runtime's session is not
@@ -81,37 +131,34 @@ int session_run(const std::vector<std::string>& argv) {
   studies::SessionRunner runner(store, driver,
                                 kind->own_answers().value_or(studies::fixed_responder()));
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
+  const auto say = [quiet](const std::string& line) {
+    if (!quiet) std::cout << line << std::endl;
+  };
+  studies::SessionControl control;
+  std::unique_ptr<SessionHeadset> headset;
+  if (args.choice("display", {"none", "headset"}) == "headset") {
+    headset = std::make_unique<SessionHeadset>(control, say);
+    runner.attach(&control);
+    driver.attach(&control);
+    driver.set_real_time(true);  // the participant sees the trial as it happens
+  }
   const auto start = std::chrono::steady_clock::now();
   const studies::SessionReport report = runner.run(
       args.text("participant"), world == "soft" ? kind->name() + " (soft hand)" : kind->name(),
-      args.flag("resume"), [&](const std::string& line) {
-        if (!quiet) std::cout << line << std::endl;
-      });
+      args.flag("resume"), say);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (args.text("json") != "-") {
-    if (report.aborted_before)
-      std::cout << util::count_text(report.aborted_before, "interrupted trial")
-                << " marked aborted, run again\n";
-    char duration[32];
-    std::snprintf(duration, sizeof duration, "%.1f s", seconds);
-    std::cout << args.text("participant") << ": " << util::count_text(report.trials_run, "trial")
-              << " run in " << duration << "; schedule "
-              << (report.schedule_complete ? "complete" : "open") << "\n";
+  std::optional<xr::HeadsetCounts> shown;
+  if (headset) {
+    headset->close();
+    shown = headset->counts();
   }
-  if (args.has("json")) {
+  if (args.text("json") != "-")
+    print_session_report(args.text("participant"), report, seconds, shown);
+  if (args.has("json"))
     util::write_output(args.text("json"), [&](std::ostream& out) {
-      util::JsonWriter w(out);
-      w.begin_object()
-          .field("participant", args.text("participant"))
-          .field("trials_run", report.trials_run)
-          .field("aborted_before", report.aborted_before)
-          .field("schedule_complete", report.schedule_complete)
-          .field("seconds", seconds)
-          .end_object();
-      out << "\n";
+      write_session_json(out, args.text("participant"), report, seconds, shown);
     });
-  }
   return 0;
 }
 

@@ -3,18 +3,21 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
+#include "app/cli/session_headset.h"
 #include "core/render/offscreen_context.h"
 #include "core/render/scene_drawing.h"
 #include "core/task/scene_layout.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
-#include "core/xr/openxr_display.h"
+#include "core/xr/headset_view.h"
 #include "core/xr/openxr_hand_source.h"
 #include "core/xr/openxr_runtime.h"
 
@@ -184,30 +187,6 @@ CommandHelp xr_show_help() {
           "eye's projection puts it."};
 }
 
-// The scene 0.3 m below the head's start and 0.5 m ahead of it: a table before a seated
-// participant, in the LOCAL space.
-render::ViewCamera in_scene(render::ViewCamera camera) {
-  const Eigen::Affine3f scene_in_local(Eigen::Translation3f(0.0f, -0.3f, -0.5f));
-  camera.view = camera.view * scene_in_local.matrix();
-  camera.eye = scene_in_local.inverse() * camera.eye;
-  return camera;
-}
-
-// The cube's colour (orange: far more red than blue) at its centre's pixel.
-bool cube_at_its_pixel(const render::Image& image, const render::ViewCamera& camera,
-                       const Eigen::Vector3f& centre) {
-  Eigen::Vector2f p;
-  if (!render::project_to_pixel(camera, image.width, image.height, centre, &p)) return false;
-  const int x = int(p.x()), y = int(p.y());
-  if (x < 0 || y < 0 || x >= image.width || y >= image.height) return false;
-  const auto c = image.pixel(x, y);
-  return c[0] > c[2] + 80;
-}
-
-struct ShowCounts {
-  long frames = 0, cube_seen[2] = {0, 0}, read_back_equal = 0;
-};
-
 int xr_show(const std::vector<std::string>& argv) {
   const Arguments args(xr_show_options(), argv, 0);
   if (args.help_requested()) return print_help(xr_show_help(), args);
@@ -217,67 +196,50 @@ int xr_show(const std::vector<std::string>& argv) {
   layout.cube_size = args.number("cube");
   if (!(layout.cube_size >= 0.005 && layout.cube_size <= 0.1))
     throw UsageError("--cube must be between 0.005 and 0.1 m");
-  std::string error;
-  auto display = xr::OpenXrDisplay::open(error, int(args.integer("eye-width")));
-  if (!display) throw std::runtime_error(error + " (docs/hmd.md)");
-  render::OffscreenRenderer renderer(display->eye_width(), display->eye_height());
+  std::string error, end_state;
+  std::mutex state_mutex;
+  auto headset = xr::HeadsetView::open(
+      error, offscreen_eyes(),
+      [&](const std::string& state) {
+        std::lock_guard lock(state_mutex);
+        end_state = state;
+      },
+      int(args.integer("eye-width")));
+  if (!headset) throw std::runtime_error(error + " (docs/hmd.md)");
   const Eigen::Isometry3d cube = task::cube_start_pose(layout);
-  const render::DrawList scene = render::draw_task_scene(layout, cube);
-  std::array<render::Image, 2> drawn;
-  const auto draw = [&](int eye, const render::ViewCamera& camera, int, int) {
-    return drawn[std::size_t(eye)] = renderer.render(scene, in_scene(camera));
-  };
-  ShowCounts counts;
-  xr::DisplayFrame last, frame;
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                       std::chrono::duration<double>(seconds));
-  bool exit_requested = false;
-  while (display->frame(draw, &frame)) {
-    if (frame.drawn) {
-      ++counts.frames;
-      for (int e = 0; e < 2; ++e)
-        counts.cube_seen[e] += cube_at_its_pixel(frame.read_back[std::size_t(e)],
-                                                 in_scene(frame.cameras[std::size_t(e)]),
-                                                 cube.translation().cast<float>());
-      counts.read_back_equal +=
-          frame.read_back[0].rgba == drawn[0].rgba && frame.read_back[1].rgba == drawn[1].rgba;
-      last = frame;
-    }
-    if (!exit_requested && std::chrono::steady_clock::now() > end) {
-      display->request_exit();
-      exit_requested = true;
-    }
-  }
-  if (args.has("screenshot") && last.drawn) {
+  headset->show(render::draw_task_scene(layout, cube), cube.translation().cast<float>());
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  headset->close();  // the session ended, its last state reported
+  const xr::HeadsetCounts counts = headset->counts();
+  const std::array<render::Image, 2> eyes = headset->last_images();
+  if (args.has("screenshot") && !eyes[0].rgba.empty()) {
     std::filesystem::create_directories(args.text("screenshot"));
-    render::write_png(last.read_back[0], args.text("screenshot") + "/eye-left.png");
-    render::write_png(last.read_back[1], args.text("screenshot") + "/eye-right.png");
+    render::write_png(eyes[0], args.text("screenshot") + "/eye-left.png");
+    render::write_png(eyes[1], args.text("screenshot") + "/eye-right.png");
   }
-  const xr::DisplayCounts loop = display->counts();
   if (args.has("json"))
     util::write_output(args.text("json"), [&](std::ostream& out) {
       util::JsonWriter json(out);
       json.begin_object()
-          .field("runtime_name", display->runtime_name())
-          .field("eye_width", display->eye_width())
-          .field("eye_height", display->eye_height())
-          .field("frames_drawn", int(counts.frames))
-          .field("frames_waited", int(loop.waits))
-          .field("frames_begun", int(loop.begins))
-          .field("frames_ended", int(loop.ends))
+          .field("runtime_name", headset->runtime_name())
+          .field("eye_width", eyes[0].width)
+          .field("eye_height", eyes[0].height)
+          .field("frames_drawn", int(counts.shown))
+          .field("frames_waited", int(counts.loop.waits))
+          .field("frames_begun", int(counts.loop.begins))
+          .field("frames_ended", int(counts.loop.ends))
           .field("cube_seen_left", int(counts.cube_seen[0]))
           .field("cube_seen_right", int(counts.cube_seen[1]))
-          .field("read_back_as_drawn", int(counts.read_back_equal))
-          .field("end_state", display->session_state())
+          .field("read_back_as_drawn", int(counts.read_back_as_drawn))
+          .field("end_state", end_state)
           .end_object();
     });
   if (args.text("json") != "-")
-    std::cout << "headset " << display->runtime_name() << ": " << counts.frames << " frames drawn ("
-              << display->eye_width() << " x " << display->eye_height()
+    std::cout << "headset " << headset->runtime_name() << ": " << counts.shown << " frames drawn ("
+              << eyes[0].width << " x " << eyes[0].height
               << " an eye), the cube where each eye's projection puts it in " << counts.cube_seen[0]
               << " (left) and " << counts.cube_seen[1] << " (right), read back as drawn in "
-              << counts.read_back_equal << "; session " << display->session_state() << "\n";
+              << counts.read_back_as_drawn << "; session " << end_state << "\n";
   return 0;
 }
 

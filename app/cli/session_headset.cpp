@@ -1,0 +1,70 @@
+#include "app/cli/session_headset.h"
+
+#include <stdexcept>
+
+#include "core/render/offscreen_context.h"
+
+namespace handlab::cli {
+
+xr::HeadsetView::DrawerFactory offscreen_eyes() {
+  return [](int width, int height) {
+    auto renderer = std::make_shared<render::OffscreenRenderer>(width, height);
+    return [renderer](const render::DrawList& scene, const render::ViewCamera& camera) {
+      return renderer->render(scene, camera);
+    };
+  };
+}
+
+SessionHeadset::SessionHeadset(studies::SessionControl& control,
+                               std::function<void(const std::string&)> say)
+    : control_(control), say_(std::move(say)) {
+  std::string error;
+  headset_ = xr::HeadsetView::open(error, offscreen_eyes(),
+                                   [this](const std::string& state) { state_changed(state); });
+  if (!headset_) throw std::runtime_error(error + " (docs/hmd.md)");
+  control_.trial_started = [this](const studies::TrialSetup& setup, int) {
+    view_.start_trial(setup);
+  };
+  control_.stepped = [this](const studies::TrialStep& step) {
+    const Eigen::Vector3f cube = step.frame ? step.frame->cube_position : Eigen::Vector3f::Zero();
+    headset_->show(view_.draw(step), cube);
+  };
+}
+
+SessionHeadset::~SessionHeadset() {
+  close();
+}
+
+void SessionHeadset::close() {
+  closing_ = true;
+  control_.trial_started = nullptr;
+  control_.stepped = nullptr;
+  if (headset_) headset_->close();
+}
+
+// On the headset's thread.
+void SessionHeadset::state_changed(const std::string& state) {
+  if (closing_) return;
+  if (state == "focused") {
+    was_focused_ = true;
+    if (paused_by_headset_) {
+      paused_by_headset_ = false;
+      control_.set_paused(false);
+      say_("the headset is in focus again: the session goes on");
+    }
+  } else if (state == "exiting" || state == "loss pending") {
+    if (!control_.stop_requested()) {
+      control_.request_stop();
+      say_("the headset's runtime ended its session (" + state +
+           "): the session stops; the trial under way is kept as aborted and --resume runs it "
+           "again");
+    }
+  } else if (was_focused_ && !paused_by_headset_ && state != "stopping") {
+    paused_by_headset_ = true;
+    control_.set_paused(true);
+    say_("the headset is out of focus (" + state +
+         ": taken off?): the session pauses before its next trial");
+  }
+}
+
+}  // namespace handlab::cli

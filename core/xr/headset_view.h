@@ -1,0 +1,64 @@
+// The participant's view in the headset while something else runs (a session): the display's
+// frame loop on a thread of its own, drawing the newest scene it was given, and each frame's
+// read-back images checked for the cube at the pixel each eye's projection puts it. The
+// scene stands where a seated participant's table does (task_scene_camera).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/render/draw_list.h"
+#include "core/render/image.h"
+#include "core/render/view_camera.h"
+#include "core/xr/openxr_display.h"
+
+namespace handlab::xr {
+
+// An eye's camera in the LOCAL space as the task scene's: the scene 0.3 m below the head's
+// start and 0.5 m ahead of it, a table before a seated participant.
+render::ViewCamera task_scene_camera(const render::ViewCamera& local);
+
+// The cube's colour (orange: far more red than blue) at the pixel where `camera` puts `centre`.
+bool cube_at_its_pixel(const render::Image& image, const render::ViewCamera& camera,
+                       const Eigen::Vector3f& centre);
+
+struct HeadsetCounts {
+  DisplayCounts loop;
+  long shown = 0;              // frames drawn with a scene
+  long cube_seen[2] = {0, 0};  // of those, the cube at its pixel in the left and right image
+  long read_back_as_drawn = 0;
+};
+
+class HeadsetView {
+ public:
+  using EyeDrawer =
+      std::function<render::Image(const render::DrawList& scene, const render::ViewCamera& camera)>;
+  // Makes the eyes' drawer on the display's thread (an OpenGL context is a thread's).
+  using DrawerFactory = std::function<EyeDrawer(int width, int height)>;
+  // `state_changed` is called on the display's thread with the session's state ("focused",
+  // "visible", "stopping", "exiting", ...) each time it changes.
+  static std::unique_ptr<HeadsetView> open(std::string& error, DrawerFactory drawer,
+                                           std::function<void(const std::string&)> state_changed,
+                                           int max_eye_width = 0);
+  ~HeadsetView();  // closes
+  // Ends the headset's session and waits for its loop to end; the counts and images stay.
+  void close();
+
+  // From any thread: the scene to show from now on, and where its cube's centre is.
+  void show(render::DrawList scene, const Eigen::Vector3f& cube_centre);
+  HeadsetCounts counts() const;
+  std::string runtime_name() const;
+  // Each eye's last image as read back from its swapchain (empty before the first).
+  std::array<render::Image, 2> last_images() const;
+
+  struct Loop;  // the thread and what it shares (headset_view.cpp)
+
+ private:
+  explicit HeadsetView(std::unique_ptr<Loop> loop);
+  std::unique_ptr<Loop> loop_;
+};
+
+}  // namespace handlab::xr
