@@ -118,14 +118,7 @@ OpenXrDisplay::Session::~Session() {
 std::string OpenXrDisplay::Session::create_instance(int max_eye_width) {
   const OpenXrLoader& loader = OpenXrLoader::instance();
   if (!loader.available()) return loader.error();
-  const char* extensions[] = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
-  auto create = xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
-  std::strncpy(create.applicationInfo.applicationName, "handlab", XR_MAX_APPLICATION_NAME_SIZE - 1);
-  create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
-  create.enabledExtensionCount = 1;
-  create.enabledExtensionNames = extensions;
-  auto create_instance = loader.get<PFN_xrCreateInstance>(XR_NULL_HANDLE, "xrCreateInstance");
-  XrResult r = create_instance ? create_instance(&create, &instance) : XR_ERROR_RUNTIME_UNAVAILABLE;
+  XrResult r = xr::create_instance(loader, {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME}, &instance);
   if (XR_FAILED(r))
     return "no OpenXR runtime drawing with Vulkan (XR_KHR_vulkan_enable2): " + result_name(r);
   if (!xr.load(loader, instance) || !xr.create_vulkan_device)

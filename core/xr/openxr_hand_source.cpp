@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
-#include <cstring>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -167,19 +166,12 @@ namespace {
 std::string make_session(OpenXrHandSource::Session& s) {
   const OpenXrLoader& loader = OpenXrLoader::instance();
   if (!loader.available()) return loader.error();
-  const char* extensions[] = {"XR_EXT_hand_tracking", "XR_MND_headless",
-                              "XR_KHR_convert_timespec_time"};
-  auto create = xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
-  std::strncpy(create.applicationInfo.applicationName, "handlab", XR_MAX_APPLICATION_NAME_SIZE - 1);
-  create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
-  create.enabledExtensionCount = 3;
-  create.enabledExtensionNames = extensions;
-  auto create_instance = loader.get<PFN_xrCreateInstance>(XR_NULL_HANDLE, "xrCreateInstance");
-  XrResult r =
-      create_instance ? create_instance(&create, &s.instance) : XR_ERROR_RUNTIME_UNAVAILABLE;
+  XrResult r = create_instance(
+      loader, {"XR_EXT_hand_tracking", "XR_MND_headless", "XR_KHR_convert_timespec_time"},
+      &s.instance);
   if (XR_FAILED(r))
-    return "no OpenXR runtime with hand tracking and headless sessions (XR_EXT_hand_tracking, "
-           "XR_MND_headless): " +
+    return "no OpenXR runtime with hand tracking, headless sessions and the monotonic clock "
+           "(XR_EXT_hand_tracking, XR_MND_headless, XR_KHR_convert_timespec_time): " +
            result_name(r);
   if (!s.xr.load(loader, s.instance) || !s.xr.create_hand_tracker || !s.xr.convert_time)
     return "the OpenXR runtime lacks a function hands need";

@@ -3,6 +3,9 @@
 #include <dlfcn.h>
 #include <stdlib.h>
 
+#include <cstdint>
+#include <cstring>
+
 #include <openxr/openxr_reflection.h>
 
 namespace handlab::xr {
@@ -32,6 +35,17 @@ PFN_xrVoidFunction OpenXrLoader::function(XrInstance instance, const char* name)
   if (!get_proc_) return nullptr;
   PFN_xrVoidFunction f = nullptr;
   return XR_SUCCEEDED(get_proc_(instance, name, &f)) ? f : nullptr;
+}
+
+XrResult create_instance(const OpenXrLoader& loader, const std::vector<const char*>& extensions,
+                         XrInstance* instance) {
+  auto create = xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
+  std::strncpy(create.applicationInfo.applicationName, "handlab", XR_MAX_APPLICATION_NAME_SIZE - 1);
+  create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  create.enabledExtensionCount = std::uint32_t(extensions.size());
+  create.enabledExtensionNames = extensions.data();
+  auto make = loader.get<PFN_xrCreateInstance>(XR_NULL_HANDLE, "xrCreateInstance");
+  return make ? make(&create, instance) : XR_ERROR_RUNTIME_UNAVAILABLE;
 }
 
 std::string result_name(XrResult result) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #define XR_NO_PROTOTYPES  // every function comes through the loader (below)
 #include <openxr/openxr.h>
@@ -41,6 +42,11 @@ T xr_struct(XrStructureType type) {
   t.type = type;
   return t;
 }
+
+// An instance of the runtime the loader finds, named "handlab", OpenXR 1.0, with `extensions`
+// enabled.
+XrResult create_instance(const OpenXrLoader& loader, const std::vector<const char*>& extensions,
+                         XrInstance* instance);
 
 // XR_ERROR_RUNTIME_UNAVAILABLE and the like, or the number where the name is not known.
 std::string result_name(XrResult result);

@@ -1,7 +1,6 @@
 #include "core/xr/openxr_runtime.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "core/xr/openxr_loader.h"
 
@@ -82,15 +81,8 @@ OpenXrRuntimeInfo probe_openxr_runtime() {
 
   std::vector<const char*> enabled;
   if (info.hand_tracking_extension) enabled.push_back(kHandTracking);
-  auto create = xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
-  std::strncpy(create.applicationInfo.applicationName, "handlab", XR_MAX_APPLICATION_NAME_SIZE - 1);
-  create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
-  create.enabledExtensionCount = uint32_t(enabled.size());
-  create.enabledExtensionNames = enabled.data();
-  auto create_instance = loader.get<PFN_xrCreateInstance>(XR_NULL_HANDLE, "xrCreateInstance");
   XrInstance instance = XR_NULL_HANDLE;
-  const XrResult r =
-      create_instance ? create_instance(&create, &instance) : XR_ERROR_FUNCTION_UNSUPPORTED;
+  const XrResult r = create_instance(loader, enabled, &instance);
   if (XR_FAILED(r))
     return info.error = "the OpenXR runtime made no instance: " + result_name(r), info;
 

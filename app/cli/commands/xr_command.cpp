@@ -24,6 +24,12 @@
 namespace handlab::cli {
 namespace {
 
+double seconds_option(const Arguments& args) {
+  const double seconds = args.number("seconds");
+  if (!(seconds > 0 && seconds <= 3600)) throw UsageError("--seconds must be between 0 and 3600");
+  return seconds;
+}
+
 std::vector<OptionSpec> xr_list_options() {
   return {{"json", "OUT", "write what was found as JSON (- for standard output)"}};
 }
@@ -138,8 +144,7 @@ HandRecording record_hands(xr::OpenXrHandSource& source, double seconds) {
 int xr_hands(const std::vector<std::string>& argv) {
   const Arguments args(xr_hands_options(), argv, 0);
   if (args.help_requested()) return print_help(xr_hands_help(), args);
-  const double seconds = args.number("seconds");
-  if (!(seconds > 0 && seconds <= 3600)) throw UsageError("--seconds must be between 0 and 3600");
+  const double seconds = seconds_option(args);
   std::string error;
   auto source = xr::OpenXrHandSource::open(error);
   if (!source) throw std::runtime_error(error + " (docs/hmd.md)");
@@ -190,8 +195,7 @@ CommandHelp xr_show_help() {
 int xr_show(const std::vector<std::string>& argv) {
   const Arguments args(xr_show_options(), argv, 0);
   if (args.help_requested()) return print_help(xr_show_help(), args);
-  const double seconds = args.number("seconds");
-  if (!(seconds > 0 && seconds <= 3600)) throw UsageError("--seconds must be between 0 and 3600");
+  const double seconds = seconds_option(args);
   task::SceneLayout layout;
   layout.cube_size = args.number("cube");
   if (!(layout.cube_size >= 0.005 && layout.cube_size <= 0.1))
