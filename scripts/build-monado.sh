@@ -36,7 +36,7 @@ if ! echo "$sha256  $tarball" | sha256sum -c --status; then
   exit 1
 fi
 
-echo "build-monado: building $name into $cache (about 3 minutes on 2 cores)" >&2
+echo "build-monado: building $name into $cache (about a minute on 2 cores)" >&2
 rm -rf "$cache"
 mkdir -p "$cache"
 tar -xzf "$tarball" -C "$cache"

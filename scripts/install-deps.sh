@@ -21,9 +21,9 @@ packages=(
   slurm-wlm munge
   # scripts/cluster-plan.py (the planning table of docs/cluster.md)
   python3
-  # OpenXR: the headers (the loader is opened at run time where a headset is asked for), and
-  # what the `openxr` test's runtime, Monado, needs to build and run headless with Vulkan on
-  # the CPU (scripts/build-monado.sh, tests/openxr)
+  # OpenXR and Vulkan: the headers (their loaders are opened at run time where a headset is
+  # asked for), and what the `openxr` test's runtime, Monado, needs to build and run headless
+  # with Vulkan on the CPU (scripts/build-monado.sh, tests/openxr)
   libopenxr-dev libopenxr-loader1 libvulkan-dev glslang-tools mesa-vulkan-drivers
   libx11-xcb-dev libxrandr-dev libxcb-randr0-dev libcjson-dev libbsd-dev libudev-dev libegl-dev
   libwayland-dev wayland-protocols libdrm-dev

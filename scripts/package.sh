@@ -63,7 +63,7 @@ Architecture: amd64
 Maintainer: $maintainer
 Installed-Size: $(du -sk --exclude=DEBIAN "$stage" | cut -f1)
 Depends: $depends
-Recommends: libopenxr-loader1
+Recommends: libopenxr-loader1, libvulkan1
 Section: science
 Priority: optional
 Description: user studies of fine virtual manipulation with tracked hands

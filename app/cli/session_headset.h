@@ -23,20 +23,21 @@ xr::HeadsetView::DrawerFactory offscreen_eyes();
 class SessionHeadset {
  public:
   // Opens the headset and sets `control`'s trial_started and stepped observers; `say` gets a
-  // line when the headset's state changes what the session does. Throws std::runtime_error
-  // where no headset can be opened.
+  // line, on the headset's thread, when the headset's state changes what the session does. Throws
+  // std::runtime_error where no headset can be opened.
   SessionHeadset(studies::SessionControl& control, std::function<void(const std::string&)> say);
   ~SessionHeadset();
   // Ends the headset's session; the counts stay.
   void close();
   xr::HeadsetCounts counts() const { return headset_->counts(); }
+  std::string error() const { return headset_->error(); }
   std::string runtime_name() const { return headset_->runtime_name(); }
 
  private:
   void state_changed(const std::string& state);
 
   studies::SessionControl& control_;
-  std::function<void(const std::string&)> say_;
+  std::function<void(const std::string&)> say_;  // from the headset's thread
   studies::ParticipantView view_;
   std::unique_ptr<xr::HeadsetView> headset_;
   bool paused_by_headset_ = false, was_focused_ = false;

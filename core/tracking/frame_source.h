@@ -25,6 +25,8 @@ class LiveFrameSource : public FrameSource {
  public:
   // Returns once a frame not yet taken by next() is there (true) or at `deadline` (false).
   virtual bool wait_for_frame(std::chrono::steady_clock::time_point deadline) = 0;
+  // No frame will come any more (the tracker's runtime ended its session).
+  virtual bool ended() const { return false; }
 };
 
 enum class ReplayPace { kAsFastAsPossible, kRealTime, kResampled };

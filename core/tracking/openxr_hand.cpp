@@ -18,9 +18,12 @@ int openxr_joint_count(int digit) {
 }
 
 // A frame whose +Z is `backward` (unit) and whose +Y is `lateral` x +Z: for a finger's bone
-// the side of its nail, whatever its bend, as the bone turns about the lateral axis.
-Eigen::Quaterniond bone_frame(const Eigen::Vector3d& backward, const Eigen::Vector3d& lateral) {
+// the side of its nail, whatever its bend, as the bone turns about the lateral axis. A bone
+// along the lateral axis (a thumb may lie so) takes `back` (the back of the hand) for +Y.
+Eigen::Quaterniond bone_frame(const Eigen::Vector3d& backward, const Eigen::Vector3d& lateral,
+                              const Eigen::Vector3d& back) {
   Eigen::Vector3d y = lateral.cross(backward);
+  if (y.norm() < 1e-6) y = back;
   y = (y - y.dot(backward) * backward).normalized();
   Eigen::Matrix3d r;
   r.col(0) = y.cross(backward);
@@ -62,7 +65,7 @@ OpenXrHand openxr_hand_from_tracked(const TrackedHand& h) {
   OpenXrHand xr;
   xr.side = h.side;
   const Eigen::Matrix3d palm = palm_frame(h);  // +x = direction x normal
-  const Eigen::Quaterniond palm_rotation = bone_frame(-palm.col(1), palm.col(0));
+  const Eigen::Quaterniond palm_rotation = bone_frame(-palm.col(1), palm.col(0), -palm.col(2));
   xr.joints[kOpenXrPalm] = {h.palm_position, palm_rotation, 0.0, true, true};
   xr.joints[kOpenXrWrist] = {h.wrist, palm_rotation, 0.0, true, true};
   for (int d = 0; d < 5; ++d) {
@@ -76,8 +79,8 @@ OpenXrHand openxr_hand_from_tracked(const TrackedHand& h) {
                                     digit[std::size_t(tracked_index(d, from))];
       const Eigen::Vector3d backward = along.norm() > 1e-9 ? Eigen::Vector3d(-along.normalized())
                                                            : Eigen::Vector3d(-palm.col(1));
-      xr.joints[std::size_t(openxr_digit_base(d) + j)] = {p, bone_frame(backward, palm.col(0)), 0.0,
-                                                          true, true};
+      xr.joints[std::size_t(openxr_digit_base(d) + j)] = {
+          p, bone_frame(backward, palm.col(0), -palm.col(2)), 0.0, true, true};
     }
   }
   return xr;

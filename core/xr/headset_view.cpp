@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <mutex>
 #include <thread>
 
@@ -30,17 +31,23 @@ struct HeadsetView::Loop {
   DrawerFactory factory;
   std::function<void(const std::string&)> state_changed;
   std::thread thread;
-  std::atomic<bool> stop{false};
+  std::atomic<bool> stop{false}, ended{false};
+  std::string error;  // under the mutex
   mutable std::mutex mutex;
   std::shared_ptr<const render::DrawList> scene;
   Eigen::Vector3f cube = Eigen::Vector3f::Zero();
   HeadsetCounts counts;
-  std::array<render::Image, 2> last;
+  DisplayFrame last;
 
   ~Loop() { close(); }
   void close() {
-    stop = true;
-    if (thread.joinable()) thread.join();
+    std::thread running;
+    {
+      std::lock_guard lock(mutex);
+      stop = true;
+      running = std::move(thread);
+    }
+    if (running.joinable()) running.join();
   }
 
   void tally(const DisplayFrame& f, const std::array<render::Image, 2>& drawn,
@@ -54,10 +61,23 @@ struct HeadsetView::Loop {
           f.read_back[std::size_t(e)], task_scene_camera(f.cameras[std::size_t(e)]), centre);
     counts.read_back_as_drawn +=
         f.read_back[0].rgba == drawn[0].rgba && f.read_back[1].rgba == drawn[1].rgba;
-    last = f.read_back;
+    last = f;
+    for (auto& camera : last.cameras) camera = task_scene_camera(camera);
   }
 
+  // On the loop's thread: an exception there (the drawer's OpenGL context refused) ends the
+  // loop and is kept, not thrown across the thread.
   void run() {
+    try {
+      loop();
+    } catch (const std::exception& e) {
+      std::lock_guard lock(mutex);
+      error = e.what();
+    }
+    ended = true;
+  }
+
+  void loop() {
     const EyeDrawer drawer = factory(display->eye_width(), display->eye_height());
     std::array<render::Image, 2> drawn;
     std::string state;
@@ -106,7 +126,6 @@ std::unique_ptr<HeadsetView> HeadsetView::open(
   if (!loop->display) return nullptr;
   loop->factory = std::move(drawer);
   loop->state_changed = std::move(state_changed);
-  loop->thread = std::thread([raw = loop.get()] { raw->run(); });
   return std::unique_ptr<HeadsetView>(new HeadsetView(std::move(loop)));
 }
 
@@ -122,6 +141,24 @@ void HeadsetView::show(render::DrawList scene, const Eigen::Vector3f& cube_centr
   std::lock_guard lock(loop_->mutex);
   loop_->scene = std::move(shared);
   loop_->cube = cube_centre;
+  if (!loop_->thread.joinable() && !loop_->stop)
+    loop_->thread = std::thread([raw = loop_.get()] { raw->run(); });
+}
+
+bool HeadsetView::ended() const {
+  return loop_->ended;
+}
+
+std::string HeadsetView::error() const {
+  std::lock_guard lock(loop_->mutex);
+  return loop_->error;
+}
+
+int HeadsetView::eye_width() const {
+  return loop_->display->eye_width();
+}
+int HeadsetView::eye_height() const {
+  return loop_->display->eye_height();
 }
 
 HeadsetCounts HeadsetView::counts() const {
@@ -133,7 +170,7 @@ std::string HeadsetView::runtime_name() const {
   return loop_->display->runtime_name();
 }
 
-std::array<render::Image, 2> HeadsetView::last_images() const {
+DisplayFrame HeadsetView::last_frame() const {
   std::lock_guard lock(loop_->mutex);
   return loop_->last;
 }

@@ -47,12 +47,19 @@ class HeadsetView {
   // Ends the headset's session and waits for its loop to end; the counts and images stay.
   void close();
 
-  // From any thread: the scene to show from now on, and where its cube's centre is.
+  // From any thread: the scene to show from now on, and where its cube's centre is. The
+  // headset's loop starts with the first.
   void show(render::DrawList scene, const Eigen::Vector3f& cube_centre);
+  // The loop ended: the runtime ended the session, or drawing failed (`error` says why).
+  bool ended() const;
+  std::string error() const;
+  int eye_width() const;
+  int eye_height() const;
   HeadsetCounts counts() const;
   std::string runtime_name() const;
-  // Each eye's last image as read back from its swapchain (empty before the first).
-  std::array<render::Image, 2> last_images() const;
+  // The last frame shown: each eye's image as read back from its swapchain and its camera in
+  // the task scene (not drawn before the first).
+  DisplayFrame last_frame() const;
 
   struct Loop;  // the thread and what it shares (headset_view.cpp)
 

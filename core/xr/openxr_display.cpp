@@ -87,16 +87,20 @@ struct OpenXrDisplay::Session {
   ~Session();
   std::string create_instance(int max_eye_width);
   std::string create_vulkan();
+  std::string create_commands();
   std::string create_session();
   std::string create_swapchains();
   bool host_buffer(VkDeviceSize size, VkBufferUsageFlags usage, HostBuffer& out);
   void handle_events();
-  void draw_eye(int e, const XrView& view, const EyeDrawing& draw, DisplayFrame* out);
-  void copy_through(VkImage image, const Eye& eye);
+  bool draw_views(XrTime time, const EyeDrawing& draw, DisplayFrame* out,
+                  std::array<XrCompositionLayerProjectionView, 2>& projected);
+  bool draw_eye(int e, const XrView& view, const EyeDrawing& draw, DisplayFrame* out);
+  bool copy_through(VkImage image, const Eye& eye);
 };
 
 OpenXrDisplay::Session::~Session() {
-  if (device != VK_NULL_HANDLE) {
+  // Vulkan's functions may be missing where loading them failed half way.
+  if (device != VK_NULL_HANDLE && vk.destroy_device && vk.device_wait_idle) {
     vk.device_wait_idle(device);
     for (Eye& e : eyes)
       for (HostBuffer* b : {&e.upload, &e.read_back}) {
@@ -110,9 +114,10 @@ OpenXrDisplay::Session::~Session() {
     if (e.swapchain != XR_NULL_HANDLE) xr.destroy_swapchain(e.swapchain);
   if (space != XR_NULL_HANDLE) xr.destroy_space(space);
   if (session != XR_NULL_HANDLE) xr.destroy_session(session);
-  if (device != VK_NULL_HANDLE) vk.destroy_device(device, nullptr);
-  if (vk_instance != VK_NULL_HANDLE) vk.destroy_instance(vk_instance, nullptr);
-  if (instance != XR_NULL_HANDLE) xr.destroy_instance(instance);
+  if (device != VK_NULL_HANDLE && vk.destroy_device) vk.destroy_device(device, nullptr);
+  if (vk_instance != VK_NULL_HANDLE && vk.destroy_instance)
+    vk.destroy_instance(vk_instance, nullptr);
+  if (instance != XR_NULL_HANDLE && xr.destroy_instance) xr.destroy_instance(instance);
 }
 
 std::string OpenXrDisplay::Session::create_instance(int max_eye_width) {
@@ -201,6 +206,11 @@ std::string OpenXrDisplay::Session::create_vulkan() {
     return "the runtime made no Vulkan device (VkResult " + std::to_string(int(vr)) + ")";
   if (!vk.load_device(device)) return "Vulkan lacks a function the display needs";
   vk.get_queue(device, queue_family, 0, &queue);
+  return create_commands();
+}
+
+// The command buffer and fence the eyes' copies are recorded into and waited on.
+std::string OpenXrDisplay::Session::create_commands() {
   auto pool_info = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pool_info.queueFamilyIndex = queue_family;
@@ -321,8 +331,9 @@ void OpenXrDisplay::Session::handle_events() {
   }
 }
 
-// The picture into the image, and the image back out, in one submission.
-void OpenXrDisplay::Session::copy_through(VkImage image, const Eye& eye) {
+// The picture into the image, and the image back out, in one submission; false where Vulkan
+// failed.
+bool OpenXrDisplay::Session::copy_through(VkImage image, const Eye& eye) {
   auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
   barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
@@ -354,16 +365,27 @@ void OpenXrDisplay::Session::copy_through(VkImage image, const Eye& eye) {
                           eye.read_back.buffer, 1, &region);
   transition(VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
              VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-  vk.end_command_buffer(commands);
+  // The read-back buffer's bytes made visible to the host that reads them after the fence.
+  auto to_host = vk_struct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
+  to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  to_host.buffer = eye.read_back.buffer;
+  to_host.size = VK_WHOLE_SIZE;
+  vk.pipeline_barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0,
+                      nullptr, 1, &to_host, 0, nullptr);
+  if (vk.end_command_buffer(commands) != VK_SUCCESS) return false;
   auto submit = vk_struct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &commands;
   vk.reset_fences(device, 1, &fence);
-  vk.queue_submit(queue, 1, &submit, fence);
-  vk.wait_for_fences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+  return vk.queue_submit(queue, 1, &submit, fence) == VK_SUCCESS &&
+         vk.wait_for_fences(device, 1, &fence, VK_TRUE, UINT64_MAX) == VK_SUCCESS;
 }
 
-void OpenXrDisplay::Session::draw_eye(int e, const XrView& view, const EyeDrawing& draw,
+// The eye drawn, copied into an acquired image and read back; false where no image was had or
+// the copy failed (the image, if acquired, is released).
+bool OpenXrDisplay::Session::draw_eye(int e, const XrView& view, const EyeDrawing& draw,
                                       DisplayFrame* out) {
   Eye& eye = eyes[std::size_t(e)];
   const render::ViewCamera camera = camera_of(view);
@@ -376,12 +398,13 @@ void OpenXrDisplay::Session::draw_eye(int e, const XrView& view, const EyeDrawin
       std::swap(upload[4 * i], upload[4 * i + 2]);
   std::uint32_t index = 0;
   auto acquire = xr_struct<XrSwapchainImageAcquireInfo>(XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO);
-  xr.acquire_image(eye.swapchain, &acquire, &index);
+  if (XR_FAILED(xr.acquire_image(eye.swapchain, &acquire, &index))) return false;
   auto wait = xr_struct<XrSwapchainImageWaitInfo>(XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO);
   wait.timeout = XR_INFINITE_DURATION;
-  xr.wait_image(eye.swapchain, &wait);
-  copy_through(eye.images[index].image, eye);
-  if (out) {
+  auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
+  const bool copied = XR_SUCCEEDED(xr.wait_image(eye.swapchain, &wait)) &&
+                      copy_through(eye.images[index].image, eye);
+  if (copied && out) {
     render::Image& back = out->read_back[std::size_t(e)];
     back.width = width;
     back.height = height;
@@ -392,8 +415,8 @@ void OpenXrDisplay::Session::draw_eye(int e, const XrView& view, const EyeDrawin
         std::swap(back.rgba[4 * i], back.rgba[4 * i + 2]);
     out->cameras[std::size_t(e)] = camera;
   }
-  auto release = xr_struct<XrSwapchainImageReleaseInfo>(XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO);
   xr.release_image(eye.swapchain, &release);
+  return copied;
 }
 
 std::unique_ptr<OpenXrDisplay> OpenXrDisplay::open(std::string& error, int max_eye_width) {
@@ -408,20 +431,49 @@ std::unique_ptr<OpenXrDisplay> OpenXrDisplay::open(std::string& error, int max_e
 OpenXrDisplay::OpenXrDisplay(std::unique_ptr<Session> session) : session_(std::move(session)) {}
 OpenXrDisplay::~OpenXrDisplay() = default;
 
+// Both eyes drawn into their swapchains for the frame at `time`, and their projection views;
+// false (nothing to submit) where the views are not tracked or an image could not be had.
+bool OpenXrDisplay::Session::draw_views(
+    XrTime time, const EyeDrawing& draw, DisplayFrame* out,
+    std::array<XrCompositionLayerProjectionView, 2>& projected) {
+  std::array<XrView, 2> views{xr_struct<XrView>(XR_TYPE_VIEW), xr_struct<XrView>(XR_TYPE_VIEW)};
+  auto locate = xr_struct<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
+  locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+  locate.displayTime = time;
+  locate.space = space;
+  auto view_state = xr_struct<XrViewState>(XR_TYPE_VIEW_STATE);
+  std::uint32_t count = 0;
+  const XrViewStateFlags tracked =
+      XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
+  if (XR_FAILED(xr.locate_views(session, &locate, &view_state, 2, &count, views.data())) ||
+      count != 2 || (view_state.viewStateFlags & tracked) != tracked)
+    return false;
+  for (int e = 0; e < 2; ++e) {
+    if (!draw_eye(e, views[std::size_t(e)], draw, out)) return false;
+    XrCompositionLayerProjectionView& p = projected[std::size_t(e)];
+    p = xr_struct<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
+    p.pose = views[std::size_t(e)].pose;
+    p.fov = views[std::size_t(e)].fov;
+    p.subImage.swapchain = eyes[std::size_t(e)].swapchain;
+    p.subImage.imageRect = {{0, 0}, {width, height}};
+  }
+  return true;
+}
+
 bool OpenXrDisplay::frame(const EyeDrawing& draw, DisplayFrame* out) {
   Session& s = *session_;
   s.handle_events();
   if (s.ended) return false;
   if (!s.running) return true;  // not yet begun, or stopped: nothing to submit
+  if (out) *out = {};
   auto state = xr_struct<XrFrameState>(XR_TYPE_FRAME_STATE);
   auto wait = xr_struct<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
   if (XR_FAILED(s.xr.wait_frame(s.session, &wait, &state))) return true;
   ++s.counts.waits;
   auto begin = xr_struct<XrFrameBeginInfo>(XR_TYPE_FRAME_BEGIN_INFO);
-  s.xr.begin_frame(s.session, &begin);
+  if (XR_FAILED(s.xr.begin_frame(s.session, &begin))) return true;
   ++s.counts.begins;
   if (s.first_time == 0) s.first_time = state.predictedDisplayTime;
-  std::array<XrView, 2> views{xr_struct<XrView>(XR_TYPE_VIEW), xr_struct<XrView>(XR_TYPE_VIEW)};
   std::array<XrCompositionLayerProjectionView, 2> projected{};
   auto layer = xr_struct<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
   const XrCompositionLayerBaseHeader* layers[] = {
@@ -429,39 +481,23 @@ bool OpenXrDisplay::frame(const EyeDrawing& draw, DisplayFrame* out) {
   auto end = xr_struct<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
   end.displayTime = state.predictedDisplayTime;
   end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
-  if (out) *out = {};
-  if (state.shouldRender) {
-    auto locate = xr_struct<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
-    locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
-    locate.displayTime = state.predictedDisplayTime;
-    locate.space = s.space;
-    auto view_state = xr_struct<XrViewState>(XR_TYPE_VIEW_STATE);
-    std::uint32_t count = 0;
-    if (XR_SUCCEEDED(s.xr.locate_views(s.session, &locate, &view_state, 2, &count, views.data())) &&
-        count == 2) {
-      for (int e = 0; e < 2; ++e) {
-        s.draw_eye(e, views[std::size_t(e)], draw, out);
-        XrCompositionLayerProjectionView& p = projected[std::size_t(e)];
-        p = xr_struct<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
-        p.pose = views[std::size_t(e)].pose;
-        p.fov = views[std::size_t(e)].fov;
-        p.subImage.swapchain = s.eyes[std::size_t(e)].swapchain;
-        p.subImage.imageRect = {{0, 0}, {s.width, s.height}};
-      }
-      layer.space = s.space;
-      layer.viewCount = 2;
-      layer.views = projected.data();
-      end.layerCount = 1;
-      end.layers = layers;
-      ++s.counts.drawn;
-      if (out) {
-        out->drawn = true;
-        out->time = double(state.predictedDisplayTime - s.first_time) * 1e-9;
-      }
+  const bool drawn =
+      state.shouldRender && s.draw_views(state.predictedDisplayTime, draw, out, projected);
+  if (drawn) {
+    layer.space = s.space;
+    layer.viewCount = 2;
+    layer.views = projected.data();
+    end.layerCount = 1;
+    end.layers = layers;
+  }
+  if (XR_SUCCEEDED(s.xr.end_frame(s.session, &end))) ++s.counts.ends;
+  if (drawn) {
+    ++s.counts.drawn;
+    if (out) {
+      out->drawn = true;
+      out->time = double(state.predictedDisplayTime - s.first_time) * 1e-9;
     }
   }
-  s.xr.end_frame(s.session, &end);
-  ++s.counts.ends;
   return true;
 }
 

@@ -33,7 +33,8 @@ class OpenXrDisplay {
  public:
   struct Session;  // the OpenXR and Vulkan objects (openxr_display.cpp)
 
-  // A session on the runtime's headset, begun; nullptr with `error` saying why. Eyes wider
+  // A session on the runtime's headset (it begins in frame() once the runtime is ready);
+  // nullptr with `error` saying why. Eyes wider
   // than `max_eye_width` pixels (0: as the runtime recommends) are drawn at that width.
   static std::unique_ptr<OpenXrDisplay> open(std::string& error, int max_eye_width = 0);
   ~OpenXrDisplay();

@@ -59,7 +59,7 @@ struct OpenXrHandSource::Session {
       if (t != XR_NULL_HANDLE) xr.destroy_hand_tracker(t);
     if (space != XR_NULL_HANDLE) xr.destroy_space(space);
     if (session != XR_NULL_HANDLE) xr.destroy_session(session);
-    if (instance != XR_NULL_HANDLE) xr.destroy_instance(instance);
+    if (instance != XR_NULL_HANDLE && xr.destroy_instance) xr.destroy_instance(instance);
   }
 
   // Session state changes: begun when ready, ended when stopping; false once it exits.
@@ -259,6 +259,7 @@ class SharedView : public tracking::LiveFrameSource {
     source_->next();
   }
   std::optional<tracking::TrackedFrame> next() override { return source_->next(); }
+  bool ended() const override { return source_->ended(); }
   bool wait_for_frame(std::chrono::steady_clock::time_point deadline) override {
     return source_->wait_for_frame(deadline);
   }

@@ -28,7 +28,7 @@ class OpenXrHandSource : public tracking::LiveFrameSource {
   bool wait_for_frame(std::chrono::steady_clock::time_point deadline) override;
 
   // The session ended (the runtime stopped it or was lost): no more frames come.
-  bool ended() const;
+  bool ended() const override;
   std::string runtime_name() const;
 
   struct Session;  // the OpenXR handles and the loop (openxr_hand_source.cpp)

@@ -38,6 +38,10 @@ bool list_extensions(const OpenXrLoader& loader, std::vector<std::string>& out,
 void describe_system(const OpenXrLoader& loader, XrInstance instance, OpenXrRuntimeInfo& info) {
   auto get_system = loader.get<PFN_xrGetSystem>(instance, "xrGetSystem");
   auto get_properties = loader.get<PFN_xrGetSystemProperties>(instance, "xrGetSystemProperties");
+  if (!get_system || !get_properties) {
+    info.system_error = "the runtime has no xrGetSystem";
+    return;
+  }
   auto request = xr_struct<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
   request.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
   XrSystemId system = XR_NULL_SYSTEM_ID;
@@ -87,14 +91,16 @@ OpenXrRuntimeInfo probe_openxr_runtime() {
     return info.error = "the OpenXR runtime made no instance: " + result_name(r), info;
 
   auto properties = xr_struct<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
-  if (XR_SUCCEEDED(loader.get<PFN_xrGetInstanceProperties>(instance, "xrGetInstanceProperties")(
-          instance, &properties))) {
+  auto get_properties =
+      loader.get<PFN_xrGetInstanceProperties>(instance, "xrGetInstanceProperties");
+  if (get_properties && XR_SUCCEEDED(get_properties(instance, &properties))) {
     info.runtime_name = properties.runtimeName;
     info.runtime_version = version_text(properties.runtimeVersion);
   }
   info.found = true;
   describe_system(loader, instance, info);
-  loader.get<PFN_xrDestroyInstance>(instance, "xrDestroyInstance")(instance);
+  if (auto destroy = loader.get<PFN_xrDestroyInstance>(instance, "xrDestroyInstance"))
+    destroy(instance);
   return info;
 }
 

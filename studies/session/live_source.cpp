@@ -2,6 +2,7 @@
 // calibrates with an open palm, and each step takes the newest frame as soon as it arrives.
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 
 #include "studies/session/open_palm_calibration.h"
@@ -21,6 +22,7 @@ class LiveSource : public TrialFrameSource {
     return held_;
   }
   bool live() const override { return true; }
+  bool ended() const override { return frames_->ended(); }
   // A frame is used as soon as it arrives, the step taken up to one step early rather than
   // the frame left waiting for its tick: the simulation keeps within a step of the clock, and
   // a frame's latency is the step's, not the step's plus the tick's.
@@ -48,6 +50,7 @@ class Live : public Tracker {
     const std::unique_ptr<tracking::LiveFrameSource> source = open_();
     while (!step.done()) {
       if (control && control->stop_requested()) throw SessionStopped();
+      if (source->ended()) throw std::runtime_error("the tracker stopped before the calibration was done");
       // Each frame as it comes; a stop is seen within a tenth of a second without frames.
       source->wait_for_frame(std::chrono::steady_clock::now() + std::chrono::milliseconds(100));
       if (const auto frame = source->next()) {

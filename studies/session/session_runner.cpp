@@ -165,7 +165,7 @@ bool SessionRunner::run_planned_trial(Session& s, const store::PlannedTrialRow& 
   if (s.logger) s.logger->flush();  // every frame on disk before the outcome is committed
   tally(setup, run, report);
   if (run.aborted) {
-    store_.abort_trial(trial, "stopped by the experimenter");
+    store_.abort_trial(trial, run.abort_reason.empty() ? "stopped by the experimenter" : run.abort_reason);
     if (control_ && control_->trial_ended) control_->trial_ended(setup, run);
     report.stopped = true;
     return false;

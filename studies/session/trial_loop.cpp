@@ -80,6 +80,13 @@ TrialRun run_trial(TrialRig& rig, const FrameSink& sink, const TrialLoopOptions&
       break;
     }
     if (real_time) rig.source->wait_for_step(start + seconds(t), seconds(dt));
+    // A live tracker that stops (its runtime gone) ends the trial as aborted: kept, and run
+    // again when the session resumes, not logged with a hand frozen where it was.
+    if (rig.source->live() && rig.source->ended()) {
+      run.aborted = true;
+      run.abort_reason = "the tracker stopped sending frames";
+      break;
+    }
     const std::optional<tracking::TrackedFrame> frame = rig.source->next(shown);
     const tracking::TrackedHand* hand = frame ? frame->hand(tracking::Side::kRight) : nullptr;
     if (hand) pose = rig.retargeter->retarget(*hand).pose;

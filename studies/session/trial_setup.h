@@ -41,6 +41,7 @@ struct TrialRun {
   std::string participant_memory;
   // Stopped by the experimenter before its end (SessionControl::request_stop): no result.
   bool aborted = false;
+  std::string abort_reason;  // why, where not the experimenter's stop
   // What the soft hand's simulator steps cost in the trial (none on the grasp proxy).
   sim::StepTotals simulator;
 };

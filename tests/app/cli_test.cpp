@@ -239,6 +239,7 @@ TEST(CliXr, WithoutARuntimeEachCommandSaysSoInOneLine) {
   const Result json = run_cli("xr list --json -");
   const Result hands = run_cli("xr hands --seconds 1");
   const Result zero = run_cli("xr hands --seconds 0");
+  const Result show = run_cli("xr show --seconds 1");
   const std::string db = handlab::test::fresh_path("cli_xr.db");
   ASSERT_EQ(run_cli("study create --protocol " + std::string(HANDLAB_SOURCE_DIR) +
                     "/tests/openxr/headset-protocol.json --db " + db)
@@ -267,6 +268,9 @@ TEST(CliXr, WithoutARuntimeEachCommandSaysSoInOneLine) {
   EXPECT_EQ(std::count(hands.out.begin(), hands.out.end(), '\n'), 1) << hands.out;
   EXPECT_NE(hands.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << hands.out;
   EXPECT_EQ(zero.status, 2) << zero.out;
+  EXPECT_EQ(show.status, 1);
+  EXPECT_EQ(std::count(show.out.begin(), show.out.end(), '\n'), 1) << show.out;
+  EXPECT_NE(show.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << show.out;
 }
 
 TEST(CliRetarget, SummaryKeysAndDeterministicCsv) {

@@ -17,6 +17,8 @@ set -euo pipefail
 cli=$1 source=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "openxr-test: $*" >&2; exit 1; }
+driver=""
+trap '[ -n "$driver" ] && kill "$driver" 2>/dev/null || true' EXIT
 
 manifest=$("$source/scripts/build-monado.sh") || fail "Monado could not be built (above)"
 monado=$(dirname "$(dirname "$manifest")")
@@ -51,6 +53,11 @@ assert r["frames_ended"] - n <= 1, r
 assert r["cube_seen_left"] == n and r["cube_seen_right"] == n, r
 assert r["read_back_as_drawn"] == n, r
 assert r["end_state"] == "exiting", r
+# The cameras against the world: the cube, nearer than infinity, further right in the left eye
+# than in the right; the table below the eyes, in the pictures' lower half.
+(lx, ly), (rx, ry) = r["cube_pixel_left"], r["cube_pixel_right"]
+assert lx > rx, r
+assert ly > r["eye_height"] / 2 and ry > r["eye_height"] / 2, r
 EOF
 for eye in left right; do
   [ -s "$work/eyes/eye-$eye.png" ] || fail "no picture of the $eye eye's swapchain image"

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "app/cli/arguments.h"
@@ -52,7 +53,8 @@ std::vector<OptionSpec> session_run_options() {
 CommandHelp session_run_help() {
   return {"session run",
           {"db participant [tracker] [seed] [resume] [world] [display] [quiet] [json]"},
-          "Runs the participant's schedule headless: tracker -> retargeting -> hand-cube physics "
+          "Runs the participant's schedule without the app: tracker -> retargeting -> hand-cube "
+          "physics "
           "-> task, frames logged at 120 Hz, questionnaire where the protocol asks it (the "
           "scripted participant answers the middle of the scale)."};
 }
@@ -121,6 +123,11 @@ int session_run(const std::vector<std::string>& argv) {
     throw UsageError("--tracker must be scripted, simulated, openxr or a recording file; '" +
                      tracker + "' is none of them" +
                      did_you_mean(tracker, {"scripted", "simulated", "openxr"}));
+  const bool in_headset = args.choice("display", {"none", "headset"}) == "headset";
+  // The hands come from a session with no graphics and the headset from a Vulkan one: two
+  // OpenXR instances, which one process cannot count on a runtime to give.
+  if (in_headset && tracker == "openxr")
+    throw UsageError("--tracker openxr with --display headset is not yet supported");
   store::StudyStore store(args.text("db"));
   const std::uint64_t seed = args.seed("seed");
   const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
@@ -131,12 +138,14 @@ int session_run(const std::vector<std::string>& argv) {
   studies::SessionRunner runner(store, driver,
                                 kind->own_answers().value_or(studies::fixed_responder()));
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
-  const auto say = [quiet](const std::string& line) {
+  std::mutex out;  // the session's lines and the headset's, from two threads
+  const auto say = [quiet, &out](const std::string& line) {
+    std::lock_guard lock(out);
     if (!quiet) std::cout << line << std::endl;
   };
   studies::SessionControl control;
   std::unique_ptr<SessionHeadset> headset;
-  if (args.choice("display", {"none", "headset"}) == "headset") {
+  if (in_headset) {
     headset = std::make_unique<SessionHeadset>(control, say);
     runner.attach(&control);
     driver.attach(&control);
@@ -152,6 +161,8 @@ int session_run(const std::vector<std::string>& argv) {
   if (headset) {
     headset->close();
     shown = headset->counts();
+    if (!headset->error().empty())
+      std::cerr << "handlab-cli session: the headset: " << headset->error() << "\n";
   }
   if (args.text("json") != "-")
     print_session_report(args.text("participant"), report, seconds, shown);

@@ -192,6 +192,42 @@ CommandHelp xr_show_help() {
           "eye's projection puts it."};
 }
 
+// Where the last frame put the cube's centre in each eye (pixels): a check of the cameras
+// against the world, not against themselves (a near object is further right in the left eye,
+// and a table below the eyes is in the picture's lower half).
+void write_cube_pixels(util::JsonWriter& json, const xr::DisplayFrame& last,
+                       const Eigen::Vector3f& centre) {
+  for (int e = 0; e < 2; ++e) {
+    Eigen::Vector2f p(-1.0f, -1.0f);
+    const render::Image& image = last.read_back[std::size_t(e)];
+    render::project_to_pixel(last.cameras[std::size_t(e)], image.width, image.height, centre, &p);
+    json.key(e == 0 ? "cube_pixel_left" : "cube_pixel_right")
+        .begin_array()
+        .value(double(p.x()))
+        .value(double(p.y()))
+        .end_array();
+  }
+}
+
+void write_show_json(std::ostream& out, const xr::HeadsetView& headset,
+                     const std::string& end_state, const Eigen::Vector3f& cube) {
+  const xr::HeadsetCounts counts = headset.counts();
+  util::JsonWriter json(out);
+  json.begin_object()
+      .field("runtime_name", headset.runtime_name())
+      .field("eye_width", headset.eye_width())
+      .field("eye_height", headset.eye_height())
+      .field("frames_drawn", int(counts.shown))
+      .field("frames_waited", int(counts.loop.waits))
+      .field("frames_begun", int(counts.loop.begins))
+      .field("frames_ended", int(counts.loop.ends))
+      .field("cube_seen_left", int(counts.cube_seen[0]))
+      .field("cube_seen_right", int(counts.cube_seen[1]))
+      .field("read_back_as_drawn", int(counts.read_back_as_drawn));
+  if (counts.shown) write_cube_pixels(json, headset.last_frame(), cube);
+  json.field("end_state", end_state).end_object();
+}
+
 int xr_show(const std::vector<std::string>& argv) {
   const Arguments args(xr_show_options(), argv, 0);
   if (args.help_requested()) return print_help(xr_show_help(), args);
@@ -211,36 +247,30 @@ int xr_show(const std::vector<std::string>& argv) {
       int(args.integer("eye-width")));
   if (!headset) throw std::runtime_error(error + " (docs/hmd.md)");
   const Eigen::Isometry3d cube = task::cube_start_pose(layout);
-  headset->show(render::draw_task_scene(layout, cube), cube.translation().cast<float>());
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  const Eigen::Vector3f centre = cube.translation().cast<float>();
+  headset->show(render::draw_task_scene(layout, cube), centre);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!headset->ended() && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   headset->close();  // the session ended, its last state reported
+  if (!headset->error().empty()) throw std::runtime_error(headset->error());
   const xr::HeadsetCounts counts = headset->counts();
-  const std::array<render::Image, 2> eyes = headset->last_images();
-  if (args.has("screenshot") && !eyes[0].rgba.empty()) {
+  const xr::DisplayFrame last = headset->last_frame();
+  if (args.has("screenshot") && counts.shown) {
     std::filesystem::create_directories(args.text("screenshot"));
-    render::write_png(eyes[0], args.text("screenshot") + "/eye-left.png");
-    render::write_png(eyes[1], args.text("screenshot") + "/eye-right.png");
+    render::write_png(last.read_back[0], args.text("screenshot") + "/eye-left.png");
+    render::write_png(last.read_back[1], args.text("screenshot") + "/eye-right.png");
   }
   if (args.has("json"))
     util::write_output(args.text("json"), [&](std::ostream& out) {
-      util::JsonWriter json(out);
-      json.begin_object()
-          .field("runtime_name", headset->runtime_name())
-          .field("eye_width", eyes[0].width)
-          .field("eye_height", eyes[0].height)
-          .field("frames_drawn", int(counts.shown))
-          .field("frames_waited", int(counts.loop.waits))
-          .field("frames_begun", int(counts.loop.begins))
-          .field("frames_ended", int(counts.loop.ends))
-          .field("cube_seen_left", int(counts.cube_seen[0]))
-          .field("cube_seen_right", int(counts.cube_seen[1]))
-          .field("read_back_as_drawn", int(counts.read_back_as_drawn))
-          .field("end_state", end_state)
-          .end_object();
+      write_show_json(out, *headset, end_state, centre);
     });
+  if (!counts.shown)
+    throw std::runtime_error("the headset's runtime asked for no frame (session " + end_state +
+                             ")");
   if (args.text("json") != "-")
     std::cout << "headset " << headset->runtime_name() << ": " << counts.shown << " frames drawn ("
-              << eyes[0].width << " x " << eyes[0].height
+              << headset->eye_width() << " x " << headset->eye_height()
               << " an eye), the cube where each eye's projection puts it in " << counts.cube_seen[0]
               << " (left) and " << counts.cube_seen[1] << " (right), read back as drawn in "
               << counts.read_back_as_drawn << "; session " << end_state << "\n";
