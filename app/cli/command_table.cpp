@@ -17,8 +17,8 @@ const std::vector<Command>& all_commands() {
        run_sim},
       {"tracking", "read Leap Motion recordings: info, convert to CSV or .hlrec", run_tracking},
       {"xr",
-       "the OpenXR runtime: its headset, hand tracking, graphics (list); its hands recorded "
-       "(hands)",
+       "OpenXR: the runtime and headset found (list), its hands recorded (hands), the task "
+       "scene shown in the headset (show)",
        run_xr},
       {"render", "draw the task scene, or a moment of a stored trial, into a PNG (no display)",
        run_render},
