@@ -86,7 +86,8 @@ EOF
 unset SIMULATED_ENABLE
 
 # 2. The remote driver, two hands over its socket.
-port=$((42000 + $$ % 1000))
+# A port no one listens on (the remote driver's hub binds it in handlab's process).
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 mkdir -p "$work/remote/monado"
 echo "{\"active\": \"remote\", \"remote\": {\"version\": 0, \"port\": $port, \"view_count\": 2}}" \
   >"$work/remote/monado/config_v0.json"
