@@ -1,5 +1,6 @@
 #include "app/cli/session_headset.h"
 
+#include <limits>
 #include <stdexcept>
 
 #include "core/render/offscreen_context.h"
@@ -16,18 +17,27 @@ xr::HeadsetView::DrawerFactory offscreen_eyes() {
 }
 
 SessionHeadset::SessionHeadset(studies::SessionControl& control,
-                               std::function<void(const std::string&)> say)
+                               std::function<void(const std::string&)> say, bool hands)
     : control_(control), say_(std::move(say)) {
+  xr::OpenXrDisplay::HandSink sink;
+  if (hands) {
+    hands_ = std::make_shared<tracking::LatestFrames>();
+    sink = [frames = hands_](tracking::TrackedFrame f) { frames->publish(std::move(f)); };
+  }
   std::string error;
-  headset_ = xr::HeadsetView::open(error, offscreen_eyes(),
-                                   [this](const std::string& state) { state_changed(state); });
+  headset_ = xr::HeadsetView::open(
+      error, offscreen_eyes(), [this](const std::string& state) { state_changed(state); }, 0,
+      std::move(sink));
   if (!headset_) throw std::runtime_error(error + " (docs/hmd.md)");
+  headset_->start();  // its frames (and hands) from now, the calibration's too
   control_.trial_started = [this](const studies::TrialSetup& setup, int) {
     view_.start_trial(setup);
   };
   control_.stepped = [this](const studies::TrialStep& step) {
     const Eigen::Vector3f cube = step.frame ? step.frame->cube_position : Eigen::Vector3f::Zero();
-    headset_->show(view_.draw(step), cube);
+    const double hand_time = hands_ && step.frame ? step.frame->tracked.timestamp
+                                                  : std::numeric_limits<double>::quiet_NaN();
+    headset_->show(view_.draw(step), cube, hand_time);
   };
 }
 
@@ -37,6 +47,7 @@ SessionHeadset::~SessionHeadset() {
 
 void SessionHeadset::close() {
   closing_ = true;
+  if (hands_) hands_->finish();
   control_.trial_started = nullptr;
   control_.stepped = nullptr;
   if (headset_) headset_->close();
@@ -53,6 +64,7 @@ void SessionHeadset::state_changed(const std::string& state) {
       say_("the headset is in focus again: the session goes on");
     }
   } else if (state == "exiting" || state == "loss pending") {
+    if (hands_) hands_->finish();
     if (!control_.stop_requested()) {
       control_.request_stop();
       say_("the headset's runtime ended its session (" + state +

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -36,10 +37,15 @@ struct HeadsetView::Loop {
   mutable std::mutex mutex;
   std::shared_ptr<const render::DrawList> scene;
   Eigen::Vector3f cube = Eigen::Vector3f::Zero();
+  double hand_time = std::numeric_limits<double>::quiet_NaN();
+  double hand_time_counted = std::numeric_limits<double>::quiet_NaN();
   HeadsetCounts counts;
   DisplayFrame last;
 
   ~Loop() { close(); }
+  void start() {  // under the mutex
+    if (!thread.joinable() && !stop) thread = std::thread([this] { run(); });
+  }
   void close() {
     std::thread running;
     {
@@ -51,11 +57,15 @@ struct HeadsetView::Loop {
   }
 
   void tally(const DisplayFrame& f, const std::array<render::Image, 2>& drawn,
-             const Eigen::Vector3f& centre) {
+             const Eigen::Vector3f& centre, double shown_hand_time) {
     std::lock_guard lock(mutex);
     counts.loop = display->counts();
     if (!f.drawn) return;
     ++counts.shown;
+    if (std::isfinite(shown_hand_time) && shown_hand_time != hand_time_counted) {
+      counts.latency_ms.push_back(1000.0 * (f.time - shown_hand_time));
+      hand_time_counted = shown_hand_time;
+    }
     for (int e = 0; e < 2; ++e)
       counts.cube_seen[e] += cube_at_its_pixel(
           f.read_back[std::size_t(e)], task_scene_camera(f.cameras[std::size_t(e)]), centre);
@@ -86,10 +96,12 @@ struct HeadsetView::Loop {
     while (true) {
       std::shared_ptr<const render::DrawList> shown;
       Eigen::Vector3f centre;
+      double shown_hand_time;
       {
         std::lock_guard lock(mutex);
         shown = scene;
         centre = cube;
+        shown_hand_time = hand_time;
       }
       const long waits = display->counts().waits;
       DisplayFrame f;
@@ -104,7 +116,7 @@ struct HeadsetView::Loop {
         if (state_changed) state_changed(state);
       }
       if (!going) break;
-      if (shown) tally(f, drawn, centre);
+      if (shown) tally(f, drawn, centre, shown_hand_time);
       if (stop && !exit_requested) {
         display->request_exit();
         exit_requested = true;
@@ -120,9 +132,9 @@ struct HeadsetView::Loop {
 
 std::unique_ptr<HeadsetView> HeadsetView::open(
     std::string& error, DrawerFactory drawer, std::function<void(const std::string&)> state_changed,
-    int max_eye_width) {
+    int max_eye_width, OpenXrDisplay::HandSink hands) {
   auto loop = std::make_unique<Loop>();
-  loop->display = OpenXrDisplay::open(error, max_eye_width);
+  loop->display = OpenXrDisplay::open(error, max_eye_width, std::move(hands));
   if (!loop->display) return nullptr;
   loop->factory = std::move(drawer);
   loop->state_changed = std::move(state_changed);
@@ -136,13 +148,19 @@ void HeadsetView::close() {
   loop_->close();
 }
 
-void HeadsetView::show(render::DrawList scene, const Eigen::Vector3f& cube_centre) {
+void HeadsetView::show(render::DrawList scene, const Eigen::Vector3f& cube_centre,
+                       double hand_time) {
   auto shared = std::make_shared<const render::DrawList>(std::move(scene));
   std::lock_guard lock(loop_->mutex);
   loop_->scene = std::move(shared);
   loop_->cube = cube_centre;
-  if (!loop_->thread.joinable() && !loop_->stop)
-    loop_->thread = std::thread([raw = loop_.get()] { raw->run(); });
+  loop_->hand_time = hand_time;
+  loop_->start();
+}
+
+void HeadsetView::start() {
+  std::lock_guard lock(loop_->mutex);
+  loop_->start();
 }
 
 bool HeadsetView::ended() const {

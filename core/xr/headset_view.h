@@ -5,8 +5,10 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -30,6 +32,9 @@ struct HeadsetCounts {
   long shown = 0;              // frames drawn with a scene
   long cube_seen[2] = {0, 0};  // of those, the cube at its pixel in the left and right image
   long read_back_as_drawn = 0;
+  // From a hand frame's time to the predicted display time of the first frame that showed
+  // the scene made from it (ms), for scenes made from the headset's own hands.
+  std::vector<double> latency_ms;
 };
 
 class HeadsetView {
@@ -40,16 +45,23 @@ class HeadsetView {
   using DrawerFactory = std::function<EyeDrawer(int width, int height)>;
   // `state_changed` is called on the display's thread with the session's state ("focused",
   // "visible", "stopping", "exiting", ...) each time it changes.
+  // With `hands`, the headset's session also tracks the hands (OpenXrDisplay::HandSink).
   static std::unique_ptr<HeadsetView> open(std::string& error, DrawerFactory drawer,
                                            std::function<void(const std::string&)> state_changed,
-                                           int max_eye_width = 0);
+                                           int max_eye_width = 0,
+                                           OpenXrDisplay::HandSink hands = {});
   ~HeadsetView();  // closes
   // Ends the headset's session and waits for its loop to end; the counts and images stay.
   void close();
 
+  // Starts the headset's loop with nothing to show yet (the hands it tracks then come).
+  void start();
   // From any thread: the scene to show from now on, and where its cube's centre is. The
-  // headset's loop starts with the first.
-  void show(render::DrawList scene, const Eigen::Vector3f& cube_centre);
+  // headset's loop starts with the first if it has not.
+  // `hand_time`: the time of the headset's hand frame the scene was made from (s, as
+  // DisplayFrame::time), NaN where it was not.
+  void show(render::DrawList scene, const Eigen::Vector3f& cube_centre,
+            double hand_time = std::numeric_limits<double>::quiet_NaN());
   // The loop ended: the runtime ended the session, or drawing failed (`error` says why).
   bool ended() const;
   std::string error() const;

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/xr/hand_trackers.h"
 #include "core/xr/openxr_functions.h"
 #include "core/xr/vulkan_functions.h"
 
@@ -83,6 +84,9 @@ struct OpenXrDisplay::Session {
   bool running = false, ended = false;
   XrTime first_time = 0;
   DisplayCounts counts;
+  HandSink hand_sink;
+  HandTrackers hands;
+  std::int64_t hand_frames = 0;
 
   ~Session();
   std::string create_instance(int max_eye_width);
@@ -110,6 +114,7 @@ OpenXrDisplay::Session::~Session() {
     if (fence) vk.destroy_fence(device, fence, nullptr);
     if (pool) vk.destroy_command_pool(device, pool, nullptr);
   }
+  if (hands.created()) hands.destroy(xr);
   for (Eye& e : eyes)
     if (e.swapchain != XR_NULL_HANDLE) xr.destroy_swapchain(e.swapchain);
   if (space != XR_NULL_HANDLE) xr.destroy_space(space);
@@ -123,7 +128,9 @@ OpenXrDisplay::Session::~Session() {
 std::string OpenXrDisplay::Session::create_instance(int max_eye_width) {
   const OpenXrLoader& loader = OpenXrLoader::instance();
   if (!loader.available()) return loader.error();
-  XrResult r = xr::create_instance(loader, {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME}, &instance);
+  std::vector<const char*> extensions = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
+  if (hand_sink) extensions.push_back("XR_EXT_hand_tracking");
+  XrResult r = xr::create_instance(loader, extensions, &instance);
   if (XR_FAILED(r))
     return "no OpenXR runtime drawing with Vulkan (XR_KHR_vulkan_enable2): " + result_name(r);
   if (!xr.load(loader, instance) || !xr.create_vulkan_device)
@@ -419,11 +426,14 @@ bool OpenXrDisplay::Session::draw_eye(int e, const XrView& view, const EyeDrawin
   return copied;
 }
 
-std::unique_ptr<OpenXrDisplay> OpenXrDisplay::open(std::string& error, int max_eye_width) {
+std::unique_ptr<OpenXrDisplay> OpenXrDisplay::open(std::string& error, int max_eye_width,
+                                                   HandSink hands) {
   auto s = std::make_unique<Session>();
+  s->hand_sink = std::move(hands);
   error = s->create_instance(max_eye_width);
   if (error.empty()) error = s->create_vulkan();
   if (error.empty()) error = s->create_session();
+  if (error.empty() && s->hand_sink) error = s->hands.create(s->xr, s->session);
   if (!error.empty()) return nullptr;
   return std::unique_ptr<OpenXrDisplay>(new OpenXrDisplay(std::move(s)));
 }
@@ -474,6 +484,13 @@ bool OpenXrDisplay::frame(const EyeDrawing& draw, DisplayFrame* out) {
   if (XR_FAILED(s.xr.begin_frame(s.session, &begin))) return true;
   ++s.counts.begins;
   if (s.first_time == 0) s.first_time = state.predictedDisplayTime;
+  if (s.hands.created()) {
+    tracking::TrackedFrame hands;
+    hands.timestamp = double(state.predictedDisplayTime - s.first_time) * 1e-9;
+    hands.id = ++s.hand_frames;
+    hands.hands = s.hands.locate(s.xr, s.space, state.predictedDisplayTime);
+    s.hand_sink(std::move(hands));
+  }
   std::array<XrCompositionLayerProjectionView, 2> projected{};
   auto layer = xr_struct<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
   const XrCompositionLayerBaseHeader* layers[] = {

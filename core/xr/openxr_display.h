@@ -13,6 +13,7 @@
 
 #include "core/render/image.h"
 #include "core/render/view_camera.h"
+#include "core/tracking/tracked_frame.h"
 
 namespace handlab::xr {
 
@@ -33,10 +34,16 @@ class OpenXrDisplay {
  public:
   struct Session;  // the OpenXR and Vulkan objects (openxr_display.cpp)
 
+  // The hands the headset's session tracks, located at each frame's predicted display time
+  // (timestamps in s from the first frame's, as DisplayFrame::time), on the frame's thread.
+  using HandSink = std::function<void(tracking::TrackedFrame)>;
+
   // A session on the runtime's headset (it begins in frame() once the runtime is ready);
-  // nullptr with `error` saying why. Eyes wider
-  // than `max_eye_width` pixels (0: as the runtime recommends) are drawn at that width.
-  static std::unique_ptr<OpenXrDisplay> open(std::string& error, int max_eye_width = 0);
+  // nullptr with `error` saying why. Eyes wider than `max_eye_width` pixels (0: as the runtime
+  // recommends) are drawn at that width. With `hands`, the session also tracks both hands
+  // (XR_EXT_hand_tracking) and gives each frame's to it.
+  static std::unique_ptr<OpenXrDisplay> open(std::string& error, int max_eye_width = 0,
+                                             HandSink hands = {});
   ~OpenXrDisplay();
 
   using EyeDrawing = std::function<render::Image(int eye, const render::ViewCamera& camera,

@@ -10,37 +10,17 @@
 #include <vector>
 
 #include "core/tracking/openxr_hand.h"
+#include "core/xr/hand_trackers.h"
 #include "core/xr/openxr_functions.h"
 
 namespace handlab::xr {
-
-namespace {
-
-tracking::OpenXrHand openxr_hand(const std::vector<XrHandJointLocationEXT>& joints,
-                                 tracking::Side side) {
-  tracking::OpenXrHand hand;
-  hand.side = side;
-  for (int j = 0; j < tracking::kOpenXrJointCount; ++j) {
-    const XrHandJointLocationEXT& in = joints[std::size_t(j)];
-    tracking::OpenXrJoint& out = hand.joints[std::size_t(j)];
-    out.position = {in.pose.position.x, in.pose.position.y, in.pose.position.z};
-    out.orientation = Eigen::Quaterniond(in.pose.orientation.w, in.pose.orientation.x,
-                                         in.pose.orientation.y, in.pose.orientation.z);
-    out.radius = in.radius;
-    out.position_valid = in.locationFlags & XR_SPACE_LOCATION_POSITION_VALID_BIT;
-    out.orientation_valid = in.locationFlags & XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
-  }
-  return hand;
-}
-
-}  // namespace
 
 struct OpenXrHandSource::Session {
   OpenXrFunctions xr;
   XrInstance instance = XR_NULL_HANDLE;
   XrSession session = XR_NULL_HANDLE;
   XrSpace space = XR_NULL_HANDLE;
-  XrHandTrackerEXT trackers[2] = {XR_NULL_HANDLE, XR_NULL_HANDLE};  // left, right
+  HandTrackers hands;
   std::string runtime;
 
   std::thread loop;
@@ -55,8 +35,7 @@ struct OpenXrHandSource::Session {
   ~Session() {
     stop = true;
     if (loop.joinable()) loop.join();
-    for (XrHandTrackerEXT t : trackers)
-      if (t != XR_NULL_HANDLE) xr.destroy_hand_tracker(t);
+    hands.destroy(xr);
     if (space != XR_NULL_HANDLE) xr.destroy_space(space);
     if (session != XR_NULL_HANDLE) xr.destroy_session(session);
     if (instance != XR_NULL_HANDLE && xr.destroy_instance) xr.destroy_instance(instance);
@@ -92,21 +71,7 @@ struct OpenXrHandSource::Session {
     if (first_time == 0) first_time = time;
     frame.timestamp = double(time - first_time) * 1e-9;
     frame.id = ++frames;
-    for (int side = 0; side < 2; ++side) {
-      std::vector<XrHandJointLocationEXT> joints(tracking::kOpenXrJointCount);
-      auto locations = xr_struct<XrHandJointLocationsEXT>(XR_TYPE_HAND_JOINT_LOCATIONS_EXT);
-      locations.jointCount = std::uint32_t(joints.size());
-      locations.jointLocations = joints.data();
-      auto info = xr_struct<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
-      info.baseSpace = space;
-      info.time = time;
-      if (XR_FAILED(xr.locate_hand_joints(trackers[side], &info, &locations)) ||
-          !locations.isActive)
-        continue;
-      const auto s = side == 0 ? tracking::Side::kLeft : tracking::Side::kRight;
-      if (auto hand = tracking::tracked_hand_from_openxr(openxr_hand(joints, s), side + 1))
-        frame.hands.push_back(*hand);
-    }
+    frame.hands = hands.locate(xr, space, time);
     return frame;
   }
 
@@ -192,15 +157,7 @@ std::string make_session(OpenXrHandSource::Session& s) {
   space_info.poseInReferenceSpace.orientation.w = 1.0f;
   if (XR_FAILED(r = s.xr.create_space(s.session, &space_info, &s.space)))
     return "no LOCAL space: " + result_name(r);
-  for (int side = 0; side < 2; ++side) {
-    auto tracker = xr_struct<XrHandTrackerCreateInfoEXT>(XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT);
-    tracker.hand = side == 0 ? XR_HAND_LEFT_EXT : XR_HAND_RIGHT_EXT;
-    tracker.handJointSet = XR_HAND_JOINT_SET_DEFAULT_EXT;
-    if (XR_FAILED(r = s.xr.create_hand_tracker(s.session, &tracker, &s.trackers[side])))
-      return std::string("the OpenXR runtime tracks no ") + (side == 0 ? "left" : "right") +
-             " hand: " + result_name(r);
-  }
-  return "";
+  return s.hands.create(s.xr, s.session);
 }
 
 }  // namespace
@@ -255,7 +212,8 @@ namespace {
 
 class SharedView : public tracking::LiveFrameSource {
  public:
-  explicit SharedView(std::shared_ptr<OpenXrHandSource> source) : source_(std::move(source)) {
+  explicit SharedView(std::shared_ptr<tracking::LiveFrameSource> source)
+      : source_(std::move(source)) {
     source_->next();
   }
   std::optional<tracking::TrackedFrame> next() override { return source_->next(); }
@@ -265,12 +223,13 @@ class SharedView : public tracking::LiveFrameSource {
   }
 
  private:
-  std::shared_ptr<OpenXrHandSource> source_;
+  std::shared_ptr<tracking::LiveFrameSource> source_;
 };
 
 }  // namespace
 
-std::unique_ptr<tracking::LiveFrameSource> view_of(std::shared_ptr<OpenXrHandSource> source) {
+std::unique_ptr<tracking::LiveFrameSource> view_of(
+    std::shared_ptr<tracking::LiveFrameSource> source) {
   return std::make_unique<SharedView>(std::move(source));
 }
 

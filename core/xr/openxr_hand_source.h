@@ -40,6 +40,7 @@ class OpenXrHandSource : public tracking::LiveFrameSource {
 
 // A view of a shared source for one user at a time (a session's calibration, then each trial):
 // frames that came before the view was made are not its own.
-std::unique_ptr<tracking::LiveFrameSource> view_of(std::shared_ptr<OpenXrHandSource> source);
+std::unique_ptr<tracking::LiveFrameSource> view_of(
+    std::shared_ptr<tracking::LiveFrameSource> source);
 
 }  // namespace handlab::xr

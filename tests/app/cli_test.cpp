@@ -252,10 +252,14 @@ TEST(CliXr, WithoutARuntimeEachCommandSaysSoInOneLine) {
             0);
   const Result session = run_cli("session run --db " + db + " --participant P1 --tracker openxr");
   const Result shown = run_cli("session run --db " + db + " --participant P1 --display headset");
+  const Result both =
+      run_cli("session run --db " + db + " --participant P1 --tracker openxr --display headset");
   unsetenv("XR_RUNTIME_JSON");
   EXPECT_EQ(shown.status, 1);
   EXPECT_EQ(std::count(shown.out.begin(), shown.out.end(), '\n'), 1) << shown.out;
   EXPECT_NE(shown.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << shown.out;
+  EXPECT_EQ(both.status, 1);
+  EXPECT_EQ(std::count(both.out.begin(), both.out.end(), '\n'), 1) << both.out;
   EXPECT_EQ(session.status, 1);
   EXPECT_EQ(std::count(session.out.begin(), session.out.end(), '\n'), 1) << session.out;
   EXPECT_NE(session.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << session.out;

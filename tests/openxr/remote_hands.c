@@ -23,7 +23,7 @@ static void hand(struct r_remote_controller_data* c, float x, double t) {
   memset(c, 0, sizeof(*c));
   c->pose.orientation.w = 1.0f;
   c->pose.position.x = x;
-  c->pose.position.y = -0.3f;
+  c->pose.position.y = 1.3f;  // 0.3 m below the head
   c->pose.position.z = -0.4f;
   for (int f = 0; f < 5; ++f) {
     const double phase = 2 * M_PI * t / 2.0 + (f == 3 ? M_PI / 2 : 0.0);
@@ -63,7 +63,10 @@ int main(int argc, char** argv) {
     struct r_remote_data data;
     memset(&data, 0, sizeof(data));
     data.header = R_HEADER_VALUE;
+    // Monado's LOCAL space has its origin 1.6 m above the remote driver's tracking origin: the
+    // head there, level, as a seated participant's at the session's start.
     data.head.center.orientation.w = 1.0f;
+    data.head.center.position.y = 1.6f;
     hand(&data.left, -0.1f, t);
     data.left.active = data.left.hand_tracking_active = !held_open;
     hand(&data.right, 0.1f, t);

@@ -1,4 +1,5 @@
 // handlab-cli session: run a participant's session headless; redo or skip a trial.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -59,6 +60,17 @@ CommandHelp session_run_help() {
           "scripted participant answers the middle of the scale)."};
 }
 
+// The time from a hand frame to the headset showing it: median, 95th percentile, largest.
+struct LatencySummary {
+  double median = 0.0, p95 = 0.0, max = 0.0;
+};
+
+LatencySummary summarise(std::vector<double> ms) {
+  std::sort(ms.begin(), ms.end());
+  const auto at = [&](double q) { return ms[std::size_t(q * double(ms.size() - 1) + 0.5)]; };
+  return {at(0.5), at(0.95), ms.back()};
+}
+
 void print_session_report(const std::string& participant, const studies::SessionReport& report,
                           double seconds, const std::optional<xr::HeadsetCounts>& shown) {
   if (report.aborted_before)
@@ -70,9 +82,15 @@ void print_session_report(const std::string& participant, const studies::Session
   std::cout << participant << ": " << util::count_text(report.trials_run, "trial") << " run in "
             << duration << "; schedule " << (report.schedule_complete ? "complete" : "open")
             << "\n";
-  if (shown)
-    std::cout << "headset: " << shown->shown << " frames shown, the cube at its pixel in "
-              << shown->cube_seen[0] << " (left) and " << shown->cube_seen[1] << " (right)\n";
+  if (!shown) return;
+  std::cout << "headset: " << shown->shown << " frames shown, the cube at its pixel in "
+            << shown->cube_seen[0] << " (left) and " << shown->cube_seen[1] << " (right)";
+  if (!shown->latency_ms.empty()) {
+    const LatencySummary l = summarise(shown->latency_ms);
+    std::printf("; from hand to headset %.1f ms median, %.1f ms p95", l.median, l.p95);
+    std::fflush(stdout);
+  }
+  std::cout << "\n";
 }
 
 void write_session_json(std::ostream& out, const std::string& participant,
@@ -86,7 +104,7 @@ void write_session_json(std::ostream& out, const std::string& participant,
       .field("schedule_complete", report.schedule_complete)
       .field("stopped", report.stopped)
       .field("seconds", seconds);
-  if (shown)
+  if (shown) {
     w.key("headset")
         .begin_object()
         .field("frames_shown", int(shown->shown))
@@ -95,16 +113,31 @@ void write_session_json(std::ostream& out, const std::string& participant,
         .field("frames_ended", int(shown->loop.ends))
         .field("cube_seen_left", int(shown->cube_seen[0]))
         .field("cube_seen_right", int(shown->cube_seen[1]))
-        .field("read_back_as_drawn", int(shown->read_back_as_drawn))
-        .end_object();
+        .field("read_back_as_drawn", int(shown->read_back_as_drawn));
+    if (!shown->latency_ms.empty()) {
+      const LatencySummary l = summarise(shown->latency_ms);
+      w.key("latency_ms")
+          .begin_object()
+          .field("samples", int(shown->latency_ms.size()))
+          .field("median", l.median)
+          .field("p95", l.p95)
+          .field("max", l.max)
+          .end_object();
+    }
+    w.end_object();
+  }
   w.end_object();
   out << "\n";
 }
 
 // The OpenXR runtime's hands, one source for the whole session (a runtime's session is not
-// made again for every trial), opened before the session starts so that a missing runtime is
-// said at once.
-studies::TrackerPtr openxr_tracker() {
+// made again for every trial): the headset's own session's where the participant wears it,
+// else a session with no graphics, opened before the session starts so that a missing
+// runtime is said at once.
+studies::TrackerPtr openxr_tracker(const SessionHeadset* headset) {
+  if (headset)
+    return studies::live_tracker("openxr " + headset->runtime_name() + " (the headset's hands)",
+                                 [frames = headset->hands()] { return xr::view_of(frames); });
   std::string error;
   std::shared_ptr<xr::OpenXrHandSource> source = xr::OpenXrHandSource::open(error);
   if (!source) throw std::runtime_error(error + " (docs/hmd.md)");
@@ -124,19 +157,8 @@ int session_run(const std::vector<std::string>& argv) {
                      tracker + "' is none of them" +
                      did_you_mean(tracker, {"scripted", "simulated", "openxr"}));
   const bool in_headset = args.choice("display", {"none", "headset"}) == "headset";
-  // The hands come from a session with no graphics and the headset from a Vulkan one: two
-  // OpenXR instances, which one process cannot count on a runtime to give.
-  if (in_headset && tracker == "openxr")
-    throw UsageError("--tracker openxr with --display headset is not yet supported");
   store::StudyStore store(args.text("db"));
   const std::uint64_t seed = args.seed("seed");
-  const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
-                                   : tracker == "simulated" ? studies::simulated_tracker(seed)
-                                   : tracker == "openxr"    ? openxr_tracker()
-                                                            : studies::recording_tracker(tracker);
-  studies::PipelineTrialDriver driver(kind, 120.0, world_kind(args));
-  studies::SessionRunner runner(store, driver,
-                                kind->own_answers().value_or(studies::fixed_responder()));
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   std::mutex out;  // the session's lines and the headset's, from two threads
   const auto say = [quiet, &out](const std::string& line) {
@@ -144,9 +166,17 @@ int session_run(const std::vector<std::string>& argv) {
     if (!quiet) std::cout << line << std::endl;
   };
   studies::SessionControl control;
+  // In the headset, OpenXR's hands come from the headset's own session.
   std::unique_ptr<SessionHeadset> headset;
-  if (in_headset) {
-    headset = std::make_unique<SessionHeadset>(control, say);
+  if (in_headset) headset = std::make_unique<SessionHeadset>(control, say, tracker == "openxr");
+  const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
+                                   : tracker == "simulated" ? studies::simulated_tracker(seed)
+                                   : tracker == "openxr"    ? openxr_tracker(headset.get())
+                                                            : studies::recording_tracker(tracker);
+  studies::PipelineTrialDriver driver(kind, 120.0, world_kind(args));
+  studies::SessionRunner runner(store, driver,
+                                kind->own_answers().value_or(studies::fixed_responder()));
+  if (headset) {
     runner.attach(&control);
     driver.attach(&control);
     driver.set_real_time(true);  // the participant sees the trial as it happens
