@@ -27,6 +27,12 @@ export XR_RUNTIME_JSON=$manifest XRT_COMPOSITOR_NULL=1 XRT_LOG=warning
 export VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
 [ -f "$VK_ICD_FILENAMES" ] || fail "no lavapipe ($VK_ICD_FILENAMES: mesa-vulkan-drivers)"
 json_has() { grep -q -- "$2" "$1" || fail "$1 lacks $2: $(cat "$1")"; }
+# A study of tests/openxr/headset-protocol.json (two 2-second trials) with one participant.
+new_study() {
+  "$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" --db "$1" >/dev/null
+  "$cli" participant add --db "$1" --id P1 --age 30 --sex F --handedness right \
+    --hand-length 0.18 --vr-experience none >/dev/null
+}
 
 # 1. The simulated headset.
 export XDG_CONFIG_HOME=$work/simulated SIMULATED_ENABLE=1
@@ -65,10 +71,7 @@ for eye in left right; do
 done
 cmp -s "$work/eyes/eye-left.png" "$work/eyes/eye-right.png" &&
   fail "both eyes' images are the same: no stereo"
-"$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" \
-  --db "$work/shown.db" >/dev/null
-"$cli" participant add --db "$work/shown.db" --id P1 --age 30 --sex F --handedness right \
-  --hand-length 0.18 --vr-experience none >/dev/null
+new_study "$work/shown.db"
 timeout 120 "$cli" session run --db "$work/shown.db" --participant P1 --display headset \
   --json "$work/shown.json" >"$work/shown.txt" 2>"$work/shown.log" ||
   fail "session run --display headset: $(tail -1 "$work/shown.log")"
@@ -124,10 +127,7 @@ for side in ("left", "right"):
     assert f["residual_mean_mm"] < 2.0 and f["residual_max_mm"] < 10.0, f  # 1.2 and 6.3 mm
 EOF
 # 3. A session with OpenXR hands.
-"$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" --db "$work/study.db" \
-  >/dev/null
-"$cli" participant add --db "$work/study.db" --id P1 --age 30 --sex F --handedness right \
-  --hand-length 0.18 --vr-experience none >/dev/null
+new_study "$work/study.db"
 "$work/remote_hands" "$port" 30 open &
 driver=$!
 timeout 120 "$cli" session run --db "$work/study.db" --participant P1 --tracker openxr \
@@ -147,10 +147,7 @@ for manipulation in ("gross", "fine"):
     assert all(float(r["aperture"]) > 0.05 and float(r["index_tip_y"]) > 0.02 for r in trial), trial[0]
 EOF
 # The same in the headset: the hands from the headset's own session.
-"$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" --db "$work/both.db" \
-  >/dev/null
-"$cli" participant add --db "$work/both.db" --id P1 --age 30 --sex F --handedness right \
-  --hand-length 0.18 --vr-experience none >/dev/null
+new_study "$work/both.db"
 "$work/remote_hands" "$port" 30 open &
 driver=$!
 timeout 120 "$cli" session run --db "$work/both.db" --participant P1 --tracker openxr \
