@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <condition_variable>
-#include <mutex>
 #include <thread>
 #include <vector>
 
+#include "core/tracking/latest_frames.h"
 #include "core/tracking/openxr_hand.h"
 #include "core/xr/hand_trackers.h"
 #include "core/xr/openxr_functions.h"
@@ -25,12 +24,9 @@ struct OpenXrHandSource::Session {
 
   std::thread loop;
   std::atomic<bool> stop{false};
-  mutable std::mutex mutex;
-  std::condition_variable arrived;
-  std::optional<tracking::TrackedFrame> newest;  // not yet taken by next()
-  bool running = false, ended = false;
+  tracking::LatestFrames frames;  // the loop's, newest first
   XrTime first_time = 0;
-  std::int64_t frames = 0;
+  std::int64_t located = 0;  // frames located so far
 
   ~Session() {
     stop = true;
@@ -70,7 +66,7 @@ struct OpenXrHandSource::Session {
     tracking::TrackedFrame frame;
     if (first_time == 0) first_time = time;
     frame.timestamp = double(time - first_time) * 1e-9;
-    frame.id = ++frames;
+    frame.id = ++located;
     frame.hands = hands.locate(xr, space, time);
     return frame;
   }
@@ -90,13 +86,7 @@ struct OpenXrHandSource::Session {
     clock_gettime(CLOCK_MONOTONIC, &monotonic);
     XrTime time = 0;
     if (XR_FAILED(xr.convert_time(instance, &monotonic, &time))) return;
-    tracking::TrackedFrame f = locate(time);
-    {
-      std::lock_guard lock(mutex);
-      newest = std::move(f);
-      running = true;
-    }
-    arrived.notify_all();
+    frames.publish(locate(time));
   }
 
   void run() {
@@ -117,11 +107,7 @@ struct OpenXrHandSource::Session {
       else
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
-    {
-      std::lock_guard lock(mutex);
-      ended = true;
-    }
-    arrived.notify_all();
+    frames.finish();
   }
 };
 
@@ -168,15 +154,12 @@ std::unique_ptr<OpenXrHandSource> OpenXrHandSource::open(std::string& error,
   error = make_session(*s);
   if (!error.empty()) return nullptr;
   s->loop = std::thread([raw = s.get()] { raw->run(); });
-  std::unique_lock lock(s->mutex);
-  if (!s->arrived.wait_for(lock, start_timeout, [&] { return s->running || s->ended; }) ||
-      !s->running) {
-    lock.unlock();
+  // Running once its first frame is there (left for the first next()).
+  if (!s->frames.wait_for_frame(std::chrono::steady_clock::now() + start_timeout)) {
     error =
         "the OpenXR session did not start within " + std::to_string(start_timeout.count()) + " ms";
     return nullptr;
   }
-  lock.unlock();
   return std::unique_ptr<OpenXrHandSource>(new OpenXrHandSource(std::move(s)));
 }
 
@@ -186,22 +169,15 @@ OpenXrHandSource::OpenXrHandSource(std::unique_ptr<Session> session)
 OpenXrHandSource::~OpenXrHandSource() = default;
 
 std::optional<tracking::TrackedFrame> OpenXrHandSource::next() {
-  std::lock_guard lock(session_->mutex);
-  std::optional<tracking::TrackedFrame> f;
-  f.swap(session_->newest);
-  return f;
+  return session_->frames.next();
 }
 
 bool OpenXrHandSource::wait_for_frame(std::chrono::steady_clock::time_point deadline) {
-  std::unique_lock lock(session_->mutex);
-  return session_->arrived.wait_until(lock, deadline, [&] {
-    return session_->newest.has_value() || session_->ended;
-  }) && session_->newest.has_value();
+  return session_->frames.wait_for_frame(deadline);
 }
 
 bool OpenXrHandSource::ended() const {
-  std::lock_guard lock(session_->mutex);
-  return session_->ended;
+  return session_->frames.ended();
 }
 
 std::string OpenXrHandSource::runtime_name() const {
