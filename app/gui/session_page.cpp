@@ -263,13 +263,20 @@ QString SessionPage::start_session() {
     emit study_changed();
     emit session_ended(tr("Session failed: %1").arg(error));
   });
+  connect(w, &SessionWorker::headset_said, this, &SessionPage::append_log);
+  try {
+    w->start();  // the headset and the OpenXR hands opened first, where chosen
+  } catch (const std::exception& e) {
+    worker_.reset();
+    return QString::fromStdString(e.what());
+  }
   calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
   display_.start(live_stats_);
   last_drawn_step_ = -1;
-  w->start();
   set_running(true);
-  append_log(tr("Session of %1 started (%2)")
-                 .arg(setup_->participant_box()->currentText(), setup_->tracker_name()));
+  append_log(tr("Session of %1 started (%2, %3)")
+                 .arg(setup_->participant_box()->currentText(), setup_->tracker_name(),
+                      setup_->display_box()->currentText()));
   emit session_started();
   return {};
 }

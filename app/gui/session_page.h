@@ -71,6 +71,8 @@ class SessionPage : public QWidget {
   QComboBox* participant_box() const { return setup_->participant_box(); }
   QComboBox* tracker_box() const { return setup_->tracker_box(); }
   QComboBox* world_box() const { return setup_->world_box(); }
+  // Where the participant looks: their window (or this one) or the OpenXR headset.
+  QComboBox* display_box() const { return setup_->display_box(); }
   QLineEdit* recording_edit() const { return setup_->recording_edit(); }
   // Off: the session runs as fast as the pipeline goes (a replay or a simulated participant
   // needs no wall clock; a live tracker always runs in real time).

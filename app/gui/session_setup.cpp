@@ -12,14 +12,17 @@
 #include <QPushButton>
 #include <QSpinBox>
 
+#include "app/gui/headset_eyes.h"
 #include "app/gui/leap_link.h"
 #include "app/live/leap_websocket_client.h"
 #include "app/live/live_frames.h"
+#include "core/xr/openxr_runtime.h"
 
 namespace handlab::gui {
 namespace {
 
-enum TrackerChoice { kLiveLeap, kRecording, kSimulated, kScripted };
+enum TrackerChoice { kLiveLeap, kRecording, kSimulated, kScripted, kOpenXrHands };
+enum DisplayChoice { kWindow, kHeadset };
 
 }  // namespace
 
@@ -34,6 +37,7 @@ SessionSetup::SessionSetup(QWidget* parent) : QGroupBox(tr("Set-up"), parent) {
   tracker_->addItem(tr("Recording file"), kRecording);
   tracker_->addItem(tr("Simulated participant"), kSimulated);
   tracker_->addItem(tr("Scripted participant"), kScripted);
+  tracker_->addItem(tr("OpenXR hands"), kOpenXrHands);
   form->addRow(tr("Tracker"), tracker_);
   address_ = new QLineEdit("ws://127.0.0.1:6437");
   address_->setObjectName("leap_address");
@@ -65,11 +69,21 @@ SessionSetup::SessionSetup(QWidget* parent) : QGroupBox(tr("Set-up"), parent) {
   world_->addItem(tr("Soft hand (simulator)"), int(studies::WorldKind::kSoftHand));
   world_->addItem(tr("Grasp proxy"), int(studies::WorldKind::kGraspProxy));
   form->addRow(tr("World"), world_);
+  display_ = new QComboBox;
+  display_->setObjectName("display");
+  display_->addItem(tr("Window"), kWindow);
+  display_->addItem(tr("Headset (OpenXR)"), kHeadset);
+  form->addRow(tr("Display"), display_);
+  openxr_state_ = new QLabel(tr("not needed"));
+  openxr_state_->setObjectName("openxr_state");
+  openxr_state_->setWordWrap(true);
+  form->addRow(tr("OpenXR"), openxr_state_);
   real_time_ = new QCheckBox(tr("Real time"));
   real_time_->setObjectName("real_time");
   real_time_->setChecked(true);
   form->addRow(QString(), real_time_);
   connect(tracker_, &QComboBox::currentIndexChanged, this, &SessionSetup::update_fields);
+  connect(display_, &QComboBox::currentIndexChanged, this, &SessionSetup::update_fields);
   connect(address_, &QLineEdit::editingFinished, this, &SessionSetup::update_fields);
   update_fields();
 }
@@ -90,6 +104,7 @@ void SessionSetup::set_running(bool running) {
   participant_->setEnabled(!running);
   tracker_->setEnabled(!running);
   world_->setEnabled(!running);
+  display_->setEnabled(!running);
   real_time_->setEnabled(!running);
   update_fields();
 }
@@ -99,14 +114,45 @@ void SessionSetup::update_fields() {
   address_->setEnabled(!running_ && choice == kLiveLeap);
   recording_->setEnabled(choice == kRecording);
   seed_->setEnabled(choice == kSimulated);
+  const bool headset = display_->currentData().toInt() == kHeadset;
+  // In the headset the participant sees the trial as it happens.
+  real_time_->setEnabled(!running_ && !headset);
+  if (headset) real_time_->setChecked(true);
+  if (headset || choice == kOpenXrHands) probe_openxr();
   // The running session reads the live client's frames: it stays.
   if (choice == kLiveLeap && !running_) leap_->connect_to(address_->text());
+}
+
+// Asked once, when first needed: the runtime is loaded to answer.
+void SessionSetup::probe_openxr() {
+  if (openxr_probed_) return;
+  openxr_probed_ = true;
+  const xr::OpenXrRuntimeInfo info = xr::probe_openxr_runtime();
+  if (!info.found) {
+    openxr_state_->setText(tr("no runtime: %1").arg(QString::fromStdString(info.error)));
+    return;
+  }
+  const QString headset =
+      info.system_found ? QString::fromStdString(info.system_name)
+                        : tr("no headset (%1)").arg(QString::fromStdString(info.system_error));
+  openxr_state_->setText(tr("%1 %2; %3; %4")
+                             .arg(QString::fromStdString(info.runtime_name),
+                                  QString::fromStdString(info.runtime_version), headset,
+                                  info.system_tracks_hands ? tr("tracks hands")
+                                  : info.hand_tracking_extension
+                                      ? tr("XR_EXT_hand_tracking, no hands on this headset")
+                                      : tr("no hand tracking")));
 }
 
 QString SessionSetup::fill(SessionOptions& options, std::shared_ptr<live::LiveFrameStats>& live) {
   options.participant = participant_->currentText().toStdString();
   options.world = studies::WorldKind(world_->currentData().toInt());
   options.real_time = real_time_->isChecked();
+  options.in_headset = display_->currentData().toInt() == kHeadset;
+  if (options.in_headset) {
+    if (!eyes_) eyes_ = std::make_unique<HeadsetEyes>();
+    options.headset_eyes = eyes_->factory();
+  }
   live.reset();
   switch (tracker_->currentData().toInt()) {
     case kLiveLeap: {
@@ -131,6 +177,9 @@ QString SessionSetup::fill(SessionOptions& options, std::shared_ptr<live::LiveFr
       break;
     case kSimulated:
       options.tracker = studies::simulated_tracker(std::uint64_t(seed_->value()));
+      break;
+    case kOpenXrHands:
+      options.openxr_hands = true;  // the tracker made when the session opens the runtime
       break;
     default:
       options.tracker = studies::scripted_tracker();

@@ -1,7 +1,8 @@
 // The session screen's set-up form: the participant, the tracker (a live Leap at an address,
-// a recording, a simulated or a scripted participant), the world and the pace. It turns what
-// is chosen into the session's options, and keeps the live client connected while the live
-// tracker is chosen.
+// a recording, a simulated or a scripted participant, the OpenXR runtime's hands), the
+// participant's display (a window or the OpenXR headset), the world and the pace. It turns
+// what is chosen into the session's options, keeps the live client connected while the live
+// tracker is chosen, and says which OpenXR runtime is there while one is needed.
 #pragma once
 
 #include <memory>
@@ -22,6 +23,7 @@ struct LiveFrameStats;
 
 namespace handlab::gui {
 
+class HeadsetEyes;
 class LeapLink;
 
 class SessionSetup : public QGroupBox {
@@ -34,6 +36,8 @@ class SessionSetup : public QGroupBox {
   QComboBox* participant_box() const { return participant_; }
   QComboBox* tracker_box() const { return tracker_; }
   QComboBox* world_box() const { return world_; }
+  QComboBox* display_box() const { return display_; }
+  QLabel* openxr_label() const { return openxr_state_; }
   QLineEdit* recording_edit() const { return recording_; }
   QCheckBox* real_time_box() const { return real_time_; }
   QString tracker_name() const;
@@ -48,12 +52,15 @@ class SessionSetup : public QGroupBox {
 
  private:
   void update_fields();
+  void probe_openxr();
 
   LeapLink* leap_ = nullptr;  // its client made when the live tracker is chosen
   bool running_ = false;
-  QComboBox *participant_ = nullptr, *tracker_ = nullptr, *world_ = nullptr;
+  QComboBox *participant_ = nullptr, *tracker_ = nullptr, *world_ = nullptr, *display_ = nullptr;
   QLineEdit *address_ = nullptr, *recording_ = nullptr;
-  QLabel* leap_state_ = nullptr;
+  QLabel *leap_state_ = nullptr, *openxr_state_ = nullptr;
+  bool openxr_probed_ = false;
+  std::unique_ptr<HeadsetEyes> eyes_;  // made when the headset is first chosen
   QSpinBox* seed_ = nullptr;
   QCheckBox* real_time_ = nullptr;
 };

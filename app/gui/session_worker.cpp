@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/store/study_store.h"
+#include "studies/session/openxr_tracker.h"
 #include "studies/session/session_runner.h"
 
 namespace handlab::gui {
@@ -26,7 +27,25 @@ SessionWorker::~SessionWorker() {
 }
 
 void SessionWorker::start() {
+  if (options_.in_headset) {
+    headset_ = std::make_unique<studies::SessionHeadset>(
+        control_, options_.headset_eyes,
+        [this](const std::string& line) { emit headset_said(QString::fromStdString(line)); },
+        options_.openxr_hands);
+    options_.real_time = true;  // the participant sees the trial as it happens
+  }
+  if (options_.openxr_hands) options_.tracker = studies::openxr_tracker(headset_.get());
   thread_ = std::thread([this] { run(); });
+}
+
+std::optional<xr::HeadsetCounts> SessionWorker::headset_counts() const {
+  if (!headset_) return std::nullopt;
+  return headset_->counts();
+}
+
+std::optional<xr::DisplayFrame> SessionWorker::headset_frame() const {
+  if (!headset_) return std::nullopt;
+  return headset_->last_frame();
 }
 
 SessionSnapshot SessionWorker::snapshot() const {
@@ -70,6 +89,7 @@ void SessionWorker::run() {
       snapshot_.skin.reset();
       snapshot_.flesh_nodes.clear();
     }
+    if (headset_) headset_->trial_started(setup);
     emit trial_started(setup.planned.position);
   };
   control_.stepped = [this](const studies::TrialStep& step) {
@@ -97,6 +117,7 @@ void SessionWorker::run() {
       snapshot_.stepped_at = std::chrono::steady_clock::now();
       if (options_.frame_arrival) snapshot_.frame_arrival_ns = options_.frame_arrival();
     }
+    if (headset_) headset_->stepped(step);
     if (!step_waiting_.exchange(true)) emit step_ready();
   };
   control_.trial_ended = [this](const studies::TrialSetup& setup, const studies::TrialRun& run) {
@@ -154,9 +175,11 @@ void SessionWorker::run() {
                                     : options_.tracker->name();
     const studies::SessionReport report =
         runner.run(options_.participant, tracker, options_.resume);
+    if (headset_) headset_->close();
     finished_ = true;
     emit finished(report.schedule_complete, report.stopped, report.trials_run);
   } catch (const std::exception& e) {
+    if (headset_) headset_->close();
     finished_ = true;
     emit failed(QString::fromStdString(e.what()));
   }

@@ -18,8 +18,10 @@
 
 #include "core/hand/flesh.h"
 #include "core/store/frame_record.h"
+#include "core/xr/headset_view.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/session_control.h"
+#include "studies/session/session_headset.h"
 #include "studies/session/trial_driver.h"
 
 namespace handlab::gui {
@@ -36,6 +38,13 @@ struct SessionOptions {
   // With a live tracker: when the frame a step used arrived (steady clock, ns), read on the
   // session thread right after the step, for the display's latency.
   std::function<long long()> frame_arrival;
+  // The participant in the OpenXR headset, its eyes drawn by `headset_eyes` (HeadsetEyes);
+  // the session then runs in real time.
+  bool in_headset = false;
+  xr::HeadsetView::DrawerFactory headset_eyes;
+  // The OpenXR runtime's hands as the tracker (made when the session starts: from the
+  // headset's own session in the headset), in place of `tracker`.
+  bool openxr_hands = false;
 };
 
 // The soft hand's skin as the views draw it: the flesh's render surface and tets (no state:
@@ -72,6 +81,8 @@ class SessionWorker : public QObject {
   explicit SessionWorker(SessionOptions options, QObject* parent = nullptr);
   ~SessionWorker() override;  // stops the session and waits for its thread
 
+  // Opens the headset and the OpenXR hands where chosen (throws std::runtime_error, with the
+  // reason, where they cannot be), then starts the session's thread.
   void start();
   bool running() const { return thread_.joinable() && !finished_; }
   studies::SessionControl& control() { return control_; }
@@ -80,6 +91,9 @@ class SessionWorker : public QObject {
   const studies::Protocol& protocol() const { return options_.protocol; }
   // The questionnaire's answers for the trial that asked (one per item, 1..scale).
   void answer(std::vector<int> values);
+  // In the headset: what it has shown so far (null otherwise), and its last frame's images.
+  std::optional<xr::HeadsetCounts> headset_counts() const;
+  std::optional<xr::DisplayFrame> headset_frame() const;
 
  signals:
   void step_ready();  // a step or a calibration frame to show
@@ -91,6 +105,8 @@ class SessionWorker : public QObject {
   void holding();
   void finished(bool complete, bool stopped, int trials_run);
   void failed(QString error);
+  // The headset changed what the session does (taken off, back, its runtime gone).
+  void headset_said(QString message);
 
  private:
   void run();
@@ -103,6 +119,7 @@ class SessionWorker : public QObject {
   std::shared_ptr<const SoftHandSkin> skin_;  // session thread only
   std::mutex answer_mutex_;
   std::optional<std::promise<std::vector<int>>> pending_answer_;
+  std::unique_ptr<studies::SessionHeadset> headset_;  // its loop runs on a thread of its own
   std::atomic<bool> finished_{false}, closing_{false};
   mutable std::atomic<bool> step_waiting_{false};
   std::thread thread_;

@@ -13,9 +13,11 @@
 #     calibrates with the open palm and runs two trials in real time, their frames logged at
 #     120 Hz and exported as a Leap session's are; then the same in the headset, the hands
 #     from the headset's own session, and the time from a hand frame to the headset showing it.
-# Usage: openxr-test.sh HANDLAB_CLI SOURCE_DIR WORK_DIR
+#  4. the app (GUI_TESTS, the gui_tests executable): the headset chosen in its session panel
+#     runs one trial there.
+# Usage: openxr-test.sh HANDLAB_CLI SOURCE_DIR WORK_DIR [GUI_TESTS]
 set -euo pipefail
-cli=$1 source=$2 work=$3
+cli=$1 source=$2 work=$3 gui_tests=${4:-}
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "openxr-test: $*" >&2; exit 1; }
 driver=""
@@ -32,6 +34,21 @@ new_study() {
   "$cli" study create --protocol "$source/tests/openxr/headset-protocol.json" --db "$1" >/dev/null
   "$cli" participant add --db "$1" --id P1 --age 30 --sex F --handedness right \
     --hand-length 0.18 --vr-experience none >/dev/null
+}
+
+# app_test FILTER NAME: the gui_tests FILTER under Xvfb; each eye's last image kept in $work/NAME.
+app_test() {
+  mkdir -p "$work/$2"
+  HANDLAB_HEADSET_SCREENSHOTS=$work/$2 QT_QPA_PLATFORM=xcb timeout 300 \
+    xvfb-run -a -s "-screen 0 1280x1024x24" "$gui_tests" --gtest_filter="$1" \
+    >"$work/$2.txt" 2>&1 ||
+    fail "the app, $1: $(grep -m5 -E 'Failure|rror|Expected|Which is|Actual' "$work/$2.txt")"
+  grep -qE '\[  PASSED  \] [1-9][0-9]* test' "$work/$2.txt" ||
+    fail "the app's $1 did not run: $(tail -3 "$work/$2.txt")"
+  for eye in left right; do
+    [ -s "$work/$2/app-eye-$eye.png" ] || fail "no picture of the app's $eye eye in $2"
+  done
+  grep -h '^headset:' "$work/$2.txt"
 }
 
 # 1. The simulated headset.
@@ -87,6 +104,9 @@ assert h["read_back_as_drawn"] == n, h
 # The cube where each eye's projection puts it, but where the hand covers its centre.
 assert h["cube_seen_left"] >= n / 2 and h["cube_seen_right"] >= n / 2, h
 EOF
+# The app: the headset chosen in its session panel, one trial shown there (a QTest of the real
+# widgets under Xvfb, tests/app/app_headset_test.cpp).
+if [ -n "$gui_tests" ]; then app_test 'AppHeadset.*' simulated; fi
 unset SIMULATED_ENABLE
 
 # 2. The remote driver, two hands over its socket.
@@ -168,6 +188,13 @@ assert h["cube_seen_left"] >= n / 2 and h["cube_seen_right"] >= n / 2, h
 l = h["latency_ms"]
 assert l["samples"] >= n / 2 and 0 < l["median"] <= 100 and l["max"] <= 300, l
 EOF
+# The app on the headset's own hands.
+if [ -n "$gui_tests" ]; then
+  "$work/remote_hands" "$port" 30 open &
+  driver=$!
+  app_test 'AppHeadsetHands.*' hands
+  kill "$driver" 2>/dev/null || true
+fi
 cat "$work/show.txt" "$work/shown.txt" "$work/hands.txt" "$work/fit.txt" "$work/session.txt" \
   "$work/both.txt"
 echo "openxr-test: passed"

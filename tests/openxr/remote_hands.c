@@ -3,7 +3,8 @@
 // given seconds. Each hand's fingers close and open (curl 0 to 1 and back, every 2 s), the
 // index a quarter of a cycle ahead, so that the runtime's hand joints move; with a third
 // argument `open`, the right hand alone, held open and still (an open palm, as a session's
-// calibration asks).
+// calibration asks). Where the runtime's instance ends (the hub closes), it connects again to
+// the next one.
 // Built against Monado's own header (r_interface.h) by tests/openxr/openxr-test.sh.
 #include <arpa/inet.h>
 #include <math.h>
@@ -33,6 +34,18 @@ static void hand(struct r_remote_controller_data* c, float x, double t) {
   c->active = true;
 }
 
+// A connection to the hub, trying for up to `seconds` (it listens once the runtime starts);
+// -1 if none came.
+static int connect_to_hub(const struct sockaddr_in* address, double seconds) {
+  for (int attempt = 0; attempt < seconds * 50; ++attempt) {
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    if (connect(fd, (const struct sockaddr*)address, sizeof(*address)) == 0) return fd;
+    close(fd);
+    usleep(20000);
+  }
+  return -1;
+}
+
 int main(int argc, char** argv) {
   if (argc != 3 && !(argc == 4 && strcmp(argv[3], "open") == 0)) {
     fprintf(stderr, "usage: remote_hands PORT SECONDS [open]\n");
@@ -45,14 +58,7 @@ int main(int argc, char** argv) {
   address.sin_family = AF_INET;
   address.sin_port = htons((uint16_t)port);
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  int fd = -1;
-  for (int attempt = 0; attempt < 500; ++attempt) {  // the hub listens once the runtime starts
-    fd = socket(AF_INET, SOCK_STREAM, 0);
-    if (connect(fd, (struct sockaddr*)&address, sizeof(address)) == 0) break;
-    close(fd);
-    fd = -1;
-    usleep(20000);
-  }
+  int fd = connect_to_hub(&address, 10.0);
   if (fd < 0) {
     fprintf(stderr, "remote_hands: no hub on port %d\n", port);
     return 1;
@@ -70,7 +76,13 @@ int main(int argc, char** argv) {
     hand(&data.left, -0.1f, t);
     data.left.active = data.left.hand_tracking_active = !held_open;
     hand(&data.right, 0.1f, t);
-    if (send(fd, &data, sizeof(data), MSG_NOSIGNAL) != (ssize_t)sizeof(data)) break;  // runtime left
+    if (send(fd, &data, sizeof(data), MSG_NOSIGNAL) != (ssize_t)sizeof(data)) {
+      // The runtime's instance ended (one that only asked what the runtime offers, say): its
+      // next one opens the hub again; none within the time left is the runtime gone.
+      close(fd);
+      fd = connect_to_hub(&address, (steps - i) / 100.0);
+      if (fd < 0) return 0;
+    }
     usleep(10000);
   }
   close(fd);

@@ -12,14 +12,15 @@
 #include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/nearest_word.h"
-#include "app/cli/session_headset.h"
+#include "app/cli/offscreen_eyes.h"
 #include "app/cli/world_option.h"
 #include "core/store/study_store.h"
 #include "core/util/count_text.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
-#include "core/xr/openxr_hand_source.h"
+#include "studies/session/openxr_tracker.h"
 #include "studies/session/session_control.h"
+#include "studies/session/session_headset.h"
 #include "studies/session/session_runner.h"
 #include "studies/session/trial_driver.h"
 
@@ -130,21 +131,6 @@ void write_session_json(std::ostream& out, const std::string& participant,
   out << "\n";
 }
 
-// The OpenXR runtime's hands, one source for the whole session (a runtime's session is not
-// made again for every trial): the headset's own session's where the participant wears it,
-// else a session with no graphics, opened before the session starts so that a missing
-// runtime is said at once.
-studies::TrackerPtr openxr_tracker(const SessionHeadset* headset) {
-  if (headset)
-    return studies::live_tracker("openxr " + headset->runtime_name() + " (the headset's hands)",
-                                 [frames = headset->hands()] { return xr::view_of(frames); });
-  std::string error;
-  std::shared_ptr<xr::OpenXrHandSource> source = xr::OpenXrHandSource::open(error);
-  if (!source) throw std::runtime_error(error + " (docs/hmd.md)");
-  return studies::live_tracker("openxr " + source->runtime_name(),
-                               [source] { return xr::view_of(source); });
-}
-
 int session_run(const std::vector<std::string>& argv) {
   const Arguments args(session_run_options(), argv);
   if (args.help_requested()) return print_help(session_run_help(), args);
@@ -167,11 +153,16 @@ int session_run(const std::vector<std::string>& argv) {
   };
   studies::SessionControl control;
   // In the headset, OpenXR's hands come from the headset's own session.
-  std::unique_ptr<SessionHeadset> headset;
-  if (in_headset) headset = std::make_unique<SessionHeadset>(control, say, tracker == "openxr");
+  std::unique_ptr<studies::SessionHeadset> headset;
+  if (in_headset) {
+    headset = std::make_unique<studies::SessionHeadset>(control, offscreen_eyes(), say,
+                                                        tracker == "openxr");
+    control.trial_started = [&](const studies::TrialSetup& s, int) { headset->trial_started(s); };
+    control.stepped = [&](const studies::TrialStep& step) { headset->stepped(step); };
+  }
   const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
                                    : tracker == "simulated" ? studies::simulated_tracker(seed)
-                                   : tracker == "openxr"    ? openxr_tracker(headset.get())
+                                   : tracker == "openxr"    ? studies::openxr_tracker(headset.get())
                                                             : studies::recording_tracker(tracker);
   studies::PipelineTrialDriver driver(kind, 120.0, world_kind(args));
   studies::SessionRunner runner(store, driver,

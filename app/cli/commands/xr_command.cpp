@@ -10,7 +10,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
-#include "app/cli/session_headset.h"
+#include "app/cli/offscreen_eyes.h"
 #include "core/render/offscreen_context.h"
 #include "core/render/scene_drawing.h"
 #include "core/task/scene_layout.h"

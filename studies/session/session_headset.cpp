@@ -1,22 +1,11 @@
-#include "app/cli/session_headset.h"
+#include "studies/session/session_headset.h"
 
 #include <limits>
 #include <stdexcept>
 
-#include "core/render/offscreen_context.h"
+namespace handlab::studies {
 
-namespace handlab::cli {
-
-xr::HeadsetView::DrawerFactory offscreen_eyes() {
-  return [](int width, int height) {
-    auto renderer = std::make_shared<render::OffscreenRenderer>(width, height);
-    return [renderer](const render::DrawList& scene, const render::ViewCamera& camera) {
-      return renderer->render(scene, camera);
-    };
-  };
-}
-
-SessionHeadset::SessionHeadset(studies::SessionControl& control,
+SessionHeadset::SessionHeadset(SessionControl& control, xr::HeadsetView::DrawerFactory eyes,
                                std::function<void(const std::string&)> say, bool hands)
     : control_(control), say_(std::move(say)) {
   xr::OpenXrDisplay::HandSink sink;
@@ -26,30 +15,31 @@ SessionHeadset::SessionHeadset(studies::SessionControl& control,
   }
   std::string error;
   headset_ = xr::HeadsetView::open(
-      error, offscreen_eyes(), [this](const std::string& state) { state_changed(state); }, 0,
+      error, std::move(eyes), [this](const std::string& state) { state_changed(state); }, 0,
       std::move(sink));
   if (!headset_) throw std::runtime_error(error + " (docs/hmd.md)");
   headset_->start();  // its frames (and hands) from now, the calibration's too
-  control_.trial_started = [this](const studies::TrialSetup& setup, int) {
-    view_.start_trial(setup);
-  };
-  control_.stepped = [this](const studies::TrialStep& step) {
-    const Eigen::Vector3f cube = step.frame ? step.frame->cube_position : Eigen::Vector3f::Zero();
-    const double hand_time = hands_ && step.frame ? step.frame->tracked.timestamp
-                                                  : std::numeric_limits<double>::quiet_NaN();
-    headset_->show(view_.draw(step), cube, hand_time);
-  };
 }
 
 SessionHeadset::~SessionHeadset() {
   close();
 }
 
+void SessionHeadset::trial_started(const TrialSetup& setup) {
+  view_.start_trial(setup);
+}
+
+void SessionHeadset::stepped(const TrialStep& step) {
+  if (closing_) return;
+  const Eigen::Vector3f cube = step.frame ? step.frame->cube_position : Eigen::Vector3f::Zero();
+  const double hand_time = hands_ && step.frame ? step.frame->tracked.timestamp
+                                                : std::numeric_limits<double>::quiet_NaN();
+  headset_->show(view_.draw(step), cube, hand_time);
+}
+
 void SessionHeadset::close() {
   closing_ = true;
   if (hands_) hands_->finish();
-  control_.trial_started = nullptr;
-  control_.stepped = nullptr;
   if (headset_) headset_->close();
 }
 
@@ -79,4 +69,4 @@ void SessionHeadset::state_changed(const std::string& state) {
   }
 }
 
-}  // namespace handlab::cli
+}  // namespace handlab::studies

@@ -1,0 +1,56 @@
+// A session's participant view in the OpenXR headset (`session run --display headset`, the
+// app's headset display): each step's drawing (ParticipantView) shown there by the front
+// end's eye drawer; with hands, the headset's own session tracks them for a live tracker
+// (openxr_tracker), and the time from a hand frame to the headset showing it is kept.
+// The headset taken off (its session out of focus) pauses the session before its next trial
+// until it is back; the runtime gone stops the session (the trial under way is kept as
+// aborted, and a resumed session runs it again).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/tracking/latest_frames.h"
+#include "core/xr/headset_view.h"
+#include "studies/session/participant_view.h"
+#include "studies/session/session_control.h"
+
+namespace handlab::studies {
+
+class SessionHeadset {
+ public:
+  // Opens the headset and starts its frame loop; `say` gets a line, on the headset's thread,
+  // when the headset's state changes what the session does. Throws std::runtime_error where
+  // no headset can be opened.
+  SessionHeadset(SessionControl& control, xr::HeadsetView::DrawerFactory eyes,
+                 std::function<void(const std::string&)> say, bool hands = false);
+  ~SessionHeadset();
+  // The front end's observers call these on the session thread.
+  void trial_started(const TrialSetup& setup);
+  void stepped(const TrialStep& step);
+  // Ends the headset's session; the counts stay. Call after the session's last step.
+  void close();
+
+  // The headset's hands, newest first, for a live tracker (null without them).
+  std::shared_ptr<tracking::LatestFrames> hands() const { return hands_; }
+  xr::HeadsetCounts counts() const { return headset_->counts(); }
+  std::string error() const { return headset_->error(); }
+  std::string runtime_name() const { return headset_->runtime_name(); }
+  // The last frame shown, each eye as read back from the headset.
+  xr::DisplayFrame last_frame() const { return headset_->last_frame(); }
+
+ private:
+  void state_changed(const std::string& state);
+
+  SessionControl& control_;
+  std::function<void(const std::string&)> say_;  // from the headset's thread
+  ParticipantView view_;
+  std::shared_ptr<tracking::LatestFrames> hands_;
+  std::unique_ptr<xr::HeadsetView> headset_;
+  bool paused_by_headset_ = false, was_focused_ = false;
+  std::atomic<bool> closing_{false};  // our own end of the headset's session
+};
+
+}  // namespace handlab::studies
