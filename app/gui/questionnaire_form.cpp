@@ -123,6 +123,7 @@ void QuestionnaireForm::update_state() {
                                .arg(scale_)
                                .arg(missing)
                          : tr("All answered: Save Answers (Enter)."));
+  emit changed();
 }
 
 }  // namespace handlab::gui

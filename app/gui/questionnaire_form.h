@@ -32,7 +32,8 @@ class QuestionnaireForm : public QWidget {
   bool take_key(int key);
 
  signals:
-  void saved();  // every item answered, then Save or Enter
+  void saved();    // every item answered, then Save or Enter
+  void changed();  // an answer given or the current item moved: what it shows is new
 
  protected:
   void keyPressEvent(QKeyEvent* event) override;

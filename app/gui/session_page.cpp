@@ -17,6 +17,7 @@
 #include <QTime>
 #include <QVBoxLayout>
 
+#include "app/gui/headset_panel.h"
 #include "app/gui/participant_window.h"
 #include "app/gui/questionnaire_dialog.h"
 #include "app/gui/questionnaire_form.h"
@@ -221,6 +222,7 @@ QString SessionPage::start_session() {
   connect(w, &SessionWorker::calibration_changed, this, [this](const QString& message, bool) {
     calibration_->setText(message);
     if (participant_window_) participant_window_->set_instruction(message);
+    show_in_headset(message);
   });
   connect(w, &SessionWorker::trial_started, this, [this](int position) {
     const auto snap = worker_->snapshot();
@@ -273,6 +275,7 @@ QString SessionPage::start_session() {
   calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
   display_.start(live_stats_);
   last_drawn_step_ = -1;
+  headset_text_.clear();
   set_running(true);
   append_log(tr("Session of %1 started (%2, %3)")
                  .arg(setup_->participant_box()->currentText(), setup_->tracker_name(),
@@ -370,15 +373,24 @@ void SessionPage::set_participant_window(ParticipantWindow* window) {
 
 void SessionPage::show_questionnaire(int position, const QString&) {
   if (!worker_ || !protocol_) return;
-  // Where the participant looks: their window when it is open, else a dialog over this one.
-  const bool at_participant = participant_window_ && participant_window_->isVisible();
+  // Where the participant looks: the headset (its panel shows the dialog over this window,
+  // answered with the keys), their window when it is open, else a dialog over this one.
+  const bool in_headset = worker_->in_headset();
+  const bool at_participant =
+      !in_headset && participant_window_ && participant_window_->isVisible();
   QuestionnaireDialog* dialog =
       at_participant ? nullptr : new QuestionnaireDialog(*protocol_, position + 1, this);
   QuestionnaireForm* form =
       dialog ? dialog->form() : new QuestionnaireForm(*protocol_, true, participant_window_);
   questionnaire_ = form;
+  if (in_headset) {
+    connect(form, &QuestionnaireForm::changed, this,
+            [this, form] { worker_->set_headset_panel(widget_panel(*form)); });
+  }
   connect(form, &QuestionnaireForm::saved, this, [this, form, dialog] {
     if (worker_) worker_->answer(form->answers());
+    headset_text_.clear();
+    show_in_headset(tr("Please wait."));
     questionnaire_ = nullptr;
     if (dialog)
       dialog->deleteLater();
@@ -388,6 +400,10 @@ void SessionPage::show_questionnaire(int position, const QString&) {
   });
   if (dialog) {
     dialog->open();
+    if (in_headset) {
+      worker_->set_headset_panel(widget_panel(*form));
+      state_->setText(tr("Awaiting the participant's answers (in the headset)"));
+    }
   } else {
     participant_window_->show_questionnaire(form);
     state_->setText(tr("Awaiting the participant's answers (in their window)"));
@@ -395,6 +411,12 @@ void SessionPage::show_questionnaire(int position, const QString&) {
                    .arg(position + 1));
   }
   emit questionnaire_opened(form);
+}
+
+void SessionPage::show_in_headset(const QString& instruction) {
+  if (!worker_ || !worker_->in_headset() || instruction == headset_text_) return;
+  headset_text_ = instruction;
+  worker_->set_headset_panel(text_panel(instruction));
 }
 
 void SessionPage::refresh_picture() {
@@ -434,6 +456,7 @@ void SessionPage::refresh_picture() {
     participant_window_->set_frame(layout, list);
     participant_window_->set_instruction(instruction(snap.step.phase));
   }
+  show_in_headset(instruction(snap.step.phase));
   state_->setText(phase_text(snap.step.phase));
   clock_->setText(tr("%1 s").arg(snap.step.time, 0, 'f', 1));
   counts_->setText(tr("%1, %2").arg(snap.step.grasps).arg(snap.step.drops));

@@ -103,6 +103,8 @@ class SessionPage : public QWidget {
   void show_questionnaire(int position, const QString& condition);
   void set_running(bool running);
   void append_log(const QString& line);
+  // In the headset, the instruction on its panel (when it changes).
+  void show_in_headset(const QString& instruction);
 
   OpenStudy study_;
   std::optional<studies::Protocol> protocol_;
@@ -122,6 +124,7 @@ class SessionPage : public QWidget {
   render::BoneMeshes hand_meshes_;
   hand::HandShape hand_shape_;
   long last_drawn_step_ = -1;
+  QString headset_text_;  // the instruction on the headset's panel
   DisplayLatency display_;
 };
 

@@ -43,6 +43,10 @@ std::optional<xr::HeadsetCounts> SessionWorker::headset_counts() const {
   return headset_->counts();
 }
 
+void SessionWorker::set_headset_panel(std::shared_ptr<const render::Image> picture) {
+  if (headset_) headset_->set_panel(std::move(picture));
+}
+
 std::optional<xr::DisplayFrame> SessionWorker::headset_frame() const {
   if (!headset_) return std::nullopt;
   return headset_->last_frame();

@@ -94,6 +94,9 @@ class SessionWorker : public QObject {
   // In the headset: what it has shown so far (null otherwise), and its last frame's images.
   std::optional<xr::HeadsetCounts> headset_counts() const;
   std::optional<xr::DisplayFrame> headset_frame() const;
+  bool in_headset() const { return headset_ != nullptr; }
+  // In the headset: the picture on the panel before the participant (SessionHeadset).
+  void set_headset_panel(std::shared_ptr<const render::Image> picture);
 
  signals:
   void step_ready();  // a step or a calibration frame to show

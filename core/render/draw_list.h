@@ -6,11 +6,14 @@
 
 #include <Eigen/Core>
 
+#include "core/render/image.h"
 #include "core/render/render_mesh.h"
 
 namespace handlab::render {
 
-enum class Shading { kLit, kCheckerFloor, kUnlit };
+// kPicture: unlit, coloured by `picture` laid over the mesh's square x, y in [-0.5, 0.5]
+// (make_panel_mesh), its top row at y = 0.5.
+enum class Shading { kLit, kCheckerFloor, kUnlit, kPicture };
 
 struct DrawItem {
   std::shared_ptr<const RenderMesh> mesh;
@@ -27,6 +30,8 @@ struct DrawItem {
   // keeps the ground's picture while the camera and these items stay as they are, and draws
   // the rest clipped to y >= 0 over it; ground items come first in the list.
   bool ground = false;
+  // With kPicture: its picture (uploaded once, cached by address, as static meshes are).
+  std::shared_ptr<const Image> picture = nullptr;
 };
 
 struct DrawList {

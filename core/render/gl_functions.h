@@ -63,7 +63,12 @@ namespace handlab::render {
   X(PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC, RenderbufferStorageMultisample) \
   X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)               \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
-  X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)
+  X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                               \
+  X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
+  X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
+  X(PFNGLTEXPARAMETERIPROC, TexParameteri)
 
 struct GlFunctions {
 #define HANDLAB_GL_MEMBER(type, name) type name = nullptr;

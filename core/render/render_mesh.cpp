@@ -56,6 +56,15 @@ RenderMesh make_quad_mesh(float size_x, float size_z) {
   return mesh;
 }
 
+RenderMesh make_panel_mesh() {
+  RenderMesh mesh;
+  add_quad(mesh,
+           {Eigen::Vector3f(-0.5f, -0.5f, 0), Eigen::Vector3f(0.5f, -0.5f, 0),
+            Eigen::Vector3f(0.5f, 0.5f, 0), Eigen::Vector3f(-0.5f, 0.5f, 0)},
+           Eigen::Vector3f::UnitZ());
+  return mesh;
+}
+
 RenderMesh make_square_frame_mesh(float outer_size, float line_width) {
   RenderMesh mesh;
   const float o = 0.5f * outer_size;

@@ -19,6 +19,8 @@ struct RenderMesh {
 RenderMesh make_box_mesh(const Eigen::Vector3f& extents);
 // A square in the xz plane centred at the origin, facing +y.
 RenderMesh make_quad_mesh(float size_x, float size_z);
+// A unit square in the xy plane centred at the origin, facing +z (a picture's panel).
+RenderMesh make_panel_mesh();
 // A flat square frame (outline) in the xz plane facing +y: outer size and line width.
 RenderMesh make_square_frame_mesh(float outer_size, float line_width);
 

@@ -22,9 +22,11 @@ uniform mat3 u_normal_matrix;
 uniform vec4 u_clip_plane;  // keeps dot(plane, world) >= 0; (0, 0, 0, 1) keeps everything
 out vec3 v_world;
 out vec3 v_normal;
+out vec2 v_local;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   v_world = world.xyz;
+  v_local = a_position.xy;
   v_normal = u_normal_matrix * a_normal;
   gl_ClipDistance[0] = dot(u_clip_plane, world);
   gl_Position = u_view_projection * world;
@@ -38,12 +40,16 @@ void main() {
 constexpr const char* kFragmentShader = R"(
 in vec3 v_world;
 in vec3 v_normal;
+in vec2 v_local;
 uniform vec4 u_color;
 uniform vec3 u_eye;
+uniform sampler2D u_picture;
 out vec4 frag_color;
 void main() {
 #if SHADING == 2
   frag_color = u_color;
+#elif SHADING == 3
+  frag_color = vec4(texture(u_picture, vec2(v_local.x + 0.5, 0.5 - v_local.y)).rgb, u_color.a);
 #else
   vec3 base = u_color.rgb;
 #if SHADING == 1
@@ -114,7 +120,7 @@ struct Renderer::Impl {
       for (std::size_t i = 0; i < items.size(); ++i) {
         const DrawItem &a = items[i], &b = other.items[i];
         if (a.mesh != b.mesh || a.dynamic || a.model != b.model || a.color != b.color ||
-            a.shading != b.shading)
+            a.shading != b.shading || a.picture != b.picture)
           return false;
       }
       return true;
@@ -129,12 +135,19 @@ struct Renderer::Impl {
   };
 
   GlFunctions gl;
-  Program programs[3];  // by Shading
+  static constexpr int kShadings = 4;
+  Program programs[kShadings];  // by Shading
+  // Pictures as textures, by the picture's address (freed when nobody holds the picture).
+  struct GpuPicture {
+    std::weak_ptr<const Image> source;
+    GLuint texture = 0;
+  };
+  std::map<const Image*, GpuPicture> pictures;
   std::map<const RenderMesh*, GpuMesh> meshes;
   GroundCache ground;
 
   explicit Impl(const GlLoader& loader) : gl(loader) {
-    for (int shading = 0; shading < 3; ++shading) programs[shading] = link(shading);
+    for (int shading = 0; shading < kShadings; ++shading) programs[shading] = link(shading);
   }
 
   Program link(int shading) {
@@ -168,6 +181,7 @@ struct Renderer::Impl {
 
   ~Impl() {
     for (auto& [key, mesh] : meshes) release(mesh);
+    for (auto& [key, picture] : pictures) gl.DeleteTextures(1, &picture.texture);
     for (const Program& program : programs) gl.DeleteProgram(program.id);
     release_ground();
   }
@@ -209,6 +223,25 @@ struct Renderer::Impl {
       upload(it->second, *item.mesh);
     }
     return it->second;
+  }
+
+  // Binds the item's picture (uploaded when first seen).
+  void bind_picture(const std::shared_ptr<const Image>& picture) {
+    auto it = pictures.find(picture.get());
+    if (it == pictures.end()) {
+      GpuPicture gpu{picture, 0};
+      gl.GenTextures(1, &gpu.texture);
+      gl.BindTexture(GL_TEXTURE_2D, gpu.texture);
+      gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture->width, picture->height, 0, GL_RGBA,
+                    GL_UNSIGNED_BYTE, picture->rgba.data());
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      it = pictures.emplace(picture.get(), gpu).first;
+    }
+    gl.BindTexture(GL_TEXTURE_2D, it->second.texture);
   }
 
   void release_ground() {
@@ -259,6 +292,14 @@ struct Renderer::Impl {
         ++it;
       }
     }
+    for (auto it = pictures.begin(); it != pictures.end();) {
+      if (it->second.source.expired()) {
+        gl.DeleteTextures(1, &it->second.texture);
+        it = pictures.erase(it);
+      } else {
+        ++it;
+      }
+    }
   }
 };
 
@@ -301,7 +342,9 @@ void Renderer::render(const DrawList& list, const ViewCamera& camera, int width,
 
   auto draw = [&](const DrawItem& item) {
     if (!item.mesh || item.mesh->indices.empty()) return;
+    if (item.shading == Shading::kPicture && !item.picture) return;
     GpuMesh& gpu = impl_->prepare(item);
+    if (item.picture) impl_->bind_picture(item.picture);
     const Impl::Program& program = impl_->programs[static_cast<int>(item.shading)];
     if (&program != current) {
       gl.UseProgram(program.id);
@@ -379,6 +422,7 @@ void Renderer::render(const DrawList& list, const ViewCamera& camera, int width,
   gl.Enable(GL_DEPTH_TEST);
   gl.Disable(GL_BLEND);
   gl.BindVertexArray(0);
+  gl.BindTexture(GL_TEXTURE_2D, 0);
   gl.UseProgram(0);
 }
 

@@ -70,4 +70,21 @@ DrawList draw_task_scene(const task::SceneLayout& layout, const Eigen::Isometry3
   return list;
 }
 
+void draw_panel(DrawList& list, const task::SceneLayout& layout,
+                std::shared_ptr<const Image> picture) {
+  static const auto panel = std::make_shared<const RenderMesh>(make_panel_mesh());
+  if (!picture || picture->width <= 0 || picture->height <= 0) return;
+  constexpr float kWidth = 0.40f, kBehindZones = 0.25f, kBottom = 0.08f;  // m
+  const float height = kWidth * float(picture->height) / float(picture->width);
+  const Eigen::Vector3f middle = (0.5 * (layout.zone_a + layout.zone_b)).cast<float>();
+  Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+  model(0, 0) = kWidth;
+  model(1, 1) = height;
+  model.block<3, 1>(0, 3) =
+      Eigen::Vector3f(middle.x(), kBottom + 0.5f * height, middle.z() - kBehindZones);
+  DrawItem item{panel, model, Eigen::Vector4f::Ones(), Shading::kPicture};
+  item.picture = std::move(picture);
+  list.items.push_back(std::move(item));
+}
+
 }  // namespace handlab::render

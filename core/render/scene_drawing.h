@@ -1,6 +1,8 @@
 // Turns the task scene into draw items: a checkered floor, the two zones and the cube.
 #pragma once
 
+#include <memory>
+
 #include <Eigen/Geometry>
 
 #include "core/render/draw_list.h"
@@ -18,5 +20,11 @@ struct ScenePalette {
 
 DrawList draw_task_scene(const task::SceneLayout& layout, const Eigen::Isometry3d& cube_pose,
                          const ScenePalette& palette = {});
+
+// A picture (the instruction, a questionnaire) on an upright panel 40 cm wide standing behind
+// the zones and facing the participant, as a headset shows what a window shows beside the
+// scene; its height keeps the picture's aspect.
+void draw_panel(DrawList& list, const task::SceneLayout& layout,
+                std::shared_ptr<const Image> picture);
 
 }  // namespace handlab::render

@@ -3,6 +3,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/render/scene_drawing.h"
+#include "core/task/scene_layout.h"
+
 namespace handlab::studies {
 
 SessionHeadset::SessionHeadset(SessionControl& control, xr::HeadsetView::DrawerFactory eyes,
@@ -31,10 +34,30 @@ void SessionHeadset::trial_started(const TrialSetup& setup) {
 
 void SessionHeadset::stepped(const TrialStep& step) {
   if (closing_) return;
-  const Eigen::Vector3f cube = step.frame ? step.frame->cube_position : Eigen::Vector3f::Zero();
-  const double hand_time = hands_ && step.frame ? step.frame->tracked.timestamp
-                                                : std::numeric_limits<double>::quiet_NaN();
-  headset_->show(view_.draw(step), cube, hand_time);
+  render::DrawList scene = view_.draw(step);
+  const std::lock_guard lock(mutex_);
+  scene_ = std::move(scene);
+  cube_ = step.frame ? step.frame->cube_position : Eigen::Vector3f::Zero();
+  show_locked(hands_ && step.frame ? step.frame->tracked.timestamp
+                                   : std::numeric_limits<double>::quiet_NaN());
+}
+
+void SessionHeadset::set_panel(std::shared_ptr<const render::Image> picture) {
+  if (closing_) return;
+  const std::lock_guard lock(mutex_);
+  panel_ = std::move(picture);
+  if (!scene_) {  // before the first step: the scene as a trial starts
+    const task::SceneLayout& layout = view_.layout();
+    scene_ = render::draw_task_scene(layout, task::cube_start_pose(layout));
+    cube_ = task::cube_start_pose(layout).translation().cast<float>();
+  }
+  show_locked(std::numeric_limits<double>::quiet_NaN());  // no hand frame newly shown
+}
+
+void SessionHeadset::show_locked(double hand_time) {
+  render::DrawList shown = *scene_;
+  render::draw_panel(shown, view_.layout(), panel_);
+  headset_->show(std::move(shown), cube_, hand_time);
 }
 
 void SessionHeadset::close() {

@@ -10,6 +10,8 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 
 #include "core/tracking/latest_frames.h"
@@ -30,6 +32,10 @@ class SessionHeadset {
   // The front end's observers call these on the session thread.
   void trial_started(const TrialSetup& setup);
   void stepped(const TrialStep& step);
+  // From any thread: a picture on a panel before the participant (the instruction, a
+  // questionnaire; render::draw_panel), shown at once and with every step after it; null
+  // takes the panel away.
+  void set_panel(std::shared_ptr<const render::Image> picture);
   // Ends the headset's session; the counts stay. Call after the session's last step.
   void close();
 
@@ -43,10 +49,16 @@ class SessionHeadset {
 
  private:
   void state_changed(const std::string& state);
+  // With mutex_ held: the newest scene and the panel to the headset.
+  void show_locked(double hand_time);
 
   SessionControl& control_;
   std::function<void(const std::string&)> say_;  // from the headset's thread
   ParticipantView view_;
+  std::mutex mutex_;
+  std::optional<render::DrawList> scene_;  // the newest step's, without the panel
+  Eigen::Vector3f cube_ = Eigen::Vector3f::Zero();
+  std::shared_ptr<const render::Image> panel_;
   std::shared_ptr<tracking::LatestFrames> hands_;
   std::unique_ptr<xr::HeadsetView> headset_;
   bool paused_by_headset_ = false, was_focused_ = false;

@@ -11,6 +11,7 @@
 #include "core/render/render_mesh.h"
 #include "core/render/scene_drawing.h"
 #include "core/render/sim_drawing.h"
+#include "core/render/view_camera.h"
 #include "core/task/pinch_scene.h"
 
 namespace handlab::render {
@@ -198,6 +199,52 @@ TEST_F(KeptGround, FramesLookAsIfDrawnWhole) {
         at(kept, camera, layout_.zone_b.cast<float>() + Eigen::Vector3f(0.0f, 0.021f, 0.0f));
     EXPECT_GT(over.r, over.g + 80) << "the half above the floor is drawn";
   }
+}
+
+// A picture on the panel stands upright behind the zones, the right way round: its top rows
+// (green) above, its left half (red) to the left as the participant sees it, its right
+// (blue) to the right; and it hides nothing in front of it (the cube).
+TEST(OffscreenPanel, ShowsItsPictureUprightBehindTheZones) {
+  auto picture = std::make_shared<Image>();
+  picture->width = 64;
+  picture->height = 32;
+  picture->rgba.resize(64 * 32 * 4);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = &picture->rgba[std::size_t(y * 64 + x) * 4];
+      p[0] = y >= 8 && x < 32 ? 255 : 0;
+      p[1] = y < 8 ? 255 : 0;
+      p[2] = y >= 8 && x >= 32 ? 255 : 0;
+      p[3] = 255;
+    }
+  task::SceneLayout layout;
+  layout.cube_size = 0.06;
+  DrawList list = draw_task_scene(layout, task::cube_start_pose(layout));
+  draw_panel(list, layout, picture);
+  // A seated participant's eye, 30 cm above the table and 50 cm before the zones.
+  const ViewCamera camera = eye_camera(Eigen::Isometry3f(Eigen::Translation3f(0.0f, 0.3f, 0.5f)),
+                                       -0.7f, 0.7f, -0.6f, 0.6f);
+  OffscreenRenderer renderer(kWidth, kHeight, 1);
+  const Image image = renderer.render(list, camera);
+  auto seen = [&](float x, float y, float z) {
+    Eigen::Vector2f p;
+    EXPECT_TRUE(project_to_pixel(camera, kWidth, kHeight, {x, y, z}, &p));
+    const auto px = image.pixel(int(p.x()), int(p.y()));
+    return Rgb{px[0], px[1], px[2]};
+  };
+  // The panel: 40 cm wide, 20 cm high (the picture's 2:1), from 8 cm up, 25 cm behind.
+  const Rgb top = seen(0.0f, 0.27f, -0.25f), left = seen(-0.1f, 0.14f, -0.25f),
+            right = seen(0.1f, 0.14f, -0.25f);
+  EXPECT_GT(top.g, 200);
+  EXPECT_LT(top.r + top.b, 40);
+  EXPECT_GT(left.r, 200);
+  EXPECT_LT(left.g + left.b, 40);
+  EXPECT_GT(right.b, 200);
+  EXPECT_LT(right.r + right.g, 40);
+  const Rgb beside = seen(0.25f, 0.14f, -0.25f);  // past its right edge: the background
+  EXPECT_LT(beside.b, 100);
+  const Rgb cube = seen(float(layout.zone_a.x()), 0.03f, float(layout.zone_a.z()));
+  EXPECT_GT(cube.r, cube.b + 80) << "the cube before the panel";
 }
 
 TEST(OffscreenRenderer, RejectsAbsurdSizes) {
