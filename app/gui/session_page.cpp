@@ -154,7 +154,10 @@ void SessionPage::set_study(OpenStudy study) {
   replay_->hide();
   study_ = std::move(study);
   protocol_ = std::move(protocol);
-  if (protocol_) view_->set_layout(protocol_->scene);
+  if (protocol_) {
+    view_->set_layout(protocol_->scene);
+    setup_->use_defaults(*protocol_);
+  }
   set_running(false);
 }
 

@@ -94,6 +94,17 @@ QString SessionSetup::tracker_name() const {
   return tracker_->currentText();
 }
 
+void SessionSetup::use_defaults(const studies::Protocol& protocol) {
+  static const std::pair<const char*, TrackerChoice> kTrackers[] = {{"leap", kLiveLeap},
+                                                                    {"openxr", kOpenXrHands},
+                                                                    {"scripted", kScripted},
+                                                                    {"simulated", kSimulated}};
+  for (const auto& [name, choice] : kTrackers)
+    if (protocol.default_tracker == name) tracker_->setCurrentIndex(tracker_->findData(choice));
+  display_->setCurrentIndex(display_->findData(
+      protocol.default_display == studies::SessionDisplay::kHeadset ? kHeadset : kWindow));
+}
+
 void SessionSetup::set_leap_address(const QString& address) {
   address_->setText(address);
   update_fields();

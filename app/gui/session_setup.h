@@ -42,6 +42,8 @@ class SessionSetup : public QGroupBox {
   QCheckBox* real_time_box() const { return real_time_; }
   QString tracker_name() const;
 
+  // The study's defaults ("session" in its protocol): the tracker and display it names.
+  void use_defaults(const studies::Protocol& protocol);
   // As if typed into the address field: the live client reconnects there.
   void set_leap_address(const QString& address);
   // While a session runs nothing can be changed (the session reads the live client's frames).

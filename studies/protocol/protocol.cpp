@@ -157,10 +157,10 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
   } catch (const util::JsonError& e) {
     throw ProtocolError(source_name + ": " + e.what());
   }
-  r.check_keys(
-      root, "protocol",
-      {"format", "version", "name", "title", "seed", "factors", "blocks", "counterbalancing",
-       "practice", "questionnaire", "scene", "simulated_hand", "strategy", "trial", "between"});
+  r.check_keys(root, "protocol",
+               {"format", "version", "name", "title", "seed", "factors", "blocks",
+                "counterbalancing", "practice", "questionnaire", "scene", "simulated_hand",
+                "strategy", "trial", "between", "session"});
   if (r.text(root, "format", "protocol") != "handlab-protocol")
     r.fail("protocol.format", "must be \"handlab-protocol\"");
   const int version = r.integer(root, "version", "protocol", 1, 1000);
@@ -298,6 +298,21 @@ Protocol parse_protocol(const std::string& text, const std::string& source_name,
     const std::string s = r.text(root, "strategy", "protocol");
     if (s != "naive" && s != "ours") r.fail("protocol.strategy", "is \"naive\" or \"ours\"");
     p.strategy.method = s == "naive" ? retarget::Strategy::kNaive : retarget::Strategy::kOurs;
+  }
+  if (const JsonValue* session = root.find("session")) {
+    r.check_keys(*session, "session", {"display", "tracker"});
+    if (session->find("display")) {
+      const std::string d = r.text(*session, "display", "session");
+      if (d != "window" && d != "headset")
+        r.fail("session.display", "is \"window\" or \"headset\"");
+      p.default_display = d == "headset" ? SessionDisplay::kHeadset : SessionDisplay::kWindow;
+    }
+    if (session->find("tracker")) {
+      p.default_tracker = r.text(*session, "tracker", "session");
+      if (p.default_tracker != "leap" && p.default_tracker != "openxr" &&
+          p.default_tracker != "scripted" && p.default_tracker != "simulated")
+        r.fail("session.tracker", "is \"leap\", \"openxr\", \"scripted\" or \"simulated\"");
+    }
   }
   if (const JsonValue* trial = root.find("trial")) {
     r.check_keys(*trial, "trial", {"timeout_s"});

@@ -60,6 +60,10 @@ struct QuestionnaireItem {
   std::vector<std::string> anchors;  // one label per scale point, low to high
 };
 
+// Where a session's participant looks: a window (the app's participant window, or none) or
+// the OpenXR headset.
+enum class SessionDisplay { kWindow, kHeadset };
+
 struct Protocol {
   std::string name, title;
   std::uint64_t seed = 0;
@@ -80,7 +84,12 @@ struct Protocol {
   double simulated_hand_length = 0.214;
   double simulated_hand_breadth = 0.0;  // m across the MCPs; 0: 0.45 of the length
   double simulated_hand_tissue = 1.0;   // scales finger breadth and thickness
-  std::string text;                     // the file's exact bytes
+  // What a session runs with unless the experimenter chooses otherwise ("session"): where the
+  // participant looks and what tracks their hand ("leap", "openxr", "scripted", "simulated";
+  // empty: the front end's own default).
+  SessionDisplay default_display = SessionDisplay::kWindow;
+  std::string default_tracker;
+  std::string text;  // the file's exact bytes
 
   std::vector<Condition> conditions() const;        // first factor varies slowest
   int factor_index(const std::string& name) const;  // -1 when absent

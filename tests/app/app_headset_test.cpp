@@ -15,6 +15,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "app/gui/main_window.h"
@@ -50,21 +52,24 @@ QString session_log(const SessionPage& page) {
   return text;
 }
 
-// A study of tests/openxr/headset-protocol.json (two 2-second trials) with P01, open in
-// `window`, its session panel set for P01 on the grasp proxy in the headset.
-SessionPage* headset_session(MainWindow& window, const QString& db, const QString& tracker) {
-  const QString protocol = QString(HANDLAB_SOURCE_DIR) + "/tests/openxr/headset-protocol.json";
+// A study of tests/openxr/headset-protocol.json (two 2-second trials) with P01, its protocol
+// naming `session` as its sessions' defaults, open in `window`, its session panel set for P01
+// on the grasp proxy.
+SessionPage* headset_session(MainWindow& window, const QString& name, const std::string& session) {
+  std::ifstream in(std::string(HANDLAB_SOURCE_DIR) + "/tests/openxr/headset-protocol.json");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string protocol = test::fresh_path(name.toStdString() + ".json");
+  std::ofstream(protocol) << "{\"session\": " << session << "," << text.substr(1);
+  const QString db = QString::fromStdString(test::fresh_path(name.toStdString() + ".db"));
   window.show();
   EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
-  EXPECT_EQ(window.create_study(protocol, db), QString());
+  EXPECT_EQ(window.create_study(QString::fromStdString(protocol), db), QString());
   enrol(db);
   EXPECT_EQ(window.open_study(db), QString());
   SessionPage* page = window.session();
   page->participant_box()->setCurrentText("P01");
-  page->tracker_box()->setCurrentIndex(page->tracker_box()->findText(tracker));
   page->world_box()->setCurrentIndex(
       page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
-  page->display_box()->setCurrentIndex(page->display_box()->findText("Headset (OpenXR)"));
   return page;
 }
 
@@ -113,9 +118,12 @@ void run_one_trial(SessionPage* page) {
 }
 
 TEST(AppHeadset, RunsATrialInTheHeadsetChosenInTheSessionPanel) {
-  const QString db = QString::fromStdString(test::fresh_path("app_headset.db"));
   MainWindow window;
-  SessionPage* page = headset_session(window, db, "Scripted participant");
+  SessionPage* page =
+      headset_session(window, "app_headset", R"({"display": "headset", "tracker": "scripted"})");
+  // The protocol's defaults chosen in the panel.
+  EXPECT_EQ(page->display_box()->currentText(), "Headset (OpenXR)");
+  EXPECT_EQ(page->tracker_box()->currentText(), "Scripted participant");
   // The panel names the runtime and its headset once the headset is chosen.
   const QString runtime = page->findChild<QLabel*>("openxr_state")->text();
   EXPECT_FALSE(runtime.startsWith("no runtime")) << runtime.toStdString();
@@ -169,7 +177,7 @@ TEST(AppHeadset, RunsATrialInTheHeadsetChosenInTheSessionPanel) {
   // The experimenter's view shows the scene the headset shows.
   EXPECT_NE(page->view()->frame(), nullptr);
 
-  store::StudyStore store(db.toStdString());
+  store::StudyStore store(std::string(HANDLAB_TEST_TMP) + "/app_headset.db");
   const auto trials = store.trials("P01");
   ASSERT_GE(trials.size(), 1u);
   EXPECT_NE(trials.front().status, store::TrialStatus::kAborted);
@@ -186,9 +194,10 @@ namespace {
 // on them and its frames are logged at 120 Hz. Needs a runtime that tracks hands and a hand
 // held open before it: openxr-test.sh runs it on the remote driver (remote_hands.c, open).
 TEST(AppHeadsetHands, CalibratesAndRunsATrialOnTheHeadsetsOwnHands) {
-  const QString db = QString::fromStdString(test::fresh_path("app_headset_hands.db"));
   MainWindow window;
-  SessionPage* page = headset_session(window, db, "OpenXR hands");
+  SessionPage* page = headset_session(window, "app_headset_hands", R"({"display": "window"})");
+  page->tracker_box()->setCurrentIndex(page->tracker_box()->findText("OpenXR hands"));
+  page->display_box()->setCurrentIndex(page->display_box()->findText("Headset (OpenXR)"));
   const QString runtime = page->findChild<QLabel*>("openxr_state")->text();
   EXPECT_TRUE(runtime.contains("tracks hands")) << runtime.toStdString();
   QObject::connect(page, &SessionPage::questionnaire_opened, [](QuestionnaireForm* form) {
@@ -213,7 +222,7 @@ TEST(AppHeadsetHands, CalibratesAndRunsATrialOnTheHeadsetsOwnHands) {
   std::printf("headset: %ld frames shown, %zu latencies\n", counts->shown,
               counts->latency_ms.size());
   keep_eyes(*page->worker()->headset_frame());
-  store::StudyStore store(db.toStdString());
+  store::StudyStore store(std::string(HANDLAB_TEST_TMP) + "/app_headset_hands.db");
   const auto trials = store.trials("P01");
   ASSERT_GE(trials.size(), 1u);
   EXPECT_NE(trials.front().status, store::TrialStatus::kAborted);

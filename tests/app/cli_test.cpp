@@ -8,6 +8,9 @@
 #include <set>
 #include <string>
 
+#include <fstream>
+#include <iterator>
+
 #include <gtest/gtest.h>
 
 #include "core/render/image.h"
@@ -228,6 +231,42 @@ TEST(CliTracking, InfoViaOpenXrFitsAsTheLeapsJoints) {
   const Result text = run_cli("tracking info " + recording + " --fit --via-openxr");
   EXPECT_NE(text.out.find("read through OpenXR's 26 joints"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("residual mean 0.8 mm, max 2.5 mm"), std::string::npos) << text.out;
+}
+
+// A protocol's "session" defaults hold where no option says otherwise: the headset and
+// OpenXR's hands named there are opened (and, with no runtime, refused in one line); the
+// options choose otherwise; the Leap, which only the app reads live, is refused by name.
+TEST(CliSession, TheProtocolsSessionDefaultsHoldWhereNoOptionIsGiven) {
+  std::ifstream in(std::string(HANDLAB_SOURCE_DIR) + "/tests/openxr/headset-protocol.json");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto study = [&](const std::string& session, const std::string& name) {
+    const std::string protocol = handlab::test::fresh_path(name + ".json");
+    std::ofstream(protocol) << "{\"session\": " << session << "," << text.substr(1);
+    const std::string db = handlab::test::fresh_path(name + ".db");
+    EXPECT_EQ(run_cli("study create --protocol " + protocol + " --db " + db).status, 0);
+    EXPECT_EQ(run_cli("participant add --db " + db +
+                      " --id P1 --age 30 --sex F --handedness right --hand-length 0.18 "
+                      "--vr-experience none")
+                  .status,
+              0);
+    return db;
+  };
+  const std::string headset = study(R"({"display": "headset", "tracker": "openxr"})", "cli_hs");
+  const std::string leap = study(R"({"tracker": "leap"})", "cli_leap");
+  const std::string missing = std::string(HANDLAB_TEST_TMP) + "/no-such-runtime.json";
+  setenv("XR_RUNTIME_JSON", missing.c_str(), 1);
+  const Result by_default = run_cli("session run --db " + headset + " --participant P1");
+  const Result chosen = run_cli("session run --db " + headset +
+                                " --participant P1 --tracker scripted --display none --quiet");
+  unsetenv("XR_RUNTIME_JSON");
+  EXPECT_EQ(by_default.status, 1);
+  EXPECT_NE(by_default.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos)
+      << by_default.out;
+  EXPECT_EQ(chosen.status, 0) << chosen.out;
+  const Result on_leap = run_cli("session run --db " + leap + " --participant P1");
+  EXPECT_NE(on_leap.status, 0);
+  EXPECT_NE(on_leap.out.find("the protocol's session tracker is the Leap"), std::string::npos)
+      << on_leap.out;
 }
 
 // Where no OpenXR runtime answers, each xr command says so in one line (the loader's own log

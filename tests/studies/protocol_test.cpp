@@ -155,6 +155,12 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
             "\"counterbalancing\": \"abba\""),
        "abba"},
       {with(text, "\"cube_size\": 0.01", "\"cube_size\": -1"), "cube_size"},
+      {with(text, "\"blocks\": 5", "\"blocks\": 5, \"session\": {\"display\": \"hmd\"}"),
+       "session.display: is \"window\" or \"headset\""},
+      {with(text, "\"blocks\": 5", "\"blocks\": 5, \"session\": {\"tracker\": \"glove\"}"),
+       "session.tracker: is \"leap\", \"openxr\", \"scripted\" or \"simulated\""},
+      {with(text, "\"blocks\": 5", "\"blocks\": 5, \"session\": {\"displays\": \"headset\"}"),
+       "unknown key \"displays\""},
       {with(text, "\"version\": 1", "\"version\": 2"), "version 2"},
       {text.substr(0, text.size() / 2), "protocol.json"},
   };
@@ -166,6 +172,21 @@ TEST(Protocol, RejectsWhatItDoesNotKnowWithTheKey) {
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
     }
   }
+}
+
+// A protocol may name the display and tracker its sessions run with unless chosen otherwise;
+// without it, a window and the front end's own tracker.
+TEST(Protocol, TheSessionsDefaultDisplayAndTracker) {
+  const std::string text = read_protocol(kStudy).text;
+  const Protocol plain = parse_protocol(text, "protocol.json");
+  EXPECT_EQ(plain.default_display, SessionDisplay::kWindow);
+  EXPECT_EQ(plain.default_tracker, "");
+  const Protocol headset = parse_protocol(
+      with(text, "\"blocks\": 5",
+           "\"blocks\": 5, \"session\": {\"display\": \"headset\", \"tracker\": \"openxr\"}"),
+      "protocol.json");
+  EXPECT_EQ(headset.default_display, SessionDisplay::kHeadset);
+  EXPECT_EQ(headset.default_tracker, "openxr");
 }
 
 // A study made before the 5-150 mm rule (2-200 mm were allowed) still opens: its database's

@@ -18,6 +18,7 @@
 #include "core/util/count_text.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
+#include "studies/protocol/protocol_store.h"
 #include "studies/session/openxr_tracker.h"
 #include "studies/session/session_control.h"
 #include "studies/session/session_headset.h"
@@ -36,7 +37,7 @@ std::vector<OptionSpec> session_run_options() {
        "simulated: the closed-loop participant model (docs/simulated-participants.md); openxr: "
        "the hands of the OpenXR runtime (XR_EXT_hand_tracking; in real time, calibrated with an "
        "open palm; docs/hmd.md); or a recording (.json, .json.lz, .hlrec) replayed for every "
-       "trial",
+       "trial (default: the protocol's \"session\" tracker, else scripted)",
        "scripted"},
       {"seed", "S", "with --tracker simulated: the population seed of the model's parameters", "0"},
       {"resume", "",
@@ -45,7 +46,7 @@ std::vector<OptionSpec> session_run_options() {
       world_option(),
       {"display", "none|headset",
        "headset: the participant's view in the OpenXR headset, the session in real time "
-       "(docs/hmd.md)",
+       "(docs/hmd.md) (default: the protocol's \"session\" display, else none)",
        "none"},
       {"quiet", "", "no line per trial"},
       {"json", "OUT", "write a summary as JSON (- for standard output)"},
@@ -131,19 +132,32 @@ void write_session_json(std::ostream& out, const std::string& participant,
   out << "\n";
 }
 
+// The protocol's tracker ("session": {"tracker"}) where --tracker is not given.
+std::string protocol_tracker(const studies::Protocol& protocol) {
+  if (protocol.default_tracker == "leap")
+    throw UsageError(
+        "the protocol's session tracker is the Leap, which only the app reads live: give "
+        "--tracker");
+  return protocol.default_tracker.empty() ? "scripted" : protocol.default_tracker;
+}
+
 int session_run(const std::vector<std::string>& argv) {
   const Arguments args(session_run_options(), argv);
   if (args.help_requested()) return print_help(session_run_help(), args);
   args.require({"db", "participant"});
-  const std::string tracker = args.text("tracker");
+  store::StudyStore store(args.text("db"));
+  const studies::Protocol protocol = studies::stored_protocol(store);
+  const std::string tracker =
+      args.has("tracker") ? args.text("tracker") : protocol_tracker(protocol);
   const std::string world = args.choice("world", {"proxy", "soft"});
   if (tracker != "scripted" && tracker != "simulated" && tracker != "openxr" &&
       !std::filesystem::exists(tracker))
     throw UsageError("--tracker must be scripted, simulated, openxr or a recording file; '" +
                      tracker + "' is none of them" +
                      did_you_mean(tracker, {"scripted", "simulated", "openxr"}));
-  const bool in_headset = args.choice("display", {"none", "headset"}) == "headset";
-  store::StudyStore store(args.text("db"));
+  const bool in_headset = args.has("display")
+                              ? args.choice("display", {"none", "headset"}) == "headset"
+                              : protocol.default_display == studies::SessionDisplay::kHeadset;
   const std::uint64_t seed = args.seed("seed");
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
   std::mutex out;  // the session's lines and the headset's, from two threads
