@@ -28,8 +28,12 @@ void add_gui_options(QCommandLineParser& parser) {
        "SECONDS"},
       {"contacts", "Show the simulation's contact points."},
       {"participant", "The participant selected (with --start: whose session runs).", "ID"},
-      {"tracker", "With --start: leap, scripted, simulated or a recording file.", "TRACKER",
+      {"tracker", "With --start: leap, openxr, scripted, simulated or a recording file.", "TRACKER",
        "scripted"},
+      {"display", "With --start: where the participant looks: window or headset (OpenXR).",
+       "DISPLAY", "window"},
+      {"list-xr",
+       "No window: say which OpenXR runtime, headset and hand tracking are found, then quit."},
       {"world", "With --start: soft (the soft hand) or proxy.", "WORLD", "soft"},
       {"start", "Start (or resume) the participant's session once shown."},
       {"participant-window", "Show the participant's window (in a window)."},
@@ -78,6 +82,9 @@ GuiOptions read_gui_options(const QCommandLineParser& parser) {
   o.start = parser.isSet("start");
   o.tracker = parser.value("tracker");
   o.proxy_world = parser.value("world") == "proxy";
+  if (parser.value("display") != "window" && parser.value("display") != "headset")
+    throw GuiUsageError("--display is window or headset");
+  o.headset = parser.value("display") == "headset";
   o.leap_address = parser.value("leap-address");
   o.real_time = !parser.isSet("no-real-time");
   if (o.start && parser.isSet("measure-latency")) {

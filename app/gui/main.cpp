@@ -13,6 +13,7 @@
 #include "app/live/leap_replay_server.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/build_info.h"
+#include "core/xr/openxr_runtime.h"
 
 namespace {
 
@@ -71,6 +72,17 @@ int serve_recording(int argc, char** argv) {
   }
 }
 
+// The OpenXR runtime's offer, with no window: as `handlab-cli xr list` says it.
+int list_xr() {
+  const handlab::xr::OpenXrRuntimeInfo info = handlab::xr::probe_openxr_runtime();
+  if (!info.found) {
+    std::fprintf(stderr, "handlab: %s (docs/hmd.md says how to start one)\n", info.error.c_str());
+    return 1;
+  }
+  std::fputs(handlab::xr::runtime_description(info).c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -83,6 +95,7 @@ int main(int argc, char** argv) {
     read_command_line(core);  // prints and exits
     return 0;
   }
+  if (asks(argc, argv, [](const std::string& a) { return a == "--list-xr"; })) return list_xr();
   if (asks(argc, argv, [](const std::string& a) { return a.rfind("--serve-recording", 0) == 0; }))
     return serve_recording(argc, argv);
   // The renderer speaks OpenGL 3.3 core; the format must be set before the application.

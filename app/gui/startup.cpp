@@ -60,9 +60,11 @@ std::optional<int> start_session(MainWindow& window, const GuiOptions& o, QAppli
   const int choice = o.tracker == "leap"        ? 0
                      : o.tracker == "simulated" ? 2
                      : o.tracker == "scripted"  ? 3
+                     : o.tracker == "openxr"    ? 4
                                                 : 1;
   page->tracker_box()->setCurrentIndex(choice);
   if (choice == 1) page->recording_edit()->setText(o.tracker);
+  page->display_box()->setCurrentIndex(o.headset ? 1 : 0);
   page->world_box()->setCurrentIndex(o.proxy_world ? 1 : 0);
   page->set_leap_address(o.leap_address);
   page->real_time_box()->setChecked(o.real_time);

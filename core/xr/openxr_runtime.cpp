@@ -104,4 +104,22 @@ OpenXrRuntimeInfo probe_openxr_runtime() {
   return info;
 }
 
+std::string runtime_description(const OpenXrRuntimeInfo& info) {
+  const auto yes_no = [](bool b) { return std::string(b ? "yes" : "no"); };
+  std::string text = "OpenXR runtime   " + info.runtime_name + " " + info.runtime_version + "\n";
+  text += info.system_found ? "headset          " + info.system_name +
+                                  " (orientation tracked: " + yes_no(info.orientation_tracking) +
+                                  ", position tracked: " + yes_no(info.position_tracking) + ")\n"
+                            : "headset          none: " + info.system_error + "\n";
+  text += std::string("hand tracking    XR_EXT_hand_tracking ") +
+          (info.hand_tracking_extension ? "offered" : "not offered") +
+          (info.system_found ? "; the headset tracks hands: " + yes_no(info.system_tracks_hands)
+                             : std::string()) +
+          "\n";
+  text += "graphics         Vulkan (XR_KHR_vulkan_enable2): " + yes_no(info.vulkan2) +
+          ", OpenGL (XR_KHR_opengl_enable): " + yes_no(info.opengl) +
+          ", none (XR_MND_headless): " + yes_no(info.headless) + "\n";
+  return text;
+}
+
 }  // namespace handlab::xr

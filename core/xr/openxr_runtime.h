@@ -27,4 +27,7 @@ struct OpenXrRuntimeInfo {
 // Asks the runtime, making and destroying one instance named "handlab".
 OpenXrRuntimeInfo probe_openxr_runtime();
 
+// What a found runtime offers, a line each: the runtime, the headset, hand tracking, graphics.
+std::string runtime_description(const OpenXrRuntimeInfo& info);
+
 }  // namespace handlab::xr

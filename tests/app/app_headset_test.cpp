@@ -7,6 +7,7 @@
 #include <QComboBox>
 #include <QLabel>
 #include <QListWidget>
+#include <QProcess>
 #include <QSignalSpy>
 #include <QTest>
 #include <QTimer>
@@ -124,6 +125,14 @@ TEST(AppHeadset, RunsATrialInTheHeadsetChosenInTheSessionPanel) {
   // The protocol's defaults chosen in the panel.
   EXPECT_EQ(page->display_box()->currentText(), "Headset (OpenXR)");
   EXPECT_EQ(page->tracker_box()->currentText(), "Scripted participant");
+  // `handlab --list-xr` names the runtime and its headset, as the panel does.
+  QProcess list;
+  list.start(HANDLAB_APP, {"--list-xr"});
+  ASSERT_TRUE(list.waitForFinished(30000));
+  EXPECT_EQ(list.exitCode(), 0);
+  const QString listed = QString::fromUtf8(list.readAllStandardOutput());
+  EXPECT_TRUE(listed.contains("headset ") && listed.contains("XR_EXT_hand_tracking offered"))
+      << listed.toStdString();
   // The panel names the runtime and its headset once the headset is chosen.
   const QString runtime = page->findChild<QLabel*>("openxr_state")->text();
   EXPECT_FALSE(runtime.startsWith("no runtime")) << runtime.toStdString();

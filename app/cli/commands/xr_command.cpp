@@ -42,28 +42,6 @@ CommandHelp xr_list_help() {
           "Exit status 1 where no runtime answers."};
 }
 
-const char* yes_no(bool b) {
-  return b ? "yes" : "no";
-}
-
-void print_runtime(const xr::OpenXrRuntimeInfo& info) {
-  std::cout << "OpenXR runtime   " << info.runtime_name << " " << info.runtime_version << "\n";
-  if (info.system_found)
-    std::cout << "headset          " << info.system_name
-              << " (orientation tracked: " << yes_no(info.orientation_tracking)
-              << ", position tracked: " << yes_no(info.position_tracking) << ")\n";
-  else
-    std::cout << "headset          none: " << info.system_error << "\n";
-  std::cout << "hand tracking    XR_EXT_hand_tracking "
-            << (info.hand_tracking_extension ? "offered" : "not offered")
-            << (info.system_found
-                    ? std::string("; the headset tracks hands: ") + yes_no(info.system_tracks_hands)
-                    : std::string())
-            << "\ngraphics         Vulkan (XR_KHR_vulkan_enable2): " << yes_no(info.vulkan2)
-            << ", OpenGL (XR_KHR_opengl_enable): " << yes_no(info.opengl)
-            << ", none (XR_MND_headless): " << yes_no(info.headless) << "\n";
-}
-
 void write_runtime_json(std::ostream& out, const xr::OpenXrRuntimeInfo& info) {
   util::JsonWriter json(out);
   json.begin_object().field("found", info.found);
@@ -99,7 +77,7 @@ int xr_list(const std::vector<std::string>& argv) {
     util::write_output(args.text("json"),
                        [&](std::ostream& out) { write_runtime_json(out, info); });
   if (!info.found) throw std::runtime_error(info.error + " (docs/hmd.md says how to start one)");
-  if (args.text("json") != "-") print_runtime(info);
+  if (args.text("json") != "-") std::cout << xr::runtime_description(info);
   return 0;
 }
 
