@@ -14,7 +14,9 @@
 #include <QListWidget>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QPixmap>
 #include <QTime>
+#include <QTimer>
 #include <QVBoxLayout>
 
 #include "app/gui/headset_panel.h"
@@ -44,6 +46,15 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   replay_ = new TrialReplayBar;
   replay_->hide();
   left->addWidget(replay_);
+  // In the headset: what it shows, its left eye's last image as read back from it.
+  headset_mirror_ = new QLabel;
+  headset_mirror_->setObjectName("headset_mirror");
+  headset_mirror_->setAlignment(Qt::AlignCenter);
+  headset_mirror_->hide();
+  left->addWidget(headset_mirror_);
+  mirror_timer_ = new QTimer(this);
+  mirror_timer_->setInterval(100);
+  connect(mirror_timer_, &QTimer::timeout, this, &SessionPage::mirror_headset);
   layout->addLayout(left, 3);
   connect(replay_, &TrialReplayBar::moment, this,
           [this](std::shared_ptr<const render::DrawList> picture, const store::FrameRecord& frame) {
@@ -279,6 +290,8 @@ QString SessionPage::start_session() {
   display_.start(live_stats_);
   last_drawn_step_ = -1;
   headset_text_.clear();
+  headset_mirror_->setVisible(w->in_headset());
+  if (w->in_headset()) mirror_timer_->start();
   set_running(true);
   append_log(tr("Session of %1 started (%2, %3)")
                  .arg(setup_->participant_box()->currentText(), setup_->tracker_name(),
@@ -346,6 +359,7 @@ QString SessionPage::skip_trial(int position, const QString& reason) {
 }
 
 void SessionPage::set_running(bool running) {
+  if (!running) mirror_timer_->stop();  // its last picture stays
   start_->setEnabled(!running && study_.is_open());
   pause_->setEnabled(running);
   stop_->setEnabled(running);
@@ -414,6 +428,16 @@ void SessionPage::show_questionnaire(int position, const QString&) {
                    .arg(position + 1));
   }
   emit questionnaire_opened(form);
+}
+
+void SessionPage::mirror_headset() {
+  const auto frame = worker_ ? worker_->headset_frame() : std::nullopt;
+  if (!frame || !frame->drawn) return;
+  const render::Image& eye = frame->read_back[0];
+  const QImage image(eye.rgba.data(), eye.width, eye.height, eye.width * 4,
+                     QImage::Format_RGBA8888);
+  headset_mirror_->setPixmap(QPixmap::fromImage(image.scaledToHeight(
+      std::min(eye.height, 240), Qt::SmoothTransformation)));  // scaled: a copy of the pixels
 }
 
 void SessionPage::show_in_headset(const QString& instruction) {

@@ -25,6 +25,7 @@ class QListWidget;
 class QPushButton;
 class QSpinBox;
 class QThread;
+class QTimer;
 class QStackedWidget;
 
 namespace handlab::live {
@@ -105,6 +106,7 @@ class SessionPage : public QWidget {
   void append_log(const QString& line);
   // In the headset, the instruction on its panel (when it changes).
   void show_in_headset(const QString& instruction);
+  void mirror_headset();
 
   OpenStudy study_;
   std::optional<studies::Protocol> protocol_;
@@ -125,6 +127,8 @@ class SessionPage : public QWidget {
   hand::HandShape hand_shape_;
   long last_drawn_step_ = -1;
   QString headset_text_;  // the instruction on the headset's panel
+  QLabel* headset_mirror_ = nullptr;
+  QTimer* mirror_timer_ = nullptr;
   DisplayLatency display_;
 };
 

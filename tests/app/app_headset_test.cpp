@@ -183,8 +183,15 @@ TEST(AppHeadset, RunsATrialInTheHeadsetChosenInTheSessionPanel) {
   ASSERT_TRUE(last->drawn);
   EXPECT_NE(last->read_back[0].rgba, last->read_back[1].rgba) << "the two eyes see apart";
   keep_eyes(*last);
-  // The experimenter's view shows the scene the headset shows.
+  // The experimenter's window shows the scene, and under it what the headset shows.
   EXPECT_NE(page->view()->frame(), nullptr);
+  const auto* mirror = page->findChild<QLabel*>("headset_mirror");
+  EXPECT_FALSE(mirror->isHidden());
+  EXPECT_FALSE(mirror->pixmap().isNull());
+  if (const char* dir = std::getenv("HANDLAB_HEADSET_SCREENSHOTS")) {
+    window.tabs()->setCurrentWidget(page);
+    window.grab().save(QString(dir) + "/app-window.png");
+  }
 
   store::StudyStore store(std::string(HANDLAB_TEST_TMP) + "/app_headset.db");
   const auto trials = store.trials("P01");
