@@ -80,11 +80,11 @@ GuiOptions read_gui_options(const QCommandLineParser& parser) {
       throw GuiUsageError("--replay takes a trial number from 1 and --participant");
   }
   o.start = parser.isSet("start");
-  o.tracker = parser.value("tracker");
+  if (parser.isSet("tracker")) o.tracker = parser.value("tracker");
   o.proxy_world = parser.value("world") == "proxy";
   if (parser.value("display") != "window" && parser.value("display") != "headset")
     throw GuiUsageError("--display is window or headset");
-  o.headset = parser.value("display") == "headset";
+  if (parser.isSet("display")) o.headset = parser.value("display") == "headset";
   o.leap_address = parser.value("leap-address");
   o.real_time = !parser.isSet("no-real-time");
   if (o.start && parser.isSet("measure-latency")) {

@@ -24,9 +24,9 @@ struct GuiOptions {
   int replay = 0;  // the participant's trial to play back, 1-based (0: none)
   // A session started once shown.
   bool start = false;
-  QString tracker = "scripted";  // leap, openxr, scripted, simulated or a recording file
-  bool proxy_world = false;      // the grasp proxy instead of the soft hand
-  bool headset = false;          // the participant in the OpenXR headset
+  QString tracker;  // leap, openxr, scripted, simulated or a recording file (empty: as set up)
+  bool proxy_world = false;     // the grasp proxy instead of the soft hand
+  std::optional<bool> headset;  // the participant in the OpenXR headset (none: as set up)
   QString leap_address;
   bool real_time = true;
   double measure_latency = 0.0;  // s of the display's latency measured (0: none)

@@ -1,6 +1,5 @@
 #include "app/gui/headset_eyes.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include <QImage>
@@ -9,6 +8,7 @@
 #include <QOpenGLFramebufferObject>
 #include <QSurfaceFormat>
 
+#include "app/gui/qt_image.h"
 #include "core/render/renderer.h"
 
 namespace handlab::gui {
@@ -35,6 +35,9 @@ class EyeRenderer {
       renderer_.reset();
       target_.reset();
       context_.doneCurrent();
+    } else {  // no context to delete them in: left to the context's own end
+      (void)renderer_.release();
+      (void)target_.release();
     }
   }
 
@@ -43,16 +46,13 @@ class EyeRenderer {
       throw std::runtime_error("the headset's eyes: the OpenGL context was lost");
     target_->bind();
     renderer_->render(scene, camera, target_->width(), target_->height());
-    const QImage picture = target_->toImage().convertToFormat(QImage::Format_RGBA8888);
+    QImage picture = target_->toImage();
     target_->release();
     context_.doneCurrent();
-    render::Image image;
-    image.width = picture.width();
-    image.height = picture.height();
-    image.rgba.resize(std::size_t(image.width) * std::size_t(image.height) * 4);
-    const std::size_t row = std::size_t(image.width) * 4;
-    for (int y = 0; y < image.height; ++y)
-      std::copy_n(picture.constScanLine(y), row, image.rgba.data() + std::size_t(y) * row);
+    // The bytes as drawn: a premultiplied picture is read as it is, not divided by its alpha.
+    if (picture.format() == QImage::Format_RGBA8888_Premultiplied)
+      picture.reinterpretAsFormat(QImage::Format_RGBA8888);
+    render::Image image = image_of(picture);
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;  // opaque
     return image;
   }
@@ -69,6 +69,8 @@ class EyeRenderer {
 HeadsetEyes::HeadsetEyes() : surface_(std::make_unique<QOffscreenSurface>()) {
   surface_->setFormat(QSurfaceFormat::defaultFormat());
   surface_->create();
+  if (!surface_->isValid())
+    throw std::runtime_error("the headset's eyes: no offscreen OpenGL surface on this display");
 }
 
 HeadsetEyes::~HeadsetEyes() = default;

@@ -14,6 +14,7 @@ namespace handlab::gui {
 class HeadsetEyes {
  public:
   // On the GUI thread (where Qt makes surfaces): the surface the headset's thread draws on.
+  // Throws std::runtime_error where the display has none to give.
   HeadsetEyes();
   ~HeadsetEyes();
   HeadsetEyes(const HeadsetEyes&) = delete;

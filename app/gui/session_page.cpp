@@ -12,9 +12,9 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
+#include <QPixmap>
 #include <QPushButton>
 #include <QSpinBox>
-#include <QPixmap>
 #include <QTime>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -401,8 +401,9 @@ void SessionPage::show_questionnaire(int position, const QString&) {
       dialog ? dialog->form() : new QuestionnaireForm(*protocol_, true, participant_window_);
   questionnaire_ = form;
   if (in_headset) {
-    connect(form, &QuestionnaireForm::changed, this,
-            [this, form] { worker_->set_headset_panel(widget_panel(*form)); });
+    connect(form, &QuestionnaireForm::changed, this, [this, form] {
+      if (worker_) worker_->set_headset_panel(widget_panel(*form));
+    });
   }
   connect(form, &QuestionnaireForm::saved, this, [this, form, dialog] {
     if (worker_) worker_->answer(form->answers());
@@ -436,8 +437,9 @@ void SessionPage::mirror_headset() {
   const render::Image& eye = frame->read_back[0];
   const QImage image(eye.rgba.data(), eye.width, eye.height, eye.width * 4,
                      QImage::Format_RGBA8888);
-  headset_mirror_->setPixmap(QPixmap::fromImage(image.scaledToHeight(
-      std::min(eye.height, 240), Qt::SmoothTransformation)));  // scaled: a copy of the pixels
+  // A copy: `image` stands on the frame's pixels, which go with it.
+  headset_mirror_->setPixmap(QPixmap::fromImage(
+      image.scaledToHeight(std::min(eye.height, 240), Qt::SmoothTransformation).copy()));
 }
 
 void SessionPage::show_in_headset(const QString& instruction) {

@@ -52,6 +52,8 @@ class SessionPage : public QWidget {
   void set_participants(const QStringList& ids, const QString& selected = {});
   SceneView* view() const { return view_; }
   bool session_running() const;
+  // The open study's protocol (none: no study open).
+  const std::optional<studies::Protocol>& protocol() const { return protocol_; }
   SessionWorker* worker() const { return worker_.get(); }
   void set_participant_window(ParticipantWindow* window);
 

@@ -134,11 +134,11 @@ void SessionSetup::update_fields() {
   if (choice == kLiveLeap && !running_) leap_->connect_to(address_->text());
 }
 
-// Asked once, when first needed: the runtime is loaded to answer.
+// Asked when first needed (the runtime is loaded to answer), until one is found.
 void SessionSetup::probe_openxr() {
-  if (openxr_probed_) return;
-  openxr_probed_ = true;
+  if (openxr_found_) return;  // a runtime not found is asked again when next needed
   const xr::OpenXrRuntimeInfo info = xr::probe_openxr_runtime();
+  openxr_found_ = info.found;
   if (!info.found) {
     openxr_state_->setText(tr("no runtime: %1").arg(QString::fromStdString(info.error)));
     return;
@@ -161,7 +161,11 @@ QString SessionSetup::fill(SessionOptions& options, std::shared_ptr<live::LiveFr
   options.real_time = real_time_->isChecked();
   options.in_headset = display_->currentData().toInt() == kHeadset;
   if (options.in_headset) {
-    if (!eyes_) eyes_ = std::make_unique<HeadsetEyes>();
+    try {
+      if (!eyes_) eyes_ = std::make_unique<HeadsetEyes>();
+    } catch (const std::exception& e) {
+      return QString::fromStdString(e.what());
+    }
     options.headset_eyes = eyes_->factory();
   }
   live.reset();

@@ -61,7 +61,7 @@ class SessionSetup : public QGroupBox {
   QComboBox *participant_ = nullptr, *tracker_ = nullptr, *world_ = nullptr, *display_ = nullptr;
   QLineEdit *address_ = nullptr, *recording_ = nullptr;
   QLabel *leap_state_ = nullptr, *openxr_state_ = nullptr;
-  bool openxr_probed_ = false;
+  bool openxr_found_ = false;
   std::unique_ptr<HeadsetEyes> eyes_;  // made when the headset is first chosen
   QSpinBox* seed_ = nullptr;
   QCheckBox* real_time_ = nullptr;

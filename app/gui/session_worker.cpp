@@ -29,7 +29,7 @@ SessionWorker::~SessionWorker() {
 void SessionWorker::start() {
   if (options_.in_headset) {
     headset_ = std::make_unique<studies::SessionHeadset>(
-        control_, options_.headset_eyes,
+        control_, options_.protocol.scene, options_.headset_eyes,
         [this](const std::string& line) { emit headset_said(QString::fromStdString(line)); },
         options_.openxr_hands);
     options_.real_time = true;  // the participant sees the trial as it happens

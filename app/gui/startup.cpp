@@ -57,14 +57,19 @@ std::optional<int> show(MainWindow& window, const GuiOptions& o) {
 std::optional<int> start_session(MainWindow& window, const GuiOptions& o, QApplication& app) {
   SessionPage* page = window.session();
   page->participant_box()->setCurrentText(o.participant);
-  const int choice = o.tracker == "leap"        ? 0
-                     : o.tracker == "simulated" ? 2
-                     : o.tracker == "scripted"  ? 3
-                     : o.tracker == "openxr"    ? 4
+  // Where nothing is asked for, the protocol's session defaults, else the scripted participant.
+  const bool named = page->protocol() && !page->protocol()->default_tracker.empty();
+  const QString tracker = !o.tracker.isEmpty() ? o.tracker : named ? QString() : "scripted";
+  if (!tracker.isEmpty()) {
+    const int choice = tracker == "leap"        ? 0
+                       : tracker == "simulated" ? 2
+                       : tracker == "scripted"  ? 3
+                       : tracker == "openxr"    ? 4
                                                 : 1;
-  page->tracker_box()->setCurrentIndex(choice);
-  if (choice == 1) page->recording_edit()->setText(o.tracker);
-  page->display_box()->setCurrentIndex(o.headset ? 1 : 0);
+    page->tracker_box()->setCurrentIndex(choice);
+    if (choice == 1) page->recording_edit()->setText(tracker);
+  }
+  if (o.headset) page->display_box()->setCurrentIndex(*o.headset ? 1 : 0);
   page->world_box()->setCurrentIndex(o.proxy_world ? 1 : 0);
   page->set_leap_address(o.leap_address);
   page->real_time_box()->setChecked(o.real_time);

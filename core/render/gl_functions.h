@@ -65,6 +65,7 @@ namespace handlab::render {
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
   X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                               \
   X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
+  X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
   X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \

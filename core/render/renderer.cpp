@@ -232,9 +232,12 @@ struct Renderer::Impl {
       GpuPicture gpu{picture, 0};
       gl.GenTextures(1, &gpu.texture);
       gl.BindTexture(GL_TEXTURE_2D, gpu.texture);
+      GLint alignment = 4;  // the host context's, given back
+      gl.GetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
       gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
       gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture->width, picture->height, 0, GL_RGBA,
                     GL_UNSIGNED_BYTE, picture->rgba.data());
+      gl.PixelStorei(GL_UNPACK_ALIGNMENT, alignment);
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -334,6 +337,7 @@ void Renderer::render(const DrawList& list, const ViewCamera& camera, int width,
     gl.Uniform3fv(program.u_eye, 1, eye.data());
     gl.Uniform4fv(program.u_clip_plane, 1, nowhere.data());
   }
+  gl.ActiveTexture(GL_TEXTURE0);  // the pictures' unit, whichever the host left active
   gl.Enable(GL_CLIP_DISTANCE0);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LEQUAL);
@@ -342,9 +346,13 @@ void Renderer::render(const DrawList& list, const ViewCamera& camera, int width,
 
   auto draw = [&](const DrawItem& item) {
     if (!item.mesh || item.mesh->indices.empty()) return;
-    if (item.shading == Shading::kPicture && !item.picture) return;
+    if (item.shading == Shading::kPicture &&
+        (!item.picture || item.picture->width <= 0 || item.picture->height <= 0 ||
+         item.picture->rgba.size() !=
+             std::size_t(item.picture->width) * std::size_t(item.picture->height) * 4))
+      return;
     GpuMesh& gpu = impl_->prepare(item);
-    if (item.picture) impl_->bind_picture(item.picture);
+    if (item.shading == Shading::kPicture) impl_->bind_picture(item.picture);
     const Impl::Program& program = impl_->programs[static_cast<int>(item.shading)];
     if (&program != current) {
       gl.UseProgram(program.id);

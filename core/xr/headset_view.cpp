@@ -78,13 +78,16 @@ struct HeadsetView::Loop {
   // On the loop's thread: an exception there (the drawer's OpenGL context refused) ends the
   // loop and is kept, not thrown across the thread.
   void run() {
+    bool failed = false;
     try {
       loop();
     } catch (const std::exception& e) {
       std::lock_guard lock(mutex);
       error = e.what();
+      failed = true;
     }
     ended = true;
+    if (failed && state_changed) state_changed("failed");
   }
 
   void loop() {

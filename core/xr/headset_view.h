@@ -44,7 +44,8 @@ class HeadsetView {
   // Makes the eyes' drawer on the display's thread (an OpenGL context is a thread's).
   using DrawerFactory = std::function<EyeDrawer(int width, int height)>;
   // `state_changed` is called on the display's thread with the session's state ("focused",
-  // "visible", "stopping", "exiting", ...) each time it changes.
+  // "visible", "stopping", "exiting", ...) each time it changes, and "failed" where drawing
+  // failed (error() says why) and the loop ended.
   // With `hands`, the headset's session also tracks the hands (OpenXrDisplay::HandSink).
   static std::unique_ptr<HeadsetView> open(std::string& error, DrawerFactory drawer,
                                            std::function<void(const std::string&)> state_changed,

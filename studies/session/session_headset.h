@@ -24,10 +24,14 @@ namespace handlab::studies {
 class SessionHeadset {
  public:
   // Opens the headset and starts its frame loop; `say` gets a line, on the headset's thread,
-  // when the headset's state changes what the session does. Throws std::runtime_error where
-  // no headset can be opened.
-  SessionHeadset(SessionControl& control, xr::HeadsetView::DrawerFactory eyes,
-                 std::function<void(const std::string&)> say, bool hands = false);
+  // when the headset's state changes what the session does (its drawing failing stops the
+  // session as its runtime ending does). Throws std::runtime_error where no headset can be
+  // opened.
+  // `scene`: the study's, shown until a trial starts (the calibration's instruction stands
+  // on it).
+  SessionHeadset(SessionControl& control, const task::SceneLayout& scene,
+                 xr::HeadsetView::DrawerFactory eyes, std::function<void(const std::string&)> say,
+                 bool hands = false);
   ~SessionHeadset();
   // The front end's observers call these on the session thread.
   void trial_started(const TrialSetup& setup);
@@ -55,7 +59,8 @@ class SessionHeadset {
   SessionControl& control_;
   std::function<void(const std::string&)> say_;  // from the headset's thread
   ParticipantView view_;
-  std::mutex mutex_;
+  std::mutex mutex_;                       // what the GUI's set_panel shares
+  task::SceneLayout layout_;               // the trial's
   std::optional<render::DrawList> scene_;  // the newest step's, without the panel
   Eigen::Vector3f cube_ = Eigen::Vector3f::Zero();
   std::shared_ptr<const render::Image> panel_;

@@ -251,11 +251,13 @@ TEST(CliSession, TheProtocolsSessionDefaultsHoldWhereNoOptionIsGiven) {
               0);
     return db;
   };
-  const std::string headset = study(R"({"display": "headset", "tracker": "openxr"})", "cli_hs");
+  const std::string headset = study(R"({"display": "headset", "tracker": "scripted"})", "cli_hs");
+  const std::string hands = study(R"({"tracker": "openxr"})", "cli_hands");
   const std::string leap = study(R"({"tracker": "leap"})", "cli_leap");
   const std::string missing = std::string(HANDLAB_TEST_TMP) + "/no-such-runtime.json";
   setenv("XR_RUNTIME_JSON", missing.c_str(), 1);
   const Result by_default = run_cli("session run --db " + headset + " --participant P1");
+  const Result on_hands = run_cli("session run --db " + hands + " --participant P1");
   const Result chosen = run_cli("session run --db " + headset +
                                 " --participant P1 --tracker scripted --display none --quiet");
   unsetenv("XR_RUNTIME_JSON");
@@ -263,6 +265,9 @@ TEST(CliSession, TheProtocolsSessionDefaultsHoldWhereNoOptionIsGiven) {
   EXPECT_NE(by_default.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos)
       << by_default.out;
   EXPECT_EQ(chosen.status, 0) << chosen.out;
+  // The hands without the headset: a session with no graphics, which no runtime gives here.
+  EXPECT_EQ(on_hands.status, 1);
+  EXPECT_NE(on_hands.out.find("XR_ERROR_RUNTIME_UNAVAILABLE"), std::string::npos) << on_hands.out;
   const Result on_leap = run_cli("session run --db " + leap + " --participant P1");
   EXPECT_NE(on_leap.status, 0);
   EXPECT_NE(on_leap.out.find("the protocol's session tracker is the Leap"), std::string::npos)

@@ -39,8 +39,9 @@ new_study() {
 # app_test FILTER NAME: the gui_tests FILTER under Xvfb; each eye's last image kept in $work/NAME.
 app_test() {
   mkdir -p "$work/$2"
-  HANDLAB_HEADSET_SCREENSHOTS=$work/$2 QT_QPA_PLATFORM=xcb timeout 300 \
-    xvfb-run -a -s "-screen 0 1280x1024x24" "$gui_tests" --gtest_filter="$1" \
+  command -v xvfb-run >/dev/null || fail "no xvfb-run (xvfb: scripts/install-deps.sh)"
+  HANDLAB_HEADSET_SCREENSHOTS=$work/$2 QT_QPA_PLATFORM=xcb \
+    xvfb-run -a -s "-screen 0 1280x1024x24" timeout 300 "$gui_tests" --gtest_filter="$1" \
     >"$work/$2.txt" 2>&1 ||
     fail "the app, $1: $(grep -m5 -E 'Failure|rror|Expected|Which is|Actual' "$work/$2.txt")"
   grep -qE '\[  PASSED  \] [1-9][0-9]* test' "$work/$2.txt" ||
@@ -48,7 +49,7 @@ app_test() {
   for eye in left right; do
     [ -s "$work/$2/app-eye-$eye.png" ] || fail "no picture of the app's $eye eye in $2"
   done
-  grep -h '^headset:' "$work/$2.txt"
+  grep -h '^headset' "$work/$2.txt" || fail "the app's $1 printed no headset figures"
 }
 
 # 1. The simulated headset.

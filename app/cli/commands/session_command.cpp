@@ -132,6 +132,14 @@ void write_session_json(std::ostream& out, const std::string& participant,
   out << "\n";
 }
 
+void check_tracker(const std::string& tracker) {
+  if (tracker != "scripted" && tracker != "simulated" && tracker != "openxr" &&
+      !std::filesystem::exists(tracker))
+    throw UsageError("--tracker must be scripted, simulated, openxr or a recording file; '" +
+                     tracker + "' is none of them" +
+                     did_you_mean(tracker, {"scripted", "simulated", "openxr"}));
+}
+
 // The protocol's tracker ("session": {"tracker"}) where --tracker is not given.
 std::string protocol_tracker(const studies::Protocol& protocol) {
   if (protocol.default_tracker == "leap")
@@ -145,18 +153,16 @@ int session_run(const std::vector<std::string>& argv) {
   const Arguments args(session_run_options(), argv);
   if (args.help_requested()) return print_help(session_run_help(), args);
   args.require({"db", "participant"});
+  // The options checked before the study is opened; the protocol's defaults after.
+  const std::string world = args.choice("world", {"proxy", "soft"});
+  if (args.has("tracker")) check_tracker(args.text("tracker"));
+  const std::string display = args.choice("display", {"none", "headset"});
   store::StudyStore store(args.text("db"));
   const studies::Protocol protocol = studies::stored_protocol(store);
   const std::string tracker =
       args.has("tracker") ? args.text("tracker") : protocol_tracker(protocol);
-  const std::string world = args.choice("world", {"proxy", "soft"});
-  if (tracker != "scripted" && tracker != "simulated" && tracker != "openxr" &&
-      !std::filesystem::exists(tracker))
-    throw UsageError("--tracker must be scripted, simulated, openxr or a recording file; '" +
-                     tracker + "' is none of them" +
-                     did_you_mean(tracker, {"scripted", "simulated", "openxr"}));
   const bool in_headset = args.has("display")
-                              ? args.choice("display", {"none", "headset"}) == "headset"
+                              ? display == "headset"
                               : protocol.default_display == studies::SessionDisplay::kHeadset;
   const std::uint64_t seed = args.seed("seed");
   const bool quiet = args.flag("quiet") || args.text("json") == "-";
@@ -169,8 +175,8 @@ int session_run(const std::vector<std::string>& argv) {
   // In the headset, OpenXR's hands come from the headset's own session.
   std::unique_ptr<studies::SessionHeadset> headset;
   if (in_headset) {
-    headset = std::make_unique<studies::SessionHeadset>(control, offscreen_eyes(), say,
-                                                        tracker == "openxr");
+    headset = std::make_unique<studies::SessionHeadset>(control, protocol.scene, offscreen_eyes(),
+                                                        say, tracker == "openxr");
     control.trial_started = [&](const studies::TrialSetup& s, int) { headset->trial_started(s); };
     control.stepped = [&](const studies::TrialStep& step) { headset->stepped(step); };
   }
