@@ -232,6 +232,29 @@ QString SessionPage::start_session() {
     return QString::fromStdString(e.what());
   }
   SessionWorker* w = worker_.get();
+  connect_worker(w);
+  try {
+    w->start();  // the headset and the OpenXR hands opened first, where chosen
+  } catch (const std::exception& e) {
+    worker_.reset();
+    return QString::fromStdString(e.what());
+  }
+  calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
+  display_.start(live_stats_);
+  last_drawn_step_ = -1;
+  headset_text_.clear();
+  headset_mirror_->setVisible(w->in_headset());
+  if (w->in_headset()) mirror_timer_->start();
+  set_running(true);
+  append_log(tr("Session of %1 started (%2, %3)")
+                 .arg(setup_->participant_box()->currentText(), setup_->tracker_name(),
+                      setup_->display_box()->currentText()));
+  emit session_started();
+  return {};
+}
+
+// What the page shows of the session, from the worker's signals (queued from its thread).
+void SessionPage::connect_worker(SessionWorker* w) {
   connect(w, &SessionWorker::step_ready, this, &SessionPage::refresh_picture);
   connect(w, &SessionWorker::calibration_changed, this, [this](const QString& message, bool) {
     calibration_->setText(message);
@@ -280,24 +303,6 @@ QString SessionPage::start_session() {
     emit session_ended(tr("Session failed: %1").arg(error));
   });
   connect(w, &SessionWorker::headset_said, this, &SessionPage::append_log);
-  try {
-    w->start();  // the headset and the OpenXR hands opened first, where chosen
-  } catch (const std::exception& e) {
-    worker_.reset();
-    return QString::fromStdString(e.what());
-  }
-  calibration_->setText(tr("Calibrating: hold the right hand open and still over the table."));
-  display_.start(live_stats_);
-  last_drawn_step_ = -1;
-  headset_text_.clear();
-  headset_mirror_->setVisible(w->in_headset());
-  if (w->in_headset()) mirror_timer_->start();
-  set_running(true);
-  append_log(tr("Session of %1 started (%2, %3)")
-                 .arg(setup_->participant_box()->currentText(), setup_->tracker_name(),
-                      setup_->display_box()->currentText()));
-  emit session_started();
-  return {};
 }
 
 void SessionPage::toggle_pause() {

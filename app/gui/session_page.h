@@ -102,6 +102,7 @@ class SessionPage : public QWidget {
   void questionnaire_opened(QuestionnaireForm* form);
 
  private:
+  void connect_worker(SessionWorker* w);
   void refresh_picture();
   void show_questionnaire(int position, const QString& condition);
   void set_running(bool running);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -132,6 +133,19 @@ void write_session_json(std::ostream& out, const std::string& participant,
   out << "\n";
 }
 
+// The participant's view in the headset, shown each step the session takes.
+std::unique_ptr<studies::SessionHeadset> open_headset(studies::SessionControl& control,
+                                                      const studies::Protocol& protocol,
+                                                      std::function<void(const std::string&)> say,
+                                                      bool hands) {
+  auto headset = std::make_unique<studies::SessionHeadset>(control, protocol.scene,
+                                                           offscreen_eyes(), std::move(say), hands);
+  studies::SessionHeadset* h = headset.get();
+  control.trial_started = [h](const studies::TrialSetup& s, int) { h->trial_started(s); };
+  control.stepped = [h](const studies::TrialStep& step) { h->stepped(step); };
+  return headset;
+}
+
 void check_tracker(const std::string& tracker) {
   if (tracker != "scripted" && tracker != "simulated" && tracker != "openxr" &&
       !std::filesystem::exists(tracker))
@@ -174,12 +188,7 @@ int session_run(const std::vector<std::string>& argv) {
   studies::SessionControl control;
   // In the headset, OpenXR's hands come from the headset's own session.
   std::unique_ptr<studies::SessionHeadset> headset;
-  if (in_headset) {
-    headset = std::make_unique<studies::SessionHeadset>(control, protocol.scene, offscreen_eyes(),
-                                                        say, tracker == "openxr");
-    control.trial_started = [&](const studies::TrialSetup& s, int) { headset->trial_started(s); };
-    control.stepped = [&](const studies::TrialStep& step) { headset->stepped(step); };
-  }
+  if (in_headset) headset = open_headset(control, protocol, say, tracker == "openxr");
   const studies::TrackerPtr kind = tracker == "scripted"    ? studies::scripted_tracker()
                                    : tracker == "simulated" ? studies::simulated_tracker(seed)
                                    : tracker == "openxr"    ? studies::openxr_tracker(headset.get())
