@@ -302,7 +302,11 @@ void SessionPage::connect_worker(SessionWorker* w) {
     emit study_changed();
     emit session_ended(tr("Session failed: %1").arg(error));
   });
-  connect(w, &SessionWorker::headset_said, this, &SessionPage::append_log);
+  // The headset taken off pauses the session, put back on resumes it: the button follows.
+  connect(w, &SessionWorker::headset_said, this, [this](const QString& message) {
+    append_log(message);
+    if (worker_) pause_->setChecked(worker_->control().paused());
+  });
 }
 
 void SessionPage::toggle_pause() {
