@@ -16,8 +16,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "app/gui/main_window.h"
@@ -29,23 +27,12 @@
 #include "core/render/view_camera.h"
 #include "core/store/study_store.h"
 #include "core/xr/headset_view.h"
-#include "studies/session/enrolment.h"
+#include "tests/app/enrol_p01.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
 namespace handlab::gui {
 namespace {
-
-void enrol(const QString& db) {
-  store::StudyStore store(db.toStdString());
-  store::Participant p;
-  p.id = "P01";
-  p.age = 30;
-  p.sex = "F";
-  p.handedness = "right";
-  p.hand_length = 0.18;
-  p.vr_experience = "none";
-  studies::enrol_participant(store, p);
-}
 
 QString session_log(const SessionPage& page) {
   QString text;
@@ -57,21 +44,27 @@ QString session_log(const SessionPage& page) {
 // naming `session` as its sessions' defaults, open in `window`, its session panel set for P01
 // on the grasp proxy.
 SessionPage* headset_session(MainWindow& window, const QString& name, const std::string& session) {
-  std::ifstream in(std::string(HANDLAB_SOURCE_DIR) + "/tests/openxr/headset-protocol.json");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string protocol = test::fresh_path(name.toStdString() + ".json");
-  std::ofstream(protocol) << "{\"session\": " << session << "," << text.substr(1);
+  const std::string protocol = test::headset_protocol_with_session(session, name.toStdString());
   const QString db = QString::fromStdString(test::fresh_path(name.toStdString() + ".db"));
   window.show();
   EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
   EXPECT_EQ(window.create_study(QString::fromStdString(protocol), db), QString());
-  enrol(db);
+  testing::enrol_p01(db);
   EXPECT_EQ(window.open_study(db), QString());
   SessionPage* page = window.session();
   page->participant_box()->setCurrentText("P01");
   page->world_box()->setCurrentIndex(
       page->world_box()->findData(int(studies::WorldKind::kGraspProxy)));
   return page;
+}
+
+// The study `name`'s first trial stored, not aborted, with at least `frames` frames logged.
+void expect_first_trial_stored(const std::string& name, int frames) {
+  store::StudyStore store(std::string(HANDLAB_TEST_TMP) + "/" + name + ".db");
+  const auto trials = store.trials("P01");
+  ASSERT_GE(trials.size(), 1u);
+  EXPECT_NE(trials.front().status, store::TrialStatus::kAborted);
+  EXPECT_GE(trials.front().frames, frames) << "its frames logged at 120 Hz";
 }
 
 // Each eye's image as read back from the headset, where the test's runner keeps pictures.
@@ -202,18 +195,8 @@ TEST(AppHeadset, RunsATrialInTheHeadsetChosenInTheSessionPanel) {
     window.grab().save(QString(dir) + "/app-window.png");
   }
 
-  store::StudyStore store(std::string(HANDLAB_TEST_TMP) + "/app_headset.db");
-  const auto trials = store.trials("P01");
-  ASSERT_GE(trials.size(), 1u);
-  EXPECT_NE(trials.front().status, store::TrialStatus::kAborted);
-  EXPECT_GT(trials.front().frames, 100) << "its frames logged at 120 Hz";
+  expect_first_trial_stored("app_headset", 100);  // a trial of at most 2 s at 120 Hz
 }
-
-}  // namespace
-}  // namespace handlab::gui
-
-namespace handlab::gui {
-namespace {
 
 // The runtime's hands as the tracker, in the headset: the open palm calibrates, a trial runs
 // on them and its frames are logged at 120 Hz. Needs a runtime that tracks hands and a hand
@@ -235,7 +218,7 @@ TEST(AppHeadsetHands, CalibratesAndRunsATrialOnTheHeadsetsOwnHands) {
   if (::testing::Test::HasFatalFailure()) return;
   const QString log = session_log(*page);
   EXPECT_TRUE(log.contains("OpenXR hands")) << log.toStdString();
-  EXPECT_TRUE(page->calibration_label()->text().contains("alibrated"))
+  EXPECT_TRUE(page->calibration_label()->text().startsWith("Calibrated: scale"))
       << page->calibration_label()->text().toStdString();
   const auto counts = page->worker()->headset_counts();
   ASSERT_TRUE(counts.has_value());
@@ -247,11 +230,7 @@ TEST(AppHeadsetHands, CalibratesAndRunsATrialOnTheHeadsetsOwnHands) {
   std::printf("headset: %ld frames shown, %zu latencies\n", counts->shown,
               counts->latency_ms.size());
   keep_eyes(*page->worker()->headset_frame());
-  store::StudyStore store(std::string(HANDLAB_TEST_TMP) + "/app_headset_hands.db");
-  const auto trials = store.trials("P01");
-  ASSERT_GE(trials.size(), 1u);
-  EXPECT_NE(trials.front().status, store::TrialStatus::kAborted);
-  EXPECT_GE(trials.front().frames, 230) << "2 s at 120 Hz";
+  expect_first_trial_stored("app_headset_hands", 230);
 }
 
 }  // namespace

@@ -49,10 +49,12 @@
 #include "studies/protocol/protocol.h"
 #include "studies/session/enrolment.h"
 #include "studies/session/session_runner.h"
+#include "tests/app/enrol_p01.h"
 #include "tests/app/view_cells.h"
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
+using handlab::gui::testing::enrol_p01;
 using handlab::gui::testing::view_cell;
 using handlab::gui::testing::view_rows;
 
@@ -68,19 +70,6 @@ void when_form_opens(std::function<void(ParticipantForm*)> fill) {
     ASSERT_NE(form, nullptr);
     fill(form);
   });
-}
-
-// Enrols P01, a right-handed man new to VR, into the study `db`.
-void enrol_p01(const QString& db, int age, double hand_length) {
-  store::StudyStore store(db.toStdString());
-  store::Participant p;
-  p.id = "P01";
-  p.age = age;
-  p.sex = "M";
-  p.handedness = "right";
-  p.hand_length = hand_length;
-  p.vr_experience = "none";
-  studies::enrol_participant(store, p);
 }
 
 // The session page set for P01 and the scripted participant in `world`, as fast as it goes.

@@ -8,15 +8,13 @@
 #include <set>
 #include <string>
 
-#include <fstream>
-#include <iterator>
-
 #include <gtest/gtest.h>
 
 #include "core/render/image.h"
 #include "core/util/build_info.h"
 #include "core/util/json_value.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
 
 namespace handlab {
@@ -237,11 +235,8 @@ TEST(CliTracking, InfoViaOpenXrFitsAsTheLeapsJoints) {
 // OpenXR's hands named there are opened (and, with no runtime, refused in one line); the
 // options choose otherwise; the Leap, which only the app reads live, is refused by name.
 TEST(CliSession, TheProtocolsSessionDefaultsHoldWhereNoOptionIsGiven) {
-  std::ifstream in(std::string(HANDLAB_SOURCE_DIR) + "/tests/openxr/headset-protocol.json");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  auto study = [&](const std::string& session, const std::string& name) {
-    const std::string protocol = handlab::test::fresh_path(name + ".json");
-    std::ofstream(protocol) << "{\"session\": " << session << "," << text.substr(1);
+  auto study = [](const std::string& session, const std::string& name) {
+    const std::string protocol = handlab::test::headset_protocol_with_session(session, name);
     const std::string db = handlab::test::fresh_path(name + ".db");
     EXPECT_EQ(run_cli("study create --protocol " + protocol + " --db " + db).status, 0);
     EXPECT_EQ(run_cli("participant add --db " + db +

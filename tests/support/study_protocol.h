@@ -40,4 +40,15 @@ inline std::string study_with_practice() {
   return path;
 }
 
+// tests/openxr/headset-protocol.json (two 2-second trials) naming `session` (a JSON object)
+// as its sessions' defaults, as a file `name`.json under the test directory.
+inline std::string headset_protocol_with_session(const std::string& session,
+                                                 const std::string& name) {
+  const std::string text =
+      file_bytes(std::string(HANDLAB_SOURCE_DIR) + "/tests/openxr/headset-protocol.json");
+  const std::string path = fresh_path(name + ".json");
+  std::ofstream(path) << with(text, "{", "{\"session\": " + session + ",");
+  return path;
+}
+
 }  // namespace handlab::test
