@@ -28,10 +28,15 @@ void add_gui_options(QCommandLineParser& parser) {
        "SECONDS"},
       {"contacts", "Show the simulation's contact points."},
       {"participant", "The participant selected (with --start: whose session runs).", "ID"},
-      {"tracker", "With --start: leap, openxr, scripted, simulated or a recording file.", "TRACKER",
-       "scripted"},
-      {"display", "With --start: where the participant looks: window or headset (OpenXR).",
-       "DISPLAY", "window"},
+      {"tracker",
+       "With --start: leap, openxr, scripted, simulated or a recording file (default: the "
+       "protocol's session tracker, else scripted).",
+       "TRACKER"},
+      // Not --display: Qt takes that (and -display) as the X server to use.
+      {"participant-view",
+       "With --start: where the participant looks: window or headset (OpenXR) (default: the "
+       "protocol's session display, else window).",
+       "VIEW", "window"},
       {"list-xr",
        "No window: say which OpenXR runtime, headset and hand tracking are found, then quit."},
       {"world", "With --start: soft (the soft hand) or proxy.", "WORLD", "soft"},
@@ -82,9 +87,10 @@ GuiOptions read_gui_options(const QCommandLineParser& parser) {
   o.start = parser.isSet("start");
   if (parser.isSet("tracker")) o.tracker = parser.value("tracker");
   o.proxy_world = parser.value("world") == "proxy";
-  if (parser.value("display") != "window" && parser.value("display") != "headset")
-    throw GuiUsageError("--display is window or headset");
-  if (parser.isSet("display")) o.headset = parser.value("display") == "headset";
+  const QString view = parser.value("participant-view");
+  if (view != "window" && view != "headset")
+    throw GuiUsageError("--participant-view is window or headset");
+  if (parser.isSet("participant-view")) o.headset = view == "headset";
   o.leap_address = parser.value("leap-address");
   o.real_time = !parser.isSet("no-real-time");
   if (o.start && parser.isSet("measure-latency")) {

@@ -49,6 +49,7 @@ SessionPage::SessionPage(QWidget* parent) : QWidget(parent) {
   // In the headset: what it shows, its left eye's last image as read back from it.
   headset_mirror_ = new QLabel;
   headset_mirror_->setObjectName("headset_mirror");
+  headset_mirror_->setToolTip(tr("What the headset shows: its left eye, as read back from it"));
   headset_mirror_->setAlignment(Qt::AlignCenter);
   headset_mirror_->hide();
   left->addWidget(headset_mirror_);

@@ -1,4 +1,5 @@
 #include <QMenuBar>
+#include <QProcess>
 #include <QSignalSpy>
 #include <QTest>
 #include <QWindow>
@@ -24,6 +25,28 @@ using handlab::gui::testing::view_rows;
 
 namespace handlab::gui {
 namespace {
+
+// The app's own options reach it: --participant-view is not Qt's -display (which took
+// `--display headset` for an X server), and --list-xr without a runtime says so in one line.
+TEST(AppCommandLine, TakesItsHeadsetOptions) {
+  QProcess bad;
+  bad.start(HANDLAB_APP, {"--participant-view", "helmet"});
+  ASSERT_TRUE(bad.waitForFinished(30000));
+  EXPECT_EQ(bad.exitCode(), 2);
+  const QString said = QString::fromUtf8(bad.readAllStandardError());
+  EXPECT_TRUE(said.contains("--participant-view is window or headset")) << said.toStdString();
+
+  QProcess list;
+  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+  env.insert("XR_RUNTIME_JSON", QString(HANDLAB_TEST_TMP) + "/no-such-runtime.json");
+  list.setProcessEnvironment(env);
+  list.start(HANDLAB_APP, {"--list-xr"});
+  ASSERT_TRUE(list.waitForFinished(30000));
+  EXPECT_EQ(list.exitCode(), 1);
+  EXPECT_EQ(QString::fromUtf8(list.readAllStandardError()),
+            "handlab: no OpenXR runtime answered: XR_ERROR_RUNTIME_UNAVAILABLE (docs/hmd.md says "
+            "how to start one)\n");
+}
 
 TEST(MainWindow, HasItsMenus) {
   MainWindow window;
