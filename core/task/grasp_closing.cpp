@@ -82,6 +82,18 @@ void set_closing_factor(GraspClosing& closing, const std::string& name, double v
   closing.*(f->field) = value * f->scale;
 }
 
+bool within_half_of_ranges(const GraspClosing& closing) {
+  const GraspClosing standard;
+  for (const ClosingFactor& f : closing_factors()) {
+    if (f.pair_levels.empty() || closing.*(f.field) == standard.*(f.field)) continue;
+    const auto [low, high] = std::minmax_element(f.pair_levels.begin(), f.pair_levels.end());
+    const double from = f.levels.front() >= 0 ? std::min(*low, f.levels.front()) : *low;
+    const double value = closing.*(f.field) / f.scale;
+    if (value < from - 1e-9 || value > *high + 1e-9) return false;
+  }
+  return true;
+}
+
 std::string describe_level(const ClosingFactor& factor, double level) {
   return factor.name + " " + number(level) + " " + factor.unit;
 }

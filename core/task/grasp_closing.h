@@ -44,6 +44,13 @@ const ClosingFactor& closing_factor(const std::string& name);
 // unknown name or a value outside the factor's range.
 void set_closing_factor(GraspClosing& closing, const std::string& name, double value);
 
+// Whether every factor of `closing` lies within about half of its range: between its pair
+// levels (the pairs grid's), from the range's start where the range starts at 0 or above
+// (over-closure 0-15 mm, speeds 2-16 cm/s, lifts 0.6-6 m/s^2, jitter 0-4 times), or at the
+// scripted pinch's own value; a factor without pair levels (the hold) anywhere. Part of the
+// map the grip must hold whole (docs/simulator.md).
+bool within_half_of_ranges(const GraspClosing& closing);
+
 // "over_closure 10 mm": a factor at a level (its unit's).
 std::string describe_level(const ClosingFactor& factor, double level);
 

@@ -553,10 +553,11 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), std::stod(cube));
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
-    for (const char* key : {"factor", "level", "closing", "values", "held", "released", "lift_m",
-                            "slip_mm", "max_penetration_mm", "peak_grip_n", "turn_deg",
-                            "pinch_error_mm", "pinch_clearance_mm", "placement_pad_error_mm",
-                            "placed_by_rule", "meets_pinch_rule", "top_load_before_closing_n"})
+    for (const char* key :
+         {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
+          "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm", "pinch_clearance_mm",
+          "placement_pad_error_mm", "placed_by_rule", "meets_pinch_rule",
+          "top_load_before_closing_n", "within_half"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);
@@ -588,6 +589,57 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_EQ(run_cli("sim grasp --closing jitter=1").status, 2) << "jitter without a recording";
   EXPECT_EQ(run_cli("sim grasp --physics friction=-1").status, 2);
   EXPECT_EQ(run_cli("sim grasp --physics grip=1").status, 2);
+}
+
+// A map set beside one written before (--against): a map whose 1 cm cube held its 0 mm
+// over-closure, which today's physics loses (nothing presses), and lost the scripted pinch,
+// which it holds; and a map without that cube.
+TEST(CliSim, GraspMapSetsEachClosingBesideTheMapBefore) {
+  const auto map_before = [](const std::string& name, double cube, bool zero_held,
+                             bool pinch_held) {
+    const std::string held[] = {zero_held ? "true" : "false", pinch_held ? "true" : "false"};
+    std::string closings;
+    const char* over_closures[] = {"0", "3"};
+    for (int i = 0; i < 2; ++i)
+      closings += std::string(i ? "," : "") +
+                  R"({"factor": "over_closure", "level": 0, "values": {"over_closure": )" +
+                  over_closures[i] + R"(, "tilt_yaw": 0, "tilt_pitch": 0, "offset_along": 0,)" +
+                  R"( "lead": 0, "closing_speed": 0, "lift_acceleration": 0, "hold": 5,)" +
+                  R"( "jitter": 0}, "held": )" + held[i] + R"(, "released": true})";
+    return write_temp(name, R"({"cubes": [{"cube_size_m": )" + std::to_string(cube) +
+                                R"(, "closings": [)" + closings + "]}]}");
+  };
+  const std::string before = map_before("before-map.json", 0.01, true, false);
+  const auto against = [](const std::string& spec, const std::string& map) {
+    const Result r = run_cli("sim grasp --cube 0.01 --jobs 1 --closing " + spec + " --against " +
+                             map + " --json -");
+    EXPECT_EQ(r.status, 0) << r.out;
+    return util::JsonValue::parse(r.out)["cubes"][0];
+  };
+  const util::JsonValue lost = against("over_closure=0", before)["against"];
+  EXPECT_EQ(lost["in_both"].as_number(), 1);
+  EXPECT_EQ(lost["held_before"].as_number(), 1);
+  EXPECT_EQ(lost["held_after"].as_number(), 0);
+  ASSERT_EQ(lost["held_before_lost_after"].size(), 1u);
+  EXPECT_EQ(lost["held_before_lost_after"][0].as_string(), "over_closure 0 mm");
+  EXPECT_EQ(lost["lost_before_held_after"].size(), 0u);
+  const util::JsonValue won = against("over_closure=3", before)["against"];
+  EXPECT_EQ(won["in_both"].as_number(), 1);
+  EXPECT_EQ(won["held_before_lost_after"].size(), 0u);
+  ASSERT_EQ(won["lost_before_held_after"].size(), 1u);
+  EXPECT_EQ(won["lost_before_held_after"][0].as_string(), "the scripted pinch");
+  const std::string other = map_before("other-cube.json", 0.06, true, true);
+  const Result text =
+      run_cli("sim grasp --cube 0.01 --jobs 1 --closing over_closure=3 --against " + other);
+  EXPECT_EQ(text.status, 0) << text.out;
+  EXPECT_NE(text.out.find("the map before has no 10 mm cube"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("within half of every range: 1 of 1 held"), std::string::npos);
+  EXPECT_EQ(run_cli("sim grasp --closing over_closure=3 --against " +
+                    write_temp("not-a-map.json", "{\"cubes\": 3}"))
+                .status,
+            2);
+  EXPECT_EQ(run_cli("sim grasp --closing over_closure=3 --against /nonexistent/map.json").status,
+            2);
 }
 
 TEST(CliAnalyze, ReportsAndWritesJson) {

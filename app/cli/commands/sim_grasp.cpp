@@ -3,20 +3,24 @@
 #include "app/cli/commands/sim_grasp.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
+#include "app/cli/commands/grasp_map_file.h"
 #include "app/cli/progress_line.h"
 #include "core/hand/hand_shape.h"
 #include "core/retarget/recording_poses.h"
 #include "core/sim/sim_parameter_names.h"
+#include "core/task/grasp_comparison.h"
 #include "core/task/grasp_map.h"
 #include "core/task/human_closings.h"
 #include "core/util/json_writer.h"
@@ -28,6 +32,8 @@ namespace {
 struct CubeMap {
   double cube_size = 0.0;
   std::vector<sim::GraspOutcome> outcomes;
+  std::optional<sim::GraspComparison> against;  // with --against, when its map has this cube
+  bool against_missing = false;                 // with --against, when it has not
 };
 
 // "over_closure 10 mm" for a factor's level, the closing's description for a pair or a draw.
@@ -41,6 +47,36 @@ std::string closing_label(const sim::ClosingPoint& p) {
 
 std::string group_of(const sim::ClosingPoint& p) {
   return p.factor.empty() ? "scripted" : p.factor == "pair" ? "pairs" : p.factor;
+}
+
+// The grid's closings within half of every factor's range (grasp_closing.h), which the grip
+// must hold whole, and those of them it lost; the draws are not a grid's.
+void print_within_half(const CubeMap& map) {
+  int run = 0, held = 0;
+  std::string lost;
+  for (const sim::GraspOutcome& o : map.outcomes) {
+    if (o.point.factor == "draw" || !sim::within_half_of_ranges(o.point.closing)) continue;
+    ++run;
+    held += o.measures.held ? 1 : 0;
+    if (!o.measures.held) lost += "\n  - " + closing_label(o.point);
+  }
+  if (run > 0)
+    std::printf("within half of every range: %d of %d held%s\n", held, run,
+                lost.empty() ? "" : (", lost:" + lost).c_str());
+}
+
+void print_closings(const char* title, const std::vector<sim::ClosingPoint>& points) {
+  std::printf("%s: %zu\n", title, points.size());
+  for (const sim::ClosingPoint& p : points) std::printf("  - %s\n", closing_label(p).c_str());
+}
+
+void print_comparison(const sim::GraspComparison& c) {
+  std::printf("against the map before: %d closings in both, held %d before and %d now", c.in_both,
+              c.held_before, c.held_after);
+  if (c.only_after > 0) std::printf(" (%d not in it)", c.only_after);
+  std::printf("\n");
+  print_closings("held before, lost now", c.held_before_lost_after);
+  print_closings("lost before, held now", c.lost_before_held_after);
 }
 
 void print_map(const CubeMap& map) {
@@ -64,6 +100,10 @@ void print_map(const CubeMap& map) {
     held.back().second.first += m.held ? 1 : 0;
     ++held.back().second.second;
   }
+  print_within_half(map);
+  if (map.against) print_comparison(*map.against);
+  if (map.against_missing)
+    std::printf("the map before has no %.0f mm cube\n", map.cube_size * 1000);
   std::printf("held:");
   for (const auto& [group, count] : held) {
     std::printf(" %s %d of %d", group.c_str(), count.first, count.second);
@@ -88,7 +128,8 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
     json.field(f.name, o.point.closing.*(f.field) / f.scale);
   json.end_object();
   write_pinch_measures(json, o.measures);
-  json.field("pinch_error_mm", o.pinch_error_mm)
+  json.field("within_half", sim::within_half_of_ranges(o.point.closing))
+      .field("pinch_error_mm", o.pinch_error_mm)
       .field("pinch_clearance_mm", o.pinch_clearance_mm)
       .field("placement_pad_error_mm", o.placement_pad_error_mm)
       .field("placed_by_rule", o.placed_by_rule)
@@ -131,6 +172,25 @@ void write_factors(util::JsonWriter& json, const MapRun& run) {
   json.end_array().end_object();
 }
 
+void write_points(util::JsonWriter& json, const char* key,
+                  const std::vector<sim::ClosingPoint>& points) {
+  json.key(key).begin_array();
+  for (const sim::ClosingPoint& p : points) json.value(closing_label(p));
+  json.end_array();
+}
+
+void write_comparison(util::JsonWriter& json, const sim::GraspComparison& c) {
+  json.key("against")
+      .begin_object()
+      .field("in_both", c.in_both)
+      .field("held_before", c.held_before)
+      .field("held_after", c.held_after)
+      .field("not_in_before", c.only_after);
+  write_points(json, "held_before_lost_after", c.held_before_lost_after);
+  write_points(json, "lost_before_held_after", c.lost_before_held_after);
+  json.end_object();
+}
+
 // A cube's closings, how many held, and the draws' hold rate with its Wilson interval.
 void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
   json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
@@ -144,6 +204,7 @@ void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
     }
   }
   json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
+  if (map.against) write_comparison(json, *map.against);
   if (drawn > 0) {
     const stats::ProportionInterval ci = stats::wilson_interval(drawn_held, drawn);
     json.key("draws")
@@ -197,6 +258,19 @@ std::vector<sim::ClosingPoint> grid_of(const Arguments& args, const std::string&
   if (args.has("factor"))
     throw UsageError("--factor maps single factors: give it with --grid single");
   return grid == "pairs" ? sim::factor_pairs_grid(with_jitter) : std::vector<sim::ClosingPoint>{};
+}
+
+// `map` beside the same cube's map in `before`, if it has one.
+std::optional<sim::GraspComparison> compare_with(const std::vector<MappedCube>& before,
+                                                 const CubeMap& map) {
+  for (const MappedCube& cube : before) {
+    if (std::abs(cube.cube_size - map.cube_size) > 1e-9) continue;
+    std::vector<sim::MappedClosing> after;
+    for (const sim::GraspOutcome& o : map.outcomes)
+      after.push_back({o.point, o.measures.held, o.measures.released});
+    return sim::compare_maps(cube.closings, after);
+  }
+  return std::nullopt;
 }
 
 // One cube's closings run side by side, with a progress line.
@@ -312,6 +386,9 @@ std::vector<OptionSpec> sim_grasp_options() {
        "its own jitter in the draws (e.g. data/leap/pinch.json.lz)"},
       {"jobs", "J", "closings run side by side (default: the machine's cores)", "0"},
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
+      {"against", "BEFORE.json",
+       "set each closing beside the same closing of a map sim grasp --json wrote before (other "
+       "physics, another time step): which it held there and loses here, and the other way"},
   };
   specs.push_back(physics_option());
   return specs;
@@ -319,7 +396,8 @@ std::vector<OptionSpec> sim_grasp_options() {
 
 CommandHelp sim_grasp_help() {
   return {"sim grasp",
-          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [jobs] [json]",
+          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [jobs] [against] "
+           "[json]",
            "[cube] closing [jitter-from] [physics] [json]"},
           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing as the "
           "closing says on the intermediate hand it follows: each pad's target past its face "
@@ -334,7 +412,8 @@ CommandHelp sim_grasp_help() {
           "closings whose sources --json lists. Reports per closing whether the cube was held "
           "through the lift and hold and released, its slip between the pads, the flesh's "
           "deepest penetration, the hold's peak grip and the cube's turn; the hold rate per "
-          "factor and over the draws with its 95 % interval (docs/simulator.md)."};
+          "factor and over the draws with its 95 % interval, and how many of the grid's closings "
+          "within half of every factor's range it held (docs/simulator.md)."};
 }
 
 int sim_grasp(const std::vector<std::string>& argv) {
@@ -354,6 +433,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
   if (grid_points.empty() && draws == 0) throw UsageError("--grid none needs --draws N");
   const int jobs = job_count(args);
   const bool to_stdout = args.text("json") == "-";
+  std::vector<MappedCube> before;
+  if (args.has("against")) before = read_grasp_map(args.text("against"));
   std::vector<CubeMap> maps;
   const auto start = std::chrono::steady_clock::now();
   sim::SimParameters parameters;
@@ -367,6 +448,10 @@ int sim_grasp(const std::vector<std::string>& argv) {
         sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters);
     scene.jitter = jitter;
     CubeMap map = map_cube(scene, side, points, jobs, to_stdout, start);
+    if (args.has("against")) {
+      map.against = compare_with(before, map);
+      map.against_missing = !map.against;
+    }
     if (!to_stdout) {
       if (jitter && maps.empty())
         std::printf("jitter of %s: the wrist %.2f mm, the joints %.2f deg RMS\n",

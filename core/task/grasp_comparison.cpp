@@ -1,0 +1,37 @@
+#include "core/task/grasp_comparison.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace handlab::sim {
+
+bool same_closing(const ClosingPoint& a, const ClosingPoint& b) {
+  const bool draw = a.factor == "draw";
+  if (draw != (b.factor == "draw") || (draw && a.level != b.level)) return false;
+  return std::all_of(closing_factors().begin(), closing_factors().end(),
+                     [&](const ClosingFactor& f) {
+                       return std::abs(a.closing.*(f.field) - b.closing.*(f.field)) <= 1e-9;
+                     });
+}
+
+GraspComparison compare_maps(const std::vector<MappedClosing>& before,
+                             const std::vector<MappedClosing>& after) {
+  GraspComparison c;
+  for (const MappedClosing& a : after) {
+    const auto b = std::find_if(before.begin(), before.end(), [&](const MappedClosing& m) {
+      return same_closing(m.point, a.point);
+    });
+    if (b == before.end()) {
+      ++c.only_after;
+      continue;
+    }
+    ++c.in_both;
+    c.held_before += b->held ? 1 : 0;
+    c.held_after += a.held ? 1 : 0;
+    if (b->held && !a.held) c.held_before_lost_after.push_back(a.point);
+    if (!b->held && a.held) c.lost_before_held_after.push_back(a.point);
+  }
+  return c;
+}
+
+}  // namespace handlab::sim

@@ -1,0 +1,81 @@
+// Two maps side by side (core/task/grasp_comparison.h) and the part of the map within half of
+// every range (grasp_closing.h): closings matched by their factors, each way of changing
+// counted, the half ranges' edges where the pairs grid puts them.
+#include <gtest/gtest.h>
+
+#include "core/task/grasp_comparison.h"
+
+namespace handlab::sim::grasp_comparison_test {
+namespace {
+
+GraspClosing closing(const std::string& factor, double level) {
+  GraspClosing c;
+  set_closing_factor(c, factor, level);
+  return c;
+}
+
+MappedClosing mapped(const GraspClosing& c, bool held, const std::string& factor = "pair",
+                     double level = 1) {
+  return {{factor, level, c}, held, held};
+}
+
+TEST(GraspComparison, WithinHalfOfEveryRangeIsThePairsGridsSpan) {
+  EXPECT_TRUE(within_half_of_ranges(GraspClosing{}));
+  EXPECT_TRUE(within_half_of_ranges(closing("over_closure", 0)));
+  EXPECT_TRUE(within_half_of_ranges(closing("over_closure", 15)));
+  EXPECT_FALSE(within_half_of_ranges(closing("over_closure", 20)));
+  EXPECT_TRUE(within_half_of_ranges(closing("tilt_pitch", -15)));
+  EXPECT_FALSE(within_half_of_ranges(closing("tilt_pitch", -20)));
+  EXPECT_FALSE(within_half_of_ranges(closing("tilt_yaw", 30)));
+  EXPECT_TRUE(within_half_of_ranges(closing("offset_along", 0.2)));
+  EXPECT_FALSE(within_half_of_ranges(closing("offset_along", -0.3)));
+  EXPECT_TRUE(within_half_of_ranges(closing("lead", -100)));
+  EXPECT_FALSE(within_half_of_ranges(closing("lead", 200)));
+  EXPECT_TRUE(within_half_of_ranges(closing("closing_speed", 2)));
+  EXPECT_TRUE(within_half_of_ranges(closing("closing_speed", 10)));
+  EXPECT_FALSE(within_half_of_ranges(closing("closing_speed", 20)));
+  EXPECT_TRUE(within_half_of_ranges(closing("lift_acceleration", 6)));
+  EXPECT_FALSE(within_half_of_ranges(closing("lift_acceleration", 12)));
+  EXPECT_TRUE(within_half_of_ranges(closing("hold", 10))) << "the hold has no half";
+  EXPECT_TRUE(within_half_of_ranges(closing("jitter", 4)));
+  EXPECT_FALSE(within_half_of_ranges(closing("jitter", 8)));
+  GraspClosing both = closing("tilt_pitch", -15);
+  set_closing_factor(both, "over_closure", 20);
+  EXPECT_FALSE(within_half_of_ranges(both)) << "every factor, not one";
+  for (const ClosingPoint& p : factor_pairs_grid(true))
+    EXPECT_TRUE(within_half_of_ranges(p.closing)) << describe(p.closing);
+}
+
+TEST(GraspComparison, CountsTheClosingsEachMapHeldClosingByClosing) {
+  const GraspClosing a = closing("tilt_pitch", -15), b = closing("over_closure", 20),
+                     c = closing("lead", 100), d = closing("jitter", 4);
+  const std::vector<MappedClosing> before = {mapped(a, true), mapped(b, false), mapped(c, true),
+                                             mapped(GraspClosing{}, true, "draw", 3)};
+  const std::vector<MappedClosing> after = {mapped(c, true), mapped(a, false), mapped(b, true),
+                                            mapped(d, true),
+                                            mapped(GraspClosing{}, false, "draw", 4)};
+  const GraspComparison cmp = compare_maps(before, after);
+  EXPECT_EQ(cmp.in_both, 3);
+  EXPECT_EQ(cmp.only_after, 2) << "a closing not run before, and another draw";
+  EXPECT_EQ(cmp.held_before, 2);
+  EXPECT_EQ(cmp.held_after, 2);
+  ASSERT_EQ(cmp.held_before_lost_after.size(), 1u);
+  EXPECT_EQ(describe(cmp.held_before_lost_after[0].closing), "tilt_pitch -15 deg");
+  ASSERT_EQ(cmp.lost_before_held_after.size(), 1u);
+  EXPECT_EQ(describe(cmp.lost_before_held_after[0].closing), "over_closure 20 mm");
+}
+
+TEST(GraspComparison, TheSameClosingAsAMapFileReadsIt) {
+  GraspClosing read = closing("tilt_yaw", 10);
+  read.tilt_yaw = 10.0 * (M_PI / 180) * (1 + 1e-15);  // the unit's round trip through text
+  EXPECT_TRUE(same_closing({"tilt_yaw", 10, closing("tilt_yaw", 10)}, {"tilt_yaw", 10, read}));
+  EXPECT_FALSE(
+      same_closing({"pair", 1, closing("tilt_yaw", 10)}, {"pair", 1, closing("tilt_yaw", 11)}));
+  EXPECT_TRUE(same_closing({"pair", 1, GraspClosing{}}, {"", 0, GraspClosing{}}))
+      << "a grid's closing is its factors, whichever grid ran it";
+  EXPECT_FALSE(same_closing({"draw", 1, GraspClosing{}}, {"draw", 2, GraspClosing{}}));
+  EXPECT_FALSE(same_closing({"draw", 1, GraspClosing{}}, {"", 0, GraspClosing{}}));
+}
+
+}  // namespace
+}  // namespace handlab::sim::grasp_comparison_test
