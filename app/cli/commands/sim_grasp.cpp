@@ -398,7 +398,7 @@ CommandHelp sim_grasp_help() {
   return {"sim grasp",
           {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [jobs] [against] "
            "[json]",
-           "[cube] closing [jitter-from] [physics] [json]"},
+           "[cube] closing [jitter-from] [physics] [against] [json]"},
           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing as the "
           "closing says on the intermediate hand it follows: each pad's target past its face "
           "(over_closure, mm), the pinch's axis turned about the vertical and the faces' "
