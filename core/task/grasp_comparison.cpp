@@ -28,6 +28,8 @@ GraspComparison compare_maps(const std::vector<MappedClosing>& before,
     ++c.in_both;
     c.held_before += b->held ? 1 : 0;
     c.held_after += a.held ? 1 : 0;
+    c.released_before += b->held && b->released ? 1 : 0;
+    c.released_after += a.held && a.released ? 1 : 0;
     if (b->held && !a.held) c.held_before_lost_after.push_back(a.point);
     if (!b->held && a.held) c.lost_before_held_after.push_back(a.point);
   }

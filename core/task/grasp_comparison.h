@@ -17,9 +17,10 @@ struct MappedClosing {
 };
 
 struct GraspComparison {
-  int in_both = 0;                      // closings both maps ran
-  int held_before = 0, held_after = 0;  // of those
-  int only_after = 0;                   // closings of the second map the first did not run
+  int in_both = 0;                              // closings both maps ran
+  int held_before = 0, held_after = 0;          // of those
+  int released_before = 0, released_after = 0;  // of those, held and released
+  int only_after = 0;                           // closings of the second map the first did not run
   std::vector<ClosingPoint> held_before_lost_after, lost_before_held_after;
 };
 

@@ -620,6 +620,8 @@ TEST(CliSim, GraspMapSetsEachClosingBesideTheMapBefore) {
   EXPECT_EQ(lost["in_both"].as_number(), 1);
   EXPECT_EQ(lost["held_before"].as_number(), 1);
   EXPECT_EQ(lost["held_after"].as_number(), 0);
+  EXPECT_EQ(lost["held_and_released_before"].as_number(), 1);
+  EXPECT_EQ(lost["held_and_released_after"].as_number(), 0);
   ASSERT_EQ(lost["held_before_lost_after"].size(), 1u);
   EXPECT_EQ(lost["held_before_lost_after"][0].as_string(), "over_closure 0 mm");
   EXPECT_EQ(lost["lost_before_held_after"].size(), 0u);

@@ -71,8 +71,10 @@ void print_closings(const char* title, const std::vector<sim::ClosingPoint>& poi
 }
 
 void print_comparison(const sim::GraspComparison& c) {
-  std::printf("against the map before: %d closings in both, held %d before and %d now", c.in_both,
-              c.held_before, c.held_after);
+  std::printf(
+      "against the map before: %d closings in both, held %d before and %d now (held and "
+      "released %d and %d)",
+      c.in_both, c.held_before, c.held_after, c.released_before, c.released_after);
   if (c.only_after > 0) std::printf(" (%d not in it)", c.only_after);
   std::printf("\n");
   print_closings("held before, lost now", c.held_before_lost_after);
@@ -185,6 +187,8 @@ void write_comparison(util::JsonWriter& json, const sim::GraspComparison& c) {
       .field("in_both", c.in_both)
       .field("held_before", c.held_before)
       .field("held_after", c.held_after)
+      .field("held_and_released_before", c.released_before)
+      .field("held_and_released_after", c.released_after)
       .field("not_in_before", c.only_after);
   write_points(json, "held_before_lost_after", c.held_before_lost_after);
   write_points(json, "lost_before_held_after", c.lost_before_held_after);

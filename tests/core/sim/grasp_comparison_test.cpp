@@ -59,6 +59,8 @@ TEST(GraspComparison, CountsTheClosingsEachMapHeldClosingByClosing) {
   EXPECT_EQ(cmp.only_after, 2) << "a closing not run before, and another draw";
   EXPECT_EQ(cmp.held_before, 2);
   EXPECT_EQ(cmp.held_after, 2);
+  EXPECT_EQ(cmp.released_before, 2) << "mapped() releases what it holds";
+  EXPECT_EQ(cmp.released_after, 2);
   ASSERT_EQ(cmp.held_before_lost_after.size(), 1u);
   EXPECT_EQ(describe(cmp.held_before_lost_after[0].closing), "tilt_pitch -15 deg");
   ASSERT_EQ(cmp.lost_before_held_after.size(), 1u);
