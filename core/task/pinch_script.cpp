@@ -7,6 +7,7 @@
 
 #include "core/retarget/fingertip_solver.h"
 #include "core/sim/contact_forces.h"
+#include "core/sim/inverted_tets.h"
 #include "core/task/finger_pads.h"
 #include "core/task/pinch_clearance.h"
 
@@ -315,6 +316,7 @@ PinchMeter::PinchMeter(const HandSimModel& model, const PinchScript& script)
     : model_(model), script_(script) {}
 
 void PinchMeter::observe(const HandSimState& state, double t, double max_penetration) {
+  inverted_tets_ = std::max(inverted_tets_, inverted_tet_count(model_, state));
   if (t <= script_.approach_end + 1e-9)
     top_load_before_closing_n_ =
         std::max(top_load_before_closing_n_, flesh_forces_on_cube_faces(model_, state)[3]);
@@ -349,6 +351,7 @@ void PinchMeter::finish(const HandSimState& state, double duration, bool flesh_o
   report.peak_grip_n = peak_grip_n_;
   report.turn_deg = turn_deg_;
   report.top_load_before_closing_n = top_load_before_closing_n_;
+  report.inverted_tets = inverted_tets_;
   // Released: no flesh on the cube and the cube back down, a corner within 1 mm of the floor
   // (dropped from the lift's height it may still be tumbling, as a real one does).
   double lowest = INFINITY;

@@ -91,6 +91,9 @@ struct PinchReport {
   // The flesh's largest force on the cube's top (its own +y face) before the closing begins: a
   // hand come down onto the cube pressing it into the floor (N).
   double top_load_before_closing_n = 0.0;
+  // The most flesh tets inside out at once over the run (inverted_tets.h): a flesh tangled
+  // by the posture it is asked for.
+  int inverted_tets = 0;
   std::vector<double> step_ms;  // wall time of every step
   std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
   std::vector<int> halvings, direct_solves;                                         // per step
@@ -117,6 +120,7 @@ class PinchMeter {
   Eigen::Vector3d reference_ = Eigen::Vector3d::Zero();
   double lift_ = 0.0, slip_mm_ = 0.0, max_penetration_mm_ = 0.0, peak_grip_n_ = 0.0;
   double turn_deg_ = 0.0, top_load_before_closing_n_ = 0.0;
+  int inverted_tets_ = 0;
 };
 
 // The steps run_pinch takes to reach `duration` seconds, steps of `time_step`.

@@ -557,7 +557,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
          {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
           "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm", "pinch_clearance_mm",
           "placement_pad_error_mm", "placed_by_rule", "meets_pinch_rule",
-          "top_load_before_closing_n", "within_half"})
+          "top_load_before_closing_n", "inverted_tets", "within_half"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);

@@ -363,8 +363,9 @@ void print_pinch(const sim::PinchScene& setup, const sim::PinchReport& r) {
             << " cm: " << (r.held ? "held" : "NOT held") << ", lifted " << r.lift * 100
             << " cm, slip " << r.slip_mm << " mm, max penetration " << r.max_penetration_mm
             << " mm, peak grip " << r.peak_grip_n << " N, turned " << r.turn_deg << " deg, top "
-            << r.top_load_before_closing_n << " N before the closing, "
-            << (r.released ? "released" : "NOT released") << " (the scripted pads miss their "
+            << r.top_load_before_closing_n << " N before the closing, " << r.inverted_tets
+            << " tets inside out at most, " << (r.released ? "released" : "NOT released")
+            << " (the scripted pads miss their "
             << "targets by " << setup.script.pinch_error * 1000 << " mm"
             << (setup.script.placed_by_rule ? "; the hand placed by the pinch's rule" : "")
             << ")\n";

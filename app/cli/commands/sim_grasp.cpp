@@ -331,7 +331,8 @@ void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r) {
       .field("max_penetration_mm", r.max_penetration_mm)
       .field("peak_grip_n", r.peak_grip_n)
       .field("turn_deg", r.turn_deg)
-      .field("top_load_before_closing_n", r.top_load_before_closing_n);
+      .field("top_load_before_closing_n", r.top_load_before_closing_n)
+      .field("inverted_tets", r.inverted_tets);
 }
 
 std::vector<double> cube_sides(const Arguments& args) {

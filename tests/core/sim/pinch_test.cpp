@@ -38,6 +38,10 @@ TEST_P(Pinch, LiftsHoldsAndReleasesTheCube) {
   // presses further into the pads.
   EXPECT_LT(r.max_penetration_mm, GetParam() < 0.03 ? 0.5 : 1.5);
   EXPECT_TRUE(r.released) << "opening the fingers should drop it back on the floor";
+  // The flesh stays sound: a few tets of the light cube's pinch, where the knuckles press its
+  // top, are inside out (6), none of the heavy cube's; with the stiffening off the thumb's
+  // base tangles (39 of the light cube's, their rotations flipping from step to step).
+  EXPECT_LE(r.inverted_tets, 10);
   EXPECT_LT(highest - script.cube_centre.y(), script.lift_height + 0.01) << "m: flung upwards";
   // Holding still, the energy and its gradient agree: the line search takes Newton's step
   // whole (a friction spring whose normal turned with the cube once made it halve the step
