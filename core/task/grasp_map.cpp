@@ -48,8 +48,8 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
   util::run_in_parallel(
       points.size(), jobs,
       [&](std::size_t i) {
-        const PinchScript script =
-            make_grasp_script(scene.skeleton, scene.model, points[i].closing, scene.jitter);
+        const PinchScript script = make_grasp_script(scene.skeleton, scene.model, points[i].closing,
+                                                     scene.jitter, scene.posture);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];
         o.measures = run_pinch(scene.model, scene.skeleton, script, options);

@@ -11,7 +11,7 @@ HandSimState PinchScene::start() const {
 }
 
 PinchScene make_pinch_scene(double cube_size, int resolution, double squeeze, double hand_length,
-                            SimParameters parameters) {
+                            SimParameters parameters, PinchPosture posture) {
   PinchScene scene;
   scene.shape = hand::HandShape::with_length(hand_length);
   scene.skeleton = hand::build_simulated_hand(scene.shape);
@@ -20,7 +20,8 @@ PinchScene make_pinch_scene(double cube_size, int resolution, double squeeze, do
   scene.flesh = hand::build_flesh(scene.skeleton, scene.shape, options);
   parameters.cube_size = cube_size;
   scene.model = make_hand_sim_model(scene.skeleton, scene.flesh, parameters);
-  scene.script = make_pinch_script(scene.skeleton, scene.model, squeeze);
+  scene.posture = posture;
+  scene.script = make_pinch_script(scene.skeleton, scene.model, squeeze, posture);
   return scene;
 }
 

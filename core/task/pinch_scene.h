@@ -20,6 +20,7 @@ struct PinchScene {
   PinchScript script;
   // A real recording's tracker jitter, for closings that lay it on (none when null).
   std::shared_ptr<const PoseJitter> jitter;
+  PinchPosture posture = PinchPosture::kSolved;  // the script's, and the grasp map's closings'
 
   // The hand above the cube on the floor, at rest, as the script starts.
   HandSimState start() const;
@@ -27,8 +28,9 @@ struct PinchScene {
 
 // `resolution`: the flesh mesh's (1 the study's, 4 and 16 finer); `squeeze`: how far inside
 // the faces the pads' targets are (see make_pinch_script); `parameters`: the simulator's, but
-// for the cube's size.
+// for the cube's size; `posture`: how the pinch is placed (pinch_posture.h).
 PinchScene make_pinch_scene(double cube_size, int resolution = 1, double squeeze = 0.003,
-                            double hand_length = 0.214, SimParameters parameters = {});
+                            double hand_length = 0.214, SimParameters parameters = {},
+                            PinchPosture posture = PinchPosture::kSolved);
 
 }  // namespace handlab::sim

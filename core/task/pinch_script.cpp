@@ -10,6 +10,7 @@
 #include "core/sim/inverted_tets.h"
 #include "core/task/finger_pads.h"
 #include "core/task/pinch_clearance.h"
+#include "core/task/pinch_posture.h"
 
 namespace handlab::sim {
 namespace {
@@ -176,11 +177,12 @@ double pads_miss(const hand::Skeleton& ik, const std::vector<retarget::Feature>&
 // or on them where the pinch's rule places it again (place_by_rule); a closing past that goes
 // on with the fingers alone.
 PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                        const GraspClosing& closing, double wrist_squeeze) {
+                        const GraspClosing& closing, double wrist_squeeze, PinchPosture posture) {
   const double squeeze = closing.over_closure;
   PinchScript script;
   script.cube_size = 2 * model.cube_half.x();
   script.squeeze = squeeze;
+  script.posture = posture;
   script.cube_centre = Eigen::Vector3d(0, script.cube_size / 2, 0);
   script.thumb_bone = skeleton.bone_index("thumb3");
   script.index_bone = skeleton.bone_index("index3");
@@ -255,25 +257,44 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   options.max_iterations = options.cold_start_iterations = 200;
   // Solved to convergence once: undamped, whose last steps converge fastest.
   options.relative_decrease_tolerance = options.residual_damping = 0.0;
-  const retarget::SolverResult placed =
-      retarget::FingertipSolver(ik, features, options).solve(pose, goals(-wrist_squeeze), true);
-  pose.angles = placed.angles;
-  pose.root_position += placed.root_shift;
+  const bool functional = posture == PinchPosture::kFunctional;
+  const std::vector<int> dofs = functional ? posture_dofs(ik) : std::vector<int>{};
+  const double weight = functional_posture().weight;
+  if (functional) {
+    pose = place_in_posture(ik, features, goals(-wrist_squeeze), pose, posture_anchor(ik, pose),
+                            dofs, weight, true);
+  } else {
+    const retarget::SolverResult placed =
+        retarget::FingertipSolver(ik, features, options).solve(pose, goals(-wrist_squeeze), true);
+    pose.angles = placed.angles;
+    pose.root_position += placed.root_shift;
+  }
   RigidPose cube;
   cube.position = script.cube_centre;
   place_by_rule(ik, model, features, goals(0.0), cube, pose, script);
   options.root_translation_weight = 0.0;  // from here on the same wrist
-  if (script.placed_by_rule || squeeze != wrist_squeeze) {
+  if (functional && (script.placed_by_rule || squeeze != wrist_squeeze)) {
+    script.pinch = place_in_posture(ik, features, goals(-squeeze), script.pinch,
+                                    script.pinch.angles, dofs, weight, false);
+  } else if (script.placed_by_rule || squeeze != wrist_squeeze) {
     const retarget::SolverResult closed =
         retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(-squeeze), true);
     script.pinch.angles = closed.angles;
   }
   script.pinch_error = pads_miss(ik, features, script.pinch, goals(-squeeze));
   // The pads 15 mm off the faces.
-  const retarget::SolverResult opened =
-      retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
-  script.open = script.pinch;
-  script.open.angles = opened.angles;
+  if (functional) {
+    // Opened as a hand opens, the pads no longer held face to face.
+    std::vector<retarget::Feature> loose = features;
+    loose[2].weight = loose[3].weight = 0.1;
+    script.open = place_in_posture(ik, loose, goals(0.015), script.pinch, script.pinch.angles, dofs,
+                                   weight, false);
+  } else {
+    const retarget::SolverResult opened =
+        retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
+    script.open = script.pinch;
+    script.open.angles = opened.angles;
+  }
   if (script.placed_by_rule)
     script.approach_height = clear_approach_height(ik, model, script, cube);
   apply_timing(ik, closing, script);
@@ -283,18 +304,18 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
 }  // namespace
 
 PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                              double squeeze) {
+                              double squeeze, PinchPosture posture) {
   GraspClosing closing;
   closing.over_closure = squeeze;
-  return make_script(skeleton, model, closing, squeeze);
+  return make_script(skeleton, model, closing, squeeze, posture);
 }
 
 // The wrist goes where the script's pinch puts it; a closing past (or short of) that goes on
 // with the fingers alone, as a person's fingers close on past a face they do not feel.
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                              const GraspClosing& closing,
-                              std::shared_ptr<const PoseJitter> jitter) {
-  PinchScript script = make_script(skeleton, model, closing, GraspClosing{}.over_closure);
+                              const GraspClosing& closing, std::shared_ptr<const PoseJitter> jitter,
+                              PinchPosture posture) {
+  PinchScript script = make_script(skeleton, model, closing, GraspClosing{}.over_closure, posture);
   if (closing.jitter > 0) {
     if (!jitter) throw std::invalid_argument("a closing with jitter needs a recording's jitter");
     script.jitter_start = closing.jitter_phase * jitter->duration();

@@ -16,6 +16,7 @@
 #include "core/hand/skeleton.h"
 #include "core/sim/hand_simulator.h"
 #include "core/task/grasp_closing.h"
+#include "core/task/pinch_posture.h"
 #include "core/task/tracker_jitter.h"
 
 namespace handlab::sim {
@@ -31,6 +32,7 @@ struct PinchScript {
   double hold_end = 7.5, release_end = 7.9, end = 8.7;
   double approach_height = 0.05, lift_height = 0.10;  // m
   double squeeze = 0.0;  // m: how far inside the faces the pads' targets are
+  PinchPosture posture = PinchPosture::kSolved;  // how the pinch was placed (pinch_posture.h)
   // s per degree of freedom: how much later than the others it starts to close (one digit
   // before the other); empty: all together.
   std::vector<double> dof_delay;
@@ -63,7 +65,7 @@ struct PinchScript {
 // holds: the pads' depth is read from its rest nodes). `squeeze`: the pads' targets lie this
 // far inside the faces, so that the tracking springs press them on.
 PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                              double squeeze = 0.003);
+                              double squeeze = 0.003, PinchPosture posture = PinchPosture::kSolved);
 
 // The same pinch-and-lift closed as `closing` says (grasp_closing.h): the pads' targets
 // `over_closure` past the faces along the tilted axis, moved along the faces, one digit
@@ -72,7 +74,8 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
 // `jitter` (throws std::invalid_argument without one).
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                               const GraspClosing& closing,
-                              std::shared_ptr<const PoseJitter> jitter = nullptr);
+                              std::shared_ptr<const PoseJitter> jitter = nullptr,
+                              PinchPosture posture = PinchPosture::kSolved);
 
 // The grip at a state: over the cube's pairs of opposite faces, the lesser of the two faces'
 // flesh normal forces (N).

@@ -550,6 +550,8 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     EXPECT_EQ(r.status, 0) << r.out;
     const util::JsonValue doc = util::JsonValue::parse(r.out);
     EXPECT_EQ(doc["factors"].size(), 9u);
+    EXPECT_EQ(doc["posture"].as_string(), "solved");
+    EXPECT_EQ(doc.find("functional_posture"), nullptr);
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), std::stod(cube));
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
@@ -588,7 +590,30 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_EQ(run_cli("sim grasp --grid none").status, 2) << "no grid and no draws";
   EXPECT_EQ(run_cli("sim grasp --closing jitter=1").status, 2) << "jitter without a recording";
   EXPECT_EQ(run_cli("sim grasp --physics friction=-1").status, 2);
+  EXPECT_EQ(run_cli("sim grasp --posture bent").status, 2);
   EXPECT_EQ(run_cli("sim grasp --physics grip=1").status, 2);
+}
+
+// The map placed in the functional posture (--posture functional): named in the JSON with the
+// posture's angles and their sources; the light cube's scripted pinch held with its top free
+// (the solved posture's knuckles press it with 23.5 N).
+TEST(CliSim, GraspMapPlacesThePinchInAFunctionalPosture) {
+  const Result r = run_cli(
+      "sim grasp --cube 0.01 --jobs 1 --closing over_closure=3 --posture functional "
+      "--json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const util::JsonValue doc = util::JsonValue::parse(r.out);
+  EXPECT_EQ(doc["posture"].as_string(), "functional");
+  const util::JsonValue angles = doc["functional_posture"]["angles"];
+  ASSERT_EQ(angles.size(), 9u);
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    EXPECT_FALSE(angles[i]["source"].as_string().empty());
+    EXPECT_NE(angles[i].find("angle_deg"), nullptr);
+  }
+  EXPECT_GT(doc["functional_posture"]["weight_m_per_rad"].as_number(), 0.0);
+  const util::JsonValue o = doc["cubes"][0]["closings"][0];
+  EXPECT_TRUE(o["held"].as_bool());
+  EXPECT_LT(o["top_load_before_closing_n"].as_number(), 1.0);
 }
 
 // A map set beside one written before (--against): a map whose 1 cm cube held its 0 mm

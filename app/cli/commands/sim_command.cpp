@@ -376,6 +376,7 @@ void write_pinch_json(std::ostream& out, const sim::PinchScene& setup, const sim
   util::JsonWriter json(out);
   json.begin_object()
       .field("cube_size_m", setup.script.cube_size)
+      .field("posture", sim::pinch_posture_name(setup.script.posture))
       .field("placed_by_rule", setup.script.placed_by_rule)
       .field("meets_pinch_rule", setup.script.pinch_meets_rule)
       .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance)
@@ -410,13 +411,14 @@ std::vector<OptionSpec> sim_pinch_options() {
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
   specs.push_back(physics_option());
+  specs.push_back(posture_option());
   return specs;
 }
 
 CommandHelp sim_pinch_help() {
   return {"sim pinch",
-          {"[cube] [squeeze] [frames] [trace] [physics] [json] [options]",
-           "[cube] closing [jitter-from] [frames] [trace] [physics] [json] [options]"},
+          {"[cube] [squeeze] [frames] [trace] [physics] [posture] [json] [options]",
+           "[cube] closing [jitter-from] [frames] [trace] [physics] [posture] [json] [options]"},
           "Pinches the cube between thumb and index, lifts it 10 cm, holds it 5 s and opens the "
           "fingers.\n"
           "Reports whether it was held, its slip between the pads, the flesh's deepest "
@@ -430,8 +432,9 @@ int sim_pinch(const std::vector<std::string>& argv) {
   if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
   sim::SimParameters parameters = simulator_parameters(args);
   apply_physics_option(args, parameters);
-  sim::PinchScene setup =
-      sim::make_pinch_scene(cube_option(args), 1, squeeze, hand::HandShape{}.length, parameters);
+  const sim::PinchPosture posture = posture_of(args);
+  sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), 1, squeeze,
+                                                hand::HandShape{}.length, parameters, posture);
   if (args.text("trace") == "-" && args.text("json") == "-")
     throw UsageError("--trace - and --json - would share standard output: give one a file");
   if (args.has("jitter-from") && !args.has("closing"))
@@ -443,7 +446,7 @@ int sim_pinch(const std::vector<std::string>& argv) {
       throw UsageError("a closing with jitter=X and --jitter-from RECORDING go together");
     setup.script = sim::make_grasp_script(
         setup.skeleton, setup.model, closing,
-        args.has("jitter-from") ? recording_jitter(args.text("jitter-from")) : nullptr);
+        args.has("jitter-from") ? recording_jitter(args.text("jitter-from")) : nullptr, posture);
   }
   std::function<void(const sim::HandSimState&)> observer;
   std::optional<FrameWriter> frames;

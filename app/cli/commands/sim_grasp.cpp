@@ -146,6 +146,7 @@ struct MapRun {
   std::vector<std::string> physics;  // --physics NAME=VALUE
   std::string jitter_from;
   std::shared_ptr<const sim::PoseJitter> jitter;
+  sim::PinchPosture posture = sim::PinchPosture::kSolved;
 };
 
 // The factors, their levels and the human distribution's parameters with their sources.
@@ -223,11 +224,28 @@ void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
   json.end_object();
 }
 
+void write_posture(util::JsonWriter& json, sim::PinchPosture posture) {
+  json.field("posture", sim::pinch_posture_name(posture));
+  if (posture != sim::PinchPosture::kFunctional) return;
+  const sim::FunctionalPosture& p = sim::functional_posture();
+  json.key("functional_posture").begin_object().field("weight_m_per_rad", p.weight);
+  json.key("angles").begin_array();
+  for (const sim::PostureAngle& a : p.angles)
+    json.begin_object()
+        .field("dof", a.dof)
+        .field("angle_deg", a.angle * 180 / M_PI)
+        .field("source", a.source)
+        .end_object();
+  json.end_array().end_object();
+}
+
 void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::ostream& out) {
   util::JsonWriter json(out);
   json.begin_object().key("physics").begin_array();
   for (const std::string& item : run.physics) json.value(item);
-  json.end_array().key("jitter");
+  json.end_array();
+  write_posture(json, run.posture);
+  json.key("jitter");
   if (run.jitter)
     json.begin_object()
         .field("recording", run.jitter_from)
@@ -354,6 +372,18 @@ OptionSpec physics_option() {
           "", true};
 }
 
+OptionSpec posture_option() {
+  return {"posture", "solved|functional",
+          "how each pinch is placed: the pads' inverse kinematics with the wrist's turn fixed "
+          "(solved), or the wrist free and the thumb and index drawn towards a functional "
+          "posture (functional; docs/simulator.md)",
+          "solved"};
+}
+
+sim::PinchPosture posture_of(const Arguments& args) {
+  return sim::parse_pinch_posture(args.choice("posture", {"solved", "functional"}));
+}
+
 void apply_physics_option(const Arguments& args, sim::SimParameters& parameters) {
   for (const std::string& item : args.all("physics")) {
     const auto eq = item.find('=');
@@ -390,6 +420,7 @@ std::vector<OptionSpec> sim_grasp_options() {
        "lay this recording's tracker jitter on the closings: the jitter factor in the grid, "
        "its own jitter in the draws (e.g. data/leap/pinch.json.lz)"},
       {"jobs", "J", "closings run side by side (default: the machine's cores)", "0"},
+      posture_option(),
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
       {"against", "BEFORE.json",
        "set each closing beside the same closing of a map sim grasp --json wrote before (other "
@@ -401,9 +432,9 @@ std::vector<OptionSpec> sim_grasp_options() {
 
 CommandHelp sim_grasp_help() {
   return {"sim grasp",
-          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [jobs] [against] "
-           "[json]",
-           "[cube] closing [jitter-from] [physics] [against] [json]"},
+          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [posture] [jobs] "
+           "[against] [json]",
+           "[cube] closing [jitter-from] [physics] [posture] [against] [json]"},
           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing as the "
           "closing says on the intermediate hand it follows: each pad's target past its face "
           "(over_closure, mm), the pinch's axis turned about the vertical and the faces' "
@@ -444,13 +475,14 @@ int sim_grasp(const std::vector<std::string>& argv) {
   const auto start = std::chrono::steady_clock::now();
   sim::SimParameters parameters;
   apply_physics_option(args, parameters);
+  const sim::PinchPosture posture = posture_of(args);
   for (double side : cubes) {
     std::vector<sim::ClosingPoint> points = grid_points;
     for (sim::ClosingPoint& p :
          sim::human_closing_draws(int(draws), seed, side, jitter ? 1.0 : 0.0))
       points.push_back(std::move(p));
     sim::PinchScene scene =
-        sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters);
+        sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters, posture);
     scene.jitter = jitter;
     CubeMap map = map_cube(scene, side, points, jobs, to_stdout, start);
     if (args.has("against")) {
@@ -469,7 +501,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
   if (args.has("json"))
     util::write_output(args.text("json"), [&](std::ostream& out) {
       write_map_json(
-          maps, {int(draws), seed, args.all("physics"), args.text("jitter-from"), jitter}, out);
+          maps, {int(draws), seed, args.all("physics"), args.text("jitter-from"), jitter, posture},
+          out);
     });
   return 0;
 }

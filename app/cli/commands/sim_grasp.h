@@ -40,4 +40,8 @@ std::vector<double> cube_sides(const Arguments& args);
 OptionSpec physics_option();
 void apply_physics_option(const Arguments& args, sim::SimParameters& parameters);
 
+// --posture solved|functional: how sim pinch and sim grasp place each pinch (pinch_posture.h).
+OptionSpec posture_option();
+sim::PinchPosture posture_of(const Arguments& args);
+
 }  // namespace handlab::cli

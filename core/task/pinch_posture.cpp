@@ -1,0 +1,164 @@
+#include "core/task/pinch_posture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+#include "core/sim/rigid_body.h"
+
+namespace handlab::sim {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+constexpr int kIterations = 500;
+constexpr double kDifference = 1e-7;  // the Jacobian's forward differences (m, rad)
+
+// `pose` moved by x: with `free_wrist` the wrist turned by x[0..3] (about its own origin) and
+// shifted by x[3..6]; then dofs[j] by the j-th of the rest of x, within its limits.
+hand::HandPose moved(const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                     const std::vector<int>& dofs, const Eigen::VectorXd& x, bool free_wrist) {
+  hand::HandPose out = pose;
+  const Eigen::Index first = free_wrist ? 6 : 0;
+  if (free_wrist) {
+    out.root_rotation = rotation_from_vector(x.head<3>()).toRotationMatrix() * pose.root_rotation;
+    out.root_position += x.segment<3>(3);
+  }
+  for (std::size_t j = 0; j < dofs.size(); ++j) {
+    const hand::Dof& dof = skeleton.dofs[std::size_t(dofs[j])];
+    const Eigen::Index k = dofs[j];
+    out.angles(k) = std::clamp(pose.angles(k) + x(first + Eigen::Index(j)), dof.lower, dof.upper);
+  }
+  return out;
+}
+
+// The posture's angles set, the hand turned and moved so that the first two features lie along
+// their goals' axis, their midpoint on their goals'.
+hand::HandPose aligned(const hand::Skeleton& skeleton,
+                       const std::vector<retarget::Feature>& features,
+                       const std::vector<Eigen::Vector3d>& goals, hand::HandPose pose,
+                       const Eigen::VectorXd& anchor, const std::vector<int>& dofs) {
+  for (const int k : dofs) pose.angles(k) = anchor(k);
+  const hand::BoneFrames frames = hand::forward_kinematics(skeleton, pose);
+  const Eigen::Vector3d a = hand::marker_position(skeleton, frames, features[0].marker),
+                        b = hand::marker_position(skeleton, frames, features[1].marker);
+  const Eigen::Matrix3d turn =
+      Eigen::Quaterniond::FromTwoVectors(a - b, goals[0] - goals[1]).toRotationMatrix();
+  pose.root_rotation = turn * pose.root_rotation;
+  pose.root_position = turn * (pose.root_position - 0.5 * (a + b)) + 0.5 * (goals[0] + goals[1]);
+  return pose;
+}
+
+}  // namespace
+
+const char* pinch_posture_name(PinchPosture posture) {
+  return posture == PinchPosture::kFunctional ? "functional" : "solved";
+}
+
+PinchPosture parse_pinch_posture(const std::string& name) {
+  if (name == "solved") return PinchPosture::kSolved;
+  if (name == "functional") return PinchPosture::kFunctional;
+  throw std::invalid_argument("a pinch's posture is solved or functional, not " + name);
+}
+
+const FunctionalPosture& functional_posture() {
+  static const FunctionalPosture posture = [] {
+    const std::string hume =
+        "Hume et al. 1990 (J Hand Surg Am 15(2):240): mean flexion over 11 activities of daily "
+        "living, electrogoniometers";
+    const std::string fingers = hume + ", the four fingers pooled";
+    const std::string middle =
+        "assumption: the middle of the model's range (no pinch's value found; docs/simulator.md)";
+    FunctionalPosture p;
+    p.angles = {{"thumb_cmc_flexion", 17.5 * kDeg, middle},
+                {"thumb_cmc_abduction", 10 * kDeg, middle},
+                {"thumb_cmc_rotation", 15 * kDeg, middle},
+                {"thumb_mcp_flexion", 21 * kDeg, hume},
+                {"thumb_ip_flexion", 18 * kDeg, hume},
+                {"index_mcp_flexion", 61 * kDeg, fingers},
+                {"index_mcp_abduction", 0.0, "assumption: the finger straight on its metacarpal"},
+                {"index_pip_flexion", 60 * kDeg, fingers},
+                {"index_dip_flexion", 39 * kDeg, fingers}};
+    // A radian off the posture weighs as 5 mm of a pad off its goal (assumption): the pads
+    // reach their goals within a millimetre, the joints keep off their limits.
+    p.weight = 0.005;
+    return p;
+  }();
+  return posture;
+}
+
+std::vector<int> posture_dofs(const hand::Skeleton& skeleton) {
+  std::vector<int> dofs;
+  for (const PostureAngle& a : functional_posture().angles)
+    for (std::size_t k = 0; k < skeleton.dofs.size(); ++k)
+      if (skeleton.dofs[k].name == a.dof) dofs.push_back(int(k));
+  if (dofs.size() != functional_posture().angles.size())
+    throw std::invalid_argument("the functional posture needs a thumb and an index");
+  return dofs;
+}
+
+Eigen::VectorXd posture_anchor(const hand::Skeleton& skeleton, const hand::HandPose& pose) {
+  Eigen::VectorXd anchor = pose.angles;
+  const std::vector<int> dofs = posture_dofs(skeleton);
+  for (std::size_t j = 0; j < dofs.size(); ++j)
+    anchor(dofs[j]) = functional_posture().angles[j].angle;
+  return anchor;
+}
+
+hand::HandPose place_in_posture(const hand::Skeleton& skeleton,
+                                const std::vector<retarget::Feature>& features,
+                                const std::vector<Eigen::Vector3d>& goals,
+                                const hand::HandPose& start, const Eigen::VectorXd& anchor,
+                                const std::vector<int>& dofs, double weight, bool free_wrist) {
+  hand::HandPose pose =
+      free_wrist ? aligned(skeleton, features, goals, start, anchor, dofs) : start;
+  const Eigen::Matrix3d placed = pose.root_rotation;
+  const double wrist_weight = 0.2 * weight;
+  auto residuals = [&](const hand::HandPose& p) {
+    const hand::BoneFrames frames = hand::forward_kinematics(skeleton, p);
+    Eigen::VectorXd r(3 * Eigen::Index(features.size() + 1) + Eigen::Index(dofs.size()));
+    Eigen::Index at = 0;
+    for (std::size_t i = 0; i < features.size(); ++i, at += 3)
+      r.segment<3>(at) = features[i].weight *
+                         (hand::marker_position(skeleton, frames, features[i].marker) - goals[i]);
+    for (const int k : dofs) r(at++) = weight * (p.angles(k) - anchor(k));
+    const Eigen::AngleAxisd turn(Eigen::Matrix3d(p.root_rotation * placed.transpose()));
+    r.segment<3>(at) = wrist_weight * turn.angle() * turn.axis();
+    return r;
+  };
+  const Eigen::Index n = (free_wrist ? 6 : 0) + Eigen::Index(dofs.size());
+  Eigen::VectorXd r = residuals(pose);
+  double damping = 1e-3;
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
+    Eigen::MatrixXd jacobian(r.size(), n);
+    for (Eigen::Index j = 0; j < n; ++j)
+      jacobian.col(j) = (residuals(moved(skeleton, pose, dofs,
+                                         Eigen::VectorXd::Unit(n, j) * kDifference, free_wrist)) -
+                         r) /
+                        kDifference;
+    const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
+    const Eigen::VectorXd gradient = jacobian.transpose() * r;
+    bool lower = false;
+    for (int attempt = 0; attempt < 12 && !lower; ++attempt) {
+      Eigen::MatrixXd damped = normal;
+      damped.diagonal() += damping * (normal.diagonal().array() + 1e-12).matrix();
+      const hand::HandPose trial =
+          moved(skeleton, pose, dofs, -damped.ldlt().solve(gradient), free_wrist);
+      const Eigen::VectorXd trial_r = residuals(trial);
+      lower = trial_r.squaredNorm() < r.squaredNorm() * (1 - 1e-12);
+      if (lower) {
+        pose = trial;
+        r = trial_r;
+        damping *= 0.3;
+      } else {
+        damping *= 10;
+      }
+    }
+    if (!lower) break;
+  }
+  return pose;
+}
+
+}  // namespace handlab::sim
