@@ -368,6 +368,9 @@ void print_pinch(const sim::PinchScene& setup, const sim::PinchReport& r) {
             << " (the scripted pads miss their "
             << "targets by " << setup.script.pinch_error * 1000 << " mm"
             << (setup.script.placed_by_rule ? "; the hand placed by the pinch's rule" : "")
+            << (setup.script.posture == sim::PinchPosture::kFunctional
+                    ? "; in the functional posture"
+                    : "")
             << ")\n";
   print_timing(setup, r);
 }

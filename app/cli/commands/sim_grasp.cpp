@@ -494,6 +494,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
         std::printf("jitter of %s: the wrist %.2f mm, the joints %.2f deg RMS\n",
                     args.text("jitter-from").c_str(), 1000 * jitter->root_rms(),
                     jitter->angle_rms() * 180 / M_PI);
+      if (posture == sim::PinchPosture::kFunctional && maps.empty())
+        std::printf("each pinch placed in the functional posture (docs/simulator.md)\n");
       print_map(map);
     }
     maps.push_back(std::move(map));
