@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <limits>
 
-#include <Eigen/Cholesky>
-
 #include "core/sim/box_distance.h"
 #include "core/sim/hand_sim_state.h"
+#include "core/task/pose_least_squares.h"
 
 namespace handlab::sim {
 namespace {
@@ -74,36 +73,15 @@ struct Problem {
   }
 
   // Levenberg-Marquardt from `pose` at one weight of the penalty.
-  hand::HandPose solve(hand::HandPose pose, double weight) const {
-    const Eigen::Index n = 6 + Eigen::Index(skeleton.dofs.size());
-    Eigen::VectorXd r = residuals(pose, weight);
-    double damping = 1e-3;
-    for (int iteration = 0; iteration < kIterations; ++iteration) {
-      Eigen::MatrixXd jacobian(r.size(), n);
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const Eigen::VectorXd step = Eigen::VectorXd::Unit(n, j) * kDifference;
-        jacobian.col(j) = (residuals(moved(skeleton, pose, step), weight) - r) / kDifference;
-      }
-      const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
-      const Eigen::VectorXd gradient = jacobian.transpose() * r;
-      bool lower = false;
-      for (int attempt = 0; attempt < 10 && !lower; ++attempt) {
-        Eigen::MatrixXd damped = normal;
-        damped.diagonal() += damping * (normal.diagonal().array() + 1e-9).matrix();
-        const hand::HandPose trial = moved(skeleton, pose, -damped.ldlt().solve(gradient));
-        const Eigen::VectorXd trial_r = residuals(trial, weight);
-        lower = trial_r.squaredNorm() < r.squaredNorm();
-        if (lower) {
-          pose = trial;
-          r = trial_r;
-          damping *= 0.3;
-        } else {
-          damping *= 10;
-        }
-      }
-      if (!lower) break;
-    }
-    return pose;
+  hand::HandPose solve(const hand::HandPose& pose, double weight) const {
+    PoseLeastSquares options;
+    options.iterations = kIterations;
+    options.difference = kDifference;
+    return solve_pose_least_squares(
+        pose, 6 + Eigen::Index(skeleton.dofs.size()),
+        [&](const hand::HandPose& p) { return residuals(p, weight); },
+        [&](const hand::HandPose& p, const Eigen::VectorXd& x) { return moved(skeleton, p, x); },
+        options);
   }
 };
 

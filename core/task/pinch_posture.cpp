@@ -4,10 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 #include "core/sim/rigid_body.h"
+#include "core/task/pose_least_squares.h"
 
 namespace handlab::sim {
 namespace {
@@ -128,37 +128,18 @@ hand::HandPose place_in_posture(const hand::Skeleton& skeleton,
     r.segment<3>(at) = wrist_weight * turn.angle() * turn.axis();
     return r;
   };
-  const Eigen::Index n = (free_wrist ? 6 : 0) + Eigen::Index(dofs.size());
-  Eigen::VectorXd r = residuals(pose);
-  double damping = 1e-3;
-  for (int iteration = 0; iteration < kIterations; ++iteration) {
-    Eigen::MatrixXd jacobian(r.size(), n);
-    for (Eigen::Index j = 0; j < n; ++j)
-      jacobian.col(j) = (residuals(moved(skeleton, pose, dofs,
-                                         Eigen::VectorXd::Unit(n, j) * kDifference, free_wrist)) -
-                         r) /
-                        kDifference;
-    const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
-    const Eigen::VectorXd gradient = jacobian.transpose() * r;
-    bool lower = false;
-    for (int attempt = 0; attempt < 12 && !lower; ++attempt) {
-      Eigen::MatrixXd damped = normal;
-      damped.diagonal() += damping * (normal.diagonal().array() + 1e-12).matrix();
-      const hand::HandPose trial =
-          moved(skeleton, pose, dofs, -damped.ldlt().solve(gradient), free_wrist);
-      const Eigen::VectorXd trial_r = residuals(trial);
-      lower = trial_r.squaredNorm() < r.squaredNorm() * (1 - 1e-12);
-      if (lower) {
-        pose = trial;
-        r = trial_r;
-        damping *= 0.3;
-      } else {
-        damping *= 10;
-      }
-    }
-    if (!lower) break;
-  }
-  return pose;
+  PoseLeastSquares options;
+  options.iterations = kIterations;
+  options.difference = kDifference;
+  options.attempts = 12;
+  options.diagonal_floor = 1e-12;
+  options.relative_decrease = 1e-12;
+  return solve_pose_least_squares(
+      pose, (free_wrist ? 6 : 0) + Eigen::Index(dofs.size()), residuals,
+      [&](const hand::HandPose& p, const Eigen::VectorXd& x) {
+        return moved(skeleton, p, dofs, x, free_wrist);
+      },
+      options);
 }
 
 }  // namespace handlab::sim

@@ -1,0 +1,40 @@
+#include "core/task/pose_least_squares.h"
+
+#include <Eigen/Cholesky>
+
+namespace handlab::sim {
+
+hand::HandPose solve_pose_least_squares(hand::HandPose pose, Eigen::Index unknowns,
+                                        const PoseResiduals& residuals, const PoseStep& moved,
+                                        const PoseLeastSquares& options) {
+  Eigen::VectorXd r = residuals(pose);
+  double damping = 1e-3;
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    Eigen::MatrixXd jacobian(r.size(), unknowns);
+    for (Eigen::Index j = 0; j < unknowns; ++j) {
+      const Eigen::VectorXd step = Eigen::VectorXd::Unit(unknowns, j) * options.difference;
+      jacobian.col(j) = (residuals(moved(pose, step)) - r) / options.difference;
+    }
+    const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
+    const Eigen::VectorXd gradient = jacobian.transpose() * r;
+    bool lower = false;
+    for (int attempt = 0; attempt < options.attempts && !lower; ++attempt) {
+      Eigen::MatrixXd damped = normal;
+      damped.diagonal() += damping * (normal.diagonal().array() + options.diagonal_floor).matrix();
+      const hand::HandPose trial = moved(pose, -damped.ldlt().solve(gradient));
+      const Eigen::VectorXd trial_r = residuals(trial);
+      lower = trial_r.squaredNorm() < r.squaredNorm() * (1 - options.relative_decrease);
+      if (lower) {
+        pose = trial;
+        r = trial_r;
+        damping *= 0.3;
+      } else {
+        damping *= 10;
+      }
+    }
+    if (!lower) break;
+  }
+  return pose;
+}
+
+}  // namespace handlab::sim
