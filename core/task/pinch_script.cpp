@@ -273,6 +273,7 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   cube.position = script.cube_centre;
   place_by_rule(ik, model, features, goals(0.0), cube, pose, script);
   options.root_translation_weight = 0.0;  // from here on the same wrist
+  const hand::HandPose placed = script.pinch;
   if (functional && (script.placed_by_rule || squeeze != wrist_squeeze)) {
     script.pinch = place_in_posture(ik, features, goals(-squeeze), script.pinch,
                                     script.pinch.angles, dofs, weight, false);
@@ -284,11 +285,12 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   script.pinch_error = pads_miss(ik, features, script.pinch, goals(-squeeze));
   // The pads 15 mm off the faces.
   if (functional) {
-    // Opened as a hand opens, the pads no longer held face to face.
+    // Opened as a hand opens, the pads no longer held face to face, from the pinch as placed:
+    // the hand opens the same however far it will close past the faces.
     std::vector<retarget::Feature> loose = features;
     loose[2].weight = loose[3].weight = 0.1;
-    script.open = place_in_posture(ik, loose, goals(0.015), script.pinch, script.pinch.angles, dofs,
-                                   weight, false);
+    script.open =
+        place_in_posture(ik, loose, goals(0.015), placed, placed.angles, dofs, weight, false);
   } else {
     const retarget::SolverResult opened =
         retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
