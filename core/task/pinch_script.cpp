@@ -173,6 +173,50 @@ double pads_miss(const hand::Skeleton& ik, const std::vector<retarget::Feature>&
   return miss;
 }
 
+// The hand placed, wrist and fingers, where the pads reach `goals` (the features' order), in
+// `posture` (pinch_posture.h).
+hand::HandPose placed_pose(const hand::Skeleton& ik, const std::vector<retarget::Feature>& features,
+                           const std::vector<Eigen::Vector3d>& goals, hand::HandPose pose,
+                           PinchPosture posture, const retarget::SolverOptions& options) {
+  if (posture == PinchPosture::kFunctional)
+    return place_in_posture(ik, features, goals, pose, posture_anchor(ik, pose), posture_dofs(ik),
+                            functional_posture().weight, true);
+  const retarget::SolverResult placed =
+      retarget::FingertipSolver(ik, features, options).solve(pose, goals, true);
+  pose.angles = placed.angles;
+  pose.root_position += placed.root_shift;
+  return pose;
+}
+
+// From script.pinch as placed, the fingers alone: closed on to `closed` (where `close`) and
+// opened to `open` (the pads 15 mm off the faces), in script.posture.
+void close_and_open(const hand::Skeleton& ik, const std::vector<retarget::Feature>& features,
+                    const std::vector<Eigen::Vector3d>& closed,
+                    const std::vector<Eigen::Vector3d>& open, bool close,
+                    const retarget::SolverOptions& options, PinchScript& script) {
+  if (script.posture == PinchPosture::kFunctional) {
+    const std::vector<int> dofs = posture_dofs(ik);
+    const double weight = functional_posture().weight;
+    const hand::HandPose placed = script.pinch;
+    if (close)
+      script.pinch =
+          place_in_posture(ik, features, closed, placed, placed.angles, dofs, weight, false);
+    // Opened as a hand opens, the pads no longer held face to face, from the pinch as placed:
+    // the hand opens the same however far it will close past the faces.
+    std::vector<retarget::Feature> loose = features;
+    loose[2].weight = loose[3].weight = 0.1;
+    script.open = place_in_posture(ik, loose, open, placed, placed.angles, dofs, weight, false);
+    return;
+  }
+  if (close)
+    script.pinch.angles =
+        retarget::FingertipSolver(ik, features, options).solve(script.pinch, closed, true).angles;
+  const retarget::SolverResult opened =
+      retarget::FingertipSolver(ik, features, options).solve(script.pinch, open, true);
+  script.open = script.pinch;
+  script.open.angles = opened.angles;
+}
+
 // The script of `closing`: the hand placed where the pads reach `wrist_squeeze` inside the faces,
 // or on them where the pinch's rule places it again (place_by_rule); a closing past that goes
 // on with the fingers alone.
@@ -257,46 +301,14 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   options.max_iterations = options.cold_start_iterations = 200;
   // Solved to convergence once: undamped, whose last steps converge fastest.
   options.relative_decrease_tolerance = options.residual_damping = 0.0;
-  const bool functional = posture == PinchPosture::kFunctional;
-  const std::vector<int> dofs = functional ? posture_dofs(ik) : std::vector<int>{};
-  const double weight = functional_posture().weight;
-  if (functional) {
-    pose = place_in_posture(ik, features, goals(-wrist_squeeze), pose, posture_anchor(ik, pose),
-                            dofs, weight, true);
-  } else {
-    const retarget::SolverResult placed =
-        retarget::FingertipSolver(ik, features, options).solve(pose, goals(-wrist_squeeze), true);
-    pose.angles = placed.angles;
-    pose.root_position += placed.root_shift;
-  }
+  pose = placed_pose(ik, features, goals(-wrist_squeeze), pose, posture, options);
   RigidPose cube;
   cube.position = script.cube_centre;
   place_by_rule(ik, model, features, goals(0.0), cube, pose, script);
   options.root_translation_weight = 0.0;  // from here on the same wrist
-  const hand::HandPose placed = script.pinch;
-  if (functional && (script.placed_by_rule || squeeze != wrist_squeeze)) {
-    script.pinch = place_in_posture(ik, features, goals(-squeeze), script.pinch,
-                                    script.pinch.angles, dofs, weight, false);
-  } else if (script.placed_by_rule || squeeze != wrist_squeeze) {
-    const retarget::SolverResult closed =
-        retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(-squeeze), true);
-    script.pinch.angles = closed.angles;
-  }
+  close_and_open(ik, features, goals(-squeeze), goals(0.015),
+                 script.placed_by_rule || squeeze != wrist_squeeze, options, script);
   script.pinch_error = pads_miss(ik, features, script.pinch, goals(-squeeze));
-  // The pads 15 mm off the faces.
-  if (functional) {
-    // Opened as a hand opens, the pads no longer held face to face, from the pinch as placed:
-    // the hand opens the same however far it will close past the faces.
-    std::vector<retarget::Feature> loose = features;
-    loose[2].weight = loose[3].weight = 0.1;
-    script.open =
-        place_in_posture(ik, loose, goals(0.015), placed, placed.angles, dofs, weight, false);
-  } else {
-    const retarget::SolverResult opened =
-        retarget::FingertipSolver(ik, features, options).solve(script.pinch, goals(0.015), true);
-    script.open = script.pinch;
-    script.open.angles = opened.angles;
-  }
   if (script.placed_by_rule)
     script.approach_height = clear_approach_height(ik, model, script, cube);
   apply_timing(ik, closing, script);
