@@ -6,20 +6,21 @@
 
 #include <Eigen/Geometry>
 
+#include "core/hand/degrees.h"
 #include "core/sim/rigid_body.h"
 #include "core/task/pose_least_squares.h"
 
 namespace handlab::sim {
 namespace {
 
-constexpr double kDeg = M_PI / 180;
-constexpr int kIterations = 500;
-constexpr double kDifference = 1e-7;  // the Jacobian's forward differences (m, rad)
+constexpr int kPlacementIterations = 500;
+constexpr double kPlacementDifference = 1e-7;  // the Jacobian's forward differences (m, rad)
 
 // `pose` moved by x: with `free_wrist` the wrist turned by x[0..3] (about its own origin) and
 // shifted by x[3..6]; then dofs[j] by the j-th of the rest of x, within its limits.
-hand::HandPose moved(const hand::Skeleton& skeleton, const hand::HandPose& pose,
-                     const std::vector<int>& dofs, const Eigen::VectorXd& x, bool free_wrist) {
+hand::HandPose moved_in_posture(const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                                const std::vector<int>& dofs, const Eigen::VectorXd& x,
+                                bool free_wrist) {
   hand::HandPose out = pose;
   const Eigen::Index first = free_wrist ? 6 : 0;
   if (free_wrist) {
@@ -72,15 +73,15 @@ const FunctionalPosture& functional_posture() {
     const std::string middle =
         "assumption: the middle of the model's range (no pinch's value found; docs/simulator.md)";
     FunctionalPosture p;
-    p.angles = {{"thumb_cmc_flexion", 17.5 * kDeg, middle},
-                {"thumb_cmc_abduction", 10 * kDeg, middle},
-                {"thumb_cmc_rotation", 15 * kDeg, middle},
-                {"thumb_mcp_flexion", 21 * kDeg, hume},
-                {"thumb_ip_flexion", 18 * kDeg, hume},
-                {"index_mcp_flexion", 61 * kDeg, fingers},
+    p.angles = {{"thumb_cmc_flexion", 17.5 * hand::kDeg, middle},
+                {"thumb_cmc_abduction", 10 * hand::kDeg, middle},
+                {"thumb_cmc_rotation", 15 * hand::kDeg, middle},
+                {"thumb_mcp_flexion", 21 * hand::kDeg, hume},
+                {"thumb_ip_flexion", 18 * hand::kDeg, hume},
+                {"index_mcp_flexion", 61 * hand::kDeg, fingers},
                 {"index_mcp_abduction", 0.0, "assumption: the finger straight on its metacarpal"},
-                {"index_pip_flexion", 60 * kDeg, fingers},
-                {"index_dip_flexion", 39 * kDeg, fingers}};
+                {"index_pip_flexion", 60 * hand::kDeg, fingers},
+                {"index_dip_flexion", 39 * hand::kDeg, fingers}};
     // A radian off the posture weighs as 5 mm of a pad off its goal (assumption): the pads
     // reach their goals within a millimetre, the joints keep off their limits.
     p.weight = 0.005;
@@ -129,15 +130,15 @@ hand::HandPose place_in_posture(const hand::Skeleton& skeleton,
     return r;
   };
   PoseLeastSquares options;
-  options.iterations = kIterations;
-  options.difference = kDifference;
+  options.iterations = kPlacementIterations;
+  options.difference = kPlacementDifference;
   options.attempts = 12;
   options.diagonal_floor = 1e-12;
   options.relative_decrease = 1e-12;
   return solve_pose_least_squares(
       pose, (free_wrist ? 6 : 0) + Eigen::Index(dofs.size()), residuals,
       [&](const hand::HandPose& p, const Eigen::VectorXd& x) {
-        return moved(skeleton, p, dofs, x, free_wrist);
+        return moved_in_posture(skeleton, p, dofs, x, free_wrist);
       },
       options);
 }
