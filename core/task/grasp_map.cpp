@@ -49,7 +49,7 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
       points.size(), jobs,
       [&](std::size_t i) {
         const PinchScript script = make_grasp_script(scene.skeleton, scene.model, points[i].closing,
-                                                     scene.jitter, scene.posture);
+                                                     scene.jitter, scene.script.posture);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];
         o.measures = run_pinch(scene.model, scene.skeleton, script, options);

@@ -39,9 +39,9 @@ struct GraspOutcome {
   bool placed_by_rule = false, meets_pinch_rule = false;
 };
 
-// Runs each point on `scene`'s hand and cube (and its jitter), `jobs` at once (each on one thread
-// of the simulator); `done` is called with the count finished after each, under a lock, from the
-// worker thread that finished it.
+// Runs each point on `scene`'s hand and cube (and its jitter), placed in its script's posture,
+// `jobs` at once (each on one thread of the simulator); `done` is called with the count finished
+// after each, under a lock, from the worker thread that finished it.
 std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
                                         const std::vector<ClosingPoint>& points, int jobs,
                                         const std::function<void(int done)>& done = {});

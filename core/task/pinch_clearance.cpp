@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 
 #include "core/sim/box_distance.h"
 #include "core/sim/hand_sim_state.h"
@@ -33,21 +34,6 @@ void visit_other_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
   }
 }
 
-// The pose moved by x: the wrist turned by x[0..2] (a rotation vector, world), moved by
-// x[3..5], each joint by x[6 + k] within its limits.
-hand::HandPose moved(const hand::Skeleton& skeleton, const hand::HandPose& pose,
-                     const Eigen::VectorXd& x) {
-  hand::HandPose out = pose;
-  out.root_rotation = rotation_from_vector(x.head<3>()).toRotationMatrix() * pose.root_rotation;
-  out.root_position += x.segment<3>(3);
-  for (std::size_t k = 0; k < skeleton.dofs.size(); ++k) {
-    const hand::Dof& dof = skeleton.dofs[k];
-    const Eigen::Index i = Eigen::Index(k);
-    out.angles(i) = std::clamp(pose.angles(i) + x(6 + i), dof.lower, dof.upper);
-  }
-  return out;
-}
-
 struct Problem {
   const hand::Skeleton& skeleton;
   const HandSimModel& model;
@@ -74,13 +60,17 @@ struct Problem {
 
   // Levenberg-Marquardt from `pose` at one weight of the penalty.
   hand::HandPose solve(const hand::HandPose& pose, double weight) const {
+    std::vector<int> every_dof(skeleton.dofs.size());
+    std::iota(every_dof.begin(), every_dof.end(), 0);
     PoseLeastSquares options;
     options.iterations = kIterations;
     options.difference = kDifference;
     return solve_pose_least_squares(
         pose, 6 + Eigen::Index(skeleton.dofs.size()),
         [&](const hand::HandPose& p) { return residuals(p, weight); },
-        [&](const hand::HandPose& p, const Eigen::VectorXd& x) { return moved(skeleton, p, x); },
+        [&](const hand::HandPose& p, const Eigen::VectorXd& x) {
+          return moved_pose(skeleton, p, every_dof, x, true);
+        },
         options);
   }
 };

@@ -7,7 +7,6 @@
 #include <Eigen/Geometry>
 
 #include "core/hand/degrees.h"
-#include "core/sim/rigid_body.h"
 #include "core/task/pose_least_squares.h"
 
 namespace handlab::sim {
@@ -15,25 +14,6 @@ namespace {
 
 constexpr int kPlacementIterations = 500;
 constexpr double kPlacementDifference = 1e-7;  // the Jacobian's forward differences (m, rad)
-
-// `pose` moved by x: with `free_wrist` the wrist turned by x[0..3] (about its own origin) and
-// shifted by x[3..6]; then dofs[j] by the j-th of the rest of x, within its limits.
-hand::HandPose moved_in_posture(const hand::Skeleton& skeleton, const hand::HandPose& pose,
-                                const std::vector<int>& dofs, const Eigen::VectorXd& x,
-                                bool free_wrist) {
-  hand::HandPose out = pose;
-  const Eigen::Index first = free_wrist ? 6 : 0;
-  if (free_wrist) {
-    out.root_rotation = rotation_from_vector(x.head<3>()).toRotationMatrix() * pose.root_rotation;
-    out.root_position += x.segment<3>(3);
-  }
-  for (std::size_t j = 0; j < dofs.size(); ++j) {
-    const hand::Dof& dof = skeleton.dofs[std::size_t(dofs[j])];
-    const Eigen::Index k = dofs[j];
-    out.angles(k) = std::clamp(pose.angles(k) + x(first + Eigen::Index(j)), dof.lower, dof.upper);
-  }
-  return out;
-}
 
 // The posture's angles set, the hand turned and moved so that the first two features lie along
 // their goals' axis, their midpoint on their goals'.
@@ -138,7 +118,7 @@ hand::HandPose place_in_posture(const hand::Skeleton& skeleton,
   return solve_pose_least_squares(
       pose, (free_wrist ? 6 : 0) + Eigen::Index(dofs.size()), residuals,
       [&](const hand::HandPose& p, const Eigen::VectorXd& x) {
-        return moved_in_posture(skeleton, p, dofs, x, free_wrist);
+        return moved_pose(skeleton, p, dofs, x, free_wrist);
       },
       options);
 }

@@ -20,7 +20,6 @@ PinchScene make_pinch_scene(double cube_size, int resolution, double squeeze, do
   scene.flesh = hand::build_flesh(scene.skeleton, scene.shape, options);
   parameters.cube_size = cube_size;
   scene.model = make_hand_sim_model(scene.skeleton, scene.flesh, parameters);
-  scene.posture = posture;
   scene.script = make_pinch_script(scene.skeleton, scene.model, squeeze, posture);
   return scene;
 }

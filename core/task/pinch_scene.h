@@ -20,7 +20,6 @@ struct PinchScene {
   PinchScript script;
   // A real recording's tracker jitter, for closings that lay it on (none when null).
   std::shared_ptr<const PoseJitter> jitter;
-  PinchPosture posture = PinchPosture::kSolved;  // the script's, and the grasp map's closings'
 
   // The hand above the cube on the floor, at rest, as the script starts.
   HandSimState start() const;

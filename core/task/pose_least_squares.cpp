@@ -1,8 +1,28 @@
 #include "core/task/pose_least_squares.h"
 
+#include <algorithm>
+
 #include <Eigen/Cholesky>
 
+#include "core/sim/rigid_body.h"
+
 namespace handlab::sim {
+
+hand::HandPose moved_pose(const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                          const std::vector<int>& dofs, const Eigen::VectorXd& x, bool free_wrist) {
+  hand::HandPose out = pose;
+  const Eigen::Index first = free_wrist ? 6 : 0;
+  if (free_wrist) {
+    out.root_rotation = rotation_from_vector(x.head<3>()).toRotationMatrix() * pose.root_rotation;
+    out.root_position += x.segment<3>(3);
+  }
+  for (std::size_t j = 0; j < dofs.size(); ++j) {
+    const hand::Dof& dof = skeleton.dofs[std::size_t(dofs[j])];
+    const Eigen::Index k = dofs[j];
+    out.angles(k) = std::clamp(pose.angles(k) + x(first + Eigen::Index(j)), dof.lower, dof.upper);
+  }
+  return out;
+}
 
 hand::HandPose solve_pose_least_squares(hand::HandPose pose, Eigen::Index unknowns,
                                         const PoseResiduals& residuals, const PoseStep& moved,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -25,6 +26,12 @@ struct PoseLeastSquares {
 
 using PoseResiduals = std::function<Eigen::VectorXd(const hand::HandPose&)>;
 using PoseStep = std::function<hand::HandPose(const hand::HandPose&, const Eigen::VectorXd&)>;
+
+// `pose` moved by x: with `free_wrist` the wrist turned by x[0..3] (a rotation vector, world,
+// about the wrist) and moved by x[3..6]; then joint dofs[j] by the j-th of the rest of x,
+// within its limits.
+hand::HandPose moved_pose(const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                          const std::vector<int>& dofs, const Eigen::VectorXd& x, bool free_wrist);
 
 // From `pose`, over `unknowns` unknowns.
 hand::HandPose solve_pose_least_squares(hand::HandPose pose, Eigen::Index unknowns,
