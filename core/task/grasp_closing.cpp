@@ -76,7 +76,11 @@ void set_closing_factor(GraspClosing& closing, const std::string& name, double v
   const double lo = std::min(f->levels.front(), 0.0), hi = f->levels.back();
   const bool positive =
       f->name == "closing_speed" || f->name == "hold" || f->name == "lift_acceleration";
-  if (!(value >= lo && value <= hi) || (positive && !(value > 0)))
+  // A speed's 0 in a map's values is the script's own: left out on the command line.
+  if (positive && !(value > 0 && value <= hi))
+    throw std::invalid_argument(name + " must be above 0 and at most " + number(hi) + " " +
+                                f->unit + " (left out: the script's), not " + number(value));
+  if (!(value >= lo && value <= hi))
     throw std::invalid_argument(name + " must be from " + number(lo) + " to " + number(hi) + " " +
                                 f->unit + ", not " + number(value));
   closing.*(f->field) = value * f->scale;

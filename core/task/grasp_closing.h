@@ -24,6 +24,10 @@ struct GraspClosing {
   double hold_s = 5.0;        // s: lifted and held before the fingers open
   double jitter = 0.0;        // times a real recording's tracker jitter laid on the hand
   double jitter_phase = 0.0;  // where in the recording the jitter starts (of its length)
+  // m: where the cube lies from where the hand aims, along the floor (x, z). Not a factor: a
+  // cube never lies twice at the same spot, and the map's repeats (grasp_map.h) move it by a
+  // tenth of a millimetre to find the closings whose outcome turns on such a detail.
+  double cube_shift_x = 0.0, cube_shift_z = 0.0;
 };
 
 // A closing's factors by name ("over_closure", "tilt_yaw", ...), each with its value in the

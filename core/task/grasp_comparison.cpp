@@ -7,7 +7,10 @@ namespace handlab::sim {
 
 bool same_closing(const ClosingPoint& a, const ClosingPoint& b) {
   const bool draw = a.factor == "draw";
-  if (draw != (b.factor == "draw") || (draw && a.level != b.level)) return false;
+  if (draw != (b.factor == "draw") || (draw && a.level != b.level) || a.repeat != b.repeat ||
+      std::abs(a.closing.cube_shift_x - b.closing.cube_shift_x) > 1e-9 ||
+      std::abs(a.closing.cube_shift_z - b.closing.cube_shift_z) > 1e-9)
+    return false;
   return std::all_of(closing_factors().begin(), closing_factors().end(),
                      [&](const ClosingFactor& f) {
                        return std::abs(a.closing.*(f.field) - b.closing.*(f.field)) <= 1e-9;

@@ -25,7 +25,8 @@ struct GraspComparison {
 };
 
 // The same closing: every factor's value within a nanometre, nanoradian or nanosecond, and,
-// for the draws of people's closings (factor "draw"), the same draw.
+// for the draws of people's closings (factor "draw"), the same draw; the same repeat, its cube
+// moved alike.
 bool same_closing(const ClosingPoint& a, const ClosingPoint& b);
 
 // `after`'s closings matched with `before`'s (same_closing), in `after`'s order.

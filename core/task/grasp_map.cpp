@@ -1,8 +1,10 @@
 #include "core/task/grasp_map.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/util/parallel_runs.h"
+#include "core/util/portable_random.h"
 
 namespace handlab::sim {
 
@@ -37,6 +39,25 @@ std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter) {
           points.push_back({"pair", double(points.size() + 1), closing});
         }
   return points;
+}
+
+std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& points, int repeats,
+                                            std::uint64_t seed) {
+  std::vector<ClosingPoint> out;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int r = 0; r < repeats; ++r) {
+      ClosingPoint p = points[i];
+      p.repeat = r;
+      if (r > 0) {
+        util::PortableRandom random(util::splitmix64(seed ^ util::splitmix64(i * 1000 + r)));
+        const double radius = kRepeatShift * std::sqrt(random.uniform());
+        const double angle = 2 * M_PI * random.uniform();
+        p.closing.cube_shift_x = radius * std::cos(angle);
+        p.closing.cube_shift_z = radius * std::sin(angle);
+      }
+      out.push_back(p);
+    }
+  return out;
 }
 
 std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,

@@ -2,6 +2,7 @@
 // (grasp_closing.h) side by side, each factor alone over its levels from the scripted pinch.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ struct ClosingPoint {
   std::string factor;
   double level = 0.0;
   GraspClosing closing;
+  int repeat = 0;  // 0: the closing as specified; 1, 2, ...: its repeats (repeated_closings)
 };
 
 // Every factor of `factors` (all when empty, the jitter only `with_jitter`) alone at each of
@@ -27,6 +29,17 @@ std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& fac
 // Every pair of factors (the jitter only `with_jitter`) at each pair of their pair_levels, the
 // others at the scripted pinch's; factor "pair", level the closing's number (1, 2, ...).
 std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter = false);
+
+// How far a repeat moves the cube from where the hand aims (m): a disc of this radius.
+constexpr double kRepeatShift = 1e-4;
+
+// Each point `repeats` times: as it is, then repeats 1, 2, ... with the cube moved along the
+// floor to a point drawn evenly from the disc of radius kRepeatShift (GraspClosing::
+// cube_shift_x, _z), the same for the same seed, point and repeat. A closing held in some
+// repeats and lost in others turns on a detail no hand controls: its outcome is a chance,
+// which the map reports as the share of its repeats held.
+std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& points, int repeats,
+                                            std::uint64_t seed);
 
 struct GraspOutcome {
   ClosingPoint point;

@@ -336,6 +336,9 @@ PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel
     script.jitter = std::move(jitter);
     script.jitter_scale = closing.jitter;
   }
+  // The cube where it lies, the hand aimed where it was to lie.
+  script.cube_centre.x() += closing.cube_shift_x;
+  script.cube_centre.z() += closing.cube_shift_z;
   return script;
 }
 

@@ -2,10 +2,13 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -614,6 +617,49 @@ TEST(CliSim, GraspMapPlacesThePinchInAFunctionalPosture) {
   const util::JsonValue o = doc["cubes"][0]["closings"][0];
   EXPECT_TRUE(o["held"].as_bool());
   EXPECT_LT(o["top_load_before_closing_n"].as_number(), 1.0);
+}
+
+// Repeats: a closing as given and with its cube moved, each a row with its repeat and shift;
+// the counts of closings held every time, never and sometimes; set beside itself, every run
+// matched with its own repeat.
+TEST(CliSim, GraspMapRepeatsEachClosingWithTheCubeMoved) {
+  const std::string out = std::string(HANDLAB_TEST_TMP) + "/repeats.json";
+  const Result r =
+      run_cli("sim grasp --cube 0.01 --jobs 2 --closing over_closure=3 --repeats 2 --json " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("the scripted pinch (repeat 2)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("held in every repeat"), std::string::npos) << r.out;
+  std::ifstream file(out);
+  std::stringstream text;
+  text << file.rdbuf();
+  const util::JsonValue doc = util::JsonValue::parse(text.str());
+  const util::JsonValue cube = doc["cubes"][0];
+  ASSERT_EQ(cube["closings"].size(), 2u);
+  EXPECT_EQ(cube["closings"][0]["repeat"].as_number(), 0);
+  EXPECT_EQ(cube["closings"][1]["repeat"].as_number(), 1);
+  EXPECT_EQ(cube["closings"][0]["cube_shift_mm"][0].as_number(), 0);
+  const double x = cube["closings"][1]["cube_shift_mm"][0].as_number(),
+               z = cube["closings"][1]["cube_shift_mm"][1].as_number();
+  EXPECT_GT(std::hypot(x, z), 0.0);
+  EXPECT_LE(std::hypot(x, z), 0.1);
+  const util::JsonValue repeats = cube["repeats"];
+  EXPECT_EQ(repeats["per_closing"].as_number(), 2);
+  EXPECT_EQ(repeats["all"]["closings"].as_number(), 1);
+  EXPECT_EQ(repeats["all"]["held_every_time"].as_number() +
+                repeats["all"]["held_never"].as_number() +
+                repeats["all"]["held_sometimes"].as_number(),
+            1);
+  EXPECT_EQ(repeats["within_half"]["closings"].as_number(), 1);
+  const Result again = run_cli(
+      "sim grasp --cube 0.01 --jobs 2 --closing over_closure=3 "
+      "--repeats 2 --against " +
+      out + " --json -");
+  ASSERT_EQ(again.status, 0) << again.out;
+  const util::JsonValue against = util::JsonValue::parse(again.out)["cubes"][0]["against"];
+  EXPECT_EQ(against["in_both"].as_number(), 2);
+  EXPECT_EQ(against["held_before_lost_after"].size(), 0u) << "the same runs, the same outcomes";
+  EXPECT_EQ(against["lost_before_held_after"].size(), 0u);
+  EXPECT_EQ(run_cli("sim grasp --cube 0.01 --closing over_closure=3 --repeats 0").status, 2);
 }
 
 // A map set beside one written before (--against): a map whose 1 cm cube held its 0 mm

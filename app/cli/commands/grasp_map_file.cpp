@@ -18,6 +18,11 @@ sim::MappedClosing read_closing(const util::JsonValue& c) {
   for (const sim::ClosingFactor& f : sim::closing_factors())
     if (const util::JsonValue* v = values.find(f.name))
       m.point.closing.*(f.field) = v->as_number() * f.scale;
+  if (const util::JsonValue* r = c.find("repeat")) m.point.repeat = int(r->as_number());
+  if (const util::JsonValue* shift = c.find("cube_shift_mm")) {
+    m.point.closing.cube_shift_x = shift->as_array().at(0).as_number() / 1000;
+    m.point.closing.cube_shift_z = shift->as_array().at(1).as_number() / 1000;
+  }
   m.held = c["held"].as_bool();
   m.released = c["released"].as_bool();
   return m;

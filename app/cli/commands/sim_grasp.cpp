@@ -31,18 +31,77 @@ namespace {
 
 struct CubeMap {
   double cube_size = 0.0;
+  int repeats = 1;  // runs of each closing (--repeats)
   std::vector<sim::GraspOutcome> outcomes;
   std::optional<sim::GraspComparison> against;  // with --against, when its map has this cube
   bool against_missing = false;                 // with --against, when it has not
 };
 
 // "over_closure 10 mm" for a factor's level, the closing's description for a pair or a draw.
+// A repeat's (sim grasp --repeats) label ends in its number.
 std::string closing_label(const sim::ClosingPoint& p) {
-  if (p.factor.empty()) return "the scripted pinch";
+  const std::string repeat = p.repeat > 0 ? " (repeat " + std::to_string(p.repeat + 1) + ")" : "";
+  if (p.factor.empty()) return "the scripted pinch" + repeat;
   if (p.factor == "pair" || p.factor == "draw" || p.factor == "closing")
     return (p.factor == "draw" ? "draw " + std::to_string(int(p.level)) + ": " : "") +
-           sim::describe(p.closing);
-  return sim::describe_level(sim::closing_factor(p.factor), p.level);
+           sim::describe(p.closing) + repeat;
+  return sim::describe_level(sim::closing_factor(p.factor), p.level) + repeat;
+}
+
+// A closing's repeats (sim grasp --repeats): in how many the cube was held.
+struct RepeatedClosing {
+  const sim::GraspOutcome* first = nullptr;  // the closing as specified
+  int runs = 0, held = 0;
+};
+
+// The outcomes grouped by closing: a closing's repeats follow it (grasp_map.h).
+std::vector<RepeatedClosing> repeated_closings(const std::vector<sim::GraspOutcome>& outcomes) {
+  std::vector<RepeatedClosing> closings;
+  for (const sim::GraspOutcome& o : outcomes) {
+    if (o.point.repeat == 0) closings.push_back({&o});
+    ++closings.back().runs;
+    closings.back().held += o.measures.held ? 1 : 0;
+  }
+  return closings;
+}
+
+// Of the closings (all, or those within half of every range), how many were held in every
+// repeat, in none and in some.
+struct RepeatCounts {
+  int closings = 0, every = 0, none = 0, some = 0;
+};
+RepeatCounts count_repeats(const std::vector<RepeatedClosing>& closings, bool within_half) {
+  RepeatCounts c;
+  for (const RepeatedClosing& r : closings) {
+    if (within_half &&
+        (r.first->point.factor == "draw" || !sim::within_half_of_ranges(r.first->point.closing)))
+      continue;
+    ++c.closings;
+    (r.held == r.runs ? c.every : r.held == 0 ? c.none : c.some) += 1;
+  }
+  return c;
+}
+
+// The draws' hold rate over their runs; its interval counts each draw once (its repeats are
+// not independent of each other): the Wilson interval of the rate over the draws.
+struct DrawRate {
+  int closings = 0, runs = 0, held = 0;
+  double rate = 0.0;
+  stats::ProportionInterval interval;
+};
+DrawRate draw_rate(const std::vector<sim::GraspOutcome>& outcomes) {
+  DrawRate d;
+  for (const sim::GraspOutcome& o : outcomes) {
+    if (o.point.factor != "draw") continue;
+    d.closings += o.point.repeat == 0 ? 1 : 0;
+    ++d.runs;
+    d.held += o.measures.held ? 1 : 0;
+  }
+  if (d.runs > 0) {
+    d.rate = double(d.held) / d.runs;
+    d.interval = stats::wilson_interval(d.rate * d.closings, d.closings);
+  }
+  return d;
 }
 
 std::string group_of(const sim::ClosingPoint& p) {
@@ -63,6 +122,19 @@ void print_within_half(const CubeMap& map) {
   if (run > 0)
     std::printf("within half of every range: %d of %d held%s\n", held, run,
                 lost.empty() ? "" : (", lost:" + lost).c_str());
+}
+
+// With --repeats: how many closings were held every time, never, and only sometimes.
+void print_repeats(const CubeMap& map) {
+  const std::vector<RepeatedClosing> closings = repeated_closings(map.outcomes);
+  if (closings.size() == map.outcomes.size()) return;
+  for (bool within_half : {false, true}) {
+    const RepeatCounts c = count_repeats(closings, within_half);
+    if (c.closings > 0)
+      std::printf("%s %d closings: held in every repeat %d, in none %d, in some %d\n",
+                  within_half ? "of the grid's" : "repeated, of the", c.closings, c.every, c.none,
+                  c.some);
+  }
 }
 
 void print_closings(const char* title, const std::vector<sim::ClosingPoint>& points) {
@@ -110,13 +182,14 @@ void print_map(const CubeMap& map) {
   for (const auto& [group, count] : held) {
     std::printf(" %s %d of %d", group.c_str(), count.first, count.second);
     if (group == "draw") {
-      const stats::ProportionInterval ci = stats::wilson_interval(count.first, count.second);
-      std::printf(" (%.0f %%, 95 %% CI %.0f-%.0f %%)", 100.0 * count.first / count.second,
-                  100 * ci.low, 100 * ci.high);
+      const DrawRate d = draw_rate(map.outcomes);
+      std::printf(" (%.0f %%, 95 %% CI %.0f-%.0f %%)", 100.0 * d.rate, 100 * d.interval.low,
+                  100 * d.interval.high);
     }
     std::printf(";");
   }
   std::printf("\n");
+  print_repeats(map);
 }
 
 void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
@@ -124,6 +197,12 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
       .field("factor", o.point.factor)
       .field("level", o.point.level)
       .field("closing", sim::describe(o.point.closing))
+      .field("repeat", o.point.repeat)
+      .key("cube_shift_mm")
+      .begin_array()
+      .value(1000 * o.point.closing.cube_shift_x)
+      .value(1000 * o.point.closing.cube_shift_z)
+      .end_array()
       .key("values")
       .begin_object();
   for (const sim::ClosingFactor& f : sim::closing_factors())
@@ -199,29 +278,36 @@ void write_comparison(util::JsonWriter& json, const sim::GraspComparison& c) {
 // A cube's closings, how many held, and the draws' hold rate with its Wilson interval.
 void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
   json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
-  int held = 0, drawn = 0, drawn_held = 0;
+  int held = 0;
   for (const sim::GraspOutcome& o : map.outcomes) {
     write_closing(json, o);
     held += o.measures.held ? 1 : 0;
-    if (o.point.factor == "draw") {
-      ++drawn;
-      drawn_held += o.measures.held ? 1 : 0;
-    }
   }
   json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
   if (map.against) write_comparison(json, *map.against);
-  if (drawn > 0) {
-    const stats::ProportionInterval ci = stats::wilson_interval(drawn_held, drawn);
+  const DrawRate d = draw_rate(map.outcomes);
+  if (d.runs > 0)
     json.key("draws")
         .begin_object()
-        .field("run", drawn)
-        .field("held", drawn_held)
-        .field("hold_rate", double(drawn_held) / drawn)
-        .field("hold_rate_low", ci.low)
-        .field("hold_rate_high", ci.high)
+        .field("run", d.runs)
+        .field("held", d.held)
+        .field("hold_rate", d.rate)
+        .field("hold_rate_low", d.interval.low)
+        .field("hold_rate_high", d.interval.high)
+        .end_object();
+  const std::vector<RepeatedClosing> closings = repeated_closings(map.outcomes);
+  json.key("repeats").begin_object().field("per_closing", map.repeats);
+  for (bool within_half : {false, true}) {
+    const RepeatCounts c = count_repeats(closings, within_half);
+    json.key(within_half ? "within_half" : "all")
+        .begin_object()
+        .field("closings", c.closings)
+        .field("held_every_time", c.every)
+        .field("held_never", c.none)
+        .field("held_sometimes", c.some)
         .end_object();
   }
-  json.end_object();
+  json.end_object().end_object();
 }
 
 void write_posture(util::JsonWriter& json, sim::PinchPosture posture) {
@@ -419,6 +505,11 @@ std::vector<OptionSpec> sim_grasp_options() {
       {"jitter-from", "RECORDING",
        "lay this recording's tracker jitter on the closings: the jitter factor in the grid, "
        "its own jitter in the draws (e.g. data/leap/pinch.json.lz)"},
+      {"repeats", "K",
+       "run each closing K times: as given, then with the cube moved along the floor by up to "
+       "0.1 mm from where the hand aims; reports how many closings were held in every repeat, "
+       "in none and in some (docs/simulator.md)",
+       "1"},
       {"jobs", "J", "closings run side by side (default: the machine's cores)", "0"},
       posture_option(),
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
@@ -432,9 +523,9 @@ std::vector<OptionSpec> sim_grasp_options() {
 
 CommandHelp sim_grasp_help() {
   return {"sim grasp",
-          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [posture] [jobs] "
-           "[against] [json]",
-           "[cube] closing [jitter-from] [physics] [posture] [against] [json]"},
+          {"[cube] [grid] [factor] [draws] [seed] [jitter-from] [physics] [posture] [repeats] "
+           "[jobs] [against] [json]",
+           "[cube] closing [jitter-from] [physics] [posture] [repeats] [against] [json]"},
           "The soft hand pinches each cube, lifts it 10 cm, holds it and opens, closing as the "
           "closing says on the intermediate hand it follows: each pad's target past its face "
           "(over_closure, mm), the pinch's axis turned about the vertical and the faces' "
@@ -467,6 +558,8 @@ int sim_grasp(const std::vector<std::string>& argv) {
     if (p.closing.jitter > 0 && !jitter)
       throw UsageError("a closing with jitter needs --jitter-from RECORDING");
   if (grid_points.empty() && draws == 0) throw UsageError("--grid none needs --draws N");
+  const long repeats = args.integer("repeats");
+  if (repeats < 1 || repeats > 100) throw UsageError("--repeats must be from 1 to 100");
   const int jobs = job_count(args);
   const bool to_stdout = args.text("json") == "-";
   std::vector<MappedCube> before;
@@ -481,10 +574,12 @@ int sim_grasp(const std::vector<std::string>& argv) {
     for (sim::ClosingPoint& p :
          sim::human_closing_draws(int(draws), seed, side, jitter ? 1.0 : 0.0))
       points.push_back(std::move(p));
+    points = sim::repeated_closings(points, int(repeats), seed);
     sim::PinchScene scene =
         sim::make_pinch_scene(side, 1, 0.003, hand::HandShape{}.length, parameters, posture);
     scene.jitter = jitter;
     CubeMap map = map_cube(scene, side, points, jobs, to_stdout, start);
+    map.repeats = int(repeats);
     if (args.has("against")) {
       map.against = compare_with(before, map);
       map.against_missing = !map.against;

@@ -161,6 +161,49 @@ TEST(GraspClosing, TheGridHoldsEachFactorAloneAndThePinchOnce) {
   EXPECT_EQ(lead.back().closing.over_closure, GraspClosing{}.over_closure);
 }
 
+// Repeats: each closing as given, then moved cubes, within a tenth of a millimetre, drawn alike
+// for the same seed and apart for another.
+TEST(GraspClosing, RepeatsMoveTheCubeWithinATenthOfAMillimetre) {
+  const std::vector<ClosingPoint> grid = single_factor_grid({"lead"});
+  const std::vector<ClosingPoint> repeated = repeated_closings(grid, 4, 7);
+  ASSERT_EQ(repeated.size(), 4 * grid.size());
+  double farthest = 0.0;
+  for (std::size_t i = 0; i < repeated.size(); ++i) {
+    const ClosingPoint& p = repeated[i];
+    const ClosingPoint& given = grid[i / 4];
+    EXPECT_EQ(p.repeat, int(i % 4));
+    EXPECT_EQ(p.factor, given.factor);
+    EXPECT_EQ(p.closing.lead_s, given.closing.lead_s);
+    const double shift = std::hypot(p.closing.cube_shift_x, p.closing.cube_shift_z);
+    if (p.repeat == 0) {
+      EXPECT_EQ(shift, 0.0) << "the closing as given first";
+    } else {
+      EXPECT_GT(shift, 0.0);
+    }
+    EXPECT_LE(shift, kRepeatShift);
+    farthest = std::max(farthest, shift);
+  }
+  EXPECT_GT(farthest, 0.5 * kRepeatShift);
+  const std::vector<ClosingPoint> again = repeated_closings(grid, 4, 7),
+                                  other = repeated_closings(grid, 4, 8);
+  EXPECT_EQ(again[5].closing.cube_shift_x, repeated[5].closing.cube_shift_x);
+  EXPECT_NE(other[5].closing.cube_shift_x, repeated[5].closing.cube_shift_x);
+  EXPECT_NE(repeated[5].closing.cube_shift_x, repeated[6].closing.cube_shift_x);
+}
+
+// A repeat moves the cube where it starts; the hand aims where it would have lain.
+TEST(GraspClosing, ACubeShiftMovesTheCubeNotTheHand) {
+  GraspClosing moved;
+  moved.cube_shift_x = 6e-5;
+  moved.cube_shift_z = -3e-5;
+  const PinchScript s = make_grasp_script(scene().skeleton, scene().model, moved);
+  const PinchScript given = make_grasp_script(scene().skeleton, scene().model, GraspClosing{});
+  EXPECT_EQ(s.cube_centre - given.cube_centre, Eigen::Vector3d(6e-5, 0, -3e-5));
+  EXPECT_EQ(s.pinch.angles, given.pinch.angles);
+  EXPECT_EQ(s.pinch.root_position, given.pinch.root_position);
+  EXPECT_EQ(describe(moved), "the scripted pinch") << "not a factor";
+}
+
 // Every pair of factors at each pair of their half-range levels, once.
 TEST(GraspClosing, ThePairsGridCrossesEveryTwoFactors) {
   std::size_t expected = 0, with_jitter = 0;

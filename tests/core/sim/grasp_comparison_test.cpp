@@ -77,6 +77,12 @@ TEST(GraspComparison, TheSameClosingAsAMapFileReadsIt) {
       << "a grid's closing is its factors, whichever grid ran it";
   EXPECT_FALSE(same_closing({"draw", 1, GraspClosing{}}, {"draw", 2, GraspClosing{}}));
   EXPECT_FALSE(same_closing({"draw", 1, GraspClosing{}}, {"", 0, GraspClosing{}}));
+  GraspClosing moved;
+  moved.cube_shift_x = 5e-5;
+  EXPECT_FALSE(same_closing({"", 0, GraspClosing{}, 1}, {"", 0, GraspClosing{}, 0}))
+      << "another repeat";
+  EXPECT_FALSE(same_closing({"", 0, moved, 1}, {"", 0, GraspClosing{}, 1}));
+  EXPECT_TRUE(same_closing({"", 0, moved, 1}, {"", 0, moved, 1}));
 }
 
 }  // namespace
