@@ -73,7 +73,12 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
                                                      scene.jitter, scene.script.posture);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];
-        o.measures = run_pinch(scene.model, scene.skeleton, script, options);
+        PinchLossWatch watch(scene.model, script);
+        o.measures = run_pinch(scene.model, scene.skeleton, script, options, 0.0,
+                               [&](const HandSimState& s) { watch.observe(s); });
+        o.loss = watch.loss(o.measures.held);
+        o.pushed_mm = watch.pushed_mm();
+        o.grip_at_lift_n = watch.grip_at_lift_n();
         o.pinch_error_mm = 1000 * script.pinch_error;
         o.pinch_clearance_mm = 1000 * script.pinch_clearance;
         o.placement_pad_error_mm = 1000 * script.placement_pad_error;

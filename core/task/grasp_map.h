@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/task/grasp_closing.h"
+#include "core/task/pinch_loss.h"
 #include "core/task/pinch_scene.h"
 
 namespace handlab::sim {
@@ -50,6 +51,9 @@ struct GraspOutcome {
   // the hand and met the rule.
   double pinch_clearance_mm = 0.0, placement_pad_error_mm = 0.0;
   bool placed_by_rule = false, meets_pinch_rule = false;
+  // How a lost run lost the cube, and the signs it is told by (pinch_loss.h).
+  PinchLoss loss = PinchLoss::kNone;
+  double pushed_mm = 0.0, grip_at_lift_n = 0.0;
 };
 
 // Runs each point on `scene`'s hand and cube (and its jitter), placed in its script's posture,

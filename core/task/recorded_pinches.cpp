@@ -157,43 +157,15 @@ PinchScript make_recorded_pinch_script(const hand::Skeleton& skeleton, const Han
   return script;
 }
 
-const char* pinch_loss_name(PinchLoss loss) {
-  switch (loss) {
-    case PinchLoss::kNone:
-      return "held";
-    case PinchLoss::kPushedAway:
-      return "pushed_away";
-    case PinchLoss::kSqueezedOut:
-      return "squeezed_out";
-    case PinchLoss::kSlippedAtLift:
-      return "slipped_at_lift";
-  }
-  return "?";
-}
-
 RecordedPinchRun run_recorded_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
                                     const PinchScript& script, const SimOptions& options) {
   RecordedPinchRun run;
-  bool gripped_seen = false;
-  const double h = model.parameters.time_step;
-  run.report = run_pinch(model, skeleton, script, options, 0.0, [&](const HandSimState& s) {
-    if (s.time <= script.close_end + 0.5 * h) {
-      const Eigen::Vector3d moved = s.cube_pose.position - script.cube_centre;
-      run.pushed_mm = std::max(run.pushed_mm, 1000 * std::hypot(moved.x(), moved.z()));
-    }
-    if (!gripped_seen && s.time >= script.lift_start - 0.5 * h) {
-      run.grip_at_lift_n = grip_force(model, s);
-      gripped_seen = true;
-    }
-  });
-  if (run.report.held)
-    run.loss = PinchLoss::kNone;
-  else if (run.grip_at_lift_n > 0.0)
-    run.loss = PinchLoss::kSlippedAtLift;
-  else if (run.pushed_mm > 250 * script.cube_size)
-    run.loss = PinchLoss::kPushedAway;
-  else
-    run.loss = PinchLoss::kSqueezedOut;
+  PinchLossWatch watch(model, script);
+  run.report = run_pinch(model, skeleton, script, options, 0.0,
+                         [&](const HandSimState& s) { watch.observe(s); });
+  run.loss = watch.loss(run.report.held);
+  run.pushed_mm = watch.pushed_mm();
+  run.grip_at_lift_n = watch.grip_at_lift_n();
   return run;
 }
 

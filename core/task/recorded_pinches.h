@@ -27,6 +27,7 @@
 
 #include "core/hand/skeleton.h"
 #include "core/sim/hand_sim_model.h"
+#include "core/task/pinch_loss.h"
 #include "core/task/pinch_script.h"
 
 namespace handlab::sim {
@@ -59,13 +60,6 @@ PinchScript make_recorded_pinch_script(const hand::Skeleton& skeleton, const Han
                                        const std::vector<double>& times,
                                        const std::vector<hand::HandPose>& poses,
                                        const RecordedClosing& closing);
-
-// Why a run lost the cube: the first pad pushed it more than a quarter of its side away
-// before the closing's end, with no grip at the lift's start (pushed away); no grip at the
-// lift's start otherwise (squeezed out: the pads met it but did not keep it between them); a
-// grip at the lift's start that the lift or the hold lost (slipped at the lift).
-enum class PinchLoss { kNone, kPushedAway, kSqueezedOut, kSlippedAtLift };
-const char* pinch_loss_name(PinchLoss loss);
 
 struct RecordedPinchRun {
   PinchReport report;

@@ -558,11 +558,28 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), std::stod(cube));
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
-    for (const char* key :
-         {"factor", "level", "closing", "values", "held", "released", "lift_m", "slip_mm",
-          "max_penetration_mm", "peak_grip_n", "turn_deg", "pinch_error_mm", "pinch_clearance_mm",
-          "placement_pad_error_mm", "placed_by_rule", "meets_pinch_rule",
-          "top_load_before_closing_n", "inverted_tets", "within_half"})
+    for (const char* key : {"factor",
+                            "level",
+                            "closing",
+                            "values",
+                            "held",
+                            "released",
+                            "lift_m",
+                            "slip_mm",
+                            "max_penetration_mm",
+                            "peak_grip_n",
+                            "turn_deg",
+                            "pinch_error_mm",
+                            "pinch_clearance_mm",
+                            "placement_pad_error_mm",
+                            "placed_by_rule",
+                            "meets_pinch_rule",
+                            "top_load_before_closing_n",
+                            "inverted_tets",
+                            "within_half",
+                            "loss",
+                            "pushed_mm",
+                            "grip_at_lift_n"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);
@@ -586,6 +603,12 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_FALSE(loses["placed_by_rule"].as_bool());
   // The light cube's script comes down with the index's knuckles on its top (docs/simulator.md).
   EXPECT_GT(loses["top_load_before_closing_n"].as_number(), 10.0);
+  // How it was lost: the pads reach its faces but never grip it (pinch_loss.h).
+  EXPECT_EQ(loses["loss"].as_string(), "squeezed_out");
+  EXPECT_EQ(loses["grip_at_lift_n"].as_number(), 0.0);
+  EXPECT_LT(loses["pushed_mm"].as_number(), 2.5) << "not pushed a quarter of its side away";
+  EXPECT_EQ(holds["loss"].as_string(), "held");
+  EXPECT_GT(holds["grip_at_lift_n"].as_number(), 0.0);
   EXPECT_EQ(run_cli("sim grasp --closing squeeze=3").status, 2);
   EXPECT_EQ(run_cli("sim grasp --closing over_closure=40").status, 2);
   EXPECT_EQ(run_cli("sim grasp --factor tilt").status, 2);

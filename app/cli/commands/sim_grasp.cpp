@@ -124,6 +124,17 @@ void print_within_half(const CubeMap& map) {
                 lost.empty() ? "" : (", lost:" + lost).c_str());
 }
 
+// The lost runs by how they lost the cube (pinch_loss.h).
+void print_losses(const CubeMap& map) {
+  std::map<sim::PinchLoss, int> count;
+  for (const sim::GraspOutcome& o : map.outcomes)
+    if (!o.measures.held) ++count[o.loss];
+  if (count.empty()) return;
+  std::printf("lost:");
+  for (const auto& [loss, n] : count) std::printf(" %s %d;", sim::pinch_loss_name(loss), n);
+  std::printf("\n");
+}
+
 // With --repeats: how many closings were held every time, never, and only sometimes.
 void print_repeats(const CubeMap& map) {
   const std::vector<RepeatedClosing> closings = repeated_closings(map.outcomes);
@@ -189,6 +200,7 @@ void print_map(const CubeMap& map) {
     std::printf(";");
   }
   std::printf("\n");
+  print_losses(map);
   print_repeats(map);
 }
 
@@ -215,6 +227,9 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
       .field("placement_pad_error_mm", o.placement_pad_error_mm)
       .field("placed_by_rule", o.placed_by_rule)
       .field("meets_pinch_rule", o.meets_pinch_rule)
+      .field("loss", sim::pinch_loss_name(o.loss))
+      .field("pushed_mm", o.pushed_mm)
+      .field("grip_at_lift_n", o.grip_at_lift_n)
       .end_object();
 }
 
