@@ -76,7 +76,8 @@ void set_closing_factor(GraspClosing& closing, const std::string& name, double v
   const double lo = std::min(f->levels.front(), 0.0), hi = f->levels.back();
   const bool positive =
       f->name == "closing_speed" || f->name == "hold" || f->name == "lift_acceleration";
-  // A speed's 0 in a map's values is the script's own: left out on the command line.
+  // 0 in a map's JSON values is the script's own speed, lift or hold: on the command line, the
+  // factor left out.
   if (positive && !(value > 0 && value <= hi))
     throw std::invalid_argument(name + " must be above 0 and at most " + number(hi) + " " +
                                 f->unit + " (left out: the script's), not " + number(value));

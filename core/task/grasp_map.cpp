@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/util/parallel_runs.h"
 #include "core/util/portable_random.h"
@@ -44,12 +45,17 @@ std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter) {
 std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& points, int repeats,
                                             std::uint64_t seed) {
   std::vector<ClosingPoint> out;
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (const ClosingPoint& given : points) {
+    // Seeded by what the closing is, not where it stands in the list: the same closing's
+    // repeats move the cube alike in any grid, and --against finds them.
+    const std::uint64_t closing_seed = util::fnv1a64(
+        given.factor + " " + std::to_string(given.level) + " " + describe(given.closing));
     for (int r = 0; r < repeats; ++r) {
-      ClosingPoint p = points[i];
+      ClosingPoint p = given;
       p.repeat = r;
       if (r > 0) {
-        util::PortableRandom random(util::splitmix64(seed ^ util::splitmix64(i * 1000 + r)));
+        util::PortableRandom random(
+            util::splitmix64(seed ^ util::splitmix64(closing_seed + std::uint64_t(r))));
         const double radius = kRepeatShift * std::sqrt(random.uniform());
         const double angle = 2 * M_PI * random.uniform();
         p.closing.cube_shift_x = radius * std::cos(angle);
@@ -57,6 +63,7 @@ std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& poi
       }
       out.push_back(p);
     }
+  }
   return out;
 }
 

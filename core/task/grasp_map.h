@@ -36,9 +36,9 @@ constexpr double kRepeatShift = 1e-4;
 
 // Each point `repeats` times: as it is, then repeats 1, 2, ... with the cube moved along the
 // floor to a point drawn evenly from the disc of radius kRepeatShift (GraspClosing::
-// cube_shift_x, _z), the same for the same seed, point and repeat. A closing held in some
-// repeats and lost in others turns on a detail no hand controls: its outcome is a chance,
-// which the map reports as the share of its repeats held.
+// cube_shift_x, _z), the same for the same seed, closing (its factor, level and values) and
+// repeat. A closing held in some repeats and lost in others turns on a detail no hand controls
+// (grasp_repeats.h counts them).
 std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& points, int repeats,
                                             std::uint64_t seed);
 

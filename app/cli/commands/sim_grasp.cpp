@@ -22,6 +22,7 @@
 #include "core/sim/sim_parameter_names.h"
 #include "core/task/grasp_comparison.h"
 #include "core/task/grasp_map.h"
+#include "core/task/grasp_repeats.h"
 #include "core/task/human_closings.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -38,48 +39,15 @@ struct CubeMap {
 };
 
 // "over_closure 10 mm" for a factor's level, the closing's description for a pair or a draw.
-// A repeat's (sim grasp --repeats) label ends in its number.
+// A repeat's (sim grasp --repeats) label ends in its number (1, 2, ...; 0 is the closing as
+// given).
 std::string closing_label(const sim::ClosingPoint& p) {
-  const std::string repeat = p.repeat > 0 ? " (repeat " + std::to_string(p.repeat + 1) + ")" : "";
+  const std::string repeat = p.repeat > 0 ? " (repeat " + std::to_string(p.repeat) + ")" : "";
   if (p.factor.empty()) return "the scripted pinch" + repeat;
   if (p.factor == "pair" || p.factor == "draw" || p.factor == "closing")
     return (p.factor == "draw" ? "draw " + std::to_string(int(p.level)) + ": " : "") +
            sim::describe(p.closing) + repeat;
   return sim::describe_level(sim::closing_factor(p.factor), p.level) + repeat;
-}
-
-// A closing's repeats (sim grasp --repeats): in how many the cube was held.
-struct RepeatedClosing {
-  const sim::GraspOutcome* first = nullptr;  // the closing as specified
-  int runs = 0, held = 0;
-};
-
-// The outcomes grouped by closing: a closing's repeats follow it (grasp_map.h).
-std::vector<RepeatedClosing> repeated_closings(const std::vector<sim::GraspOutcome>& outcomes) {
-  std::vector<RepeatedClosing> closings;
-  for (const sim::GraspOutcome& o : outcomes) {
-    if (o.point.repeat == 0) closings.push_back({&o});
-    ++closings.back().runs;
-    closings.back().held += o.measures.held ? 1 : 0;
-  }
-  return closings;
-}
-
-// Of the closings (all, or those within half of every range), how many were held in every
-// repeat, in none and in some.
-struct RepeatCounts {
-  int closings = 0, every = 0, none = 0, some = 0;
-};
-RepeatCounts count_repeats(const std::vector<RepeatedClosing>& closings, bool within_half) {
-  RepeatCounts c;
-  for (const RepeatedClosing& r : closings) {
-    if (within_half &&
-        (r.first->point.factor == "draw" || !sim::within_half_of_ranges(r.first->point.closing)))
-      continue;
-    ++c.closings;
-    (r.held == r.runs ? c.every : r.held == 0 ? c.none : c.some) += 1;
-  }
-  return c;
 }
 
 // The draws' hold rate over their runs; its interval counts each draw once (its repeats are
@@ -99,7 +67,7 @@ DrawRate draw_rate(const std::vector<sim::GraspOutcome>& outcomes) {
   }
   if (d.runs > 0) {
     d.rate = double(d.held) / d.runs;
-    d.interval = stats::wilson_interval(d.rate * d.closings, d.closings);
+    d.interval = stats::wilson_interval(double(d.held) * d.closings / d.runs, d.closings);
   }
   return d;
 }
@@ -137,14 +105,14 @@ void print_losses(const CubeMap& map) {
 
 // With --repeats: how many closings were held every time, never, and only sometimes.
 void print_repeats(const CubeMap& map) {
-  const std::vector<RepeatedClosing> closings = repeated_closings(map.outcomes);
+  const std::vector<sim::RepeatedClosing> closings = sim::group_by_closing(map.outcomes);
   if (closings.size() == map.outcomes.size()) return;
   for (bool within_half : {false, true}) {
-    const RepeatCounts c = count_repeats(closings, within_half);
+    const sim::RepeatCounts c = sim::count_repeats(closings, within_half);
     if (c.closings > 0)
-      std::printf("%s %d closings: held in every repeat %d, in none %d, in some %d\n",
-                  within_half ? "of the grid's" : "repeated, of the", c.closings, c.every, c.none,
-                  c.some);
+      std::printf("%s, %d closings: held in every repeat %d, in none %d, in some %d\n",
+                  within_half ? "within half of every range" : "repeated", c.closings, c.every,
+                  c.none, c.some);
   }
 }
 
@@ -310,10 +278,10 @@ void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
         .field("hold_rate_low", d.interval.low)
         .field("hold_rate_high", d.interval.high)
         .end_object();
-  const std::vector<RepeatedClosing> closings = repeated_closings(map.outcomes);
+  const std::vector<sim::RepeatedClosing> closings = sim::group_by_closing(map.outcomes);
   json.key("repeats").begin_object().field("per_closing", map.repeats);
   for (bool within_half : {false, true}) {
-    const RepeatCounts c = count_repeats(closings, within_half);
+    const sim::RepeatCounts c = sim::count_repeats(closings, within_half);
     json.key(within_half ? "within_half" : "all")
         .begin_object()
         .field("closings", c.closings)
@@ -516,7 +484,7 @@ std::vector<OptionSpec> sim_grasp_options() {
        "(docs/simulator.md), or no grid",
        "single"},
       {"draws", "N", "also run N closings drawn from the distribution of people's closings", "0"},
-      {"seed", "S", "the draws' seed", "1"},
+      {"seed", "S", "the draws' seed, and the repeats' cubes'", "1"},
       {"jitter-from", "RECORDING",
        "lay this recording's tracker jitter on the closings: the jitter factor in the grid, "
        "its own jitter in the draws (e.g. data/leap/pinch.json.lz)"},
@@ -555,7 +523,8 @@ CommandHelp sim_grasp_help() {
           "through the lift and hold and released, its slip between the pads, the flesh's "
           "deepest penetration, the hold's peak grip and the cube's turn; the hold rate per "
           "factor and over the draws with its 95 % interval, and how many of the grid's closings "
-          "within half of every factor's range it held (docs/simulator.md)."};
+          "within half of every factor's range it held; with --repeats, how many closings it "
+          "held every time, never and only sometimes (docs/simulator.md)."};
 }
 
 int sim_grasp(const std::vector<std::string>& argv) {

@@ -143,6 +143,14 @@ TEST(GraspClosing, UnknownFactorsAndValuesOutsideTheGridAreRefused) {
   EXPECT_THROW(set_closing_factor(c, "squeeze", 1), std::invalid_argument);
   EXPECT_THROW(set_closing_factor(c, "over_closure", 31), std::invalid_argument);
   EXPECT_THROW(set_closing_factor(c, "closing_speed", 0), std::invalid_argument);
+  try {
+    set_closing_factor(c, "lift_acceleration", 0);
+    ADD_FAILURE() << "a lift of 0 m/s2";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("above 0 and at most 12 m/s2 (left out: the script's)"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_NO_THROW(set_closing_factor(c, "lead", -200));
   EXPECT_DOUBLE_EQ(c.lead_s, -0.2);
 }
@@ -189,6 +197,14 @@ TEST(GraspClosing, RepeatsMoveTheCubeWithinATenthOfAMillimetre) {
   EXPECT_EQ(again[5].closing.cube_shift_x, repeated[5].closing.cube_shift_x);
   EXPECT_NE(other[5].closing.cube_shift_x, repeated[5].closing.cube_shift_x);
   EXPECT_NE(repeated[5].closing.cube_shift_x, repeated[6].closing.cube_shift_x);
+  // A closing's repeats move its cube alike in whatever grid it is run.
+  const std::vector<ClosingPoint> whole = repeated_closings(single_factor_grid(), 4, 7);
+  const auto same = std::find_if(whole.begin(), whole.end(), [&](const ClosingPoint& p) {
+    return p.factor == "lead" && p.level == repeated[5].level && p.repeat == repeated[5].repeat;
+  });
+  ASSERT_NE(same, whole.end());
+  EXPECT_EQ(same->closing.cube_shift_x, repeated[5].closing.cube_shift_x);
+  EXPECT_EQ(same->closing.cube_shift_z, repeated[5].closing.cube_shift_z);
 }
 
 // A repeat moves the cube where it starts; the hand aims where it would have lain.

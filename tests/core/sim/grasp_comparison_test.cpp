@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/task/grasp_comparison.h"
+#include "core/task/grasp_repeats.h"
 
 namespace handlab::sim::grasp_comparison_test {
 namespace {
@@ -83,6 +84,41 @@ TEST(GraspComparison, TheSameClosingAsAMapFileReadsIt) {
       << "another repeat";
   EXPECT_FALSE(same_closing({"", 0, moved, 1}, {"", 0, GraspClosing{}, 1}));
   EXPECT_TRUE(same_closing({"", 0, moved, 1}, {"", 0, moved, 1}));
+}
+
+// A repeated map's closings: each with its runs, counted held every time, never or sometimes;
+// within half of every range the grid's alone, not the draws.
+TEST(GraspRepeats, CountsTheClosingsHeldEveryTimeNeverAndSometimes) {
+  const auto run = [](const std::string& factor, const GraspClosing& c, int repeat, bool held) {
+    GraspOutcome o;
+    o.point = {factor, 1, c, repeat};
+    o.measures.held = held;
+    return o;
+  };
+  const GraspClosing wide = closing("over_closure", 20);
+  const std::vector<GraspOutcome> outcomes = {run("", GraspClosing{}, 0, true),
+                                              run("", GraspClosing{}, 1, true),
+                                              run("over_closure", wide, 0, true),
+                                              run("over_closure", wide, 1, false),
+                                              run("draw", GraspClosing{}, 0, false),
+                                              run("draw", GraspClosing{}, 1, false),
+                                              run("pair", closing("lead", 100), 0, false),
+                                              run("pair", closing("lead", 100), 1, true)};
+  const std::vector<RepeatedClosing> closings = group_by_closing(outcomes);
+  ASSERT_EQ(closings.size(), 4u);
+  EXPECT_EQ(closings[1].given, &outcomes[2]);
+  EXPECT_EQ(closings[1].runs, 2);
+  EXPECT_EQ(closings[1].held, 1);
+  const RepeatCounts all = count_repeats(closings, false);
+  EXPECT_EQ(all.closings, 4);
+  EXPECT_EQ(all.every, 1);
+  EXPECT_EQ(all.none, 1);
+  EXPECT_EQ(all.some, 2);
+  const RepeatCounts half = count_repeats(closings, true);
+  EXPECT_EQ(half.closings, 2) << "not 20 mm of over-closure, not a draw";
+  EXPECT_EQ(half.every, 1);
+  EXPECT_EQ(half.some, 1);
+  EXPECT_EQ(half.none, 0);
 }
 
 }  // namespace
