@@ -42,6 +42,10 @@ std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter) {
   return points;
 }
 
+bool in_half_of_grid(const ClosingPoint& point) {
+  return point.factor != "draw" && within_half_of_ranges(point.closing);
+}
+
 std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& points, int repeats,
                                             std::uint64_t seed) {
   std::vector<ClosingPoint> out;

@@ -31,6 +31,10 @@ std::vector<ClosingPoint> single_factor_grid(const std::vector<std::string>& fac
 // others at the scripted pinch's; factor "pair", level the closing's number (1, 2, ...).
 std::vector<ClosingPoint> factor_pairs_grid(bool with_jitter = false);
 
+// A grid's closing (not a draw) within half of every factor's range (grasp_closing.h): the
+// part of the map the grip must hold whole.
+bool in_half_of_grid(const ClosingPoint& point);
+
 // How far a repeat moves the cube from where the hand aims (m): a disc of this radius.
 constexpr double kRepeatShift = 1e-4;
 

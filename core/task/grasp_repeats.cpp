@@ -15,8 +15,7 @@ std::vector<RepeatedClosing> group_by_closing(const std::vector<GraspOutcome>& o
 RepeatCounts count_repeats(const std::vector<RepeatedClosing>& closings, bool within_half) {
   RepeatCounts c;
   for (const RepeatedClosing& r : closings) {
-    const ClosingPoint& p = r.given->point;
-    if (within_half && (p.factor == "draw" || !within_half_of_ranges(p.closing))) continue;
+    if (within_half && !in_half_of_grid(r.given->point)) continue;
     ++c.closings;
     (r.held == r.runs ? c.every : r.held == 0 ? c.none : c.some) += 1;
   }

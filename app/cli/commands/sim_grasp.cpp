@@ -82,7 +82,7 @@ void print_within_half(const CubeMap& map) {
   int run = 0, held = 0;
   std::string lost;
   for (const sim::GraspOutcome& o : map.outcomes) {
-    if (o.point.factor == "draw" || !sim::within_half_of_ranges(o.point.closing)) continue;
+    if (!sim::in_half_of_grid(o.point)) continue;
     ++run;
     held += o.measures.held ? 1 : 0;
     if (!o.measures.held) lost += "\n  - " + closing_label(o.point);
