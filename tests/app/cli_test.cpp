@@ -651,7 +651,7 @@ TEST(CliSim, GraspMapRepeatsEachClosingWithTheCubeMoved) {
       run_cli("sim grasp --cube 0.01 --jobs 2 --closing over_closure=3 --repeats 2 --json " + out);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("the scripted pinch (repeat 1)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("held in every repeat"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("repeated, 1 closing: held in every repeat"), std::string::npos) << r.out;
   std::ifstream file(out);
   std::stringstream text;
   text << file.rdbuf();

@@ -110,9 +110,9 @@ void print_repeats(const CubeMap& map) {
   for (bool within_half : {false, true}) {
     const sim::RepeatCounts c = sim::count_repeats(closings, within_half);
     if (c.closings > 0)
-      std::printf("%s, %d closings: held in every repeat %d, in none %d, in some %d\n",
-                  within_half ? "within half of every range" : "repeated", c.closings, c.every,
-                  c.none, c.some);
+      std::printf("%s, %d closing%s: held in every repeat %d, in none %d, in some %d\n",
+                  within_half ? "within half of every range" : "repeated", c.closings,
+                  c.closings == 1 ? "" : "s", c.every, c.none, c.some);
   }
 }
 
