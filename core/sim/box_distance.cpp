@@ -31,4 +31,31 @@ BoxProximity box_proximity(const Eigen::Vector3d& half, const Eigen::Vector3d& q
   return out;
 }
 
+int box_face(const Eigen::Vector3d& half, const Eigen::Vector3d& q) {
+  int face = 0;
+  double farthest = -INFINITY;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int positive = 1; positive >= 0; --positive) {
+      const double outside = (positive ? q(axis) : -q(axis)) - half(axis);
+      if (outside > farthest) {
+        farthest = outside;
+        face = 2 * axis + positive;
+      }
+    }
+  return face;
+}
+
+BoxProximity box_proximity_through(const Eigen::Vector3d& half, const Eigen::Vector3d& q,
+                                   int face) {
+  if ((q.array().abs() > half.array()).any()) return box_proximity(half, q);
+  const int axis = face / 2;
+  const double side = face % 2 ? 1.0 : -1.0;
+  BoxProximity out;
+  out.distance = side * q(axis) - half(axis);
+  out.closest = q;
+  out.closest(axis) = side * half(axis);
+  out.normal = side * Eigen::Vector3d::Unit(axis);
+  return out;
+}
+
 }  // namespace handlab::sim

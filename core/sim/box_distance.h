@@ -14,4 +14,11 @@ struct BoxProximity {
 // In the box's frame: the box [-half, half], the point q.
 BoxProximity box_proximity(const Eigen::Vector3d& half, const Eigen::Vector3d& q);
 
+// The box's faces are numbered 2 axis + (1 on the positive side, 0 on the negative).
+// The face whose plane q lies farthest outside of (inside the box: the nearest face).
+int box_face(const Eigen::Vector3d& half, const Eigen::Vector3d& q);
+// As box_proximity, but a point inside is pushed out through `face`: its depth is below that
+// face's plane, however near another face it lies.
+BoxProximity box_proximity_through(const Eigen::Vector3d& half, const Eigen::Vector3d& q, int face);
+
 }  // namespace handlab::sim

@@ -25,6 +25,7 @@ struct Contact {
   int point;               // node, skin sample or corner
   Eigen::Vector3d normal;  // at the predicted state, in the surface's frame (cube or world)
   Eigen::Vector3d anchor;  // friction anchor, in the surface's frame
+  int face = -1;           // flesh on the cube: the face it touches through (box_face's)
   bool touching = false;   // inside the surface at the predicted state: friction acts
   // The normal penalty's curvature is in Newton's matrix even where the point is outside:
   // from the start for points inside at the prediction, and from the next pass for points
@@ -78,6 +79,9 @@ struct ContactGap {
   BoxProximity box;  // on the cube only
 };
 ContactGap contact_gap(const HandSimModel& model, const HandSimState& state, const Contact& c);
+// A flesh point q (the cube's frame) against the cube, touching through `face` (-1: none yet):
+// box_proximity, or box_proximity_through where the model keeps the face (contact_keeps_face).
+BoxProximity flesh_on_cube(const HandSimModel& model, const Eigen::Vector3d& q, int face);
 inline bool on_cube(const Contact& c) {
   return c.kind == Contact::kNodeCube || c.kind == Contact::kSampleCube;
 }

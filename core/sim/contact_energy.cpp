@@ -56,8 +56,8 @@ void add_contact_energies(const HandSimModel& model, const HandSimState& s,
       continue;
     }
     // Against the cube: the surface point and the anchor move with it.
-    const BoxProximity b = box_proximity(
-        model.cube_half, s.cube_pose.rotation.conjugate() * (x - s.cube_pose.position));
+    const BoxProximity b =
+        flesh_on_cube(model, s.cube_pose.rotation.conjugate() * (x - s.cube_pose.position), c.face);
     if (b.distance < 0 || c.curved) {
       const Eigen::Vector3d n = cube_r * b.normal, surface = s.cube_pose.point(b.closest);
       PointJacobian normal_part = p;

@@ -9,7 +9,8 @@ std::array<double, 6> flesh_forces_on_cube_faces(const HandSimModel& model,
   std::array<double, 6> faces{};
   auto add = [&](Contact::Kind kind, const std::vector<ContactAnchor>& anchors) {
     for (const ContactAnchor& a : anchors) {
-      const Contact c{kind, a.point, Eigen::Vector3d::Zero(), a.anchor};
+      Contact c{kind, a.point, Eigen::Vector3d::Zero(), a.anchor};
+      c.face = a.face;
       const ContactGap g = contact_gap(model, state, c);
       if (g.gap >= 0) continue;
       const double depth = -g.gap;

@@ -51,12 +51,18 @@ double friction_cone(const HandSimModel& model, const Contact& c, double depth) 
          (1.0 + contact_stiffening(model, c) * depth / contact_stiffness(model, c));
 }
 
+BoxProximity flesh_on_cube(const HandSimModel& model, const Eigen::Vector3d& q, int face) {
+  return model.parameters.contact_keeps_face && face >= 0
+             ? box_proximity_through(model.cube_half, q, face)
+             : box_proximity(model.cube_half, q);
+}
+
 ContactGap contact_gap(const HandSimModel& model, const HandSimState& s, const Contact& c) {
   const SimParameters& par = model.parameters;
   ContactGap g;
   if (on_cube(c)) {
     g.x = s.cube_pose.rotation.conjugate() * (flesh_point(model, s, c) - s.cube_pose.position);
-    g.box = box_proximity(model.cube_half, g.x);
+    g.box = flesh_on_cube(model, g.x, c.face);
     g.gap = g.box.distance;
     return g;
   }
@@ -73,10 +79,17 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
   contacts.clear();
   const Eigen::Vector3d nf = par.floor_normal.normalized();
   // `x` and `surface` in the surface's frame, `gap` the signed distance.
-  auto add = [&](Contact::Kind kind, int point, const Eigen::Vector3d& x,
-                 const Eigen::Vector3d& normal, const Eigen::Vector3d& surface, double gap,
-                 const ContactAnchor* old, double k) {
+  auto add = [&](Contact::Kind kind, int point, const Eigen::Vector3d& x, Eigen::Vector3d normal,
+                 const Eigen::Vector3d& surface, double gap, const ContactAnchor* old, double k) {
     Contact c{kind, point, normal, old ? old->anchor : surface};
+    if (par.contact_keeps_face && on_cube(c)) {
+      // The face it came through: kept from the step before, else the one it lies outside of.
+      c.face = old && old->face >= 0 ? old->face : box_face(model.cube_half, x);
+      const BoxProximity b = box_proximity_through(model.cube_half, x, c.face);
+      c.normal = normal = b.normal;
+      if (!old) c.anchor = b.closest;
+      gap = b.distance;
+    }
     c.across = on_cube(c) ? s.cube_pose.rotation * normal : normal;
     c.touching = gap < 0;
     c.curved = c.touching;

@@ -79,8 +79,10 @@ double update_anchors(const HandSimModel& model, const std::vector<Contact>& con
     if (on_cube(c)) {
       max_penetration = std::max(max_penetration, depth);
       (c.kind == Contact::kNodeCube ? s.node_cube : s.sample_cube)
-          .push_back({c.point, coulomb_anchor(g.x, g.box.normal, friction_cone(model, c, depth),
-                                              c.touching ? c.anchor : g.box.closest)});
+          .push_back({c.point,
+                      coulomb_anchor(g.x, g.box.normal, friction_cone(model, c, depth),
+                                     c.touching ? c.anchor : g.box.closest),
+                      c.face});
       continue;
     }
     (c.kind == Contact::kNodeFloor ? s.node_floor : s.corner_floor)

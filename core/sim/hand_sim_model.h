@@ -56,6 +56,11 @@ struct SimParameters {
   // skin between them (1.7 mm in the scripted light pinch's hold).
   // The nodes and samples share contact_stiffness (HandSimModel::cube_contact_share).
   int skin_samples = 1;
+  // A flesh point inside the cube is pushed out through the face it touched when its contact
+  // began (kept with its friction anchor), not through the face now nearest: near an edge,
+  // a pad pressed into a side face otherwise pushes the cube through the bottom or the face
+  // beside it. Off: the nearest face.
+  bool contact_keeps_face = false;
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
   // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong

@@ -18,6 +18,7 @@ namespace handlab::sim {
 struct ContactAnchor {
   int point = 0;           // a flesh node, a skin sample, or a cube corner (0..7)
   Eigen::Vector3d anchor;  // on the cube (cube frame) or on the floor (world)
+  int face = -1;           // flesh on the cube: the face it touches through (box_face's)
 };
 
 struct HandSimState {

@@ -11,6 +11,19 @@ struct NamedParameter {
   bool positive;  // must be above zero, not only zero or more
 };
 
+// Switches, set by 1 (on) or 0 (off).
+struct NamedSwitch {
+  const char* name;
+  bool SimParameters::*field;
+};
+
+const std::vector<NamedSwitch>& named_switches() {
+  static const std::vector<NamedSwitch> table = {
+      {"contact_keeps_face", &SimParameters::contact_keeps_face},
+  };
+  return table;
+}
+
 const std::vector<NamedParameter>& named_parameters() {
   static const std::vector<NamedParameter> table = {
       {"time_step", &SimParameters::time_step, true},
@@ -40,6 +53,7 @@ const std::vector<NamedParameter>& named_parameters() {
 std::vector<std::string> sim_parameter_names() {
   std::vector<std::string> names;
   for (const NamedParameter& p : named_parameters()) names.push_back(p.name);
+  for (const NamedSwitch& p : named_switches()) names.push_back(p.name);
   return names;
 }
 
@@ -51,9 +65,14 @@ void set_sim_parameter(SimParameters& parameters, const std::string& name, doubl
     parameters.*(p.field) = value;
     return;
   }
+  for (const NamedSwitch& p : named_switches()) {
+    if (name != p.name) continue;
+    if (value != 0 && value != 1) throw std::invalid_argument(name + " must be 0 or 1");
+    parameters.*(p.field) = value == 1;
+    return;
+  }
   std::string names;
-  for (const NamedParameter& p : named_parameters())
-    names += (names.empty() ? "" : ", ") + std::string(p.name);
+  for (const std::string& n : sim_parameter_names()) names += (names.empty() ? "" : ", ") + n;
   throw std::invalid_argument("no simulator parameter '" + name + "' (" + names + ")");
 }
 

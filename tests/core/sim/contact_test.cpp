@@ -278,5 +278,45 @@ TEST(ContactSearch, ASkinSampleMeetsACornerBetweenNodes) {
                            [](const Contact& c) { return c.touching; }));
 }
 
+// A flesh point pressed into a side face of the cube near its bottom edge, then deeper than
+// its height above the bottom: by the nearest face it pushes the cube up through the bottom;
+// with contact_keeps_face it pushes it on through the side face it came through.
+TEST(ContactSearch, AFleshPointKeepsTheFaceItCameThrough) {
+  const mesh::TetMesh tet{{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.03, 0, 0),
+                           Eigen::Vector3d(0.03, 0.03, 0), Eigen::Vector3d(0.03, 0, 0.03)},
+                          {{0, 1, 2, 3}}};
+  auto force_on_cube = [&](bool keep_face) {
+    SimParameters parameters;
+    parameters.floor_height = -1.0;  // out of the way
+    set_sim_parameter(parameters, "contact_keeps_face", keep_face ? 1 : 0);
+    const HandSimModel model = make_soft_body_sim_model(tet, parameters);
+    HandSimState s;
+    s.node_velocity.assign(model.rest.size(), Eigen::Vector3d::Zero());
+    s.tet_rotation.assign(1, Eigen::Quaterniond::Identity());
+    s.node_position = model.rest;
+    // Node 0 0.2 mm outside the +x face, 0.3 mm above the bottom (the cube at the origin).
+    const double half = model.cube_half.x();
+    s.node_position[0] = Eigen::Vector3d(half + 0.0002, -half + 0.0003, 0.0);
+    std::vector<Contact> contacts;
+    find_contacts(model, s, contacts);
+    EXPECT_EQ(contacts.size(), 1u);
+    EXPECT_EQ(contacts.front().face, keep_face ? 1 : -1);
+    // Then 0.6 mm inside it: deeper than its height above the bottom.
+    s.node_position[0].x() = half - 0.0006;
+    update_anchors(model, contacts, s);
+    find_contacts(model, s, contacts);
+    EXPECT_TRUE(contacts.front().touching);
+    NewtonTerms terms = test::empty_terms(model, true);
+    add_contact_energies(model, s, contacts, terms);
+    return Eigen::Vector3d(-terms.gradient.segment<3>(3 * cube_block(model)));
+  };
+  const Eigen::Vector3d nearest = force_on_cube(false), kept = force_on_cube(true);
+  EXPECT_GT(nearest.y(), 0.0) << "pushed up through the bottom";
+  EXPECT_NEAR(nearest.x(), 0.0, 1e-12);
+  EXPECT_LT(kept.x(), 0.0) << "pushed on through the +x face";
+  EXPECT_NEAR(kept.y(), 0.0, 1e-12);
+  EXPECT_GT(-kept.x(), 1.5 * nearest.y()) << "0.6 mm deep, not 0.3 mm";
+}
+
 }  // namespace
 }  // namespace handlab::sim

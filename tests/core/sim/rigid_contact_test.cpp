@@ -64,6 +64,27 @@ TEST(BoxDistance, OutsideInsideAndOnEdges) {
   EXPECT_LT((p.closest - Eigen::Vector3d(0.0, -0.02, 0.01)).norm(), 1e-15);
 }
 
+// A point inside pushed out through a face it names, however near another face it lies; the
+// face a point lies farthest outside of (inside, the nearest).
+TEST(BoxDistance, ThroughAGivenFace) {
+  const Eigen::Vector3d half(0.01, 0.02, 0.03);
+  const Eigen::Vector3d near_bottom(0.009, -0.0197, 0.0);  // 1 mm inside +x, 0.3 mm above -y
+  EXPECT_EQ(box_face(half, near_bottom), 2);               // -y: the nearest
+  EXPECT_EQ(box_face(half, Eigen::Vector3d(0.0102, -0.0199, 0)), 1) << "outside +x, not -y";
+  EXPECT_EQ(box_face(half, Eigen::Vector3d(0, 0, 0.031)), 5);
+  BoxProximity p = box_proximity_through(half, near_bottom, 1);
+  EXPECT_NEAR(p.distance, -0.001, 1e-15);
+  EXPECT_EQ(p.normal, Eigen::Vector3d::UnitX());
+  EXPECT_LT((p.closest - Eigen::Vector3d(0.01, -0.0197, 0)).norm(), 1e-15);
+  p = box_proximity_through(half, near_bottom, 2);
+  EXPECT_NEAR(p.distance, -0.0003, 1e-15);
+  EXPECT_EQ(p.normal, -Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d outside(0.013, 0.024, 0);  // outside: the box's distance, any face
+  p = box_proximity_through(half, outside, 4);
+  EXPECT_NEAR(p.distance, box_proximity(half, outside).distance, 1e-15);
+  EXPECT_EQ(p.normal, box_proximity(half, outside).normal);
+}
+
 // The lowest point of the cube above the floor.
 double clearance(const HandSimModel& m, const HandSimState& s) {
   double lowest = INFINITY;
