@@ -61,6 +61,10 @@ struct SimParameters {
   // a pad pressed into a side face otherwise pushes the cube through the bottom or the face
   // beside it. Off: the nearest face.
   bool contact_keeps_face = false;
+  // A step in which flesh first touches the cube taken again in steps of this length, and the
+  // steps within contact_substep_window after it too (core/sim/contact_substeps). 0: off.
+  double contact_time_step = 0.0;       // s
+  double contact_substep_window = 0.0;  // s
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
   // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong

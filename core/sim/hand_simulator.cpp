@@ -1,11 +1,13 @@
-// The step as two solvers side by side: the hand's and the cube's together (step_solver.h),
-// then, for a cube that no flesh touches and that is not resting, the cube alone again in
-// substeps (free_cube.h).
+// The step as solvers side by side: the hand's and the cube's together (step_solver.h), taken
+// again in substeps where flesh begins to touch the cube when the parameters ask for it
+// (contact_substeps.h), then, for a cube that no flesh touches and that is not resting, the
+// cube alone again in substeps (free_cube.h).
 #include "core/sim/hand_simulator.h"
 
 #include <cmath>
 #include <stdexcept>
 
+#include "core/sim/contact_substeps.h"
 #include "core/sim/free_cube.h"
 #include "core/sim/step_solver.h"
 
@@ -33,14 +35,29 @@ int contact_count(const HandSimState& s) {
              s.corner_floor.size());
 }
 
+void add_work(const SimStepReport& more, SimStepReport& report) {
+  report.newton_iterations += more.newton_iterations;
+  report.linear_iterations += more.linear_iterations;
+  report.factorizations += more.factorizations;
+  report.direct_solves += more.direct_solves;
+  report.halvings += more.halvings;
+  report.max_penetration = more.max_penetration;
+  report.residual = more.residual;
+}
+
 }  // namespace
 
 struct HandSimulator::Impl {
   const HandSimModel& model;
   StepSolver solver;
   std::unique_ptr<FreeCubeStepper> free_cube;  // made when first needed (a hand's model only)
+  std::unique_ptr<ContactSubsteps> substeps;   // when the parameters ask for them
+  std::vector<RigidPose> last_targets;         // the step before's, where substeps start
 
-  Impl(const HandSimModel& m, const SimOptions& o) : model(m), solver(m, o) {}
+  Impl(const HandSimModel& m, const SimOptions& o) : model(m), solver(m, o) {
+    if (m.node_count() > 0 && ContactSubsteps::enabled(m.parameters))
+      substeps = std::make_unique<ContactSubsteps>(m, o);
+  }
 };
 
 HandSimulator::HandSimulator(const HandSimModel& model, SimOptions options)
@@ -54,9 +71,23 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   Impl& sim = *impl_;
   check_targets(sim.model, targets);
   HandSimState next;
-  SimStepReport report = sim.solver.step(state, targets, next);
-  if (sim.model.node_count() > 0 &&
-      FreeCubeStepper::applies(state, sim.solver.flesh_touched_cube())) {
+  SimStepReport report;
+  bool flesh_touched = false;
+  ContactSubsteps* substeps = sim.substeps.get();
+  const std::vector<RigidPose>& from = sim.last_targets.empty() ? targets : sim.last_targets;
+  if (substeps && substeps->in_window()) {
+    report = substeps->step(state, from, targets, false, next);
+    flesh_touched = substeps->flesh_touched_cube();
+  } else {
+    report = sim.solver.step(state, targets, next);
+    flesh_touched = sim.solver.flesh_touched_cube();
+    if (substeps && ContactSubsteps::began_contact(state, next)) {
+      add_work(substeps->step(state, from, targets, true, next), report);
+      flesh_touched = substeps->flesh_touched_cube();
+    }
+  }
+  if (substeps) sim.last_targets = targets;
+  if (sim.model.node_count() > 0 && FreeCubeStepper::applies(state, flesh_touched)) {
     if (!sim.free_cube) sim.free_cube = std::make_unique<FreeCubeStepper>(sim.model.parameters);
     sim.free_cube->step(state, next);
   }

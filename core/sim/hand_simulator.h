@@ -4,8 +4,9 @@
 // iteration by default, as Verschoor et al. do). Contacts are found at the predicted state;
 // after the step each friction anchor sticks, or slides to the edge of Coulomb's cone; a cube
 // that no flesh touches and that is not resting is stepped again alone, in substeps
-// (free_cube.h). The stages are in their own files; step_solver.cpp lists them,
-// docs/simulator.md explains them.
+// (free_cube.h); where the parameters ask for it, a step in which flesh begins to touch the
+// cube, and the steps for a while after, are taken in substeps (contact_substeps.h). The stages are
+// in their own files; step_solver.cpp lists them, docs/simulator.md explains them.
 #pragma once
 
 #include <memory>
@@ -29,7 +30,8 @@ class HandSimulator {
   // with std::invalid_argument, and on any exception the state is left as it was.
   // Besides the model, the state and the targets, the step reads the solver's memory that the
   // simulator keeps from its earlier steps (SolverMemory in linear_solve.h: the factorisation
-  // of an earlier Newton matrix that preconditions CG, its age and the policy's counters).
+  // of an earlier Newton matrix that preconditions CG, its age and the policy's counters; with
+  // contact substeps, the substeps' own, the last step's targets and the window left).
   // CG stops within a tolerance, so the results depend on that memory within the tolerance,
   // and bit for bit on the steps taken before: the same simulator options, the same sequence
   // of states and targets from construction, give the same states.

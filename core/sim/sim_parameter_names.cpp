@@ -44,6 +44,8 @@ const std::vector<NamedParameter>& named_parameters() {
       {"friction", &SimParameters::friction, false},
       {"skin_friction", &SimParameters::skin_friction, false},
       {"cube_density", &SimParameters::cube_density, true},
+      {"contact_time_step", &SimParameters::contact_time_step, false},
+      {"contact_substep_window", &SimParameters::contact_substep_window, false},
   };
   return table;
 }

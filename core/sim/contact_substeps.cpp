@@ -1,0 +1,75 @@
+#include "core/sim/contact_substeps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace handlab::sim {
+namespace {
+
+int substep_count(const SimParameters& p) {
+  return p.contact_time_step > 0 ? std::max(1, int(std::lround(p.time_step / p.contact_time_step)))
+                                 : 1;
+}
+
+HandSimModel substepped(HandSimModel model) {
+  model.parameters.time_step /= substep_count(model.parameters);
+  return model;
+}
+
+bool listed(const std::vector<ContactAnchor>& anchors, int point) {
+  // Sorted by point (update_anchors keeps the flesh's order).
+  return std::binary_search(
+      anchors.begin(), anchors.end(), ContactAnchor{point, {}},
+      [](const ContactAnchor& a, const ContactAnchor& b) { return a.point < b.point; });
+}
+
+}  // namespace
+
+bool ContactSubsteps::enabled(const SimParameters& parameters) {
+  return substep_count(parameters) > 1;
+}
+
+ContactSubsteps::ContactSubsteps(const HandSimModel& model, const SimOptions& options)
+    : model_(substepped(model)),
+      solver_(model_, options),
+      substeps_(substep_count(model.parameters)),
+      window_steps_(
+          int(std::lround(model.parameters.contact_substep_window / model.parameters.time_step))) {}
+
+bool ContactSubsteps::began_contact(const HandSimState& before, const HandSimState& after) {
+  for (const ContactAnchor& a : after.node_cube)
+    if (!listed(before.node_cube, a.point)) return true;
+  for (const ContactAnchor& a : after.sample_cube)
+    if (!listed(before.sample_cube, a.point)) return true;
+  return false;
+}
+
+SimStepReport ContactSubsteps::step(const HandSimState& start, const std::vector<RigidPose>& from,
+                                    const std::vector<RigidPose>& to, bool began,
+                                    HandSimState& result) {
+  window_left_ = began ? window_steps_ : std::max(0, window_left_ - 1);
+  SimStepReport total;
+  HandSimState current = start, next;
+  std::vector<RigidPose> targets(to.size());
+  for (int i = 1; i <= substeps_; ++i) {
+    const double t = double(i) / substeps_;
+    for (std::size_t b = 0; b < to.size(); ++b) {
+      targets[b].position = (1 - t) * from[b].position + t * to[b].position;
+      targets[b].rotation = from[b].rotation.slerp(t, to[b].rotation);
+    }
+    const SimStepReport r = solver_.step(current, targets, next);
+    total.newton_iterations += r.newton_iterations;
+    total.linear_iterations += r.linear_iterations;
+    total.factorizations += r.factorizations;
+    total.direct_solves += r.direct_solves;
+    total.halvings += r.halvings;
+    total.max_penetration = r.max_penetration;
+    total.residual = r.residual;
+    std::swap(current, next);
+  }
+  result = std::move(current);
+  return total;
+}
+
+}  // namespace handlab::sim
