@@ -58,14 +58,7 @@ SimStepReport ContactSubsteps::step(const HandSimState& start, const std::vector
       targets[b].position = (1 - t) * from[b].position + t * to[b].position;
       targets[b].rotation = from[b].rotation.slerp(t, to[b].rotation);
     }
-    const SimStepReport r = solver_.step(current, targets, next);
-    total.newton_iterations += r.newton_iterations;
-    total.linear_iterations += r.linear_iterations;
-    total.factorizations += r.factorizations;
-    total.direct_solves += r.direct_solves;
-    total.halvings += r.halvings;
-    total.max_penetration = r.max_penetration;
-    total.residual = r.residual;
+    add_work(solver_.step(current, targets, next), total);
     std::swap(current, next);
   }
   result = std::move(current);

@@ -35,16 +35,6 @@ int contact_count(const HandSimState& s) {
              s.corner_floor.size());
 }
 
-void add_work(const SimStepReport& more, SimStepReport& report) {
-  report.newton_iterations += more.newton_iterations;
-  report.linear_iterations += more.linear_iterations;
-  report.factorizations += more.factorizations;
-  report.direct_solves += more.direct_solves;
-  report.halvings += more.halvings;
-  report.max_penetration = more.max_penetration;
-  report.residual = more.residual;
-}
-
 }  // namespace
 
 struct HandSimulator::Impl {

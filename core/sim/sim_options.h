@@ -47,4 +47,16 @@ struct SimStepReport {
   double residual = 0.0;         // max |gradient| where the last Newton solve started (N)
 };
 
+// A step solved more than once (again in substeps): the work of each added up, the result's
+// penetration and residual the last's.
+inline void add_work(const SimStepReport& more, SimStepReport& total) {
+  total.newton_iterations += more.newton_iterations;
+  total.linear_iterations += more.linear_iterations;
+  total.factorizations += more.factorizations;
+  total.direct_solves += more.direct_solves;
+  total.halvings += more.halvings;
+  total.max_penetration = more.max_penetration;
+  total.residual = more.residual;
+}
+
 }  // namespace handlab::sim
