@@ -19,9 +19,9 @@ HandSimModel substepped(HandSimModel model) {
 
 bool listed(const std::vector<ContactAnchor>& anchors, int point) {
   // Sorted by point (update_anchors keeps the flesh's order).
-  return std::binary_search(
-      anchors.begin(), anchors.end(), ContactAnchor{point, {}},
-      [](const ContactAnchor& a, const ContactAnchor& b) { return a.point < b.point; });
+  const auto it = std::lower_bound(anchors.begin(), anchors.end(), point,
+                                   [](const ContactAnchor& a, int p) { return a.point < p; });
+  return it != anchors.end() && it->point == point;
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 // moved between the step's start and end along the way.
 #pragma once
 
-#include <memory>
 #include <vector>
 
 #include "core/sim/hand_sim_model.h"
