@@ -46,10 +46,9 @@ bool ContactSubsteps::began_contact(const HandSimState& before, const HandSimSta
 }
 
 SimStepReport ContactSubsteps::step(const HandSimState& start, const std::vector<RigidPose>& from,
-                                    const std::vector<RigidPose>& to, bool began,
-                                    HandSimState& result) {
-  window_left_ = began ? window_steps_ : std::max(0, window_left_ - 1);
+                                    const std::vector<RigidPose>& to, HandSimState& result) {
   SimStepReport total;
+  bool touched = false;
   HandSimState current = start, next;
   std::vector<RigidPose> targets(to.size());
   for (int i = 1; i <= substeps_; ++i) {
@@ -59,8 +58,12 @@ SimStepReport ContactSubsteps::step(const HandSimState& start, const std::vector
       targets[b].rotation = from[b].rotation.slerp(t, to[b].rotation);
     }
     add_work(solver_.step(current, targets, next), total);
+    // A cube touched in an early substep and let go by the last was still pushed by the hand:
+    // the free cube's pass must not take the step again without it.
+    touched = touched || solver_.flesh_touched_cube();
     std::swap(current, next);
   }
+  touched_ = touched;
   result = std::move(current);
   return total;
 }

@@ -27,20 +27,24 @@ class ContactSubsteps {
   int substeps() const { return substeps_; }
   // Whether a flesh point touches the cube after a step that it did not touch before.
   static bool began_contact(const HandSimState& before, const HandSimState& after);
-  // Whether the next step falls in the window after a contact began.
+
+  // The window after a contact began: opened anew by each step that began one, counted down
+  // by each step taken in it.
+  void open_window() { window_left_ = window_steps_; }
+  void count_down() { window_left_ = window_left_ > 0 ? window_left_ - 1 : 0; }
   bool in_window() const { return window_left_ > 0; }
-  // Whether flesh touched the cube in the last substep.
-  bool flesh_touched_cube() const { return solver_.flesh_touched_cube(); }
 
   // `start` to `result` in substeps, the targets moved from `from` to `to` (one per bone)
-  // along the way; `began` opens the window anew, else the step counts down within it.
+  // along the way. Whether flesh touched the cube in any of them: flesh_touched_cube().
   SimStepReport step(const HandSimState& start, const std::vector<RigidPose>& from,
-                     const std::vector<RigidPose>& to, bool began, HandSimState& result);
+                     const std::vector<RigidPose>& to, HandSimState& result);
+  bool flesh_touched_cube() const { return touched_; }
 
  private:
   HandSimModel model_;  // the hand's, its time step a substep
   StepSolver solver_;
   int substeps_ = 1, window_steps_ = 0, window_left_ = 0;
+  bool touched_ = false;
 };
 
 }  // namespace handlab::sim

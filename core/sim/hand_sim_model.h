@@ -57,12 +57,15 @@ struct SimParameters {
   // The nodes and samples share contact_stiffness (HandSimModel::cube_contact_share).
   int skin_samples = 1;
   // A flesh point inside the cube is pushed out through the face it touched when its contact
-  // began (kept with its friction anchor), not through the face now nearest: near an edge,
-  // a pad pressed into a side face otherwise pushes the cube through the bottom or the face
-  // beside it. Off: the nearest face.
+  // began (kept with its friction anchor; a new contact's, the face its point lies farthest
+  // outside of at the step's prediction), not through the face now nearest: near an edge, a
+  // pad pressed into a side face otherwise pushes the cube through the bottom or the face
+  // beside it. A point that leaves the cube sideways, below its kept face, loses its penalty
+  // at once (the energy steps down there). Off: the nearest face.
   bool contact_keeps_face = false;
-  // A step in which flesh first touches the cube taken again in steps of this length, and the
-  // steps within contact_substep_window after it too (core/sim/contact_substeps). 0: off.
+  // A step in which flesh first touches the cube taken again in substeps of about this length
+  // (the time step divided by the nearest whole number), and the steps within
+  // contact_substep_window after it too (core/sim/contact_substeps). 0: off.
   double contact_time_step = 0.0;       // s
   double contact_substep_window = 0.0;  // s
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the

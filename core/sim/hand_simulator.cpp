@@ -66,14 +66,17 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
   ContactSubsteps* substeps = sim.substeps.get();
   const std::vector<RigidPose>& from = sim.last_targets.empty() ? targets : sim.last_targets;
   if (substeps && substeps->in_window()) {
-    report = substeps->step(state, from, targets, false, next);
+    report = substeps->step(state, from, targets, next);
     flesh_touched = substeps->flesh_touched_cube();
+    substeps->count_down();
+    if (ContactSubsteps::began_contact(state, next)) substeps->open_window();
   } else {
     report = sim.solver.step(state, targets, next);
     flesh_touched = sim.solver.flesh_touched_cube();
     if (substeps && ContactSubsteps::began_contact(state, next)) {
-      add_work(substeps->step(state, from, targets, true, next), report);
+      add_work(substeps->step(state, from, targets, next), report);
       flesh_touched = substeps->flesh_touched_cube();
+      substeps->open_window();
     }
   }
   if (substeps) sim.last_targets = targets;

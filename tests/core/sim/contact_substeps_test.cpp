@@ -58,7 +58,7 @@ TEST(ContactSubsteps, AStepIsTheModelsAtTheShorterStepWithTheTargetsMovedAlong) 
                                                  scene.script.target(t + 0.05));
   ContactSubsteps substeps(model, SimOptions{});
   HandSimState result;
-  const SimStepReport report = substeps.step(start, from, to, true, result);
+  const SimStepReport report = substeps.step(start, from, to, result);
 
   HandSimModel quarter = model;
   quarter.parameters.time_step = kStudyStep / 4;
@@ -83,29 +83,30 @@ TEST(ContactSubsteps, AStepIsTheModelsAtTheShorterStepWithTheTargetsMovedAlong) 
   EXPECT_EQ(report.newton_iterations, newton);
 }
 
-// The window after a contact began: this many steps, counted down by the steps taken in it.
+// The window after a contact began: contact_substep_window in steps, opened anew by each step
+// that began a contact, counted down by each step taken in it.
 TEST(ContactSubsteps, TheWindowCountsItsSteps) {
   SimParameters p = substepped(2, 0.05);  // 6 steps of 1/120 s
-  p.cube_size = 0.01;
   const HandSimModel model = make_cube_sim_model(p);
-  RigidPose cube;
-  cube.position = Eigen::Vector3d(0, 0.005, 0);
-  HandSimState state = initial_state(model, {}, Eigen::Isometry3d::Identity(), cube), next;
   ContactSubsteps substeps(model, SimOptions{});
   EXPECT_EQ(substeps.substeps(), 2);
   EXPECT_FALSE(substeps.in_window());
-  substeps.step(state, {}, {}, true, next);
+  substeps.open_window();
   for (int i = 0; i < 6; ++i) {
     EXPECT_TRUE(substeps.in_window()) << "step " << i << " of the window";
-    substeps.step(next, {}, {}, false, state);
-    std::swap(state, next);
+    substeps.count_down();
+    if (i == 2) substeps.open_window();  // a contact began in the window's third step
   }
+  for (int i = 0; i < 3; ++i) substeps.count_down();
+  EXPECT_FALSE(substeps.in_window());
+  substeps.count_down();
   EXPECT_FALSE(substeps.in_window());
 }
 
 // The scripted functional pinch with contact substeps: the same to the bit until flesh first
 // touches the cube; that step is taken again in four substeps (its Newton iterations the coarse
-// step's and four more), and the window's 12 steps (0.1 s) each in four.
+// step's and four more), as without a window, and the window's 12 steps (0.1 s) each in four,
+// some of which without a window are not.
 TEST(ContactSubsteps, OnlyWhereFleshBeginsToTouchTheCube) {
   auto run = [](const SimParameters& parameters, std::vector<HandSimState>& states) {
     const PinchScene scene = make_pinch_scene(0.01, 1, 0.003, hand::HandShape{}.length, parameters,
@@ -113,18 +114,25 @@ TEST(ContactSubsteps, OnlyWhereFleshBeginsToTouchTheCube) {
     return run_pinch(scene.model, scene.skeleton, scene.script, SimOptions{},
                      scene.script.close_end, [&](const HandSimState& s) { states.push_back(s); });
   };
-  std::vector<HandSimState> plain, fine;
+  std::vector<HandSimState> plain, fine, no_window;
   run(SimParameters{}, plain);
   const PinchReport report = run(substepped(4, 0.1), fine);
+  const PinchReport without_window = run(substepped(4, 0.0), no_window);
   std::size_t first = 0;
   while (first < plain.size() && plain[first].node_cube.empty() && plain[first].sample_cube.empty())
     ++first;
   ASSERT_LT(first + 13, plain.size()) << "the pads reach the cube before the closing ends";
   for (std::size_t i = 0; i < first; ++i)
     ASSERT_EQ(fine[i].node_position, plain[i].node_position) << "step " << i;
+  EXPECT_NE(fine[first].node_position, plain[first].node_position);
   EXPECT_GE(report.newton_iterations[first], 5);
-  for (std::size_t i = first + 1; i <= first + 12; ++i)
+  EXPECT_EQ(no_window[first].node_position, fine[first].node_position) << "the first touch";
+  int plain_without_window = 0;
+  for (std::size_t i = first + 1; i <= first + 12; ++i) {
     EXPECT_GE(report.newton_iterations[i], 4) << "step " << i - first << " of the window";
+    plain_without_window += without_window.newton_iterations[i] < 4;
+  }
+  EXPECT_GT(plain_without_window, 0) << "steps that only the window takes in substeps";
 }
 
 }  // namespace
