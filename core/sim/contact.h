@@ -79,6 +79,8 @@ struct ContactGap {
   BoxProximity box;  // on the cube only
 };
 ContactGap contact_gap(const HandSimModel& model, const HandSimState& state, const Contact& c);
+// The anchor of `point` in a list sorted by point (a state's), or null.
+const ContactAnchor* find_anchor(const std::vector<ContactAnchor>& list, int point);
 // A flesh point q (the cube's frame) against the cube, touching through `face` (-1: none yet):
 // box_proximity, or box_proximity_through where the model keeps the face (contact_keeps_face).
 BoxProximity flesh_on_cube(const HandSimModel& model, const Eigen::Vector3d& q, int face);

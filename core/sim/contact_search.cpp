@@ -9,13 +9,13 @@ namespace {
 // Points this close to a surface (m), beyond what they can move in a step, are candidates.
 constexpr double kContactMargin = 0.001;
 
-const ContactAnchor* previous_anchor(const std::vector<ContactAnchor>& list, int point) {
+}  // namespace
+
+const ContactAnchor* find_anchor(const std::vector<ContactAnchor>& list, int point) {
   const auto it = std::lower_bound(list.begin(), list.end(), point,
                                    [](const ContactAnchor& a, int p) { return a.point < p; });
   return it != list.end() && it->point == point ? &*it : nullptr;
 }
-
-}  // namespace
 
 Eigen::Vector3d corner_offset(const HandSimModel& model, int k) {
   static const std::array<Eigen::Vector3d, 8> signs = [] {
@@ -122,12 +122,12 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
     const BoxProximity b = box_proximity(model.cube_half, q);
     if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
       add(Contact::kNodeCube, node, q, b.normal, b.closest, b.distance,
-          previous_anchor(s.node_cube, node), par.contact_stiffness);
+          find_anchor(s.node_cube, node), par.contact_stiffness);
     if (par.hand_floor_contact) {
       const double height = nf.dot(x) - par.floor_height;
       if (height < kContactMargin + 2 * h * speed)
         add(Contact::kNodeFloor, node, x, nf, x - height * nf, height,
-            previous_anchor(s.node_floor, node), par.contact_stiffness);
+            find_anchor(s.node_floor, node), par.contact_stiffness);
     }
   }
   for (int i = 0; i < int(model.skin_samples.size()); ++i) {
@@ -140,14 +140,14 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
     const BoxProximity b = box_proximity(model.cube_half, q);
     if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
       add(Contact::kSampleCube, i, q, b.normal, b.closest, b.distance,
-          previous_anchor(s.sample_cube, i), par.contact_stiffness);
+          find_anchor(s.sample_cube, i), par.contact_stiffness);
   }
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d x = s.cube_pose.point(corner_offset(model, k));
     const double height = nf.dot(x) - par.floor_height;
     if (height < kContactMargin + 2 * h * cube_speed)
-      add(Contact::kCornerFloor, k, x, nf, x - height * nf, height,
-          previous_anchor(s.corner_floor, k), par.cube_floor_stiffness);
+      add(Contact::kCornerFloor, k, x, nf, x - height * nf, height, find_anchor(s.corner_floor, k),
+          par.cube_floor_stiffness);
   }
 }
 

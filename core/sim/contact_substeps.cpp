@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "core/sim/contact.h"
+
 namespace handlab::sim {
 namespace {
 
@@ -15,13 +17,6 @@ int substep_count(const SimParameters& p) {
 HandSimModel substepped(HandSimModel model) {
   model.parameters.time_step /= substep_count(model.parameters);
   return model;
-}
-
-bool listed(const std::vector<ContactAnchor>& anchors, int point) {
-  // Sorted by point (update_anchors keeps the flesh's order).
-  const auto it = std::lower_bound(anchors.begin(), anchors.end(), point,
-                                   [](const ContactAnchor& a, int p) { return a.point < p; });
-  return it != anchors.end() && it->point == point;
 }
 
 }  // namespace
@@ -39,9 +34,9 @@ ContactSubsteps::ContactSubsteps(const HandSimModel& model, const SimOptions& op
 
 bool ContactSubsteps::began_contact(const HandSimState& before, const HandSimState& after) {
   for (const ContactAnchor& a : after.node_cube)
-    if (!listed(before.node_cube, a.point)) return true;
+    if (!find_anchor(before.node_cube, a.point)) return true;
   for (const ContactAnchor& a : after.sample_cube)
-    if (!listed(before.sample_cube, a.point)) return true;
+    if (!find_anchor(before.sample_cube, a.point)) return true;
   return false;
 }
 
