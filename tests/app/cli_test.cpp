@@ -495,6 +495,17 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_EQ(run_cli("sim bench --runs 0").status, 2);
   EXPECT_EQ(run_cli("sim bench --halfway-gap -1").status, 2);
   EXPECT_EQ(run_cli("sim bench --scale 3").status, 2);
+  EXPECT_EQ(run_cli("sim bench --physics contact_keeps_face=2").status, 2);
+  // --physics changes the simulator timed: half the step, twice the steps.
+  const std::string halved = test::fresh_path("sim_bench_halved.json");
+  ASSERT_EQ(run_cli("sim bench --duration 0.4 --threads 1 --physics time_step=0.004166666666666667 "
+                    "--json " +
+                    halved)
+                .status,
+            0);
+  const std::string halved_text = test::file_bytes(halved);
+  for (const char* key : {"\"steps\": 96", "\"time_step=0.004166666666666667\""})
+    EXPECT_NE(halved_text.find(key), std::string::npos) << key << " in " << halved_text;
   // With --json -, standard output is the JSON alone.
   const Result piped = run_cli("sim bench --duration 0.4 --json -");
   ASSERT_EQ(piped.status, 0) << piped.out;

@@ -236,12 +236,13 @@ std::vector<OptionSpec> sim_bench_options() {
       {"steps", "CSV",
        "write every step's time (ms), Newton and CG iterations, factorisations, contacts and "
        "line-search halvings"},
+      physics_option(),
   };
 }
 
 CommandHelp sim_bench_help() {
   return {"sim bench",
-          {"[scale] [cube] [json] [options]"},
+          {"[scale] [cube] [physics] [json] [options]"},
           "Times the simulator's steps on the scripted pinch-and-lift of the cube (come down, "
           "close thumb\n"
           "and index, lift 10 cm)."};
@@ -252,8 +253,10 @@ int sim_bench(const std::vector<std::string>& argv) {
   if (args.help_requested()) return print_help(sim_bench_help(), args);
   const long scale = args.integer("scale");
   if (scale != 1 && scale != 4 && scale != 16) throw UsageError("--scale must be 1, 4 or 16");
-  const sim::PinchScene setup = sim::make_pinch_scene(
-      cube_option(args), int(scale), 0.003, hand::HandShape{}.length, simulator_parameters(args));
+  sim::SimParameters parameters = simulator_parameters(args);
+  apply_physics_option(args, parameters);
+  const sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), int(scale), 0.003,
+                                                      hand::HandShape{}.length, parameters);
   const double duration =
       args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
   if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
@@ -285,6 +288,9 @@ int sim_bench(const std::vector<std::string>& argv) {
       json.field("direct_steps", options.direct_steps)
           .field("refresh_steps", options.refresh_steps)
           .field("halfway_gap", options.halfway_gap);
+      json.key("physics").begin_array();
+      for (const std::string& item : args.all("physics")) json.value(item);
+      json.end_array();
       write_timing(json, setup, report);
       json.end_object();
     });
