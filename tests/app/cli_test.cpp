@@ -506,6 +506,14 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const std::string halved_text = test::file_bytes(halved);
   for (const char* key : {"\"steps\": 96", "\"time_step=0.004166666666666667\""})
     EXPECT_NE(halved_text.find(key), std::string::npos) << key << " in " << halved_text;
+  EXPECT_NE(text.find("\"posture\": \"solved\""), std::string::npos) << text;
+  // --posture times the functional posture's pinch: another placement, other contacts.
+  const Result functional =
+      run_cli("sim bench --duration 0.4 --threads 1 --posture functional --json -");
+  ASSERT_EQ(functional.status, 0) << functional.out;
+  EXPECT_NE(functional.out.find("\"posture\": \"functional\""), std::string::npos)
+      << functional.out;
+  EXPECT_EQ(run_cli("sim bench --posture bent").status, 2);
   // With --json -, standard output is the JSON alone.
   const Result piped = run_cli("sim bench --duration 0.4 --json -");
   ASSERT_EQ(piped.status, 0) << piped.out;

@@ -237,12 +237,13 @@ std::vector<OptionSpec> sim_bench_options() {
        "write every step's time (ms), Newton and CG iterations, factorisations, contacts and "
        "line-search halvings"},
       physics_option(),
+      posture_option(),
   };
 }
 
 CommandHelp sim_bench_help() {
   return {"sim bench",
-          {"[scale] [cube] [physics] [json] [options]"},
+          {"[scale] [cube] [physics] [posture] [json] [options]"},
           "Times the simulator's steps on the scripted pinch-and-lift of the cube (come down, "
           "close thumb\n"
           "and index, lift 10 cm)."};
@@ -255,8 +256,8 @@ int sim_bench(const std::vector<std::string>& argv) {
   if (scale != 1 && scale != 4 && scale != 16) throw UsageError("--scale must be 1, 4 or 16");
   sim::SimParameters parameters = simulator_parameters(args);
   apply_physics_option(args, parameters);
-  const sim::PinchScene setup = sim::make_pinch_scene(cube_option(args), int(scale), 0.003,
-                                                      hand::HandShape{}.length, parameters);
+  const sim::PinchScene setup = sim::make_pinch_scene(
+      cube_option(args), int(scale), 0.003, hand::HandShape{}.length, parameters, posture_of(args));
   const double duration =
       args.has("duration") ? args.number("duration") : setup.script.lift_end + 0.5;
   if (!(duration > 0 && duration <= 60)) throw UsageError("--duration must be in (0, 60] s");
@@ -285,6 +286,7 @@ int sim_bench(const std::vector<std::string>& argv) {
       util::JsonWriter json(out);
       json.begin_object().field("scale", int(scale)).field("cube_size_m", setup.script.cube_size);
       json.field("duration_s", duration).field("threads", options.threads).field("runs", int(runs));
+      json.field("posture", sim::pinch_posture_name(setup.script.posture));
       json.field("direct_steps", options.direct_steps)
           .field("refresh_steps", options.refresh_steps)
           .field("halfway_gap", options.halfway_gap);
