@@ -290,9 +290,7 @@ int sim_bench(const std::vector<std::string>& argv) {
       json.field("direct_steps", options.direct_steps)
           .field("refresh_steps", options.refresh_steps)
           .field("halfway_gap", options.halfway_gap);
-      json.key("physics").begin_array();
-      for (const std::string& item : args.all("physics")) json.value(item);
-      json.end_array();
+      write_physics(json, args.all("physics"));
       write_timing(json, setup, report);
       json.end_object();
     });

@@ -310,9 +310,8 @@ void write_posture(util::JsonWriter& json, sim::PinchPosture posture) {
 
 void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::ostream& out) {
   util::JsonWriter json(out);
-  json.begin_object().key("physics").begin_array();
-  for (const std::string& item : run.physics) json.value(item);
-  json.end_array();
+  json.begin_object();
+  write_physics(json, run.physics);
   write_posture(json, run.posture);
   json.key("jitter");
   if (run.jitter)
@@ -464,6 +463,12 @@ void apply_physics_option(const Arguments& args, sim::SimParameters& parameters)
       throw UsageError(std::string("--physics: ") + e.what());
     }
   }
+}
+
+void write_physics(util::JsonWriter& json, const std::vector<std::string>& physics) {
+  json.key("physics").begin_array();
+  for (const std::string& item : physics) json.value(item);
+  json.end_array();
 }
 
 std::vector<OptionSpec> sim_grasp_options() {

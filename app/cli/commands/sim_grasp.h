@@ -36,9 +36,11 @@ void write_pinch_measures(util::JsonWriter& json, const sim::PinchReport& r);
 // throws UsageError naming a side out of range.
 std::vector<double> cube_sides(const Arguments& args);
 
-// --physics NAME=VALUE (repeatable): a simulator parameter changed, for sim pinch and sim grasp.
+// --physics NAME=VALUE (repeatable): a simulator parameter changed, for the sim commands.
 OptionSpec physics_option();
 void apply_physics_option(const Arguments& args, sim::SimParameters& parameters);
+// The changes as given, "physics": [...], in the JSON object being written.
+void write_physics(util::JsonWriter& json, const std::vector<std::string>& physics);
 
 // --posture solved|functional: how sim pinch and sim grasp place each pinch (pinch_posture.h).
 OptionSpec posture_option();

@@ -134,9 +134,9 @@ void print_rows(const std::vector<PinchRow>& rows) {
 void write_rows_json(const std::vector<PinchRow>& rows, const std::vector<std::string>& physics,
                      std::ostream& out) {
   util::JsonWriter json(out);
-  json.begin_object().key("physics").begin_array();
-  for (const std::string& item : physics) json.value(item);
-  json.end_array().key("pinches").begin_array();
+  json.begin_object();
+  write_physics(json, physics);
+  json.key("pinches").begin_array();
   for (const PinchRow& r : rows) {
     json.begin_object()
         .field("recording", r.recording)
