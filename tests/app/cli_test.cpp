@@ -514,6 +514,13 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_NE(functional.out.find("\"posture\": \"functional\""), std::string::npos)
       << functional.out;
   EXPECT_EQ(run_cli("sim bench --posture bent").status, 2);
+  // In the terminal, what was timed when it is not the default pinch.
+  const Result told =
+      run_cli("sim bench --duration 0.1 --threads 1 --posture functional --physics time_step=0.01");
+  ASSERT_EQ(told.status, 0) << told.out;
+  EXPECT_EQ(told.out.rfind("functional posture, time_step=0.01\n", 0), 0u) << told.out;
+  EXPECT_EQ(r.out.find("posture"), std::string::npos)
+      << "the default pinch says nothing: " << r.out;
   // With --json -, standard output is the JSON alone.
   const Result piped = run_cli("sim bench --duration 0.4 --json -");
   ASSERT_EQ(piped.status, 0) << piped.out;

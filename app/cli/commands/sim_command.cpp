@@ -276,7 +276,15 @@ int sim_bench(const std::vector<std::string>& argv) {
     for (std::size_t i = 0; i < report.step_ms.size(); ++i)
       report.step_ms[i] = std::min(report.step_ms[i], again.step_ms[i]);
   }
-  if (args.text("json") != "-") print_timing(setup, report);  // else the JSON alone
+  if (args.text("json") != "-") {  // else the JSON alone
+    // What was timed, when it is not the default pinch.
+    if (args.has("posture") || args.has("physics")) {
+      std::cout << sim::pinch_posture_name(setup.script.posture) << " posture";
+      for (const std::string& item : args.all("physics")) std::cout << ", " << item;
+      std::cout << '\n';
+    }
+    print_timing(setup, report);
+  }
   if (args.has("steps"))
     util::write_output(args.text("steps"), [&](std::ostream& out) {
       write_steps_csv(out, setup.model.parameters.time_step, report);
