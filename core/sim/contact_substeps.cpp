@@ -9,28 +9,30 @@
 namespace handlab::sim {
 namespace {
 
-int substep_count(const SimParameters& p) {
-  return p.contact_time_step > 0 ? std::max(1, int(std::lround(p.time_step / p.contact_time_step)))
-                                 : 1;
-}
-
 HandSimModel substepped(HandSimModel model) {
-  model.parameters.time_step /= substep_count(model.parameters);
+  model.parameters.time_step /= contact_substep_count(model.parameters);
   return model;
 }
 
 }  // namespace
 
+int contact_substep_count(const SimParameters& p) {
+  return p.contact_time_step > 0 ? std::max(1, int(std::lround(p.time_step / p.contact_time_step)))
+                                 : 1;
+}
+
+SubstepWindow::SubstepWindow(const SimParameters& p)
+    : steps_(int(std::lround(p.contact_substep_window / p.time_step))) {}
+
 bool ContactSubsteps::enabled(const SimParameters& parameters) {
-  return substep_count(parameters) > 1;
+  return contact_substep_count(parameters) > 1 && !parameters.contact_substeps_cube;
 }
 
 ContactSubsteps::ContactSubsteps(const HandSimModel& model, const SimOptions& options)
     : model_(substepped(model)),
       solver_(model_, options),
-      substeps_(substep_count(model.parameters)),
-      window_steps_(
-          int(std::lround(model.parameters.contact_substep_window / model.parameters.time_step))) {}
+      substeps_(contact_substep_count(model.parameters)),
+      window_(model.parameters) {}
 
 bool ContactSubsteps::began_contact(const HandSimState& before, const HandSimState& after) {
   for (const ContactAnchor& a : after.node_cube)

@@ -15,9 +15,27 @@
 
 namespace handlab::sim {
 
+// The substeps a step is taken in: the time step over contact_time_step, to the nearest whole
+// number (1: none).
+int contact_substep_count(const SimParameters& parameters);
+
+// The window after a contact began: contact_substep_window in steps, opened anew by each step
+// that began one, counted down by each step taken in it.
+class SubstepWindow {
+ public:
+  explicit SubstepWindow(const SimParameters& parameters);
+  void open() { left_ = steps_; }
+  void count_down() { left_ = left_ > 0 ? left_ - 1 : 0; }
+  bool open_now() const { return left_ > 0; }
+
+ private:
+  int steps_ = 0, left_ = 0;
+};
+
 class ContactSubsteps {
  public:
-  // On when the parameters ask for a contact time step shorter than the time step.
+  // On when the parameters ask for a contact time step shorter than the time step, of the
+  // whole hand (not contact_substeps_cube).
   static bool enabled(const SimParameters& parameters);
 
   ContactSubsteps(const HandSimModel& model, const SimOptions& options);
@@ -28,11 +46,9 @@ class ContactSubsteps {
   // Whether a flesh point touches the cube after a step that it did not touch before.
   static bool began_contact(const HandSimState& before, const HandSimState& after);
 
-  // The window after a contact began: opened anew by each step that began one, counted down
-  // by each step taken in it.
-  void open_window() { window_left_ = window_steps_; }
-  void count_down() { window_left_ = window_left_ > 0 ? window_left_ - 1 : 0; }
-  bool in_window() const { return window_left_ > 0; }
+  void open_window() { window_.open(); }
+  void count_down() { window_.count_down(); }
+  bool in_window() const { return window_.open_now(); }
 
   // `start` to `result` in substeps, the targets moved from `from` to `to` (one per bone)
   // along the way. Whether flesh touched the cube in any of them: flesh_touched_cube().
@@ -43,7 +59,8 @@ class ContactSubsteps {
  private:
   HandSimModel model_;  // the hand's, its time step a substep
   StepSolver solver_;
-  int substeps_ = 1, window_steps_ = 0, window_left_ = 0;
+  int substeps_ = 1;
+  SubstepWindow window_;
   bool touched_ = false;
 };
 

@@ -68,6 +68,9 @@ struct SimParameters {
   // contact_substep_window after it too (core/sim/contact_substeps). 0: off.
   double contact_time_step = 0.0;       // s
   double contact_substep_window = 0.0;  // s
+  // Those substeps take the cube alone against the flesh's path, the hand's step left as it is
+  // (core/sim/cube_substeps), not the whole hand again.
+  bool contact_substeps_cube = false;
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
   // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong

@@ -1,13 +1,15 @@
 // The step as solvers side by side: the hand's and the cube's together (step_solver.h), taken
-// again in substeps where flesh begins to touch the cube when the parameters ask for it
-// (contact_substeps.h), then, for a cube that no flesh touches and that is not resting, the
-// cube alone again in substeps (free_cube.h).
+// again in substeps where flesh begins to touch the cube when the parameters ask for it, the
+// whole hand (contact_substeps.h) or the cube alone against the flesh's path (cube_substeps.h),
+// then, for a cube that no flesh touches and that is not resting, the cube alone again in
+// substeps (free_cube.h).
 #include "core/sim/hand_simulator.h"
 
 #include <cmath>
 #include <stdexcept>
 
 #include "core/sim/contact_substeps.h"
+#include "core/sim/cube_substeps.h"
 #include "core/sim/free_cube.h"
 #include "core/sim/step_solver.h"
 
@@ -40,13 +42,27 @@ int contact_count(const HandSimState& s) {
 struct HandSimulator::Impl {
   const HandSimModel& model;
   StepSolver solver;
-  std::unique_ptr<FreeCubeStepper> free_cube;  // made when first needed (a hand's model only)
-  std::unique_ptr<ContactSubsteps> substeps;   // when the parameters ask for them
-  std::vector<RigidPose> last_targets;         // the step before's, where substeps start
+  std::unique_ptr<FreeCubeStepper> free_cube;   // made when first needed (a hand's model only)
+  std::unique_ptr<ContactSubsteps> substeps;    // when the parameters ask for them
+  std::vector<RigidPose> last_targets;          // the step before's, where substeps start
+  std::unique_ptr<CubeSubsteps> cube_substeps;  // or for these, with their window
+  SubstepWindow cube_window;
 
-  Impl(const HandSimModel& m, const SimOptions& o) : model(m), solver(m, o) {
+  Impl(const HandSimModel& m, const SimOptions& o)
+      : model(m), solver(m, o), cube_window(m.parameters) {
     if (m.node_count() > 0 && ContactSubsteps::enabled(m.parameters))
       substeps = std::make_unique<ContactSubsteps>(m, o);
+    if (m.node_count() > 0 && CubeSubsteps::enabled(m.parameters))
+      cube_substeps = std::make_unique<CubeSubsteps>(m);
+  }
+
+  // The cube of a step that began a contact, and of the window's steps after, taken again.
+  void substep_cube(const HandSimState& start, HandSimState& result, SimStepReport& report) {
+    const bool began = ContactSubsteps::began_contact(start, result);
+    const bool in_window = cube_window.open_now() || began;
+    cube_window.count_down();
+    if (began) cube_window.open();
+    if (in_window) report.max_penetration = cube_substeps->step(start, result).max_penetration;
   }
 };
 
@@ -80,6 +96,7 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
     }
   }
   if (substeps) sim.last_targets = targets;
+  if (sim.cube_substeps) sim.substep_cube(state, next, report);
   if (sim.model.node_count() > 0 && FreeCubeStepper::applies(state, flesh_touched)) {
     if (!sim.free_cube) sim.free_cube = std::make_unique<FreeCubeStepper>(sim.model.parameters);
     sim.free_cube->step(state, next);

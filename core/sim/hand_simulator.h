@@ -5,8 +5,9 @@
 // after the step each friction anchor sticks, or slides to the edge of Coulomb's cone; a cube
 // that no flesh touches and that is not resting is stepped again alone, in substeps
 // (free_cube.h); where the parameters ask for it, a step in which flesh begins to touch the
-// cube, and the steps for a while after, are taken in substeps (contact_substeps.h). The stages are
-// in their own files; step_solver.cpp lists them, docs/simulator.md explains them.
+// cube, and the steps for a while after, are taken in substeps, of the whole hand
+// (contact_substeps.h) or of the cube alone against the flesh's path (cube_substeps.h). The stages
+// are in their own files; step_solver.cpp lists them, docs/simulator.md explains them.
 #pragma once
 
 #include <memory>

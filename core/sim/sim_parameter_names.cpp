@@ -20,6 +20,7 @@ struct NamedSwitch {
 const std::vector<NamedSwitch>& named_switches() {
   static const std::vector<NamedSwitch> table = {
       {"contact_keeps_face", &SimParameters::contact_keeps_face},
+      {"contact_substeps_cube", &SimParameters::contact_substeps_cube},
   };
   return table;
 }
