@@ -17,7 +17,8 @@ constexpr double kHeavier = 1e6;
 
 using FleshPoint = CubeSubsteps::FleshPoint;
 
-Eigen::Vector3d position(const HandSimModel& hand, const HandSimState& s, const FleshPoint& p) {
+Eigen::Vector3d flesh_point_at(const HandSimModel& hand, const HandSimState& s,
+                               const FleshPoint& p) {
   return p.sample ? skin_sample_position(hand, s, p.index) : s.node_position[std::size_t(p.index)];
 }
 
@@ -36,7 +37,7 @@ std::vector<FleshPoint> near_points(const HandSimModel& hand, const HandSimState
   std::vector<FleshPoint> points;
   const double radius = hand.cube_half.norm();
   auto consider = [&](const FleshPoint& p) {
-    const Eigen::Vector3d x0 = position(hand, start, p), x1 = position(hand, end, p);
+    const Eigen::Vector3d x0 = flesh_point_at(hand, start, p), x1 = flesh_point_at(hand, end, p);
     const double band = reach + (x1 - x0).norm() + cube_travel;
     if ((x0 - start.cube_pose.position).norm() - radius >= band) return;  // beyond its sphere
     const Eigen::Vector3d q = inverse * (x0 - start.cube_pose.position);
@@ -45,12 +46,6 @@ std::vector<FleshPoint> near_points(const HandSimModel& hand, const HandSimState
   for (int node : hand.surface_nodes) consider({false, node});
   for (int i = 0; i < int(hand.skin_samples.size()); ++i) consider({true, i});
   return points;
-}
-
-SimOptions one_thread() {
-  SimOptions o;
-  o.threads = 1;
-  return o;
 }
 
 // The cube, the floor and the points as nodes of no flesh, at the substep's time step.
@@ -76,7 +71,7 @@ struct CubeSubsteps::Points {
   Points(const HandSimModel& hand, std::vector<FleshPoint> p, int substeps)
       : points(std::move(p)),
         model(substep_model(hand, points.size(), substeps)),
-        solver(model, one_thread()) {}
+        solver(model, single_threaded()) {}
 };
 
 bool CubeSubsteps::enabled(const SimParameters& parameters) {
@@ -104,8 +99,8 @@ SimStepReport CubeSubsteps::step(const HandSimState& start, HandSimState& result
   std::vector<Eigen::Vector3d> from(points.size()), to(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const FleshPoint& p = points[i];
-    from[i] = cube.node_position[i] = position(hand_, start, p);
-    to[i] = position(hand_, result, p);
+    from[i] = cube.node_position[i] = flesh_point_at(hand_, start, p);
+    to[i] = flesh_point_at(hand_, result, p);
     const ContactAnchor* a = find_anchor(p.sample ? start.sample_cube : start.node_cube, p.index);
     if (a) cube.node_cube.push_back({int(i), a->anchor, a->face});
   }

@@ -27,7 +27,6 @@ class CubeSubsteps {
   CubeSubsteps(const CubeSubsteps&) = delete;
   CubeSubsteps& operator=(const CubeSubsteps&) = delete;
 
-  int substeps() const { return substeps_; }
   // The flesh points whose path the cube's substeps take: within this of the cube at the
   // step's start, beyond what they and the cube move in the step (m). A new set of points
   // takes those within twice this, so that it and its solver last while the hand moves a

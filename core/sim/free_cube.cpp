@@ -10,16 +10,10 @@ SimParameters substepped(SimParameters p) {
   return p;
 }
 
-SimOptions one_thread() {
-  SimOptions o;
-  o.threads = 1;
-  return o;
-}
-
 }  // namespace
 
 FreeCubeStepper::FreeCubeStepper(const SimParameters& parameters)
-    : model_(make_cube_sim_model(substepped(parameters))), solver_(model_, one_thread()) {}
+    : model_(make_cube_sim_model(substepped(parameters))), solver_(model_, single_threaded()) {}
 
 bool FreeCubeStepper::applies(const HandSimState& start, bool flesh_touching) {
   // Flat on its four corners and slower than this, it rests: a step with the hand keeps it

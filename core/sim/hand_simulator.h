@@ -32,7 +32,8 @@ class HandSimulator {
   // Besides the model, the state and the targets, the step reads the solver's memory that the
   // simulator keeps from its earlier steps (SolverMemory in linear_solve.h: the factorisation
   // of an earlier Newton matrix that preconditions CG, its age and the policy's counters; with
-  // contact substeps, the substeps' own, the last step's targets and the window left).
+  // contact substeps, the substeps' own, the last step's targets and the window left, or the
+  // cube's substeps' set of flesh points and its solver).
   // CG stops within a tolerance, so the results depend on that memory within the tolerance,
   // and bit for bit on the steps taken before: the same simulator options, the same sequence
   // of states and targets from construction, give the same states.

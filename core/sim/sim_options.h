@@ -32,6 +32,14 @@ struct SimOptions {
   int threads = 2;
 };
 
+// The options of the small solvers beside the hand's (the free cube's, the cube's substeps'):
+// a few dozen unknowns at most, on one thread.
+inline SimOptions single_threaded() {
+  SimOptions o;
+  o.threads = 1;
+  return o;
+}
+
 struct SimStepReport {
   int newton_iterations = 0;
   int linear_iterations = 0;  // CG iterations (a direct solve counts one)

@@ -50,9 +50,7 @@ TEST(CubeSubsteps, WithNoFleshNearTheCubeModelsSubsteps) {
   SimParameters quarter = p;
   quarter.time_step = kStudyStep / 4;
   const HandSimModel cube_model = make_cube_sim_model(quarter);
-  SimOptions one_thread;
-  one_thread.threads = 1;
-  StepSolver solver(cube_model, one_thread);
+  StepSolver solver(cube_model, single_threaded());
   HandSimState expected =
                    initial_state(cube_model, {}, Eigen::Isometry3d::Identity(), start.cube_pose),
                next;
