@@ -11,10 +11,6 @@
 namespace handlab::sim {
 namespace {
 
-// The flesh points' mass in the substeps, as a multiple of the cube's: the cube's contacts
-// move them by no more than rounding, and their velocities set their paths.
-constexpr double kHeavier = 1e6;
-
 using FleshPoint = CubeSubsteps::FleshPoint;
 
 Eigen::Vector3d flesh_point_at(const HandSimModel& hand, const HandSimState& s,
@@ -48,7 +44,8 @@ std::vector<FleshPoint> near_points(const HandSimModel& hand, const HandSimState
   return points;
 }
 
-// The cube, the floor and the points as nodes of no flesh, at the substep's time step.
+// The cube, the floor and the points as kinematic nodes of no flesh, at the substep's time step:
+// the cube's six unknowns are the solve's.
 HandSimModel substep_model(const HandSimModel& hand, std::size_t points, int substeps) {
   SimParameters p = hand.parameters;
   p.time_step /= substeps;
@@ -56,7 +53,8 @@ HandSimModel substep_model(const HandSimModel& hand, std::size_t points, int sub
   p.contact_time_step = p.contact_substep_window = 0.0;
   HandSimModel m = make_cube_sim_model(p);
   m.rest.assign(points, Eigen::Vector3d::Zero());
-  m.node_mass.assign(points, kHeavier * m.cube.mass);
+  m.node_mass.assign(points, 0.0);
+  m.kinematic_nodes = true;
   for (int i = 0; i < int(points); ++i) m.surface_nodes.push_back(i);
   m.cube_contact_share = hand.cube_contact_share;  // a node and a sample alike
   return m;
@@ -106,14 +104,13 @@ SimStepReport CubeSubsteps::step(const HandSimState& start, HandSimState& result
   }
 
   const double h = model.parameters.time_step;
-  const Eigen::Vector3d fall = h * model.parameters.gravity;
   SimStepReport report;
   HandSimState next;
   for (int k = 1; k <= substeps_; ++k) {
     const double t = double(k) / substeps_;
-    // Carried by its velocity and pulled by gravity, a point lands on its path's next place.
+    // Carried by its velocity, a point lands on its path's next place.
     for (std::size_t i = 0; i < points.size(); ++i)
-      cube.node_velocity[i] = ((1 - t) * from[i] + t * to[i] - cube.node_position[i]) / h - fall;
+      cube.node_velocity[i] = ((1 - t) * from[i] + t * to[i] - cube.node_position[i]) / h;
     report = solver.step(cube, {}, next);
     for (std::size_t i = 0; i < points.size(); ++i)
       next.node_position[i] = (1 - t) * from[i] + t * to[i];

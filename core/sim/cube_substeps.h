@@ -3,8 +3,9 @@
 // multirate step (Gear & Wells 1984): the half-gram cube's contacts ring far faster than the
 // hand's motion, so only the cube is integrated finer. The hand's step is the model's as
 // ever; the flesh points near the cube then move on straight lines from their start to their
-// end positions, as bodies too heavy for the cube to move, while the cube, its floor and the
-// flesh's contacts with their friction anchors are stepped in contact_time_step substeps.
+// end positions, as kinematic nodes (the cube cannot move them), while the cube, its floor and
+// the flesh's contacts with their friction anchors are stepped in contact_time_step substeps,
+// each a solve of the cube's six unknowns.
 #pragma once
 
 #include <memory>

@@ -125,6 +125,10 @@ struct HandSimModel {
   // The part of contact_stiffness (and contact_stiffening) each flesh point on the cube takes:
   // nodes / (nodes + samples), so that the skin is as stiff per area as with nodes alone.
   double cube_contact_share = 1.0;
+  // The nodes move where their velocities carry them, placed by the caller: the step's
+  // unknowns are the cube's alone (the flesh points of the cube's substeps, cube_substeps.h;
+  // a model with bones cannot have them).
+  bool kinematic_nodes = false;
   // Bones
   std::vector<SimBone> bones;
   std::vector<SimJoint> joints;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
+
 #include "core/sim/sim_options.h"
 
 namespace handlab::sim {
@@ -24,6 +26,19 @@ void analyze_newton_matrix(const HandSimModel& model, SolverMemory& memory, Newt
   memory.cube_dofs.clear();
   for (int k = 0; k < 6; ++k) memory.cube_dofs.push_back(3 * cube_block(model) + k);
   memory.cube_trailing = memory.factor.trailing(memory.cube_dofs);
+}
+
+Eigen::VectorXd solve_cube_step(const HandSimModel& model, const NewtonTerms& terms,
+                                SimStepReport& report) {
+  const int cube = 3 * cube_block(model);
+  const Eigen::LDLT<Matrix6d> ldlt(cube_block_matrix(model, terms));
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
+    throw std::runtime_error("HandSimulator: the cube's Newton system is not positive definite");
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(terms.gradient.size());
+  dq.segment<6>(cube) = ldlt.solve(-terms.gradient.segment<6>(cube));
+  ++report.linear_iterations;
+  ++report.direct_solves;
+  return dq;
 }
 
 Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& terms,

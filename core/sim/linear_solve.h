@@ -51,6 +51,11 @@ struct SolverMemory {
 // The factorisation's structure for the model's Newton matrix, and where its blocks go.
 void analyze_newton_matrix(const HandSimModel& model, SolverMemory& memory, NewtonLayout& layout);
 
+// The increment of a model whose nodes are kinematic (HandSimModel::kinematic_nodes) and that
+// has no bones: the cube's six unknowns alone, from its block of the matrix; zero elsewhere.
+Eigen::VectorXd solve_cube_step(const HandSimModel& model, const NewtonTerms& terms,
+                                SimStepReport& report);
+
 // Solves A dq = -gradient for the terms' matrix; counts into `report`.
 Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& terms,
                                   const NewtonLayout& layout, NewtonDiagonal& diagonal_cache,

@@ -232,13 +232,18 @@ Eigen::VectorXd diagonal(const HandSimModel& model, const NewtonTerms& terms,
   return diag;
 }
 
-// Of the springs only the contacts' can be on the cube alone.
-Matrix6d cube_matrix(const HandSimModel& model, const NewtonTerms& terms) {
+namespace {
+
+// The cube-cube block of the matrix from the terms `counted` takes (springs from `first`; the
+// blocks on the cube's unknowns).
+template <typename Counted>
+Matrix6d cube_part(const HandSimModel& model, const NewtonTerms& terms, std::size_t first,
+                   Counted counted) {
   Matrix6d m = Matrix6d::Zero();
   const int cube = cube_block(model);
-  for (std::size_t i = terms.first_contact_spring; i < terms.springs.size(); ++i) {
+  for (std::size_t i = first; i < terms.springs.size(); ++i) {
     const SpringTerm& t = terms.springs[i];
-    if (!on_cube_alone(model, t)) continue;
+    if (!counted(t)) continue;
     for (int a = 0; a < t.p.count; ++a) {
       const int ba = t.p.block[std::size_t(a)] - cube;
       if (ba < 0) continue;
@@ -252,6 +257,18 @@ Matrix6d cube_matrix(const HandSimModel& model, const NewtonTerms& terms) {
   for (const BlockTerm& t : terms.blocks)
     if (t.block >= cube) m.block<3, 3>(3 * (t.block - cube), 3 * (t.block - cube)) += t.m;
   return m;
+}
+
+}  // namespace
+
+// Of the springs only the contacts' can be on the cube alone.
+Matrix6d cube_matrix(const HandSimModel& model, const NewtonTerms& terms) {
+  return cube_part(model, terms, terms.first_contact_spring,
+                   [&](const SpringTerm& t) { return on_cube_alone(model, t); });
+}
+
+Matrix6d cube_block_matrix(const HandSimModel& model, const NewtonTerms& terms) {
+  return cube_part(model, terms, 0, [](const SpringTerm&) { return true; });
 }
 
 void other_contacts(const HandSimModel& model, const NewtonTerms& terms,

@@ -57,6 +57,8 @@ Eigen::VectorXd diagonal(const HandSimModel& model, const NewtonTerms& terms,
 // The part of the matrix's cube-cube block from terms on the cube alone (its inertia, the
 // floor's contacts with its corners).
 Matrix6d cube_matrix(const HandSimModel& model, const NewtonTerms& terms);
+// The whole cube-cube block, from every term on the cube's unknowns (with the flesh's contacts).
+Matrix6d cube_block_matrix(const HandSimModel& model, const NewtonTerms& terms);
 // The contact terms that reach other unknowns than the cube's, and whether they equal `known`
 // bit for bit (the same contacts evaluated at the same state).
 void other_contacts(const HandSimModel& model, const NewtonTerms& terms,

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/sim/body_energies.h"
 #include "core/sim/contact.h"
@@ -106,7 +107,10 @@ struct StepSolver::Impl {
   double kept_energy = 0.0;
 
   Impl(const HandSimModel& m, const SimOptions& o) : model(m), options(o), pool(o.threads) {
-    analyze_newton_matrix(model, memory, layout);
+    if (!model.kinematic_nodes)
+      analyze_newton_matrix(model, memory, layout);
+    else if (model.bone_count() > 0)
+      throw std::logic_error("StepSolver: kinematic nodes in a model with bones");
   }
 
   // h^2 times the backward-Euler energy at the iterate, with `hessian` its gradient and
@@ -177,8 +181,10 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
     if (pass == 0) rotations_found = iterate;  // the prediction with its tets' rotations
     for (int newton = 0; newton < sim.options.newton_iterations; ++newton) {
       report.residual = sim.terms.gradient.lpNorm<Eigen::Infinity>() / sim.terms.scale;
-      const Eigen::VectorXd dq = solve_newton_step(model, sim.terms, sim.layout, sim.diagonal,
-                                                   sim.options, sim.pool, sim.memory, report);
+      const Eigen::VectorXd dq = model.kinematic_nodes
+                                     ? solve_cube_step(model, sim.terms, report)
+                                     : solve_newton_step(model, sim.terms, sim.layout, sim.diagonal,
+                                                         sim.options, sim.pool, sim.memory, report);
       const double slope = sim.terms.gradient.dot(dq);
       Iterate trial = iterate;
       double length = turn_limited_length(model, dq);

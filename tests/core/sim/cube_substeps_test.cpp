@@ -3,6 +3,7 @@
 // scripted pinch, the hand's step left as it is.
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -65,6 +66,33 @@ TEST(CubeSubsteps, WithNoFleshNearTheCubeModelsSubsteps) {
   EXPECT_LT((result.cube_velocity.linear - expected.cube_velocity.linear).norm(), 1e-9);
   EXPECT_EQ(result.corner_floor.size(), expected.corner_floor.size());
   EXPECT_EQ(result.node_position, start.node_position) << "the flesh is the hand step's";
+}
+
+// A point of flesh moving into the cube as a kinematic node: it lands where its velocity
+// carries it, however hard the cube pushes back, and the cube is pushed away; a model with
+// bones cannot hold such nodes.
+TEST(CubeSubsteps, KinematicNodesGoWhereTheirVelocitiesCarryThem) {
+  HandSimModel model = make_cube_sim_model(cube_substepped(4, 0.1));
+  model.rest = {Eigen::Vector3d::Zero()};
+  model.node_mass = {0.0};
+  model.surface_nodes = {0};
+  model.kinematic_nodes = true;
+  RigidPose cube;
+  cube.position = Eigen::Vector3d(0, 0.005, 0);
+  HandSimState state = initial_state(model, {}, Eigen::Isometry3d::Identity(), cube);
+  state.node_position[0] = Eigen::Vector3d(-0.0045, 0.005, 0.001);  // 0.5 mm inside the -x face
+  state.node_velocity[0] = Eigen::Vector3d(0.1, 0, 0);
+  StepSolver solver(model, single_threaded());
+  HandSimState next;
+  solver.step(state, {}, next);
+  const double h = model.parameters.time_step;
+  EXPECT_EQ(next.node_position[0], state.node_position[0] + h * state.node_velocity[0]);
+  EXPECT_GT(next.cube_pose.position.x(), 1e-5);
+  EXPECT_GT(next.cube_velocity.linear.x(), 0.0);
+
+  HandSimModel with_bones = make_pinch_scene(0.01).model;
+  with_bones.kinematic_nodes = true;
+  EXPECT_THROW(StepSolver(with_bones, single_threaded()), std::logic_error);
 }
 
 // A face of flesh pushing the light cube along the floor at 5 cm/s, its path set step by step:

@@ -146,5 +146,23 @@ TEST(NewtonMatrixAtPinchStages, CubeMatrixIsTheCubesOwnTerms) {
   }
 }
 
+// The whole cube-cube block, the flesh's contacts with it too: the cube's Newton matrix when the
+// flesh is held (linear_solve.h, solve_cube_step).
+TEST(NewtonMatrixAtPinchStages, CubeBlockMatrixIsTheMatrixsCubeBlock) {
+  for (double stage : test::kPinchStages) {
+    SCOPED_TRACE(stage);
+    const Evaluated e = evaluated(stage);
+    const HandSimModel& model = e.grasp.scene.model;
+    const Eigen::MatrixXd a =
+        Eigen::MatrixXd(test::assembled(model, e.terms, false)).bottomRightCorner(6, 6);
+    EXPECT_LT((cube_block_matrix(model, e.terms) - a).lpNorm<Eigen::Infinity>(),
+              1e-12 * a.lpNorm<Eigen::Infinity>());
+    if (stage >= 1.2) {  // the pads on the cube: more than its own terms
+      EXPECT_GT((a - cube_matrix(model, e.terms)).lpNorm<Eigen::Infinity>(),
+                1e-3 * a.lpNorm<Eigen::Infinity>());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace handlab::sim
