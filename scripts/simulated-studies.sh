@@ -18,7 +18,7 @@ for ((s = first; s < first + k; ++s)); do
     # Written under another name and renamed when whole: an interrupted study is run again.
     rm -f "$db.running"*
     build/app/handlab-cli simulate --protocol studies/fine-manipulation-2021.json \
-      --participants "$n" --seed "$s" --db "$db.running" \
+      --participants "$n" --seed "$s" --world soft --db "$db.running" \
       --json "$out/study-n$n-seed$s.simulate.json"
     mv "$db.running" "$db"
   fi

@@ -100,11 +100,16 @@ TrialRun run_trial(TrialRig& rig, const FrameSink& sink, const TrialLoopOptions&
     shown = display_observation(*rig.world, rig.layout, t);
     ++run.frames;
     // With the source ended and the cube at rest waiting for a grasp, nothing can happen any
-    // more: the trial runs out its time without further frames.
+    // more: the trial runs out its time at once, logged as one frame at its end (the same
+    // scene, the phase it ended in), so that a replay ends where the trial did.
     if (rig.source->ended() && rig.task->phase() == task::TaskPhase::kStarted &&
         rig.world->cube().velocity.isZero()) {
       o.time = rig.timeout_s;
       rig.task->update(o);
+      record.time = o.time;
+      record.task_phase = std::uint8_t(rig.task->phase());
+      sink(record);
+      ++run.frames;
     }
   }
   finish(rig, run);

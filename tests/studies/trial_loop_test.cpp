@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/task/cube_task.h"
 #include "studies/session/trial_driver.h"
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_participant.h"
@@ -86,12 +87,19 @@ TEST(TrialLoop, TheSourceSeesTheDisplayAfterTheLastStep) {
 }
 
 // A source that ends while the cube waits untouched on the floor: nothing can happen any more,
-// and the trial times out at once rather than stepping through its time limit.
+// and the trial times out at once rather than stepping through its time limit, its end logged
+// as one more frame of the same scene at the limit, in the phase it ended in.
 TEST(TrialLoop, ASourceThatEndsBeforeTheGraspTimesTheTrialOut) {
   const Trial t = run_watched(30);
   EXPECT_FALSE(t.run.success);
   EXPECT_EQ(t.run.grasps, 0);
-  EXPECT_EQ(t.run.frames, 31) << "the step that found the source ended is the last";
+  EXPECT_EQ(t.run.frames, 32) << "the step that found the source ended, then the end";
+  ASSERT_EQ(t.records.size(), 32u);
+  const store::FrameRecord &found = t.records[30], &end = t.records[31];
+  EXPECT_EQ(task::TaskPhase(found.task_phase), task::TaskPhase::kStarted);
+  EXPECT_EQ(task::TaskPhase(end.task_phase), task::TaskPhase::kFailed);
+  EXPECT_GT(end.time, found.time + 1.0) << "at the trial's time limit";
+  EXPECT_EQ(end.cube_position, found.cube_position);
   ASSERT_FALSE(t.run.events.empty());
   EXPECT_EQ(t.run.events.back().second, "timeout");
 }

@@ -180,7 +180,7 @@ TEST(Friction, AnchorsStayInsideCoulombsCone) {
       {&s.corner_floor, Contact::kCornerFloor}};
   for (const auto& [list, kind] : lists) {
     for (const ContactAnchor& a : *list) {
-      const Contact probe{kind, a.point, {}, a.anchor};
+      const Contact probe{kind, a.point, {}, a.anchor, a.face};  // the face it pushes out through
       const ContactGap gap = contact_gap(model, s, probe);
       ASSERT_LT(gap.gap, 0.0);
       const Eigen::Vector3d normal =
