@@ -4,16 +4,18 @@
 Usage: scripts/grasp-map-figure.py MAP.json [MAP.json ...] --out FIGURE.svg
 
 Each cube of the maps gets a panel: a row per factor, a cell per level, green where the cube
-was held, red where it was lost; below them whether the scripted pinch held, how many pairs of
-factors held, and the hold rate over the draws of people's closings with its 95 % interval. Maps of one cube from
-several files (a single-factor grid, a run of draws) are merged. Standard library only.
+was held, red where it was lost, amber where it was held in some of a map's repeats (how many
+of how many written under the level); below them whether the scripted pinch held, how many
+pairs of factors held, and the hold rate over the draws of people's closings with its 95 %
+interval. Maps of one cube from several files (a single-factor grid, a run of draws) are
+merged. Standard library only.
 """
 import argparse
 import json
 from xml.sax.saxutils import escape
 
 CELL, GAP, LABEL, TOP = 34, 3, 160, 62
-HELD, LOST = "#3f9f5f", "#c8463c"
+HELD, LOST, SOME = "#3f9f5f", "#c8463c", "#d08c1e"
 
 
 def merged_cubes(paths):
@@ -33,9 +35,11 @@ def merged_cubes(paths):
 def panel(x0, size, cube, factors):
     out = [f'<text x="{x0}" y="{TOP - 12}" font-size="15" font-weight="bold">'
            f'{size * 100:.0f} cm cube</text>']
-    single = {(c["factor"], round(c["level"], 6)): c["held"] for c in cube["closings"]
-              if c["factor"] not in ("", "pair", "closing")}
-    pinch = next((c["held"] for c in cube["closings"] if c["factor"] == ""), None)
+    single = {}  # (factor, level): held in each repeat
+    for c in cube["closings"]:
+        if c["factor"] not in ("", "pair", "closing"):
+            single.setdefault((c["factor"], round(c["level"], 6)), []).append(c["held"])
+    pinch = [c["held"] for c in cube["closings"] if c["factor"] == ""]
     y = TOP
     for f in factors:
         if not any(k[0] == f["name"] for k in single):
@@ -43,22 +47,28 @@ def panel(x0, size, cube, factors):
         out.append(f'<text x="{x0}" y="{y + CELL * 0.62}" font-size="12">'
                    f'{escape(f["name"])} ({escape(f["unit"])})</text>')
         for i, level in enumerate(f["levels"]):
-            held = single.get((f["name"], round(level, 6)))
+            held = single.get((f["name"], round(level, 6)), [])
             x = x0 + LABEL + i * (CELL + GAP)
-            fill = "#cccccc" if held is None else (HELD if held else LOST)
+            some = 0 < sum(held) < len(held)
+            fill = ("#cccccc" if not held else HELD if all(held) else SOME if some else LOST)
             out.append(f'<rect x="{x}" y="{y}" width="{CELL}" height="{CELL}" fill="{fill}"/>')
-            out.append(f'<text x="{x + CELL / 2}" y="{y + CELL * 0.62}" font-size="10" '
-                       f'text-anchor="middle" fill="white">{level:g}</text>')
+            out.append(f'<text x="{x + CELL / 2}" y="{y + CELL * (0.48 if some else 0.62)}" '
+                       f'font-size="10" text-anchor="middle" fill="white">{level:g}</text>')
+            if some:
+                out.append(f'<text x="{x + CELL / 2}" y="{y + CELL * 0.86}" font-size="8" '
+                           f'text-anchor="middle" fill="white">{sum(held)}/{len(held)}</text>')
         y += CELL + GAP
-    if pinch is not None:
+    if pinch:
+        said = ("held" if all(pinch) else "lost" if not any(pinch) else
+                f"held in {sum(pinch)} of {len(pinch)} repeats")
         out.append(f'<text x="{x0}" y="{y + 16}" font-size="12">the scripted pinch: '
-                   f'{"held" if pinch else "lost"}</text>')
+                   f'{said}</text>')
         y += 22
     pairs = [c for c in cube["closings"] if c["factor"] == "pair"]
     if pairs:
         held = sum(c["held"] for c in pairs)
         out.append(f'<text x="{x0}" y="{y + 16}" font-size="12">pairs of factors: '
-                   f'{held} of {len(pairs)} held</text>')
+                   f'{held} of {len(pairs)} runs held</text>')
         y += 22
     d = cube["draws"]
     if d:

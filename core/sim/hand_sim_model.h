@@ -62,17 +62,15 @@ struct SimParameters {
   // pad pressed into a side face otherwise pushes the cube through the bottom or the face
   // beside it. A point that leaves the cube sideways, below its kept face, loses its penalty
   // at once (the energy steps down there). Off: the nearest face.
-  bool contact_keeps_face = true;
+  bool contact_keeps_face = false;
   // A step in which flesh first touches the cube taken again in substeps of about this length
   // (the time step divided by the nearest whole number), and the steps within
-  // contact_substep_window after it too (core/sim/contact_substeps). 0: off. The half-gram
-  // cube on a flesh point's penalty rings with a period of 1-3 ms: 16 substeps of the study's
-  // step (docs/simulator.md, "The cube's own substeps").
-  double contact_time_step = 1.0 / 1920.0;  // s
-  double contact_substep_window = 0.1;      // s
+  // contact_substep_window after it too (core/sim/contact_substeps). 0: off.
+  double contact_time_step = 0.0;       // s
+  double contact_substep_window = 0.0;  // s
   // Those substeps take the cube alone against the flesh's path, the hand's step left as it is
   // (core/sim/cube_substeps), not the whole hand again.
-  bool contact_substeps_cube = true;
+  bool contact_substeps_cube = false;
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
   // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong

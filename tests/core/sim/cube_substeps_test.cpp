@@ -26,15 +26,15 @@ SimParameters cube_substepped(int substeps, double window) {
   return p;
 }
 
-TEST(CubeSubsteps, OnByDefaultInsteadOfTheWholeHands) {
-  EXPECT_TRUE(CubeSubsteps::enabled(SimParameters{})) << "the default";
-  EXPECT_FALSE(CubeSubsteps::enabled(cube_substepped(1, 0.1)));
+TEST(CubeSubsteps, OnOnlyWhenAskedForInsteadOfTheWholeHands) {
+  EXPECT_FALSE(CubeSubsteps::enabled(SimParameters{}));
   SimParameters p = cube_substepped(4, 0.1);
   EXPECT_TRUE(CubeSubsteps::enabled(p));
   EXPECT_FALSE(ContactSubsteps::enabled(p));
   set_sim_parameter(p, "contact_substeps_cube", 0);
   EXPECT_FALSE(CubeSubsteps::enabled(p));
   EXPECT_TRUE(ContactSubsteps::enabled(p));
+  EXPECT_FALSE(CubeSubsteps::enabled(cube_substepped(1, 0.1)));
 }
 
 // A falling cube with the hand far away: the cube model's own steps at the substep.
@@ -137,7 +137,7 @@ TEST(CubeSubsteps, TheHandsStepIsLeftAsItIs) {
               [&](const HandSimState& s) { states.push_back(s); });
   };
   std::vector<HandSimState> plain, fine;
-  run(cube_substepped(1, 0.0), plain);
+  run(SimParameters{}, plain);
   run(cube_substepped(4, 0.1), fine);
   std::size_t first = 0;
   while (first < plain.size() && plain[first].node_cube.empty() && plain[first].sample_cube.empty())
