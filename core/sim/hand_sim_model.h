@@ -50,7 +50,7 @@ struct SimParameters {
   double contact_stiffness = 5e3;      // N/m, a flesh node against the cube or floor, at first
   double contact_stiffening = 2.5e7;   // N/m^2: its force k d + k3 d^2 at a depth d
   double cube_floor_stiffness = 1e4;   // N/m, a cube corner against the floor
-  double cube_floor_stiffening = 0.0;  // N/m^2: its force k d + k3 d^2 (`sim settle` tries it)
+  double cube_floor_stiffening = 0.0;  // N/m^2: its force k d + k3 d^2 (docs/simulator.md)
   // Contact points against the cube inside each boundary face of the flesh, besides its nodes:
   // 0 or 1 (the centroid). With the nodes alone the cube's edges and corners sank into the
   // skin between them (1.7 mm in the scripted light pinch's hold).
