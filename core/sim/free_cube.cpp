@@ -15,14 +15,16 @@ SimParameters substepped(SimParameters p) {
 FreeCubeStepper::FreeCubeStepper(const SimParameters& parameters)
     : model_(make_cube_sim_model(substepped(parameters))), solver_(model_, single_threaded()) {}
 
-bool FreeCubeStepper::applies(const HandSimState& start, bool flesh_touching) {
+bool FreeCubeStepper::resting(const HandSimState& state) {
   // Flat on its four corners and slower than this, it rests: a step with the hand keeps it
   // there. On fewer corners a full step could launch it off the floor.
   constexpr double kResting = 1e-3, kRestingSpin = 0.1;  // m/s, rad/s
-  const bool resting = start.corner_floor.size() == 4 &&
-                       start.cube_velocity.linear.norm() < kResting &&
-                       start.cube_velocity.angular.norm() < kRestingSpin;
-  return !flesh_touching && !resting;
+  return state.corner_floor.size() == 4 && state.cube_velocity.linear.norm() < kResting &&
+         state.cube_velocity.angular.norm() < kRestingSpin;
+}
+
+bool FreeCubeStepper::applies(const HandSimState& start, bool flesh_touching) {
+  return !flesh_touching && !resting(start);
 }
 
 void FreeCubeStepper::step(const HandSimState& start, HandSimState& result) {

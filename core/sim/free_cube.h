@@ -20,6 +20,9 @@ class FreeCubeStepper {
   FreeCubeStepper(const FreeCubeStepper&) = delete;
   FreeCubeStepper& operator=(const FreeCubeStepper&) = delete;
 
+  // Whether the cube of `state` lies still on four corners: slower than 1 mm/s and 0.1 rad/s.
+  static bool resting(const HandSimState& state);
+
   // Whether the cube of a step from `start` is free and not resting: no flesh touched it in the
   // step (`flesh_touching`: inside it at the prediction or in a pass), and it did not lie still
   // on four corners at the start.

@@ -71,6 +71,10 @@ struct SimParameters {
   // Those substeps take the cube alone against the flesh's path, the hand's step left as it is
   // (core/sim/cube_substeps), not the whole hand again.
   bool contact_substeps_cube = false;
+  // And in every step, past the window too, in which flesh touches a cube that moves on the
+  // floor (not at rest on four corners: FreeCubeStepper's rule), so that no moving cube's floor
+  // contact is solved at the hand's step, whose one Newton iteration a stiffened floor defeats.
+  bool cube_substeps_on_floor = false;
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
   // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong

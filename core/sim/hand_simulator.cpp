@@ -56,10 +56,14 @@ struct HandSimulator::Impl {
       cube_substeps = std::make_unique<CubeSubsteps>(m);
   }
 
-  // The cube of a step that began a contact, and of the window's steps after, taken again.
-  void substep_cube(const HandSimState& start, HandSimState& result, SimStepReport& report) {
+  // The cube of a step that began a contact, and of the window's steps after, taken again;
+  // with cube_substeps_on_floor, also where flesh touches it as it moves on the floor.
+  void substep_cube(const HandSimState& start, HandSimState& result, bool flesh_touched,
+                    SimStepReport& report) {
     const bool began = ContactSubsteps::began_contact(start, result);
-    const bool in_window = cube_window.open_now() || began;
+    const bool on_floor = model.parameters.cube_substeps_on_floor && flesh_touched &&
+                          !start.corner_floor.empty() && !FreeCubeStepper::resting(start);
+    const bool in_window = cube_window.open_now() || began || on_floor;
     cube_window.count_down();
     if (began) cube_window.open();
     if (in_window) report.max_penetration = cube_substeps->step(start, result).max_penetration;
@@ -96,7 +100,7 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
     }
   }
   if (substeps) sim.last_targets = targets;
-  if (sim.cube_substeps) sim.substep_cube(state, next, report);
+  if (sim.cube_substeps) sim.substep_cube(state, next, flesh_touched, report);
   if (sim.model.node_count() > 0 && FreeCubeStepper::applies(state, flesh_touched)) {
     if (!sim.free_cube) sim.free_cube = std::make_unique<FreeCubeStepper>(sim.model.parameters);
     sim.free_cube->step(state, next);

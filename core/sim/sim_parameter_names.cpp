@@ -21,6 +21,7 @@ const std::vector<NamedSwitch>& named_switches() {
   static const std::vector<NamedSwitch> table = {
       {"contact_keeps_face", &SimParameters::contact_keeps_face},
       {"contact_substeps_cube", &SimParameters::contact_substeps_cube},
+      {"cube_substeps_on_floor", &SimParameters::cube_substeps_on_floor},
   };
   return table;
 }

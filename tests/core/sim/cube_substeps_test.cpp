@@ -9,9 +9,12 @@
 
 #include "core/sim/contact_substeps.h"
 #include "core/sim/cube_substeps.h"
+#include "core/sim/free_cube.h"
 #include "core/sim/sim_parameter_names.h"
 #include "core/sim/step_solver.h"
+#include "core/task/grasp_closing.h"
 #include "core/task/pinch_scene.h"
+#include "core/task/pinch_script.h"
 
 namespace handlab::sim {
 namespace {
@@ -150,6 +153,46 @@ TEST(CubeSubsteps, TheHandsStepIsLeftAsItIs) {
   EXPECT_EQ(fine[first].node_position, plain[first].node_position);
   EXPECT_NE(fine[first].cube_pose.position, plain[first].cube_pose.position);
   EXPECT_NE(fine[first + 1].node_position, plain[first + 1].node_position);
+}
+
+// With cube_substeps_on_floor the window's substeps go on past it wherever flesh touches a
+// cube that moves on the floor: the functional pinch with the thumb 200 ms first, which pushes
+// the light cube along, is the same to the bit until the first step past the window that
+// starts with such a cube, and not after it.
+TEST(CubeSubsteps, OnTheFloorPastTheWindowWhereFleshMovesTheCube) {
+  auto run = [](const SimParameters& parameters, std::vector<HandSimState>& states) {
+    PinchScene scene = make_pinch_scene(0.01, 1, 0.003, hand::HandShape{}.length, parameters,
+                                        PinchPosture::kFunctional);
+    GraspClosing thumb_first;
+    thumb_first.lead_s = 0.2;
+    scene.script = make_grasp_script(scene.skeleton, scene.model, thumb_first, nullptr,
+                                     PinchPosture::kFunctional);
+    run_pinch(scene.model, scene.skeleton, scene.script, SimOptions{}, scene.script.lift_start,
+              [&](const HandSimState& s) { states.push_back(s); });
+  };
+  SimParameters windowed = cube_substepped(4, 0.05);
+  set_sim_parameter(windowed, "cube_substeps_on_floor", 0);
+  SimParameters on_floor = windowed;
+  set_sim_parameter(on_floor, "cube_substeps_on_floor", 1);
+  std::vector<HandSimState> plain, fine;
+  run(windowed, plain);
+  run(on_floor, fine);
+  ASSERT_EQ(plain.size(), fine.size());
+  const auto touched = [](const HandSimState& s) {
+    return !s.node_cube.empty() || !s.sample_cube.empty();
+  };
+  std::size_t first = 0;
+  while (first < plain.size() && !touched(plain[first])) ++first;
+  std::size_t differs = first;
+  while (differs < plain.size() &&
+         fine[differs].cube_pose.position == plain[differs].cube_pose.position)
+    ++differs;
+  ASSERT_LT(differs, plain.size()) << "the pads move the cube on the floor past the window";
+  EXPECT_GT(differs, first + 6) << "the window's 6 steps are the same";
+  const HandSimState& start = plain[differs - 1];
+  EXPECT_TRUE(touched(start));
+  EXPECT_FALSE(start.corner_floor.empty());
+  EXPECT_FALSE(FreeCubeStepper::resting(start));
 }
 
 }  // namespace
