@@ -184,7 +184,8 @@ TEST(CubeSubsteps, OnTheFloorPastTheWindowWhereFleshMovesTheCube) {
   };
   std::size_t first = 0;
   while (first < plain.size() && !touched(plain[first])) ++first;
-  const std::size_t window = std::size_t(std::lround(0.05 / windowed.time_step));
+  const std::size_t window =
+      std::size_t(std::lround(windowed.contact_substep_window / windowed.time_step));
   std::size_t differs = 0;
   while (differs < plain.size() &&
          fine[differs].cube_pose.position == plain[differs].cube_pose.position)
