@@ -10,10 +10,21 @@ SimParameters substepped(SimParameters p) {
   return p;
 }
 
+// A corner that lands within a substep lies deep at the prediction, where the stiffened floor's
+// force (k d + k3 d^2) is far from the linear one Newton iteration solves exactly: from there
+// one iteration left it pressed in and the landing threw the cube back up (a light cube spun at
+// 150 rad/s gained 7.9 times its energy). Three solve the substep (docs/simulator.md, "Solver");
+// six unknowns, a few microseconds each.
+SimOptions free_cube_options() {
+  SimOptions o = single_threaded();
+  o.newton_iterations = FreeCubeStepper::kNewtonIterations;
+  return o;
+}
+
 }  // namespace
 
 FreeCubeStepper::FreeCubeStepper(const SimParameters& parameters)
-    : model_(make_cube_sim_model(substepped(parameters))), solver_(model_, single_threaded()) {}
+    : model_(make_cube_sim_model(substepped(parameters))), solver_(model_, free_cube_options()) {}
 
 bool FreeCubeStepper::resting(const HandSimState& state) {
   // Flat on its four corners and slower than this, it rests: a step with the hand keeps it

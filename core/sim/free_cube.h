@@ -15,6 +15,7 @@ namespace handlab::sim {
 class FreeCubeStepper {
  public:
   static constexpr int kSubsteps = 32;
+  static constexpr int kNewtonIterations = 3;  // a substep's (free_cube.cpp)
 
   explicit FreeCubeStepper(const SimParameters& parameters);
   FreeCubeStepper(const FreeCubeStepper&) = delete;
@@ -34,7 +35,7 @@ class FreeCubeStepper {
 
  private:
   HandSimModel model_;  // the cube and the floor alone, its time step a substep
-  StepSolver solver_;   // one thread: six unknowns
+  StepSolver solver_;   // one thread, kNewtonIterations: six unknowns
 };
 
 }  // namespace handlab::sim

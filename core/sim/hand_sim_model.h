@@ -47,10 +47,14 @@ struct SimParameters {
   double tracking_torque_limit = 0.0;  // N m per finger bone
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
   // coefficients (below).
-  double contact_stiffness = 5e3;      // N/m, a flesh node against the cube or floor, at first
-  double contact_stiffening = 2.5e7;   // N/m^2: its force k d + k3 d^2 at a depth d
-  double cube_floor_stiffness = 1e4;   // N/m, a cube corner against the floor
-  double cube_floor_stiffening = 0.0;  // N/m^2: its force k d + k3 d^2 (docs/simulator.md)
+  double contact_stiffness = 5e3;     // N/m, a flesh node against the cube or floor, at first
+  double contact_stiffening = 2.5e7;  // N/m^2: its force k d + k3 d^2 at a depth d
+  // A cube corner against the floor: its force k d + k3 d^2. The stiffening keeps a cube that a
+  // hand presses onto the floor from storing the press and throwing it when let go (143 N on
+  // the 6 cm cube: 59 um deep, where the linear corner's 3.6 mm would lift it 24 cm); the value
+  // chosen on the grasp maps (docs/simulator.md, "The cube's substeps on a stiff floor").
+  double cube_floor_stiffness = 1e4;    // N/m
+  double cube_floor_stiffening = 1e10;  // N/m^2
   // Contact points against the cube inside each boundary face of the flesh, besides its nodes:
   // 0 or 1 (the centroid). With the nodes alone the cube's edges and corners sank into the
   // skin between them (1.7 mm in the scripted light pinch's hold).
@@ -66,15 +70,15 @@ struct SimParameters {
   // A step in which flesh first touches the cube taken again in substeps of about this length
   // (the time step divided by the nearest whole number), and the steps within
   // contact_substep_window after it too (core/sim/contact_substeps). 0: off.
-  double contact_time_step = 0.0;       // s
-  double contact_substep_window = 0.0;  // s
+  double contact_time_step = 1.0 / 1920;  // s
+  double contact_substep_window = 0.1;    // s
   // Those substeps take the cube alone against the flesh's path, the hand's step left as it is
   // (core/sim/cube_substeps), not the whole hand again.
-  bool contact_substeps_cube = false;
+  bool contact_substeps_cube = true;
   // And in every step, past the window too, in which flesh touches a cube that moves on the
   // floor (not at rest on four corners: FreeCubeStepper's rule), so that no moving cube's floor
   // contact is solved at the hand's step, whose one Newton iteration a stiffened floor defeats.
-  bool cube_substeps_on_floor = false;
+  bool cube_substeps_on_floor = true;
   // Coulomb's coefficients: the cube on the floor (and flesh on the floor), and the skin on the
   // cube, two pairs of materials (skin on wood or plastic: 0.5-1; fingertip skin 0.6 on
   // aluminium and 0.9 on rubber over 1-20 N, falling by 46 % from 1 to 20 N: Seo & Armstrong

@@ -14,10 +14,12 @@ namespace {
 
 constexpr double kStudyStep = 1.0 / 120;
 
+// The whole hand's substeps (not the cube's alone, the default's).
 SimParameters substepped(int substeps, double window) {
   SimParameters p;
   set_sim_parameter(p, "contact_time_step", kStudyStep / substeps);
   set_sim_parameter(p, "contact_substep_window", window);
+  set_sim_parameter(p, "contact_substeps_cube", 0);
   return p;
 }
 
@@ -40,7 +42,7 @@ TEST(ContactSubsteps, BeganWhereAFleshPointTouchesThatDidNotBefore) {
   after = before;
   after.sample_cube = anchors({2, 9});
   EXPECT_TRUE(ContactSubsteps::began_contact(before, after)) << "sample 9";
-  EXPECT_FALSE(ContactSubsteps::enabled(SimParameters{}));
+  EXPECT_FALSE(ContactSubsteps::enabled(SimParameters{})) << "the default's are the cube's";
   EXPECT_FALSE(ContactSubsteps::enabled(substepped(1, 0.1)));
   EXPECT_TRUE(ContactSubsteps::enabled(substepped(4, 0.0)));
 }
@@ -118,7 +120,7 @@ TEST(ContactSubsteps, OnlyWhereFleshBeginsToTouchTheCube) {
                      scene.script.close_end, [&](const HandSimState& s) { states.push_back(s); });
   };
   std::vector<HandSimState> plain, fine, no_window;
-  run(SimParameters{}, plain);
+  run(substepped(1, 0.0), plain);
   const PinchReport report = run(substepped(4, 0.1), fine);
   const PinchReport without_window = run(substepped(4, 0.0), no_window);
   std::size_t first = 0;

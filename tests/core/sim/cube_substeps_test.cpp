@@ -30,8 +30,8 @@ SimParameters cube_substepped(int substeps, double window) {
   return p;
 }
 
-TEST(CubeSubsteps, OnOnlyWhenAskedForInsteadOfTheWholeHands) {
-  EXPECT_FALSE(CubeSubsteps::enabled(SimParameters{}));
+TEST(CubeSubsteps, OnByDefaultInsteadOfTheWholeHands) {
+  EXPECT_TRUE(CubeSubsteps::enabled(SimParameters{})) << "the default";
   SimParameters p = cube_substepped(4, 0.1);
   EXPECT_TRUE(CubeSubsteps::enabled(p));
   EXPECT_FALSE(ContactSubsteps::enabled(p));
@@ -141,7 +141,7 @@ TEST(CubeSubsteps, TheHandsStepIsLeftAsItIs) {
               [&](const HandSimState& s) { states.push_back(s); });
   };
   std::vector<HandSimState> plain, fine;
-  run(SimParameters{}, plain);
+  run(cube_substepped(1, 0.0), plain);
   run(cube_substepped(4, 0.1), fine);
   std::size_t first = 0;
   while (first < plain.size() && plain[first].node_cube.empty() && plain[first].sample_cube.empty())
