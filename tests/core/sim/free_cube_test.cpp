@@ -6,31 +6,25 @@
 // 187 mm beyond that slide, at rest after 0.64 s p90).
 #include <gtest/gtest.h>
 
-#include "core/mesh/tet_mesh.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/sim/hand_sim_state.h"
 #include "core/task/cube_settle.h"
+#include "tests/core/sim/lone_cube.h"
 
 namespace handlab::sim {
 namespace {
 
 TEST(FreeCube, SettlesAsItsEnergyAllowsBesideFlesh) {
-  // One tet of flesh, a metre from the cube; it falls through the floor (hand-floor contact
-  // is off, as in the study) and never comes near.
-  const mesh::TetMesh tet{{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.03, 0, 0.02),
-                           Eigen::Vector3d(0, 0.03, 0.02), Eigen::Vector3d(0, 0, 0.05)},
-                          {{0, 1, 2, 3}}};
   SimParameters p;
   p.cube_size = 0.01;
-  const HandSimModel model = make_soft_body_sim_model(tet, p);
+  const HandSimModel model = lone_cube_model(p);  // beside one tet of flesh a metre away
   RigidPose cube;
   cube.position = Eigen::Vector3d(0, p.cube_size / 2, 0);
-  const Eigen::Isometry3d away(Eigen::Translation3d(1.0, 0.5, 0.0));
   const double weight = p.cube_density * 1e-6 * 9.81;
   for (double speed : {0.02, 0.05, 0.1, 0.2, 0.4})
     for (double spin : {0.0, 1.0, 2.0, 5.0, 10.0, 15.0, 20.0, 30.0}) {
       const CubeSettleReport r =
-          settle_cube(model, initial_state(model, {}, away, cube), {speed, spin}, {}, 1.5);
+          settle_cube(model, lone_cube_state(model, cube), {speed, spin}, {}, 1.5);
       EXPECT_GE(r.rest_time, 0.0) << speed << " m/s, " << spin << " rad/s";
       EXPECT_LE(r.rest_time, 0.3) << speed << " m/s, " << spin << " rad/s";
       EXPECT_LE(r.travelled, r.slide_bound + 0.002) << speed << " m/s, " << spin << " rad/s";

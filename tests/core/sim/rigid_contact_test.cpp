@@ -2,9 +2,8 @@
 // box distance, a dropped cube (free fall at g, then rest on the floor), a cube on a tilted
 // floor (sticks below atan(mu), slides above), a pushed cube sliding to a stop, spinning cubes
 // tumbling to rest, and a cube pressed into the floor let go; settle_cube's measures of a
-// kicked cube. A cube that moves on the floor is stepped as the hand's simulator steps it, in
-// the free cube's substeps (lone_cube.h): the simulator solves no moving cube's floor contact
-// at the hand's step (a touched one goes in the cube's substeps, SimParameters).
+// kicked cube. The cube on the floor is stepped as the hand's simulator steps a cube no flesh
+// touches (lone_cube.h): a moving one in the free cube's substeps.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
