@@ -134,41 +134,45 @@ class ContactEnergy : public ::testing::TestWithParam<std::string> {};
 // point (f x dx, as large as the depth is against the arm) and the surface's curvature under a
 // turn of the cube.
 TEST_P(ContactEnergy, GradientAndHessianAreTheEnergysDerivatives) {
-  const GraspScene& g = test::gripping_fine_cube();
-  const HandSimModel& model = g.scene.model;
-  ContactEnergyPart part;
-  find_contacts(model, g.state, part.all);
-  part.penalties = part.all;
-  for (Contact& c : part.penalties) c.touching = false;
-  part.friction = GetParam() == "friction";
-  const NewtonTerms terms = part.at(model, g.state, true);
-  ASSERT_GT(terms.gradient.lpNorm<Eigen::Infinity>(), 0.0);
-  const Eigen::SparseMatrix<double> hessian = part.hessian(model, g.state);
-  ASSERT_GT(hessian.nonZeros(), 0);
-  for (double phase : {1.0, 2.0, 3.0}) {
-    // 0.1 mm and 0.01 rad at t = 1: steps of 1e-4 of that stay in each contact's face region.
-    Eigen::VectorXd along =
-        test::only(model, test::direction(model, 1e-4, 1e-2, phase), true, false, false);
-    along.tail(6) = test::direction(model, 1e-4, 1e-2, phase + 0.3).tail(6);  // the cube
-    const auto [slope, curvature] = test::differences(
-        [&](double t) { return part.at(model, moved(model, g.state, along, t), false).energy; },
-        1e-4);
-    const double slope_scale = terms.gradient.cwiseAbs().dot(along.cwiseAbs());
-    EXPECT_NEAR(slope, terms.gradient.dot(along), 1e-6 * slope_scale) << "phase " << phase;
-    // Along the nodes and the cube's translation only.
-    Eigen::VectorXd straight = along;
-    straight.tail(3).setZero();
-    const double step = 1e-4;
-    Eigen::VectorXd change =
-        (part.at(model, moved(model, g.state, straight, step), true).gradient -
-         part.at(model, moved(model, g.state, straight, -step), true).gradient) /
-        (2 * step);
-    Eigen::VectorXd expected = hessian * straight;
-    change.tail(3).setZero();  // the cube's torque
-    expected.tail(3).setZero();
-    const double scale = (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * straight.cwiseAbs())
-                             .lpNorm<Eigen::Infinity>();
-    EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-4 * scale) << "phase " << phase;
+  // The grip, and the cube on its corners on the floor (their penalty and friction).
+  for (double time : {test::gripping_fine_cube().time, 1.25}) {
+    SCOPED_TRACE(time);
+    const GraspScene& g = test::pinch_stage(time);
+    const HandSimModel& model = g.scene.model;
+    ContactEnergyPart part;
+    find_contacts(model, g.state, part.all);
+    part.penalties = part.all;
+    for (Contact& c : part.penalties) c.touching = false;
+    part.friction = GetParam() == "friction";
+    const NewtonTerms terms = part.at(model, g.state, true);
+    ASSERT_GT(terms.gradient.lpNorm<Eigen::Infinity>(), 0.0);
+    const Eigen::SparseMatrix<double> hessian = part.hessian(model, g.state);
+    ASSERT_GT(hessian.nonZeros(), 0);
+    for (double phase : {1.0, 2.0, 3.0}) {
+      // 0.1 mm and 0.01 rad at t = 1: steps of 1e-4 of that stay in each contact's face region.
+      Eigen::VectorXd along =
+          test::only(model, test::direction(model, 1e-4, 1e-2, phase), true, false, false);
+      along.tail(6) = test::direction(model, 1e-4, 1e-2, phase + 0.3).tail(6);  // the cube
+      const auto [slope, curvature] = test::differences(
+          [&](double t) { return part.at(model, moved(model, g.state, along, t), false).energy; },
+          1e-4);
+      const double slope_scale = terms.gradient.cwiseAbs().dot(along.cwiseAbs());
+      EXPECT_NEAR(slope, terms.gradient.dot(along), 1e-6 * slope_scale) << "phase " << phase;
+      // Along the nodes and the cube's translation only.
+      Eigen::VectorXd straight = along;
+      straight.tail(3).setZero();
+      const double step = 1e-4;
+      Eigen::VectorXd change =
+          (part.at(model, moved(model, g.state, straight, step), true).gradient -
+           part.at(model, moved(model, g.state, straight, -step), true).gradient) /
+          (2 * step);
+      Eigen::VectorXd expected = hessian * straight;
+      change.tail(3).setZero();  // the cube's torque
+      expected.tail(3).setZero();
+      const double scale = (Eigen::SparseMatrix<double>(hessian.cwiseAbs()) * straight.cwiseAbs())
+                               .lpNorm<Eigen::Infinity>();
+      EXPECT_LT((change - expected).lpNorm<Eigen::Infinity>(), 1e-4 * scale) << "phase " << phase;
+    }
   }
 }
 
@@ -177,40 +181,44 @@ INSTANTIATE_TEST_SUITE_P(Each, ContactEnergy, ::testing::Values("penalty", "fric
 
 // After a step, every anchor lies within Coulomb's cone of its point, on the surface's side.
 TEST(Friction, AnchorsStayInsideCoulombsCone) {
-  const GraspScene& g = test::gripping_fine_cube();
-  const HandSimModel& model = g.scene.model;
-  std::vector<Contact> contacts;
-  find_contacts(model, g.state, contacts);
-  // The state moved as a step might move it: the anchors must follow.
-  HandSimState s = moved(model, g.state, test::direction(model, 2e-4, 0.0, 5.0), 1.0);
-  EXPECT_FALSE(friction_changed(model, g.state, contacts))
-      << "at the state they were found at, no contact changes";
-  const double penetration = update_anchors(model, contacts, s);
-  EXPECT_GT(penetration, 0.0);
-  EXPECT_LT(penetration, 0.002);
-  int anchors = 0;
-  const std::pair<const std::vector<ContactAnchor>*, Contact::Kind> lists[] = {
-      {&s.node_cube, Contact::kNodeCube},
-      {&s.sample_cube, Contact::kSampleCube},
-      {&s.corner_floor, Contact::kCornerFloor}};
-  for (const auto& [list, kind] : lists) {
-    for (const ContactAnchor& a : *list) {
-      const Contact probe{kind, a.point, {}, a.anchor, a.face};  // the face it pushes out through
-      const ContactGap gap = contact_gap(model, s, probe);
-      ASSERT_LT(gap.gap, 0.0);
-      const Eigen::Vector3d normal =
-          on_cube(probe) ? gap.box.normal : model.parameters.floor_normal.normalized();
-      EXPECT_LE(tangent_part(normal, gap.x - a.anchor).norm(),
-                friction_cone(model, probe, -gap.gap) * (1 + 1e-9) + 1e-15);
-      ++anchors;
+  // The grip, and the cube on its corners on the floor (their penalty and friction).
+  for (double time : {test::gripping_fine_cube().time, 1.25}) {
+    SCOPED_TRACE(time);
+    const GraspScene& g = test::pinch_stage(time);
+    const HandSimModel& model = g.scene.model;
+    std::vector<Contact> contacts;
+    find_contacts(model, g.state, contacts);
+    // The state moved as a step might move it: the anchors must follow.
+    HandSimState s = moved(model, g.state, test::direction(model, 2e-4, 0.0, 5.0), 1.0);
+    EXPECT_FALSE(friction_changed(model, g.state, contacts))
+        << "at the state they were found at, no contact changes";
+    const double penetration = update_anchors(model, contacts, s);
+    EXPECT_GT(penetration, 0.0);
+    EXPECT_LT(penetration, 0.002);
+    int anchors = 0;
+    const std::pair<const std::vector<ContactAnchor>*, Contact::Kind> lists[] = {
+        {&s.node_cube, Contact::kNodeCube},
+        {&s.sample_cube, Contact::kSampleCube},
+        {&s.corner_floor, Contact::kCornerFloor}};
+    for (const auto& [list, kind] : lists) {
+      for (const ContactAnchor& a : *list) {
+        const Contact probe{kind, a.point, {}, a.anchor, a.face};  // the face it pushes out through
+        const ContactGap gap = contact_gap(model, s, probe);
+        ASSERT_LT(gap.gap, 0.0);
+        const Eigen::Vector3d normal =
+            on_cube(probe) ? gap.box.normal : model.parameters.floor_normal.normalized();
+        EXPECT_LE(tangent_part(normal, gap.x - a.anchor).norm(),
+                  friction_cone(model, probe, -gap.gap) * (1 + 1e-9) + 1e-15);
+        ++anchors;
+      }
+      EXPECT_TRUE(std::is_sorted(
+          list->begin(), list->end(),
+          [](const ContactAnchor& x, const ContactAnchor& y) { return x.point < y.point; }))
+          << "find_contacts looks anchors up by point";
     }
-    EXPECT_TRUE(std::is_sorted(
-        list->begin(), list->end(),
-        [](const ContactAnchor& x, const ContactAnchor& y) { return x.point < y.point; }))
-        << "find_contacts looks anchors up by point";
+    EXPECT_GE(anchors, 2) << "the pads' anchors at least";
+    EXPECT_FALSE(s.sample_cube.empty()) << "the skin between the pads' nodes holds too";
   }
-  EXPECT_GE(anchors, 2) << "the pads' anchors at least";
-  EXPECT_FALSE(s.sample_cube.empty()) << "the skin between the pads' nodes holds too";
 }
 
 // Two pairs of materials: the skin's coefficient sets the cone of flesh on the cube, the
