@@ -206,6 +206,7 @@ ParticipantSummary summarise_participants(const std::vector<store::Participant>&
 DataQuality assess_data(store::StudyStore& store, const Protocol& protocol) {
   DataQuality q;
   q.by_condition = condition_outcomes(store, protocol);
+  q.losses = cube_losses(store, protocol);
   for (const ConditionOutcome& c : q.by_condition) {
     q.planned += c.planned;
     q.completed += c.completed;

@@ -14,6 +14,7 @@
 #include "analysis/report/study_analysis.h"
 #include "core/store/study_store.h"
 #include "studies/analysis/condition_outcomes.h"
+#include "studies/analysis/cube_losses.h"
 #include "studies/analysis/timeout_analyses.h"
 #include "studies/protocol/protocol.h"
 
@@ -52,6 +53,7 @@ struct DataQuality {
   int planned = 0;  // scheduled trials, practice excluded
   int completed = 0, timeouts = 0, skipped = 0, not_run = 0;
   std::vector<ConditionOutcome> by_condition;     // in the protocol's order of conditions
+  CubeLosses losses;                              // the trials that lost the cube
   int attempts_aborted = 0, attempts_redone = 0;  // attempts of scheduled trials
   int practice_run = 0;
   std::int64_t frames = 0;

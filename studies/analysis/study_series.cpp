@@ -108,6 +108,48 @@ std::string capitalised(std::string text) {
   return text;
 }
 
+// The share of a study's trials that dropped the cube, and that grasped it again with no drop.
+std::string loss_text(const LossCount& c) {
+  return c.trials > 0
+             ? percent(c.dropped, c.trials) + " (" + percent(c.grasped_again, c.trials) + ")"
+             : "–";
+}
+
+// Per condition, then per repetition: each study's losses and the pooled studies'.
+void write_losses(const StudySeries& s, std::ostream& out) {
+  out << "\nTrials that lost the cube: the share that dropped it at least once (it came to rest "
+         "out of B) and, in parentheses, that grasped it again with no drop (the pinch broken, "
+         "the cube caught or picked up before it rested)\n\n| trials";
+  for (std::size_t k = 0; k < s.studies.size(); ++k) out << " | " << k + 1;
+  out << " | pooled |\n|---";
+  for (std::size_t k = 0; k <= s.studies.size(); ++k) out << "|---";
+  out << "|\n";
+  std::size_t repetitions = 0;
+  for (const SeriesStudy& study : s.studies)
+    repetitions = std::max(repetitions, study.losses.by_repetition.size());
+  auto row = [&](const std::string& label, auto cell) {
+    LossCount pooled;
+    out << "| " << label;
+    for (const SeriesStudy& study : s.studies) {
+      const LossCount* c = cell(study.losses);
+      out << " | " << (c ? loss_text(*c) : "–");
+      if (!c) continue;
+      pooled.trials += c->trials;
+      pooled.dropped += c->dropped;
+      pooled.grasped_again += c->grasped_again;
+    }
+    out << " | " << loss_text(pooled) << " |\n";
+  };
+  for (std::size_t c = 0; c < s.conditions.size(); ++c)
+    row(s.conditions[c], [&](const CubeLosses& l) {
+      return c < l.by_condition.size() ? &l.by_condition[c] : nullptr;
+    });
+  for (std::size_t r = 0; r < repetitions; ++r)
+    row("repetition " + std::to_string(r + 1), [&](const CubeLosses& l) {
+      return r < l.by_repetition.size() ? &l.by_repetition[r] : nullptr;
+    });
+}
+
 // One test's row: the published value, the statistic (p) per study, and the series' summary.
 void write_test_row(const SeriesTest& t, bool published, std::size_t n, std::ostream& out) {
   out << "| " << t.name << " | " << t.statistic;
@@ -245,6 +287,7 @@ StudySeries summarize_series(const std::vector<std::string>& paths, const Series
     study.path = path;
     study.participants = a.completion_time ? a.completion_time->n_subjects : 0;
     study.conditions = a.quality.by_condition;
+    study.losses = a.quality.losses;
     found.push_back(study_tests(a, options.correction, options.alpha));
     study.warning = found.back().warning;
     series.studies.push_back(std::move(study));
@@ -351,6 +394,7 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
     out << " | " << fixed(median, 1) << " % | " << fixed(min, 0) << "–" << fixed(max, 0)
         << " % |\n";
   }
+  write_losses(s, out);
 
   out << "\nTests: the statistic (p) per study; p as judged (Greenhouse-Geisser where Mauchly's "
          "test rejects sphericity; Tukey for the cells of "
@@ -395,7 +439,9 @@ void write_series_json(const StudySeries& s, std::ostream& out) {
     json.begin_object().field("db", study.path).field("participants", study.participants);
     json.field("warning", study.warning).key("conditions").begin_array();
     for (const ConditionOutcome& c : study.conditions) write_condition_outcome(json, c);
-    json.end_array().end_object();
+    json.end_array().key("cube_losses");
+    write_cube_losses(json, study.losses);
+    json.end_object();
   }
   json.end_array();
   json.key("tests").begin_array();

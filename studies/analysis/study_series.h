@@ -39,6 +39,7 @@ struct SeriesStudy {
   std::string path;
   int participants = 0;  // in the completion-time ANOVA
   std::vector<ConditionOutcome> conditions;
+  CubeLosses losses;
   std::string warning;
 };
 
@@ -89,7 +90,8 @@ struct SeriesOptions {
 // published study is of another protocol, or when `only` names a test no study made.
 StudySeries summarize_series(const std::vector<std::string>& paths, const SeriesOptions& options);
 
-// Markdown tables: the studies, the share of trials completed per condition, and the tests,
+// Markdown tables: the studies, the share of trials completed per condition, the share that lost
+// the cube per condition and per repetition (dropped, grasped again), and the tests,
 // one table for each analysis they come from (statistic and p per study, median, range,
 // rejections, the published value and how many studies fall below it).
 void write_series_markdown(const StudySeries& series, std::ostream& out);

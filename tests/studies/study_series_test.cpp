@@ -7,12 +7,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/store/study_store.h"
+#include "core/util/json_value.h"
 #include "studies/analysis/study_series.h"
 #include "studies/protocol/protocol.h"
 #include "studies/session/session_runner.h"
@@ -53,7 +55,9 @@ const stats::PairwiseContrast* find_contrast(const analysis::AnalysisReport& r,
 
 // Six participants whose Naive fine trials are slow and whose answers rate Ours above Naive
 // in every condition; `protocol_text` may be another protocol's. With `timeouts`, participant
-// p's Naive fine trials of the first p % 3 repetitions time out.
+// p's Naive fine trials of the first p % 3 repetitions time out. Participant p drops the fine
+// cube once in repetition r where p + r is a multiple of 3 (grasping it twice), and grasps the
+// gross cube twice with no drop in the first repetition.
 std::string synthetic_study(const std::string& name, const Protocol& protocol,
                             bool timeouts = false) {
   const std::string path = test::fresh_path(name);
@@ -77,6 +81,8 @@ std::string synthetic_study(const std::string& name, const Protocol& protocol,
       outcome.success = true;
       outcome.completion_time_s = 5.0 + 0.3 * p + (fine ? 3.0 : 0.0) + (naive && fine ? 2.0 : 0.0) +
                                   0.1 * double((p * 7 + t.condition * 3 + t.repetition * 5) % 11);
+      outcome.drops = fine && (p + t.repetition) % 3 == 0 ? 1 : 0;
+      outcome.grasps = 1 + outcome.drops + (!fine && t.repetition == 1 ? 1 : 0);
       if (timeouts && naive && fine && t.repetition <= p % 3) {
         outcome.success = false;
         outcome.completion_time_s = protocol.timeout_s;
@@ -288,6 +294,43 @@ TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
   EXPECT_NEAR(fine.published_high, 1.2830934600911701, 1e-6);
   EXPECT_EQ(test("precision (Friedman)").effect, "");
   EXPECT_TRUE(std::isnan(test("precision (Friedman)").effect_value[0]));
+}
+
+// By hand from synthetic_study's pattern: for each repetition two of the six participants drop
+// the fine cubes (p + r a multiple of 3), so 10 of each fine condition's 30 trials and 4 of
+// each repetition's 24; the gross cubes' first repetition grasped again, 6 of 30 and 12 of 24.
+TEST(StudySeries, CountsTheTrialsThatLostTheCube) {
+  const Protocol protocol = read_protocol(kProtocol);
+  const std::string db = synthetic_study("series_losses.db", protocol, true);
+  const CubeLosses losses = analyze_study_database(db).quality.losses;
+  ASSERT_EQ(losses.by_condition.size(), 4u);
+  for (const LossCount& c : losses.by_condition) {
+    const bool fine = c.label.ends_with("fine");
+    EXPECT_EQ(c.trials, 30) << c.label << ": timed-out trials count";
+    EXPECT_EQ(c.dropped, fine ? 10 : 0) << c.label;
+    EXPECT_EQ(c.grasped_again, fine ? 0 : 6) << c.label;
+  }
+  ASSERT_EQ(losses.by_repetition.size(), 5u);
+  for (const LossCount& r : losses.by_repetition) {
+    EXPECT_EQ(r.trials, 24) << r.label;
+    EXPECT_EQ(r.dropped, 4) << r.label;
+    EXPECT_EQ(r.grasped_again, r.label == "1" ? 12 : 0) << r.label;
+  }
+  const StudySeries s = summarize_series({db}, {});
+  std::ostringstream markdown, json;
+  write_series_markdown(s, markdown);
+  EXPECT_NE(markdown.str().find("| naive-fine | 33 % (0 %) | 33 % (0 %) |"), std::string::npos)
+      << markdown.str();
+  EXPECT_NE(markdown.str().find("| repetition 1 | 17 % (50 %) | 17 % (50 %) |"), std::string::npos);
+  write_series_json(s, json);
+  const util::JsonValue parsed = util::JsonValue::parse(json.str());
+  const util::JsonValue& study = parsed["studies"][0];
+  const util::JsonValue& gross = study["cube_losses"]["by_condition"][0];
+  EXPECT_EQ(gross["label"].as_string(), "naive-gross");
+  EXPECT_EQ(gross["trials"].as_number(), 30);
+  EXPECT_EQ(gross["dropped"].as_number(), 0);
+  EXPECT_EQ(gross["grasped_again"].as_number(), 6);
+  EXPECT_EQ(study["cube_losses"]["by_repetition"][0]["grasped_again"].as_number(), 12);
 }
 
 TEST(StudySeries, DescribesEachTestOverTheStudies) {

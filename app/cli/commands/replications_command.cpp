@@ -31,7 +31,9 @@ CommandHelp replications_help() {
   return {"replications",
           {"DB... [published] [test] [json]"},
           "Analyses each study database as `analyze --db` does and sets the studies side by "
-          "side: the share of each condition's scheduled trials completed, and for every test "
+          "side: the share of each condition's scheduled trials completed, the share of each "
+          "condition's and each repetition's trials that dropped the cube or grasped it again, "
+          "and for every test "
           "(the ANOVA effects, the pairwise comparisons of the protocol's cells, each "
           "questionnaire item's Friedman and Wilcoxon tests) its statistic and p per study, "
           "their median and range, and in how many studies p < alpha (with simulated studies of "
