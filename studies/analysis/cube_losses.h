@@ -1,8 +1,8 @@
 // How often a study's trials lost the cube, as the trials' records count it: dropped, the cube
-// come to rest out of B at least once; grasped again, no drop but more than one grasp (the
+// came to rest out of B at least once; grasped again, no drop but more than one grasp (the
 // pinch broken and the cube caught or picked up before it rested). Over the scheduled trials
-// that were run (completed or timed out; practice excluded), per condition and per repetition
-// (`replications`).
+// that were run (completed or timed out; practice and skipped trials excluded), per condition
+// and per repetition (`replications`, `analyze --db`'s JSON).
 #pragma once
 
 #include <string>
@@ -21,7 +21,7 @@ struct LossCount {
 
 struct CubeLosses {
   std::vector<LossCount> by_condition;   // in the protocol's order
-  std::vector<LossCount> by_repetition;  // 1, 2, ... up to the highest scheduled
+  std::vector<LossCount> by_repetition;  // 1, 2, ... up to the highest run
 };
 
 CubeLosses cube_losses(store::StudyStore& store, const Protocol& protocol);

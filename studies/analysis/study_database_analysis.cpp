@@ -546,7 +546,8 @@ void write_study_analysis_json(const StudyDatabaseAnalysis& a, std::ostream& out
     json.field("practice_run", q.practice_run).field("frames", static_cast<long long>(q.frames));
     json.key("by_condition").begin_array();
     for (const ConditionOutcome& c : q.by_condition) write_condition_outcome(json, c);
-    json.end_array();
+    json.end_array().key("cube_losses");
+    write_cube_losses(json, q.losses);
     json.key("left_out").begin_array();
     for (const auto& [id, why] : q.left_out)
       json.begin_object().field("participant", id).field("why", why).end_object();

@@ -119,7 +119,7 @@ std::string loss_text(const LossCount& c) {
 void write_losses(const StudySeries& s, std::ostream& out) {
   out << "\nTrials that lost the cube: the share that dropped it at least once (it came to rest "
          "out of B) and, in parentheses, that grasped it again with no drop (the pinch broken, "
-         "the cube caught or picked up before it rested)\n\n| trials";
+         "the cube caught or picked up before it rested)\n\n| condition, repetition";
   for (std::size_t k = 0; k < s.studies.size(); ++k) out << " | " << k + 1;
   out << " | pooled |\n|---";
   for (std::size_t k = 0; k <= s.studies.size(); ++k) out << "|---";

@@ -57,9 +57,10 @@ const stats::PairwiseContrast* find_contrast(const analysis::AnalysisReport& r,
 // in every condition; `protocol_text` may be another protocol's. With `timeouts`, participant
 // p's Naive fine trials of the first p % 3 repetitions time out. Participant p drops the fine
 // cube once in repetition r where p + r is a multiple of 3 (grasping it twice), and grasps the
-// gross cube twice with no drop in the first repetition.
+// gross cube twice with no drop in the first repetition. Trials past `last_repetition` are not
+// run; with `skip`, P01's first Naive gross trial is skipped.
 std::string synthetic_study(const std::string& name, const Protocol& protocol,
-                            bool timeouts = false) {
+                            bool timeouts = false, int last_repetition = 5, bool skip = false) {
   const std::string path = test::fresh_path(name);
   store::StudyStore::create(path, study_definition(protocol));
   store::StudyStore store(path);
@@ -76,6 +77,11 @@ std::string synthetic_study(const std::string& name, const Protocol& protocol,
     const std::int64_t session = store.begin_session(person.id, "test");
     for (const store::PlannedTrialRow& t : store.plan(person.id)) {
       const Condition& c = conditions[std::size_t(t.condition)];
+      if (t.repetition > last_repetition) continue;
+      if (skip && p == 0 && c.label == "naive-gross" && t.repetition == 1) {
+        store.skip_trial(person.id, t.position, session, "test");
+        continue;
+      }
       const bool naive = c.label.starts_with("naive"), fine = c.label.ends_with("fine");
       store::TrialOutcome outcome;
       outcome.success = true;
@@ -299,6 +305,12 @@ TEST(StudySeries, OneStudyIsItsOwnAnalysis) {
 // By hand from synthetic_study's pattern: for each repetition two of the six participants drop
 // the fine cubes (p + r a multiple of 3), so 10 of each fine condition's 30 trials and 4 of
 // each repetition's 24; the gross cubes' first repetition grasped again, 6 of 30 and 12 of 24.
+// By hand from synthetic_study's pattern: for each repetition two of the six participants drop
+// the fine cubes (p + r a multiple of 3), so 10 of each fine condition's 30 trials and 4 of
+// each repetition's 24; the gross cubes' first repetition grasped again, 6 of 30 and 12 of 24.
+// A second study stops after repetition 4 and skips one Naive gross trial of repetition 1 (it
+// would have been grasped again): 8 of 24 fine trials dropped, 5 of 23 Naive gross grasped
+// again; pooled, the two studies' counts add up, and its missing repetition is shown as such.
 TEST(StudySeries, CountsTheTrialsThatLostTheCube) {
   const Protocol protocol = read_protocol(kProtocol);
   const std::string db = synthetic_study("series_losses.db", protocol, true);
@@ -316,21 +328,36 @@ TEST(StudySeries, CountsTheTrialsThatLostTheCube) {
     EXPECT_EQ(r.dropped, 4) << r.label;
     EXPECT_EQ(r.grasped_again, r.label == "1" ? 12 : 0) << r.label;
   }
-  const StudySeries s = summarize_series({db}, {});
+  const std::string shorter = synthetic_study("series_losses_shorter.db", protocol, false, 4, true);
+  const CubeLosses cut = analyze_study_database(shorter).quality.losses;
+  ASSERT_EQ(cut.by_repetition.size(), 4u);
+  EXPECT_EQ(cut.by_condition[0].label, "naive-gross");
+  EXPECT_EQ(cut.by_condition[0].trials, 23) << "the skipped trial left out";
+  EXPECT_EQ(cut.by_condition[0].grasped_again, 5);
+  EXPECT_EQ(cut.by_condition[1].dropped, 8);
+  EXPECT_EQ(cut.by_repetition[0].trials, 23);
+  EXPECT_EQ(cut.by_repetition[0].grasped_again, 11);
+  const StudySeries s = summarize_series({db, shorter}, {});
   std::ostringstream markdown, json;
   write_series_markdown(s, markdown);
-  EXPECT_NE(markdown.str().find("| naive-fine | 33 % (0 %) | 33 % (0 %) |"), std::string::npos)
+  EXPECT_NE(markdown.str().find("| naive-gross | 0 % (20 %) | 0 % (22 %) | 0 % (21 %) |"),
+            std::string::npos)
       << markdown.str();
-  EXPECT_NE(markdown.str().find("| repetition 1 | 17 % (50 %) | 17 % (50 %) |"), std::string::npos);
+  EXPECT_NE(markdown.str().find("| naive-fine | 33 % (0 %) | 33 % (0 %) | 33 % (0 %) |"),
+            std::string::npos);
+  EXPECT_NE(markdown.str().find("| repetition 1 | 17 % (50 %) | 17 % (48 %) | 17 % (49 %) |"),
+            std::string::npos);
+  EXPECT_NE(markdown.str().find("| repetition 5 | 17 % (0 %) | – | 17 % (0 %) |"),
+            std::string::npos);
   write_series_json(s, json);
   const util::JsonValue parsed = util::JsonValue::parse(json.str());
-  const util::JsonValue& study = parsed["studies"][0];
-  const util::JsonValue& gross = study["cube_losses"]["by_condition"][0];
+  const util::JsonValue& gross = parsed["studies"][1]["cube_losses"]["by_condition"][0];
   EXPECT_EQ(gross["label"].as_string(), "naive-gross");
-  EXPECT_EQ(gross["trials"].as_number(), 30);
+  EXPECT_EQ(gross["trials"].as_number(), 23);
   EXPECT_EQ(gross["dropped"].as_number(), 0);
-  EXPECT_EQ(gross["grasped_again"].as_number(), 6);
-  EXPECT_EQ(study["cube_losses"]["by_repetition"][0]["grasped_again"].as_number(), 12);
+  EXPECT_EQ(gross["grasped_again"].as_number(), 5);
+  EXPECT_EQ(parsed["studies"][0]["cube_losses"]["by_repetition"][0]["grasped_again"].as_number(),
+            12);
 }
 
 TEST(StudySeries, DescribesEachTestOverTheStudies) {
