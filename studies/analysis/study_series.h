@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "studies/analysis/cube_losses.h"
 #include "studies/analysis/study_tests.h"
 
 namespace handlab::studies {
