@@ -108,6 +108,19 @@ std::string capitalised(std::string text) {
   return text;
 }
 
+// A table's header: its first column, the columns before the studies, one per study, and the
+// columns after them.
+void write_header(const std::string& first, const std::vector<std::string>& extra,
+                  std::size_t studies, const std::vector<std::string>& tail, std::ostream& out) {
+  out << "| " << first;
+  for (const std::string& e : extra) out << " | " << e;
+  for (std::size_t k = 0; k < studies; ++k) out << " | " << k + 1;
+  for (const std::string& t : tail) out << " | " << t;
+  out << " |\n|---";
+  for (std::size_t c = 0; c < extra.size() + studies + tail.size(); ++c) out << "|---";
+  out << "|\n";
+}
+
 // The share of a study's trials that dropped the cube, and that grasped it again with no drop.
 std::string loss_text(const LossCount& c) {
   return c.trials > 0
@@ -119,11 +132,8 @@ std::string loss_text(const LossCount& c) {
 void write_losses(const StudySeries& s, std::ostream& out) {
   out << "\nTrials that lost the cube: the share that dropped it at least once (it came to rest "
          "out of B) and, in parentheses, that grasped it again with no drop (the pinch broken, "
-         "the cube caught or picked up before it rested)\n\n| condition, repetition";
-  for (std::size_t k = 0; k < s.studies.size(); ++k) out << " | " << k + 1;
-  out << " | pooled |\n|---";
-  for (std::size_t k = 0; k <= s.studies.size(); ++k) out << "|---";
-  out << "|\n";
+         "the cube caught or picked up before it rested)\n\n";
+  write_header("condition, repetition", {}, s.studies.size(), {"pooled"}, out);
   std::size_t repetitions = 0;
   for (const SeriesStudy& study : s.studies)
     repetitions = std::max(repetitions, study.losses.by_repetition.size());
@@ -371,13 +381,7 @@ void write_series_markdown(const StudySeries& s, std::ostream& out) {
 
   auto header = [&](const std::string& first, const std::vector<std::string>& extra,
                     const std::vector<std::string>& tail) {
-    out << "| " << first;
-    for (const std::string& e : extra) out << " | " << e;
-    for (std::size_t k = 0; k < n; ++k) out << " | " << k + 1;
-    for (const std::string& t : tail) out << " | " << t;
-    out << " |\n|---";
-    for (std::size_t c = 0; c < extra.size() + n + tail.size(); ++c) out << "|---";
-    out << "|\n";
+    write_header(first, extra, n, tail, out);
   };
   out << "\nScheduled trials completed before the timeout\n\n";
   header("condition", {}, {"median", "range"});
