@@ -709,6 +709,17 @@ TEST(CliSim, GraspMapRepeatsEachClosingWithTheCubeMoved) {
   EXPECT_EQ(against["in_both"].as_number(), 2);
   EXPECT_EQ(against["held_before_lost_after"].size(), 0u) << "the same runs, the same outcomes";
   EXPECT_EQ(against["lost_before_held_after"].size(), 0u);
+  ASSERT_EQ(against["by_closing"].size(), 1u) << "the closing's repeats counted together";
+  const util::JsonValue counted = against["by_closing"][0];
+  EXPECT_EQ(counted["closing"].as_string(), "the scripted pinch") << "over_closure=3 is it";
+  EXPECT_EQ(counted["runs_before"].as_number(), 2);
+  EXPECT_EQ(counted["held_before"].as_number(), held);
+  EXPECT_EQ(counted["runs_after"].as_number(), 2);
+  EXPECT_EQ(counted["difference"].as_number(), 0);
+  EXPECT_LT(counted["difference_low"].as_number(), 0);
+  EXPECT_GT(counted["difference_high"].as_number(), 0);
+  EXPECT_EQ(against["held_less_often"].as_number(), 0);
+  EXPECT_EQ(against["held_more_often"].as_number(), 0);
   EXPECT_EQ(run_cli("sim grasp --cube 0.01 --closing over_closure=3 --repeats 0").status, 2);
   EXPECT_EQ(run_cli("sim grasp --cube 0.01 --closing over_closure=3 --repeats 101").status, 2);
 }
@@ -752,6 +763,29 @@ TEST(CliSim, GraspMapSetsEachClosingBesideTheMapBefore) {
   EXPECT_EQ(won["held_before_lost_after"].size(), 0u);
   ASSERT_EQ(won["lost_before_held_after"].size(), 1u);
   EXPECT_EQ(won["lost_before_held_after"][0].as_string(), "the scripted pinch");
+  // The scripted pinch lost in five repeats before, held in both now: a change two runs resolve
+  // (Newcombe's interval of 2 of 2 against 0 of 5 lies above zero).
+  std::string five;
+  for (int r = 0; r < 5; ++r)
+    five += std::string(r ? "," : "") + R"({"factor": "", "level": 0, "repeat": )" +
+            std::to_string(r) +
+            R"(, "values": {"over_closure": 3, "tilt_yaw": 0, "tilt_pitch": 0,)" +
+            R"( "offset_along": 0, "lead": 0, "closing_speed": 0, "lift_acceleration": 0,)" +
+            R"( "hold": 5, "jitter": 0}, "held": false, "released": false})";
+  const std::string lost_five = write_temp(
+      "lost-five.json", R"({"cubes": [{"cube_size_m": 0.01, "closings": [)" + five + "]}]}");
+  const Result rerun = run_cli(
+      "sim grasp --cube 0.01 --jobs 2 --closing over_closure=3 --repeats 2 "
+      "--against " +
+      lost_five + " --json -");
+  ASSERT_EQ(rerun.status, 0) << rerun.out;
+  const util::JsonValue rates = util::JsonValue::parse(rerun.out)["cubes"][0]["against"];
+  ASSERT_EQ(rates["by_closing"].size(), 1u);
+  EXPECT_EQ(rates["by_closing"][0]["runs_before"].as_number(), 5);
+  EXPECT_EQ(rates["by_closing"][0]["held_after"].as_number(), 2);
+  EXPECT_GT(rates["by_closing"][0]["difference_low"].as_number(), 0);
+  EXPECT_EQ(rates["held_more_often"].as_number(), 1);
+  EXPECT_EQ(rates["held_less_often"].as_number(), 0);
   const std::string other = map_before("other-cube.json", 0.06, true, true);
   const Result text =
       run_cli("sim grasp --cube 0.01 --jobs 1 --closing over_closure=3 --against " + other);

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "analysis/stats/proportion_difference.h"
 #include "analysis/stats/wilson_interval.h"
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
@@ -121,6 +122,40 @@ void print_closings(const char* title, const std::vector<sim::ClosingPoint>& poi
   for (const sim::ClosingPoint& p : points) std::printf("  - %s\n", closing_label(p).c_str());
 }
 
+// A closing's hold rate now against before, over the repeats of each: a change the repeats
+// resolve when Newcombe's interval of the difference (now - before) excludes zero; a closing
+// held in five repeats before and four now is not one.
+struct RateChange {
+  stats::ProportionDifference difference;
+  int direction = 0;  // -1 held less often now, +1 more often, 0 not resolved
+};
+RateChange rate_change(const sim::ClosingHoldCounts& c) {
+  RateChange r{
+      stats::newcombe_difference(c.held_after, c.runs_after, c.held_before, c.runs_before)};
+  r.direction = r.difference.high < 0 ? -1 : r.difference.low > 0 ? 1 : 0;
+  return r;
+}
+
+void print_rate_changes(const std::vector<sim::ClosingHoldCounts>& counts) {
+  std::vector<const sim::ClosingHoldCounts*> less, more;
+  for (const sim::ClosingHoldCounts& c : counts) {
+    const int direction = rate_change(c).direction;
+    if (direction < 0) less.push_back(&c);
+    if (direction > 0) more.push_back(&c);
+  }
+  std::printf(
+      "by closing over its repeats: %zu closings; held less often now by more than the repeats "
+      "resolve (Newcombe's 95 %% interval of the difference below 0): %zu; more often: %zu\n",
+      counts.size(), less.size(), more.size());
+  for (const auto& [title, list] : {std::pair{"less often", &less}, std::pair{"more often", &more}})
+    for (const sim::ClosingHoldCounts* c : *list) {
+      const stats::ProportionDifference d = rate_change(*c).difference;
+      std::printf("  - %s: held %d of %d before, %d of %d now (%+.2f, %+.2f to %+.2f): %s\n", title,
+                  c->held_before, c->runs_before, c->held_after, c->runs_after, d.difference, d.low,
+                  d.high, closing_label(c->point).c_str());
+    }
+}
+
 void print_comparison(const sim::GraspComparison& c) {
   std::printf(
       "against the map before: %d closings in both, held %d before and %d now (held and "
@@ -130,6 +165,7 @@ void print_comparison(const sim::GraspComparison& c) {
   std::printf("\n");
   print_closings("held before, lost now", c.held_before_lost_after);
   print_closings("lost before, held now", c.lost_before_held_after);
+  if (!c.repeated.empty()) print_rate_changes(c.repeated);
 }
 
 void print_map(const CubeMap& map) {
@@ -255,6 +291,27 @@ void write_comparison(util::JsonWriter& json, const sim::GraspComparison& c) {
       .field("not_in_before", c.only_after);
   write_points(json, "held_before_lost_after", c.held_before_lost_after);
   write_points(json, "lost_before_held_after", c.lost_before_held_after);
+  if (!c.repeated.empty()) {
+    int less = 0, more = 0;
+    json.key("by_closing").begin_array();
+    for (const sim::ClosingHoldCounts& r : c.repeated) {
+      const RateChange change = rate_change(r);
+      const stats::ProportionDifference& d = change.difference;
+      less += change.direction < 0 ? 1 : 0;
+      more += change.direction > 0 ? 1 : 0;
+      json.begin_object()
+          .field("closing", closing_label(r.point))
+          .field("runs_before", r.runs_before)
+          .field("held_before", r.held_before)
+          .field("runs_after", r.runs_after)
+          .field("held_after", r.held_after)
+          .field("difference", d.difference)
+          .field("difference_low", d.low)
+          .field("difference_high", d.high)
+          .end_object();
+    }
+    json.end_array().field("held_less_often", less).field("held_more_often", more);
+  }
   json.end_object();
 }
 
@@ -503,7 +560,9 @@ std::vector<OptionSpec> sim_grasp_options() {
       {"json", "OUT", "write every closing's outcome as JSON (- for standard output)"},
       {"against", "BEFORE.json",
        "set each closing beside the same closing of a map sim grasp --json wrote before (other "
-       "physics, another time step): which it held there and loses here, and the other way"},
+       "physics, another time step): which it held there and loses here, and the other way; with "
+       "repeats, each closing's hold rate before and now, and those that changed by more than "
+       "the repeats resolve"},
   };
   specs.push_back(physics_option());
   return specs;

@@ -86,6 +86,52 @@ TEST(GraspComparison, TheSameClosingAsAMapFileReadsIt) {
   EXPECT_TRUE(same_closing({"", 0, moved, 1}, {"", 0, moved, 1}));
 }
 
+// With repeats, each closing's runs in both maps counted together whatever the repeat and its
+// cube's move: a closing held less often (3 of 4 before, 1 of 3 now), the same draw's runs
+// counted apart from another draw's, a closing the map before never ran left out.
+TEST(GraspComparison, CountsEachClosingsRepeatsInBothMaps) {
+  const GraspClosing a = closing("tilt_pitch", -15), c = closing("lead", 100);
+  auto run = [](const GraspClosing& g, int repeat, bool held, const std::string& factor = "pair",
+                double level = 1) {
+    MappedClosing m = mapped(g, held, factor, level);
+    m.point.repeat = repeat;
+    m.point.closing.cube_shift_x = 1e-5 * repeat;
+    return m;
+  };
+  const std::vector<MappedClosing> before = {run(a, 0, true),
+                                             run(a, 1, true),
+                                             run(a, 2, false),
+                                             run(a, 3, true),
+                                             run(GraspClosing{}, 0, true, "draw", 3),
+                                             run(GraspClosing{}, 1, true, "draw", 3),
+                                             run(GraspClosing{}, 0, false, "draw", 4)};
+  const std::vector<MappedClosing> after = {run(GraspClosing{}, 0, false, "draw", 3),
+                                            run(GraspClosing{}, 1, true, "draw", 3),
+                                            run(a, 0, false),
+                                            run(a, 1, true),
+                                            run(a, 2, false),
+                                            run(c, 0, true),
+                                            run(c, 1, true)};
+  const GraspComparison cmp = compare_maps(before, after);
+  ASSERT_EQ(cmp.repeated.size(), 2u) << "the draw and the pitch; the lead was not run before";
+  const ClosingHoldCounts& draw = cmp.repeated[0];
+  EXPECT_EQ(draw.point.factor, "draw");
+  EXPECT_EQ(draw.point.level, 3);
+  EXPECT_EQ(draw.runs_before, 2) << "draw 4 is another closing";
+  EXPECT_EQ(draw.held_before, 2);
+  EXPECT_EQ(draw.runs_after, 2);
+  EXPECT_EQ(draw.held_after, 1);
+  const ClosingHoldCounts& pitch = cmp.repeated[1];
+  EXPECT_EQ(describe(pitch.point.closing), "tilt_pitch -15 deg");
+  EXPECT_EQ(pitch.point.repeat, 0);
+  EXPECT_EQ(pitch.runs_before, 4);
+  EXPECT_EQ(pitch.held_before, 3);
+  EXPECT_EQ(pitch.runs_after, 3);
+  EXPECT_EQ(pitch.held_after, 1);
+  EXPECT_TRUE(compare_maps({mapped(a, true)}, {mapped(a, false)}).repeated.empty())
+      << "no repeats in either map";
+}
+
 // A repeated map's closings: each with its runs, counted held every time, never or sometimes;
 // within half of every range the grid's alone, not the draws.
 TEST(GraspRepeats, CountsTheClosingsHeldEveryTimeNeverAndSometimes) {
