@@ -32,7 +32,8 @@ std::vector<ClosingHoldCounts> count_repeats_in_both(const std::vector<MappedClo
     auto it = std::find_if(counts.begin(), counts.end(), in);
     if (it == counts.end()) {
       ClosingHoldCounts c{a.point};
-      c.point.repeat = 0;
+      c.point.repeat = 0;  // the closing as given, its cube where the hand aims
+      c.point.closing.cube_shift_x = c.point.closing.cube_shift_z = 0.0;
       for (const MappedClosing& b : before) {
         if (!same_closing_any_repeat(b.point, a.point)) continue;
         ++c.runs_before;
