@@ -67,6 +67,11 @@ struct SimParameters {
   // beside it. A point that leaves the cube sideways, below its kept face, loses its penalty
   // at once (the energy steps down there). Off: the nearest face.
   bool contact_keeps_face = false;
+  // Damping of flesh on the cube along the contact's normal, in proportion to the contact's
+  // force (Hunt & Crossley 1975: f = k d + k3 d^2 + contact_damping (k d + k3 d^2) v, v the
+  // depth's rate): a point's depth and force at the step's start set the damper for the step.
+  // 0: off (no source for the skin's value on a penalty contact; measured on the grasp map).
+  double contact_damping = 0.0;  // s/m
   // A step in which flesh first touches the cube taken again in substeps of about this length
   // (the time step divided by the nearest whole number), and the steps within
   // contact_substep_window after it too (core/sim/contact_substeps). 0: off.

@@ -41,6 +41,7 @@ const std::vector<NamedParameter>& named_parameters() {
       {"tracking_torque_limit", &SimParameters::tracking_torque_limit, false},
       {"contact_stiffness", &SimParameters::contact_stiffness, true},
       {"contact_stiffening", &SimParameters::contact_stiffening, false},
+      {"contact_damping", &SimParameters::contact_damping, false},
       {"cube_floor_stiffness", &SimParameters::cube_floor_stiffness, true},
       {"cube_floor_stiffening", &SimParameters::cube_floor_stiffening, false},
       {"friction", &SimParameters::friction, false},

@@ -11,6 +11,7 @@
 
 #include "core/sim/body_energies.h"
 #include "core/sim/contact.h"
+#include "core/sim/contact_damping.h"
 #include "core/sim/flesh_energy.h"
 #include "core/sim/increment.h"
 #include "core/sim/linear_solve.h"
@@ -100,6 +101,7 @@ struct StepSolver::Impl {
   NewtonDiagonal diagonal;
   FleshBuffers flesh_buffers;
   std::vector<Contact> contacts;
+  std::vector<ContactDamper> dampers;  // with contact_damping
   // The first pass's terms but the contacts' (energy and gradient; the matrix's terms are
   // those before terms.first_contact_*): a step's later passes start where its first did,
   // the tets' rotations as it found them, and only their contacts differ.
@@ -147,6 +149,8 @@ struct StepSolver::Impl {
       }
     }
     add_contact_energies(model, it.state, contacts, terms);
+    if (model.parameters.contact_damping > 0)
+      add_contact_damping(model, it.state, contacts, dampers, terms);
     return terms.energy;
   }
 };
@@ -164,6 +168,8 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   sim.memory.solves_this_step = 0;
   const Iterate predicted = predict(model, start);
   find_contacts(model, predicted.state, sim.contacts);
+  if (model.parameters.contact_damping > 0)
+    set_contact_dampers(model, start, sim.contacts, sim.dampers);
 
   // Newton on the step's energy, each step backtracked until the energy decreases (Armijo):
   // contacts make the energy piecewise quadratic, and a full step that runs into a surface the

@@ -10,6 +10,7 @@
 
 #include "core/mesh/tet_mesh.h"
 #include "core/sim/contact.h"
+#include "core/sim/contact_damping.h"
 #include "core/sim/sim_parameter_names.h"
 #include "tests/core/sim/stage_fixture.h"
 
@@ -342,6 +343,61 @@ TEST(ContactSearch, AFleshPointKeepsTheFaceItCameThrough) {
   EXPECT_LT(kept.x(), 0.0) << "pushed on through the +x face";
   EXPECT_NEAR(kept.y(), 0.0, 1e-12);
   EXPECT_GT(-kept.x(), 1.5 * nearest.y()) << "0.6 mm deep, not 0.3 mm";
+}
+
+// The contact damper (contact_damping.h) on the hand gripping the light cube: nothing where the
+// state is the step's start; the cube moved by 10 um, each touching point's spring of
+// contact_damping times its force at the start over h, along its normal, from where it lay; its
+// gradient the energy's slope.
+TEST(ContactDamping, ResistsTheDepthsRateInProportionToThePenaltysForce) {
+  const GraspScene& g = test::gripping_fine_cube();
+  HandSimModel model = g.scene.model;
+  model.parameters.contact_damping = 2.0;  // s/m
+  std::vector<Contact> contacts;
+  find_contacts(model, g.state, contacts);
+  std::vector<ContactDamper> dampers;
+  set_contact_dampers(model, g.state, contacts, dampers);
+  ASSERT_EQ(dampers.size(), contacts.size());
+  auto damping = [&](const HandSimState& s, bool hessian) {
+    NewtonTerms terms = test::empty_terms(model, hessian);
+    add_contact_damping(model, s, contacts, dampers, terms);
+    return terms;
+  };
+
+  const Eigen::Vector3d shift(1e-5, -0.4e-5, 0.2e-5);
+  HandSimState moved_cube = g.state;
+  moved_cube.cube_pose.position += shift;
+  double expected = 0.0;
+  int damped = 0;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    if (!on_cube(c) || !c.touching || dampers[i].force <= 0) continue;
+    const Eigen::Vector3d q = moved_cube.cube_pose.rotation.conjugate() *
+                              (flesh_point(model, moved_cube, c) - moved_cube.cube_pose.position);
+    if (flesh_on_cube(model, q, c.face).distance >= 0) continue;
+    ++damped;
+    const double rate = c.across.dot(-shift);  // the point's move against the cube's
+    expected += 0.5 * model.parameters.contact_damping * dampers[i].force /
+                model.parameters.time_step * rate * rate;
+  }
+  ASSERT_GE(damped, 2) << "both pads";
+  const double h = model.parameters.time_step;
+  EXPECT_NEAR(damping(moved_cube, false).energy, h * h * expected, 1e-9 * h * h * expected);
+
+  const NewtonTerms terms = damping(moved_cube, true);
+  const NewtonTerms at_start = damping(g.state, false);  // zero but for the frames' rounding
+  EXPECT_LT(at_start.energy, 1e-12 * terms.energy);
+  EXPECT_LT(at_start.gradient.lpNorm<Eigen::Infinity>(),
+            1e-9 * terms.gradient.lpNorm<Eigen::Infinity>());
+  for (double phase : {1.0, 2.0}) {
+    Eigen::VectorXd along =
+        test::only(model, test::direction(model, 1e-6, 1e-4, phase), true, false, false);
+    along.tail(6) = test::direction(model, 1e-6, 1e-4, phase + 0.3).tail(6);
+    const auto [slope, curvature] = test::differences(
+        [&](double t) { return damping(moved(model, moved_cube, along, t), false).energy; }, 1e-3);
+    const double scale = terms.gradient.cwiseAbs().dot(along.cwiseAbs());
+    EXPECT_NEAR(slope, terms.gradient.dot(along), 1e-6 * scale) << "phase " << phase;
+  }
 }
 
 }  // namespace
