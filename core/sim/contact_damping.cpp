@@ -1,6 +1,7 @@
 #include "core/sim/contact_damping.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace handlab::sim {
 
@@ -22,6 +23,8 @@ void set_contact_dampers(const HandSimModel& model, const HandSimState& start,
 void add_contact_damping(const HandSimModel& model, const HandSimState& s,
                          const std::vector<Contact>& contacts,
                          const std::vector<ContactDamper>& dampers, NewtonTerms& terms) {
+  if (dampers.size() != contacts.size())
+    throw std::logic_error("add_contact_damping: a damper a contact (set_contact_dampers)");
   const double per_h = model.parameters.contact_damping / model.parameters.time_step;
   const int cube = cube_block(model);
   for (std::size_t i = 0; i < contacts.size(); ++i) {
