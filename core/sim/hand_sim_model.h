@@ -70,8 +70,9 @@ struct SimParameters {
   // Damping of flesh on the cube along the contact's normal, in proportion to the contact's
   // force (Hunt & Crossley 1975: f = k d + k3 d^2 + contact_damping (k d + k3 d^2) v, v the
   // depth's rate): a point's depth and force at the step's start set the damper for the step.
-  // 0: off (no source for the skin's value on a penalty contact; measured on the grasp map).
-  double contact_damping = 0.0;  // s/m
+  // Chosen on the grasp maps; no source for the skin's value on a penalty contact (an
+  // assumption: at 0.05 m/s a point's force grows by a quarter). 0: off.
+  double contact_damping = 5.0;  // s/m
   // A step in which flesh first touches the cube taken again in substeps of about this length
   // (the time step divided by the nearest whole number), and the steps within
   // contact_substep_window after it too (core/sim/contact_substeps). 0: off.
