@@ -1,6 +1,6 @@
 // The soft-hand simulator's immutable model (after Verschoor, Lobo & Otaduy 2018, as the
 // ISMAR 2021 study used it): rigid bones joined by penalty joints, tetrahedral flesh with linear
-// co-rotational FEM and a stiffening term, bone-flesh coupling springs, penalty contact with
+// co-rotational FEM and a stiffening term, bone-flesh coupling springs, damped penalty contact with
 // anchored Coulomb friction against a rigid cube and the floor, and elastic tracking springs
 // towards the intermediate hand. The state it advances is in hand_sim_state.h.
 #pragma once

@@ -1,13 +1,13 @@
 // One backward-Euler step of the soft hand and the cube: every energy of the model (flesh,
-// stiffening, joints, coupling, tracking, contact and friction, gravity) summed with the
-// kinetic term into E(q) = 1/(2h^2) |q - q_pred|^2_M + U(q), minimised by Newton (one
-// iteration by default, as Verschoor et al. do). Contacts are found at the predicted state;
-// after the step each friction anchor sticks, or slides to the edge of Coulomb's cone; a cube
-// that no flesh touches and that is not resting is stepped again alone, in substeps
-// (free_cube.h); where the parameters ask for it, a step in which flesh begins to touch the
-// cube, and the steps for a while after, are taken in substeps, of the whole hand
-// (contact_substeps.h) or of the cube alone against the flesh's path (cube_substeps.h). The stages
-// are in their own files; step_solver.cpp lists them, docs/simulator.md explains them.
+// stiffening, joints, coupling, tracking, contact, its damping and friction, gravity) summed with
+// the kinetic term into E(q) = 1/(2h^2) |q - q_pred|^2_M + U(q), minimised by Newton (one iteration
+// by default, as Verschoor et al. do). Contacts are found at the predicted state; after the step
+// each friction anchor sticks, or slides to the edge of Coulomb's cone; a cube that no flesh
+// touches and that is not resting is stepped again alone, in substeps (free_cube.h); where the
+// parameters ask for it, a step in which flesh begins to touch the cube, and the steps for a while
+// after, are taken in substeps, of the whole hand (contact_substeps.h) or of the cube alone against
+// the flesh's path (cube_substeps.h). The stages are in their own files; step_solver.cpp lists
+// them, docs/simulator.md explains them.
 #pragma once
 
 #include <memory>

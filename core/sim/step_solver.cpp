@@ -1,8 +1,8 @@
 // The step as a list of stages, each in its own file: predict; find contacts (contact.h); in
 // up to kFrictionPasses passes, evaluate the energy (flesh_energy.h, body_energies.h,
-// contact.h) into the Newton terms (newton_terms.h), solve for the increment (linear_solve.h),
-// search along it, and check the contacts the pass assumed (contact.h); velocities; friction
-// anchors for the next step.
+// contact.h, contact_damping.h) into the Newton terms (newton_terms.h), solve for the increment
+// (linear_solve.h), search along it, and check the contacts the pass assumed (contact.h);
+// velocities; friction anchors for the next step.
 #include "core/sim/step_solver.h"
 
 #include <algorithm>
