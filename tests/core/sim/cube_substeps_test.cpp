@@ -3,7 +3,6 @@
 // scripted pinch, the hand's step left as it is.
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -163,8 +162,8 @@ TEST(CubeSubsteps, TheHandsStepIsLeftAsItIs) {
 // 200 ms first (which rattles the light cube on the floor) is stepped once by a simulator
 // whose window is shut, with and without the rule: where a step begins no contact, its cube
 // differs exactly where the rule applies. Stepping from each state, not comparing two runs,
-// keeps the test off the run's path, which the compiler's rounding changes (an FMA here or
-// there moves the cube that rattles).
+// keeps the test off the run's path, which a build's rounding changes (in the sanitizer build
+// the rattling cube leaves the floor, and the rule never applies).
 TEST(CubeSubsteps, OnTheFloorPastTheWindowWhereFleshMovesTheCube) {
   SimParameters windowed = cube_substepped(4, 0.05);
   set_sim_parameter(windowed, "cube_substeps_on_floor", 0);
