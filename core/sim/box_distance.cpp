@@ -31,6 +31,11 @@ BoxProximity box_proximity(const Eigen::Vector3d& half, const Eigen::Vector3d& q
   return out;
 }
 
+bool beyond_box(const Eigen::Vector3d& half, const Eigen::Vector3d& q, double reach) {
+  // The gap's rounding (its norm's square and root) is far within the margin.
+  return reach > 0 && (q.cwiseAbs() - half).maxCoeff() > reach * (1 + 1e-9);
+}
+
 int box_face(const Eigen::Vector3d& half, const Eigen::Vector3d& q) {
   int face = 0;
   double farthest = -INFINITY;

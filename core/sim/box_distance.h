@@ -13,6 +13,10 @@ struct BoxProximity {
 
 // In the box's frame: the box [-half, half], the point q.
 BoxProximity box_proximity(const Eigen::Vector3d& half, const Eigen::Vector3d& q);
+// Whether q lies farther than `reach` (> 0) outside the box, told from the axes' gaps alone
+// (each no more than the distance) for the many far points, before box_proximity's norm: true
+// only where box_proximity's distance is at least `reach` too.
+bool beyond_box(const Eigen::Vector3d& half, const Eigen::Vector3d& q, double reach);
 
 // The box's faces are numbered 2 axis + (1 on the positive side, 0 on the negative).
 // The face whose plane q lies farthest outside of (inside the box: the nearest face).

@@ -89,6 +89,8 @@ inline bool on_cube(const Contact& c) {
 }
 // A flesh point's position in the world: a node's, or a skin sample's between its face's nodes.
 Eigen::Vector3d flesh_point(const HandSimModel& model, const HandSimState& state, const Contact& c);
+// Its Jacobian on the nodes' unknowns: the node's identity, or the sample's weights.
+PointJacobian flesh_point_jacobian(const HandSimModel& model, const Contact& c);
 // The normal penalty's stiffness at the surface (and the friction spring's), and its growth
 // with depth: a flesh node's force is k d + k3 d^2 (soft where the skin first touches, so that
 // the pad takes a light cube on several nodes; stiff deeper in, so that a heavy one does not

@@ -34,14 +34,7 @@ void add_contact_damping(const HandSimModel& model, const HandSimState& s,
     const BoxProximity b =
         flesh_on_cube(model, s.cube_pose.rotation.conjugate() * (x - s.cube_pose.position), c.face);
     if (b.distance >= 0) continue;  // no pull from a point that left
-    PointJacobian damper;
-    if (c.kind == Contact::kSampleCube) {
-      const SkinSample& sample = model.skin_samples[std::size_t(c.point)];
-      for (int a = 0; a < 3; ++a)
-        damper.add(sample.nodes[std::size_t(a)], sample.weights[a] * Eigen::Matrix3d::Identity());
-    } else {
-      damper.add(c.point, Eigen::Matrix3d::Identity());
-    }
+    PointJacobian damper = flesh_point_jacobian(model, c);
     const Eigen::Vector3d rest = s.cube_pose.point(dampers[i].rest);
     damper.add_body_point(cube, rest - s.cube_pose.position, -1.0);
     terms.add_spring(damper, per_h * dampers[i].force * c.across * c.across.transpose(), x - rest);

@@ -34,13 +34,9 @@ void add_contact_energies(const HandSimModel& model, const HandSimState& s,
       const Eigen::Vector3d arm = cube_r * corner_offset(model, c.point);
       x = s.cube_pose.position + arm;
       p.add_body_point(cube, arm, 1.0);
-    } else if (c.kind == Contact::kSampleCube) {
-      const SkinSample& sample = model.skin_samples[std::size_t(c.point)];
-      x = flesh_point(model, s, c);
-      for (int a = 0; a < 3; ++a) p.add(sample.nodes[std::size_t(a)], sample.weights[a] * identity);
     } else {
-      x = s.node_position[std::size_t(c.point)];
-      p.add(c.point, identity);
+      x = flesh_point(model, s, c);
+      p = flesh_point_jacobian(model, c);
     }
     if (!on_cube(c)) {
       const double height = nf.dot(x) - par.floor_height;

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "core/sim/contact.h"
 
@@ -42,6 +43,18 @@ double contact_stiffening(const HandSimModel& model, const Contact& c) {
 Eigen::Vector3d flesh_point(const HandSimModel& model, const HandSimState& s, const Contact& c) {
   return c.kind == Contact::kSampleCube ? skin_sample_position(model, s, c.point)
                                         : s.node_position[std::size_t(c.point)];
+}
+
+PointJacobian flesh_point_jacobian(const HandSimModel& model, const Contact& c) {
+  PointJacobian p;
+  if (c.kind == Contact::kSampleCube) {
+    const SkinSample& sample = model.skin_samples[std::size_t(c.point)];
+    for (int a = 0; a < 3; ++a)
+      p.add(sample.nodes[std::size_t(a)], sample.weights[a] * Eigen::Matrix3d::Identity());
+  } else {
+    p.add(c.point, Eigen::Matrix3d::Identity());
+  }
+  return p;
 }
 
 double friction_cone(const HandSimModel& model, const Contact& c, double depth) {
@@ -119,10 +132,13 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
     const Eigen::Vector3d& x = s.node_position[std::size_t(node)];
     const double speed = s.node_velocity[std::size_t(node)].norm();
     const Eigen::Vector3d q = cube_inv * (x - s.cube_pose.position);
-    const BoxProximity b = box_proximity(model.cube_half, q);
-    if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
-      add(Contact::kNodeCube, node, q, b.normal, b.closest, b.distance,
-          find_anchor(s.node_cube, node), par.contact_stiffness);
+    const double reach = kContactMargin + 2 * h * (speed + cube_speed);
+    if (!beyond_box(model.cube_half, q, reach)) {
+      const BoxProximity b = box_proximity(model.cube_half, q);
+      if (b.distance < reach)
+        add(Contact::kNodeCube, node, q, b.normal, b.closest, b.distance,
+            find_anchor(s.node_cube, node), par.contact_stiffness);
+    }
     if (par.hand_floor_contact) {
       const double height = nf.dot(x) - par.floor_height;
       if (height < kContactMargin + 2 * h * speed)
@@ -133,12 +149,14 @@ void find_contacts(const HandSimModel& model, const HandSimState& s,
   for (int i = 0; i < int(model.skin_samples.size()); ++i) {
     const SkinSample& sample = model.skin_samples[std::size_t(i)];
     const Eigen::Vector3d x = skin_sample_position(model, s, i);
-    double speed = 0.0;  // its fastest node's bounds its own
+    double squared_speed = 0.0;  // its fastest node's bounds its own
     for (int node : sample.nodes)
-      speed = std::max(speed, s.node_velocity[std::size_t(node)].norm());
+      squared_speed = std::max(squared_speed, s.node_velocity[std::size_t(node)].squaredNorm());
     const Eigen::Vector3d q = cube_inv * (x - s.cube_pose.position);
+    const double reach = kContactMargin + 2 * h * (std::sqrt(squared_speed) + cube_speed);
+    if (beyond_box(model.cube_half, q, reach)) continue;
     const BoxProximity b = box_proximity(model.cube_half, q);
-    if (b.distance < kContactMargin + 2 * h * (speed + cube_speed))
+    if (b.distance < reach)
       add(Contact::kSampleCube, i, q, b.normal, b.closest, b.distance,
           find_anchor(s.sample_cube, i), par.contact_stiffness);
   }

@@ -37,7 +37,8 @@ std::vector<FleshPoint> near_points(const HandSimModel& hand, const HandSimState
     const double band = reach + (x1 - x0).norm() + cube_travel;
     if ((x0 - start.cube_pose.position).norm() - radius >= band) return;  // beyond its sphere
     const Eigen::Vector3d q = inverse * (x0 - start.cube_pose.position);
-    if (box_proximity(hand.cube_half, q).distance < band) points.push_back(p);
+    if (!beyond_box(hand.cube_half, q, band) && box_proximity(hand.cube_half, q).distance < band)
+      points.push_back(p);
   };
   for (int node : hand.surface_nodes) consider({false, node});
   for (int i = 0; i < int(hand.skin_samples.size()); ++i) consider({true, i});

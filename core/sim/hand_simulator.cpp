@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "core/sim/contact_substeps.h"
 #include "core/sim/cube_substeps.h"
@@ -47,6 +48,7 @@ struct HandSimulator::Impl {
   std::vector<RigidPose> last_targets;          // the step before's, where substeps start
   std::unique_ptr<CubeSubsteps> cube_substeps;  // or for these, with their window
   SubstepWindow cube_window;
+  HandSimState next;  // the step's result, swapped with the state: its buffers are reused
 
   Impl(const HandSimModel& m, const SimOptions& o)
       : model(m), solver(m, o), cube_window(m.parameters) {
@@ -80,7 +82,7 @@ const HandSimModel& HandSimulator::model() const {
 SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPose>& targets) {
   Impl& sim = *impl_;
   check_targets(sim.model, targets);
-  HandSimState next;
+  HandSimState& next = sim.next;
   SimStepReport report;
   bool flesh_touched = false;
   ContactSubsteps* substeps = sim.substeps.get();
@@ -106,7 +108,7 @@ SimStepReport HandSimulator::step(HandSimState& state, const std::vector<RigidPo
     sim.free_cube->step(state, next);
   }
   report.contacts = contact_count(next);
-  state = std::move(next);
+  std::swap(state, next);
   return report;
 }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "core/sim/body_energies.h"
 #include "core/sim/contact.h"
@@ -36,10 +37,11 @@ struct Iterate {
   std::vector<Eigen::Vector3d> turned;
 };
 
-// Every body carried on by its velocity.
-Iterate predict(const HandSimModel& model, const HandSimState& start) {
+// Every body carried on by its velocity, into `it` (whose buffers are reused).
+void predict(const HandSimModel& model, const HandSimState& start, Iterate& it) {
   const double h = model.parameters.time_step;
-  Iterate it{start, std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1))};
+  it.state = start;
+  it.turned.resize(std::size_t(model.bone_count() + 1));
   HandSimState& s = it.state;
   for (int n = 0; n < model.node_count(); ++n)
     s.node_position[std::size_t(n)] += h * s.node_velocity[std::size_t(n)];
@@ -51,7 +53,6 @@ Iterate predict(const HandSimModel& model, const HandSimState& start) {
   for (int b = 0; b < model.bone_count(); ++b)
     carry(s.bone_pose[std::size_t(b)], s.bone_velocity[std::size_t(b)], it.turned[std::size_t(b)]);
   carry(s.cube_pose, s.cube_velocity, it.turned.back());
-  return it;
 }
 
 // The longest step along dq that no body turns by more than kMaxTurn in: the linearisation of
@@ -107,8 +108,14 @@ struct StepSolver::Impl {
   // the tets' rotations as it found them, and only their contacts differ.
   Eigen::VectorXd kept_gradient;
   double kept_energy = 0.0;
+  // The step's iterate, the line search's trial, and the prediction with its tets' rotations
+  // (where a step's later passes start), kept from step to step: a state is a few hundred
+  // kilobytes, and swapped or assigned, their buffers are reused.
+  Iterate iterate, trial, rotations_found;
 
   Impl(const HandSimModel& m, const SimOptions& o) : model(m), options(o), pool(o.threads) {
+    if (options.newton_iterations < 1)
+      throw std::invalid_argument("StepSolver: at least one Newton iteration a pass");
     if (!model.kinematic_nodes)
       analyze_newton_matrix(model, memory, layout);
     else if (model.bone_count() > 0)
@@ -166,8 +173,9 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   sim.terms.scale = model.parameters.time_step * model.parameters.time_step;
   ++sim.memory.step;
   sim.memory.solves_this_step = 0;
-  const Iterate predicted = predict(model, start);
-  find_contacts(model, predicted.state, sim.contacts);
+  Iterate& iterate = sim.iterate;
+  predict(model, start, iterate);
+  find_contacts(model, iterate.state, sim.contacts);
   if (model.parameters.contact_damping > 0)
     set_contact_dampers(model, start, sim.contacts, sim.dampers);
 
@@ -177,14 +185,12 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   // prediction, and (one Newton iteration a pass, so that its Hessian terms are still the
   // first evaluation's) takes the flesh's terms from the first pass: only contacts differ.
   SimStepReport report;
-  Iterate iterate = predicted, rotations_found;
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
     using Reuse = Impl::Reuse;
-    if (pass > 0) iterate = rotations_found;
+    if (pass > 0) iterate = sim.rotations_found;
     const bool kept = pass > 0 && sim.options.newton_iterations == 1;
     double current =
         sim.evaluate(iterate, start, targets, true, kept ? Reuse::kKept : Reuse::kKeep);
-    if (pass == 0) rotations_found = iterate;  // the prediction with its tets' rotations
     for (int newton = 0; newton < sim.options.newton_iterations; ++newton) {
       report.residual = sim.terms.gradient.lpNorm<Eigen::Infinity>() / sim.terms.scale;
       const Eigen::VectorXd dq = model.kinematic_nodes
@@ -192,17 +198,26 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
                                      : solve_newton_step(model, sim.terms, sim.layout, sim.diagonal,
                                                          sim.options, sim.pool, sim.memory, report);
       const double slope = sim.terms.gradient.dot(dq);
-      Iterate trial = iterate;
+      Iterate& trial = sim.trial;
       double length = turn_limited_length(model, dq);
       // Where the state already solves the step (CG's first residual within its tolerance, so
       // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
-      for (int halving = 0; halving < 12 && slope < 0; ++halving, length *= 0.5) {
+      const bool searched = slope < 0;
+      for (int halving = 0; halving < 12 && searched; ++halving, length *= 0.5) {
         trial = iterate;
         apply_increment(model, trial.state, trial.turned, dq, length);
         if (sim.evaluate(trial, start, targets, false) <= current + 1e-4 * length * slope) break;
         ++report.halvings;
       }
-      iterate = std::move(trial);
+      // The first pass's start (the prediction with its tets' rotations) is where later passes
+      // start.
+      if (pass == 0 && newton == 0) {
+        if (searched)
+          std::swap(sim.rotations_found, iterate);
+        else
+          sim.rotations_found = iterate;
+      }
+      if (searched) std::swap(iterate, trial);
       report.newton_iterations += 1;
       if (newton + 1 < sim.options.newton_iterations)
         current = sim.evaluate(iterate, start, targets, true);
@@ -212,7 +227,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   }
   finish(model, start, iterate);
   report.max_penetration = update_anchors(model, sim.contacts, iterate.state);
-  result = std::move(iterate.state);
+  std::swap(result, iterate.state);
   return report;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <numbers>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,6 +74,32 @@ TEST(BoxDistance, OutsideInsideAndOnEdges) {
 
 // A point inside pushed out through a face it names, however near another face it lies; the
 // face a point lies farthest outside of (inside, the nearest).
+TEST(BoxDistance, BeyondTellsFarPointsAndNoNearOne) {
+  const Eigen::Vector3d half(0.005, 0.005, 0.005);
+  const double reach = 0.002;
+  // Along an axis: beyond at a gap past the reach, not at the reach or just within it.
+  EXPECT_TRUE(beyond_box(half, Eigen::Vector3d(0.005 + 1.001 * reach, 0, 0), reach));
+  EXPECT_FALSE(beyond_box(half, Eigen::Vector3d(0.005 + reach, 0, 0), reach));
+  EXPECT_FALSE(beyond_box(half, Eigen::Vector3d(0, -0.005 - 0.999999 * reach, 0), reach));
+  EXPECT_FALSE(beyond_box(half, Eigen::Vector3d::Zero(), reach));  // inside
+  // Beyond a corner each axis's gap is within the reach and the distance past it: a bound,
+  // never told beyond where the distance is within.
+  const Eigen::Vector3d corner(0.0063, 0.0063, 0.0063);
+  EXPECT_FALSE(beyond_box(half, corner, reach));
+  EXPECT_GT(box_proximity(half, corner).distance, reach);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> place(-0.012, 0.012), length(1e-5, 0.004);
+  int beyond = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Eigen::Vector3d q(place(random), place(random), place(random));
+    const double r = length(random);
+    if (!beyond_box(half, q, r)) continue;
+    ++beyond;
+    ASSERT_GE(box_proximity(half, q).distance, r) << q.transpose() << " reach " << r;
+  }
+  EXPECT_GT(beyond, 10000);
+}
+
 TEST(BoxDistance, ThroughAGivenFace) {
   const Eigen::Vector3d half(0.01, 0.02, 0.03);
   const Eigen::Vector3d near_bottom(0.009, -0.0197, 0.0);  // 1 mm inside +x, 0.3 mm above -y
