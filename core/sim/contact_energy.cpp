@@ -28,15 +28,15 @@ void add_contact_energies(const HandSimModel& model, const HandSimState& s,
   const int cube = cube_block(model);
   for (const Contact& c : contacts) {
     const double k = contact_stiffness(model, c);
-    PointJacobian p;
+    const bool corner = c.kind == Contact::kCornerFloor;
+    PointJacobian p = corner ? PointJacobian() : flesh_point_jacobian(model, c);
     Eigen::Vector3d x;
-    if (c.kind == Contact::kCornerFloor) {
+    if (corner) {
       const Eigen::Vector3d arm = cube_r * corner_offset(model, c.point);
       x = s.cube_pose.position + arm;
       p.add_body_point(cube, arm, 1.0);
     } else {
       x = flesh_point(model, s, c);
-      p = flesh_point_jacobian(model, c);
     }
     if (!on_cube(c)) {
       const double height = nf.dot(x) - par.floor_height;
