@@ -96,6 +96,7 @@ void add_gravity(const HandSimModel& model, const HandSimState& s, NewtonTerms& 
   terms.gradient.segment<3>(3 * cube_block(model)) -= scale * model.cube.mass * par.gravity;
   for (int n = 0; n < model.node_count(); ++n) {
     const double mass = model.node_mass[std::size_t(n)];
+    if (mass == 0) continue;  // a kinematic point of the cube's substeps: its terms are zero
     terms.energy -= scale * mass * par.gravity.dot(s.node_position[std::size_t(n)]);
     terms.gradient.segment<3>(3 * n) -= scale * mass * par.gravity;
   }
@@ -107,6 +108,7 @@ void add_kinetic(const HandSimModel& model, const HandSimState& s,
   const double h = model.parameters.time_step;
   for (int n = 0; n < model.node_count(); ++n) {
     const double mass = model.node_mass[std::size_t(n)];
+    if (mass == 0) continue;  // as in add_gravity
     const Eigen::Vector3d d = s.node_position[std::size_t(n)] -
                               start.node_position[std::size_t(n)] -
                               h * start.node_velocity[std::size_t(n)];
