@@ -32,7 +32,8 @@ BoxProximity box_proximity(const Eigen::Vector3d& half, const Eigen::Vector3d& q
 }
 
 bool beyond_box(const Eigen::Vector3d& half, const Eigen::Vector3d& q, double reach) {
-  // The gap's rounding (its norm's square and root) is far within the margin.
+  // The norm is at least the largest gap (the rounding of its squares' sum is monotone); the
+  // margin is for any contraction of that sum into fused operations.
   return reach > 0 && (q.cwiseAbs() - half).maxCoeff() > reach * (1 + 1e-9);
 }
 

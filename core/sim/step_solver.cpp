@@ -210,7 +210,8 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
         ++report.halvings;
       }
       // The first pass's start (the prediction with its tets' rotations) is where later passes
-      // start.
+      // start; swapped out, since `iterate` takes the trial's place next (the trial's buffer
+      // then holds what is left, assigned anew before it is read).
       if (pass == 0 && newton == 0) {
         if (searched)
           std::swap(sim.rotations_found, iterate);

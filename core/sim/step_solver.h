@@ -15,7 +15,8 @@ namespace handlab::sim {
 
 class StepSolver {
  public:
-  // `model` must outlive the solver; `options` as HandSimulator checks them.
+  // `model` must outlive the solver; `options` as HandSimulator checks them (at least one Newton
+  // iteration a pass: std::invalid_argument).
   StepSolver(const HandSimModel& model, const SimOptions& options);
   ~StepSolver();
   StepSolver(const StepSolver&) = delete;

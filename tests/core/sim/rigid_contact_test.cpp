@@ -9,6 +9,7 @@
 #include <iostream>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,8 +73,8 @@ TEST(BoxDistance, OutsideInsideAndOnEdges) {
   EXPECT_LT((p.closest - Eigen::Vector3d(0.0, -0.02, 0.01)).norm(), 1e-15);
 }
 
-// A point inside pushed out through a face it names, however near another face it lies; the
-// face a point lies farthest outside of (inside, the nearest).
+// Far points are told by the axes' gaps alone, and never one within the reach: contacts are
+// searched where box_proximity's distance is within it.
 TEST(BoxDistance, BeyondTellsFarPointsAndNoNearOne) {
   const Eigen::Vector3d half(0.005, 0.005, 0.005);
   const double reach = 0.002;
@@ -100,6 +101,8 @@ TEST(BoxDistance, BeyondTellsFarPointsAndNoNearOne) {
   EXPECT_GT(beyond, 10000);
 }
 
+// A point inside pushed out through a face it names, however near another face it lies; the
+// face a point lies farthest outside of (inside, the nearest).
 TEST(BoxDistance, ThroughAGivenFace) {
   const Eigen::Vector3d half(0.01, 0.02, 0.03);
   const Eigen::Vector3d near_bottom(0.009, -0.0197, 0.0);  // 1 mm inside +x, 0.3 mm above -y
@@ -391,6 +394,16 @@ TEST(CubeSettle, MeasuresWhatCanBeWorkedOut) {
   EXPECT_NEAR(settle_cube(p, {0.0, w}, {}, 0.5).start_energy, 0.5 * inertia * w * w,
               1e-9 * inertia * w * w);
   EXPECT_EQ(settle_cube(p, {0.2, 0.0}, {}, 0.05).rest_time, -1.0) << "0.05 s: never 0.1 s still";
+}
+
+// A step's later passes start from its first pass's start, kept by its first Newton iteration.
+TEST(StepSolver, RejectsNoNewtonIteration) {
+  const HandSimModel model = lone_cube_model(SimParameters{});
+  SimOptions options;
+  options.newton_iterations = 0;
+  EXPECT_THROW((StepSolver{model, options}), std::invalid_argument);
+  options.newton_iterations = 1;
+  EXPECT_NO_THROW((StepSolver{model, options}));
 }
 
 TEST(HandSimulator, RejectsTargetsThatAreNotFinite) {
