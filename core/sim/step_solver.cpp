@@ -21,6 +21,14 @@
 #include "core/sim/thread_pool.h"
 
 namespace handlab::sim {
+// Where the step's Newton iterations are: the state and each body's rotation vector since the
+// step began (bones, then the cube). Outside the anonymous namespace: StepSolver::Impl keeps
+// some.
+struct StepIterate {
+  HandSimState state;
+  std::vector<Eigen::Vector3d> turned;
+};
+
 namespace {
 
 // How many times a step is taken again when its result disagrees with the contacts it
@@ -30,15 +38,8 @@ constexpr int kFrictionPasses = 4;
 // The largest rotation of a body in one Newton iteration (rad).
 constexpr double kMaxTurn = 0.25;
 
-// Where the step's Newton iterations are: the state and each body's rotation vector since the
-// step began (bones, then the cube).
-struct Iterate {
-  HandSimState state;
-  std::vector<Eigen::Vector3d> turned;
-};
-
 // Every body carried on by its velocity, into `it` (whose buffers are reused).
-void predict(const HandSimModel& model, const HandSimState& start, Iterate& it) {
+void predict(const HandSimModel& model, const HandSimState& start, StepIterate& it) {
   const double h = model.parameters.time_step;
   it.state = start;
   it.turned.resize(std::size_t(model.bone_count() + 1));
@@ -66,7 +67,7 @@ double turn_limited_length(const HandSimModel& model, const Eigen::VectorXd& dq)
 }
 
 // Velocities from the step taken.
-void finish(const HandSimModel& model, const HandSimState& start, Iterate& it) {
+void finish(const HandSimModel& model, const HandSimState& start, StepIterate& it) {
   const double h = model.parameters.time_step;
   HandSimState& s = it.state;
   for (int n = 0; n < model.node_count(); ++n)
@@ -111,7 +112,7 @@ struct StepSolver::Impl {
   // The step's iterate, the line search's trial, and the prediction with its tets' rotations
   // (where a step's later passes start), kept from step to step: a study hand's state is
   // 130 kB (its tets' rotations the most), and swapped or assigned, their buffers are reused.
-  Iterate iterate, trial, rotations_found;
+  StepIterate iterate, trial, rotations_found;
 
   Impl(const HandSimModel& m, const SimOptions& o) : model(m), options(o), pool(o.threads) {
     if (options.newton_iterations < 1)
@@ -126,7 +127,7 @@ struct StepSolver::Impl {
   // Gauss-Newton Hessian (without, as the line search needs, the energy alone). `reuse`: kKeep
   // keeps every term but the contacts'; kKept takes them from the last kKeep.
   enum class Reuse { kNone, kKeep, kKept };
-  double evaluate(Iterate& it, const HandSimState& start, const std::vector<RigidPose>& targets,
+  double evaluate(StepIterate& it, const HandSimState& start, const std::vector<RigidPose>& targets,
                   bool hessian, Reuse reuse = Reuse::kNone) {
     terms.with_hessian = hessian;
     if (reuse == Reuse::kKept) {
@@ -173,7 +174,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   sim.terms.scale = model.parameters.time_step * model.parameters.time_step;
   ++sim.memory.step;
   sim.memory.solves_this_step = 0;
-  Iterate& iterate = sim.iterate;
+  StepIterate& iterate = sim.iterate;
   predict(model, start, iterate);
   find_contacts(model, iterate.state, sim.contacts);
   if (model.parameters.contact_damping > 0)
@@ -198,7 +199,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
                                      : solve_newton_step(model, sim.terms, sim.layout, sim.diagonal,
                                                          sim.options, sim.pool, sim.memory, report);
       const double slope = sim.terms.gradient.dot(dq);
-      Iterate& trial = sim.trial;
+      StepIterate& trial = sim.trial;
       double length = turn_limited_length(model, dq);
       // Where the state already solves the step (CG's first residual within its tolerance, so
       // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
