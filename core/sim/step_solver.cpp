@@ -21,9 +21,10 @@
 #include "core/sim/thread_pool.h"
 
 namespace handlab::sim {
+
 // Where the step's Newton iterations are: the state and each body's rotation vector since the
-// step began (bones, then the cube). Outside the anonymous namespace: StepSolver::Impl keeps
-// some.
+// step began (bones, then the cube). Outside the anonymous namespace: StepSolver::Impl holds
+// three.
 struct StepIterate {
   HandSimState state;
   std::vector<Eigen::Vector3d> turned;
