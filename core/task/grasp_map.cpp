@@ -93,6 +93,7 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
         o.pinch_error_mm = 1000 * script.pinch_error;
         o.pinch_clearance_mm = 1000 * script.pinch_clearance;
         o.placement_pad_error_mm = 1000 * script.placement_pad_error;
+        o.open_clearance_mm = 1000 * script.open_clearance;
         o.placed_by_rule = script.placed_by_rule;
         o.meets_pinch_rule = script.pinch_meets_rule;
       },

@@ -55,6 +55,7 @@ struct GraspOutcome {
   // the hand and met the rule.
   double pinch_clearance_mm = 0.0, placement_pad_error_mm = 0.0;
   bool placed_by_rule = false, meets_pinch_rule = false;
+  double open_clearance_mm = 0.0;  // the open pose's nearest skin to the cube (mm)
   // How a lost run lost the cube, and the signs it is told by (pinch_loss.h).
   PinchLoss loss = PinchLoss::kNone;
   double pushed_mm = 0.0, grip_at_lift_n = 0.0;

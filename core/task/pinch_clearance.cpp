@@ -41,6 +41,8 @@ struct Problem {
   const std::vector<Eigen::Vector3d>& goals;
   const RigidPose& cube;
   const std::array<int, 2>& pads;
+  double aimed;     // m: the clearance the penalty aims at
+  bool free_wrist;  // whether the wrist moves, or the fingers alone
 
   // The features' weighted misses, then each other skin node's shortfall from the aimed
   // clearance times `weight`.
@@ -52,9 +54,8 @@ struct Problem {
           hand::marker_position(skeleton, frames, features[i].marker) - goals[i];
       for (int a = 0; a < 3; ++a) r.push_back(features[i].weight * miss(a));
     }
-    visit_other_skin(skeleton, model, pose, cube, model.cube_half, pads, [&](int, double d) {
-      r.push_back(weight * std::max(0.0, kAimedClearance - d));
-    });
+    visit_other_skin(skeleton, model, pose, cube, model.cube_half, pads,
+                     [&](int, double d) { r.push_back(weight * std::max(0.0, aimed - d)); });
     return Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
   }
 
@@ -66,12 +67,20 @@ struct Problem {
     options.iterations = kIterations;
     options.difference = kDifference;
     return solve_pose_least_squares(
-        pose, 6 + Eigen::Index(skeleton.dofs.size()),
+        pose, (free_wrist ? 6 : 0) + Eigen::Index(skeleton.dofs.size()),
         [&](const hand::HandPose& p) { return residuals(p, weight); },
         [&](const hand::HandPose& p, const Eigen::VectorXd& x) {
-          return moved_pose(skeleton, p, every_dof, x, true);
+          return moved_pose(skeleton, p, every_dof, x, free_wrist);
         },
         options);
+  }
+
+  // From `start`, the penalty raised step by step, each step solved from the last.
+  hand::HandPose solve_rising(const hand::HandPose& start) const {
+    hand::HandPose pose = start;
+    for (double weight = kFirstWeight; weight <= kWeightBound; weight *= 2)
+      pose = solve(pose, weight);
+    return pose;
   }
 };
 
@@ -92,11 +101,9 @@ ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
                        const std::array<int, 2>& pad_bones, const hand::HandPose& start) {
-  const Problem problem{skeleton, model, features, goals, cube, pad_bones};
+  const Problem problem{skeleton, model, features, goals, cube, pad_bones, kAimedClearance, true};
   ClearPinch out;
-  out.pose = start;
-  for (double weight = kFirstWeight; weight <= kWeightBound; weight *= 2)
-    out.pose = problem.solve(out.pose, weight);
+  out.pose = problem.solve_rising(start);
   const hand::BoneFrames frames = hand::forward_kinematics(skeleton, out.pose);
   for (std::size_t i = 0; i < 2; ++i)
     out.pad_error =
@@ -104,6 +111,16 @@ ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model
                  (hand::marker_position(skeleton, frames, features[i].marker) - goals[i]).norm());
   out.clearance = skin_clearance(skeleton, model, out.pose, cube, model.cube_half, pad_bones);
   return out;
+}
+
+hand::HandPose clear_descent(const hand::Skeleton& skeleton, const HandSimModel& model,
+                             const std::vector<retarget::Feature>& features,
+                             const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
+                             const hand::HandPose& start) {
+  const std::array<int, 2> every_bone = {-1, -1};
+  const Problem problem{skeleton, model,      features,          goals,
+                        cube,     every_bone, kDescentClearance, false};
+  return problem.solve_rising(start);
 }
 
 }  // namespace handlab::sim

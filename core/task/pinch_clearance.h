@@ -24,6 +24,11 @@ namespace handlab::sim {
 constexpr double kPadReach = 0.001;       // m
 constexpr double kSkinClearance = 0.002;  // m
 constexpr double kPinningDepth = 0.002;   // m
+// A hand the rule places comes down onto its pinch in the open pose with its flesh behind its
+// targets by up to about 5 mm (the thumb's base held off by the flesh's strain: the bones'
+// largest offset 4.3-4.9 mm before any contact, `sim pinch --trace`), more than the rule's
+// clearance: so its open pose is placed with every skin point aimed this far off the cube.
+constexpr double kDescentClearance = 0.005;  // m
 
 struct SkinClearance {
   double distance = 0.0;  // m: the nearest skin of the other bones to the cube (< 0: inside)
@@ -53,5 +58,15 @@ ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
                        const std::array<int, 2>& pad_bones, const hand::HandPose& start);
+
+// The open pose a hand placed by the rule comes down in: from `start`, the fingers alone (the
+// wrist stays) moved by the same least squares so that `features` reach `goals` (the pads'
+// places off the faces) with the penalty on every skin point, the pads' too, nearer than
+// kDescentClearance to the cube. Fingers alone barely move the skin by their knuckles: the
+// pose can stop short of that clearance.
+hand::HandPose clear_descent(const hand::Skeleton& skeleton, const HandSimModel& model,
+                             const std::vector<retarget::Feature>& features,
+                             const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
+                             const hand::HandPose& start);
 
 }  // namespace handlab::sim

@@ -56,6 +56,10 @@ struct PinchScript {
   double pinch_clearance = 0.0;
   bool placed_by_rule = false, pinch_meets_rule = false;
   double placement_pad_error = 0.0;  // m: the farther pad from its face's goal, so placed
+  // The nearest skin of the open pose, the pads' too, to the cube where it lies at the pinch
+  // (m; below 0: inside): aimed at kDescentClearance where the rule placed the hand
+  // (pinch_clearance.h), short of it where the fingers alone cannot clear their knuckles.
+  double open_clearance = 0.0;
 
   hand::HandPose target(double t) const;  // the intermediate hand at time t
   Eigen::Isometry3d start_root() const;   // the wrist at t = 0

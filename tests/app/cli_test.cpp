@@ -598,6 +598,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
                             "pinch_error_mm",
                             "pinch_clearance_mm",
                             "placement_pad_error_mm",
+                            "open_clearance_mm",
                             "placed_by_rule",
                             "meets_pinch_rule",
                             "top_load_before_closing_n",

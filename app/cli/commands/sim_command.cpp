@@ -397,7 +397,8 @@ void write_pinch_json(std::ostream& out, const sim::PinchScene& setup, const sim
       .field("placed_by_rule", setup.script.placed_by_rule)
       .field("meets_pinch_rule", setup.script.pinch_meets_rule)
       .field("pinch_clearance_mm", 1000 * setup.script.pinch_clearance)
-      .field("placement_pad_error_mm", 1000 * setup.script.placement_pad_error);
+      .field("placement_pad_error_mm", 1000 * setup.script.placement_pad_error)
+      .field("open_clearance_mm", 1000 * setup.script.open_clearance);
   write_pinch_measures(json, r);
   write_timing(json, setup, r);
   json.end_object();

@@ -229,6 +229,7 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
       .field("pinch_error_mm", o.pinch_error_mm)
       .field("pinch_clearance_mm", o.pinch_clearance_mm)
       .field("placement_pad_error_mm", o.placement_pad_error_mm)
+      .field("open_clearance_mm", o.open_clearance_mm)
       .field("placed_by_rule", o.placed_by_rule)
       .field("meets_pinch_rule", o.meets_pinch_rule)
       .field("loss", sim::pinch_loss_name(o.loss))

@@ -125,6 +125,23 @@ TEST(GraspClosing, TiltTurnsTheHand) {
   EXPECT_GE(placed.pinch_clearance, kSkinClearance);
 }
 
+// A hand the pinch's rule places comes down in an open pose clear of the cube by the flesh's
+// lag (kDescentClearance), its wrist where the pinch puts it: at a pitch of -20 degrees the
+// open pose as placed before laid the index's middle phalanx 2.8 mm inside the light cube, and
+// the flesh, behind its targets by about 5 mm, came down on the top.
+TEST(GraspClosing, AHandTheRulePlacesComesDownClearOfTheCube) {
+  GraspClosing tilted;
+  set_closing_factor(tilted, "tilt_pitch", -20);
+  const PinchScript placed = make_grasp_script(scene().skeleton, scene().model, tilted);
+  ASSERT_TRUE(placed.placed_by_rule);
+  EXPECT_GE(placed.open_clearance, kDescentClearance - 1e-5);
+  EXPECT_EQ(placed.open.root_position, placed.pinch.root_position);
+  EXPECT_TRUE(placed.open.root_rotation == placed.pinch.root_rotation);
+  // A hand the rule leaves alone keeps the script's open pose, its knuckles near the cube.
+  EXPECT_FALSE(scene().script.placed_by_rule);
+  EXPECT_LT(scene().script.open_clearance, kDescentClearance);
+}
+
 // The light cube's closings that the pinch's rule leaves alone come down from 5 cm as before
 // the rule, so that they are the same closings to the bit.
 TEST(GraspClosing, ClosingsTheRuleLeavesAloneShapeAtFiveCentimetres) {
