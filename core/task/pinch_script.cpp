@@ -162,10 +162,11 @@ void place_by_rule(const hand::Skeleton& ik, const HandSimModel& model,
   script.placement_pad_error = clear.pad_error;
 }
 
-// A hand placed by the pinch's rule comes down in an open pose whose skin keeps
-// kDescentClearance off the cube: where the open pose comes nearer, its fingers are placed
-// again (pinch_clearance.h), the pads aiming at `open_goals` with their facing at a tenth of
-// its weight, as the rule places the pinch.
+// A hand placed by the pinch's rule comes down in an open pose whose skin is aimed
+// kDescentClearance off the cube: where the open pose comes nearer, every finger's joints are
+// placed again (pinch_clearance.h; the curled fingers' too, which then move as the hand closes),
+// the pads aiming at `open_goals` with their facing at a tenth of its weight, as the rule places
+// the pinch.
 void clear_the_descent(const hand::Skeleton& ik, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& open_goals, const RigidPose& cube,

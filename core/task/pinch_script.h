@@ -56,7 +56,7 @@ struct PinchScript {
   double pinch_clearance = 0.0;
   bool placed_by_rule = false, pinch_meets_rule = false;
   double placement_pad_error = 0.0;  // m: the farther pad from its face's goal, so placed
-  // The nearest skin of the open pose, the pads' too, to the cube where it lies at the pinch
+  // The nearest skin of the open pose, the pads' too, to the cube where the hand aims at it
   // (m; below 0: inside): aimed at kDescentClearance where the rule placed the hand
   // (pinch_clearance.h), short of it where the fingers alone cannot clear their knuckles.
   double open_clearance = 0.0;
