@@ -162,6 +162,12 @@ void place_by_rule(const hand::Skeleton& ik, const HandSimModel& model,
   script.placement_pad_error = clear.pad_error;
 }
 
+// The open pose's nearest skin to the cube (PinchScript::open_clearance).
+double open_clearance(const hand::Skeleton& ik, const HandSimModel& model,
+                      const hand::HandPose& open, const RigidPose& cube) {
+  return skin_clearance(ik, model, open, cube, model.cube_half, {-1, -1}).distance;
+}
+
 // A hand placed by the pinch's rule comes down in an open pose whose skin is aimed
 // kDescentClearance off the cube: where the open pose comes nearer, every finger's joints are
 // placed again (pinch_clearance.h; the curled fingers' too, which then move as the hand closes),
@@ -171,12 +177,11 @@ void clear_the_descent(const hand::Skeleton& ik, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& open_goals, const RigidPose& cube,
                        PinchScript& script) {
-  if (skin_clearance(ik, model, script.open, cube, model.cube_half, {-1, -1}).distance >=
-      kDescentClearance)
-    return;
+  if (script.open_clearance >= kDescentClearance) return;
   std::vector<retarget::Feature> relaxed = features;
   relaxed[2].weight = relaxed[3].weight = 0.1;
   script.open = clear_descent(ik, model, relaxed, open_goals, cube, script.open);
+  script.open_clearance = open_clearance(ik, model, script.open, cube);
 }
 
 // The farther of the two pads (the first two features) from its goal at `pose`.
@@ -326,12 +331,11 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   close_and_open(ik, features, goals(-squeeze), goals(0.015),
                  script.placed_by_rule || squeeze != wrist_squeeze, options, script);
   script.pinch_error = pads_miss(ik, features, script.pinch, goals(-squeeze));
+  script.open_clearance = open_clearance(ik, model, script.open, cube);
   if (script.placed_by_rule) {
     clear_the_descent(ik, model, features, goals(0.015), cube, script);
     script.approach_height = clear_approach_height(ik, model, script, cube);
   }
-  script.open_clearance =
-      skin_clearance(ik, model, script.open, cube, model.cube_half, {-1, -1}).distance;
   apply_timing(ik, closing, script);
   return script;
 }
