@@ -18,19 +18,57 @@ constexpr double kFirstWeight = 0.3, kWeightBound = 40.0;
 constexpr int kIterations = 300;      // Levenberg-Marquardt's at each weight
 constexpr double kDifference = 1e-6;  // the Jacobian's forward differences (m, rad)
 
-// Calls visit(bone, distance) for each skin point of every bone but `pads` with the hand at
-// `pose`: its signed distance to a cube of half sides `half` at `cube` (< 0: inside).
+// A ball about each bone's skin in the bone's frame: the residuals skip a bone whose ball lies
+// wholly beyond the penalty's aim, as do most of them in every pose tried.
+struct SkinBall {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;  // m, a little over the farthest point's distance (rounding's margin)
+};
+
+std::vector<SkinBall> skin_balls(const HandSimModel& model) {
+  std::vector<SkinBall> balls(model.bone_skin.size());
+  for (std::size_t b = 0; b < balls.size(); ++b) {
+    const std::vector<Eigen::Vector3d>& skin = model.bone_skin[b];
+    if (skin.empty()) continue;
+    Eigen::Vector3d low = skin[0], high = skin[0];
+    for (const Eigen::Vector3d& p : skin) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+    balls[b].centre = 0.5 * (low + high);
+    for (const Eigen::Vector3d& p : skin)
+      balls[b].radius = std::max(balls[b].radius, (p - balls[b].centre).norm());
+    balls[b].radius = balls[b].radius * (1 + 1e-9) + 1e-12;
+  }
+  return balls;
+}
+
+// Calls visit(bone, &q) for each skin point of every bone but `pads` with the hand at `pose`,
+// q the point in the frame of the cube of half sides `half` at `cube`; or visit(bone, nullptr)
+// for each point of a bone whose ball (in `balls`, if given) lies wholly farther than `reach`
+// outside the cube.
 template <class Visit>
 void visit_other_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
                       const hand::HandPose& pose, const RigidPose& cube,
-                      const Eigen::Vector3d& half, const std::array<int, 2>& pads, Visit visit) {
+                      const Eigen::Vector3d& half, const std::array<int, 2>& pads,
+                      const std::vector<SkinBall>* balls, double reach, Visit visit) {
   const std::vector<RigidPose> bones = bone_targets(model, skeleton, pose);
   const Eigen::Quaterniond to_cube = cube.rotation.conjugate();
+  const auto in_cube = [&](std::size_t b, const Eigen::Vector3d& local) {
+    return Eigen::Vector3d(to_cube * (bones[b].point(local) - cube.position));
+  };
   for (std::size_t b = 0; b < bones.size(); ++b) {
     if (int(b) == pads[0] || int(b) == pads[1]) continue;
-    for (const Eigen::Vector3d& local : model.bone_skin[b])
-      visit(int(b),
-            box_proximity(half, to_cube * (bones[b].point(local) - cube.position)).distance);
+    const std::vector<Eigen::Vector3d>& skin = model.bone_skin[b];
+    if (balls && !skin.empty() &&
+        beyond_box(half, in_cube(b, (*balls)[b].centre), (*balls)[b].radius + reach)) {
+      for (std::size_t i = 0; i < skin.size(); ++i) visit(int(b), nullptr);
+      continue;
+    }
+    for (const Eigen::Vector3d& local : skin) {
+      const Eigen::Vector3d q = in_cube(b, local);
+      visit(int(b), &q);
+    }
   }
 }
 
@@ -43,6 +81,7 @@ struct Problem {
   const std::array<int, 2>& pads;
   double aimed;     // m: the clearance the penalty aims at
   bool free_wrist;  // whether the wrist moves, or the fingers alone
+  std::vector<SkinBall> balls = skin_balls(model);
 
   // The features' weighted misses, then each other skin node's shortfall from the aimed
   // clearance times `weight`.
@@ -54,8 +93,14 @@ struct Problem {
           hand::marker_position(skeleton, frames, features[i].marker) - goals[i];
       for (int a = 0; a < 3; ++a) r.push_back(features[i].weight * miss(a));
     }
-    visit_other_skin(skeleton, model, pose, cube, model.cube_half, pads,
-                     [&](int, double d) { r.push_back(weight * std::max(0.0, aimed - d)); });
+    // The many points farther than the aim add nothing: told from the axes' gaps alone.
+    const Eigen::Vector3d& half = model.cube_half;
+    visit_other_skin(
+        skeleton, model, pose, cube, half, pads, &balls, aimed, [&](int, const Eigen::Vector3d* q) {
+          r.push_back(!q || beyond_box(half, *q, aimed)
+                          ? 0.0
+                          : weight * std::max(0.0, aimed - box_proximity(half, *q).distance));
+        });
     return Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
   }
 
@@ -91,9 +136,11 @@ SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel&
                              const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones) {
   SkinClearance out;
   out.distance = std::numeric_limits<double>::infinity();
-  visit_other_skin(skeleton, model, pose, cube, half, pad_bones, [&](int bone, double d) {
-    if (d < out.distance) out = {d, bone};
-  });
+  visit_other_skin(skeleton, model, pose, cube, half, pad_bones, nullptr, 0.0,
+                   [&](int bone, const Eigen::Vector3d* q) {
+                     const double d = box_proximity(half, *q).distance;
+                     if (d < out.distance) out = {d, bone};
+                   });
   return out;
 }
 
