@@ -336,7 +336,6 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
     clear_the_descent(ik, model, features, goals(0.015), cube, script);
     script.approach_height = clear_approach_height(ik, model, script, cube);
   }
-  apply_timing(ik, closing, script);
   return script;
 }
 
@@ -351,10 +350,20 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
 
 // The wrist goes where the script's pinch puts it; a closing past (or short of) that goes on
 // with the fingers alone, as a person's fingers close on past a face they do not feel.
-PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
-                              const GraspClosing& closing, std::shared_ptr<const PoseJitter> jitter,
-                              PinchPosture posture) {
-  PinchScript script = make_script(skeleton, model, closing, GraspClosing{}.over_closure, posture);
+bool same_placement(const GraspClosing& a, const GraspClosing& b) {
+  return a.over_closure == b.over_closure && a.tilt_yaw == b.tilt_yaw &&
+         a.tilt_pitch == b.tilt_pitch && a.offset_along == b.offset_along;
+}
+
+PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& model,
+                        const GraspClosing& closing, PinchPosture posture) {
+  return make_script(skeleton, model, closing, GraspClosing{}.over_closure, posture);
+}
+
+PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
+                       const GraspClosing& closing, std::shared_ptr<const PoseJitter> jitter) {
+  PinchScript script = std::move(placed);
+  apply_timing(skeleton, closing, script);
   if (closing.jitter > 0) {
     if (!jitter) throw std::invalid_argument("a closing with jitter needs a recording's jitter");
     script.jitter_start = closing.jitter_phase * jitter->duration();
@@ -365,6 +374,13 @@ PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel
   script.cube_centre.x() += closing.cube_shift_x;
   script.cube_centre.z() += closing.cube_shift_z;
   return script;
+}
+
+PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
+                              const GraspClosing& closing, std::shared_ptr<const PoseJitter> jitter,
+                              PinchPosture posture) {
+  return time_grasp(place_grasp(skeleton, model, closing, posture), skeleton, closing,
+                    std::move(jitter));
 }
 
 double grip_force(const HandSimModel& model, const HandSimState& state) {

@@ -81,6 +81,17 @@ PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel
                               std::shared_ptr<const PoseJitter> jitter = nullptr,
                               PinchPosture posture = PinchPosture::kSolved);
 
+// make_grasp_script in two parts, so that a map places each distinct placement once. The
+// placement (the poses, the clearances) reads the closing's over_closure, tilt and offset alone:
+// closings with `same_placement` share it. `time_grasp` then times it, lays the jitter on and
+// moves the cube as `closing` says.
+bool same_placement(const GraspClosing& a, const GraspClosing& b);
+PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& model,
+                        const GraspClosing& closing, PinchPosture posture = PinchPosture::kSolved);
+PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
+                       const GraspClosing& closing,
+                       std::shared_ptr<const PoseJitter> jitter = nullptr);
+
 // The grip at a state: over the cube's pairs of opposite faces, the lesser of the two faces'
 // flesh normal forces (N).
 double grip_force(const HandSimModel& model, const HandSimState& state);

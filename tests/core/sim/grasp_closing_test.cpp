@@ -2,6 +2,8 @@
 // pinch to the bit, and each factor changes what it says and nothing else.
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -235,6 +237,57 @@ TEST(GraspClosing, ACubeShiftMovesTheCubeNotTheHand) {
   EXPECT_EQ(s.pinch.angles, given.pinch.angles);
   EXPECT_EQ(s.pinch.root_position, given.pinch.root_position);
   EXPECT_EQ(describe(moved), "the scripted pinch") << "not a factor";
+}
+
+// A map places each placement once: closings placed alike are timed from one placement to the
+// bit, and the placement reads the over-closure, tilt and offset alone.
+TEST(GraspClosing, ClosingsPlacedAlikeShareTheirPlacementToTheBit) {
+  const GraspClosing standard;
+  const PinchScript scripted = place_grasp(scene().skeleton, scene().model, standard);
+  std::vector<std::string> placing;
+  for (const ClosingFactor& f : closing_factors()) {
+    if (f.name == "jitter") continue;  // timed alike; needs a recording's jitter
+    GraspClosing closing;
+    set_closing_factor(closing, f.name, f.levels.back());
+    closing.cube_shift_x = 4e-5;
+    const PinchScript whole = make_grasp_script(scene().skeleton, scene().model, closing);
+    if (!same_placement(standard, closing)) {
+      placing.push_back(f.name);
+      EXPECT_TRUE(whole.pinch.angles != scripted.pinch.angles ||
+                  whole.pinch.root_position != scripted.pinch.root_position)
+          << f.name;
+      continue;
+    }
+    const PinchScript timed = time_grasp(scripted, scene().skeleton, closing);
+    EXPECT_EQ(timed.cube_centre, whole.cube_centre) << f.name;
+    EXPECT_EQ(timed.end, whole.end) << f.name;
+    EXPECT_EQ(timed.dof_delay, whole.dof_delay) << f.name;
+    for (double t = 0.0; t < whole.end; t += 0.05) {
+      const hand::HandPose a = timed.target(t), b = whole.target(t);
+      ASSERT_EQ(a.angles, b.angles) << f.name << " at " << t;
+      ASSERT_EQ(a.root_position, b.root_position) << f.name << " at " << t;
+    }
+  }
+  EXPECT_EQ(placing,
+            (std::vector<std::string>{"over_closure", "tilt_yaw", "tilt_pitch", "offset_along"}));
+}
+
+// A map runs each closing from its own placement, shared or not: the tilted closing's pads
+// miss their targets as its own script's do, not as the scripted pinch's.
+TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
+  GraspClosing brief, tilted;
+  set_closing_factor(brief, "hold", 1);
+  set_closing_factor(tilted, "hold", 1);
+  set_closing_factor(tilted, "tilt_yaw", 30);
+  const std::vector<ClosingPoint> points = {{"hold", 1, brief}, {"pair", 1, tilted}};
+  const std::vector<GraspOutcome> map = run_grasp_map(scene(), points, 2);
+  ASSERT_EQ(map.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const PinchScript s = make_grasp_script(scene().skeleton, scene().model, points[i].closing);
+    EXPECT_EQ(map[i].pinch_error_mm, 1000 * s.pinch_error) << i;
+    EXPECT_EQ(map[i].open_clearance_mm, 1000 * s.open_clearance) << i;
+  }
+  EXPECT_NE(map[0].pinch_error_mm, map[1].pinch_error_mm);
 }
 
 // Every pair of factors at each pair of their half-range levels, once.
