@@ -71,9 +71,10 @@ std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& poi
   return out;
 }
 
-std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
-                                        const std::vector<ClosingPoint>& points, int jobs,
-                                        const std::function<void(int done)>& done) {
+std::vector<GraspOutcome> run_grasp_map(
+    const PinchScene& scene, const std::vector<ClosingPoint>& points, int jobs,
+    const std::function<void(int done)>& done,
+    const std::function<void(int placed, int placements)>& placed) {
   // Each placement once: the repeats, and the closings that differ only in their timing, lift,
   // hold or jitter, share theirs (a 6 cm placement takes as long as its run).
   std::vector<std::size_t> placement_of(points.size()), placed_from;
@@ -85,19 +86,24 @@ std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
     if (k == placed_from.size()) placed_from.push_back(i);
     placement_of[i] = k;
   }
-  std::vector<PinchScript> placed(placed_from.size());
-  util::run_in_parallel(placed.size(), jobs, [&](std::size_t k) {
-    placed[k] = place_grasp(scene.skeleton, scene.model, points[placed_from[k]].closing,
-                            scene.script.posture);
-  });
+  std::vector<PinchScript> placements(placed_from.size());
+  util::run_in_parallel(
+      placements.size(), jobs,
+      [&](std::size_t k) {
+        placements[k] = place_grasp(scene.skeleton, scene.model, points[placed_from[k]].closing,
+                                    scene.script.posture);
+      },
+      [&](int made) {
+        if (placed) placed(made, int(placements.size()));
+      });
   std::vector<GraspOutcome> outcomes(points.size());
   SimOptions options;
   if (jobs > 1) options.threads = 1;  // the runs side by side, not each one's work
   util::run_in_parallel(
       points.size(), jobs,
       [&](std::size_t i) {
-        const PinchScript script =
-            time_grasp(placed[placement_of[i]], scene.skeleton, points[i].closing, scene.jitter);
+        const PinchScript script = time_grasp(placements[placement_of[i]], scene.skeleton,
+                                              points[i].closing, scene.jitter);
         GraspOutcome& o = outcomes[i];
         o.point = points[i];
         PinchLossWatch watch(scene.model, script);

@@ -62,11 +62,13 @@ struct GraspOutcome {
 };
 
 // Runs each point on `scene`'s hand and cube (and its jitter), placed in its script's posture,
-// `jobs` at once (each on one thread of the simulator), each distinct placement once
-// (same_placement, pinch_script.h); `done` is called with the count finished after each run,
-// under a lock, from the worker thread that finished it.
-std::vector<GraspOutcome> run_grasp_map(const PinchScene& scene,
-                                        const std::vector<ClosingPoint>& points, int jobs,
-                                        const std::function<void(int done)>& done = {});
+// `jobs` at once (each on one thread of the simulator), each distinct placement once first
+// (same_placement, pinch_script.h). `placed` is called with the count of placements made and
+// their number after each, `done` with the count of runs finished after each, under a lock,
+// from the worker thread that finished it.
+std::vector<GraspOutcome> run_grasp_map(
+    const PinchScene& scene, const std::vector<ClosingPoint>& points, int jobs,
+    const std::function<void(int done)>& done = {},
+    const std::function<void(int placed, int placements)>& placed = {});
 
 }  // namespace handlab::sim

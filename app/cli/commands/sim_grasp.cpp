@@ -425,16 +425,25 @@ std::optional<sim::GraspComparison> compare_with(const std::vector<MappedCube>& 
 CubeMap map_cube(const sim::PinchScene& scene, double side,
                  const std::vector<sim::ClosingPoint>& points, int jobs, bool quiet,
                  std::chrono::steady_clock::time_point start) {
-  ProgressLine progress(quiet);
+  ProgressLine placing(quiet), progress(quiet);
   CubeMap map;
   map.cube_size = side;
-  map.outcomes = sim::run_grasp_map(scene, points, jobs, [&](int done) {
+  const auto show = [&](ProgressLine& line, const char* what, int done, std::size_t count) {
     char text[120];
-    std::snprintf(text, sizeof text, "cube %.0f mm: closings %d/%zu  %.0f s", map.cube_size * 1000,
-                  done, points.size(),
+    std::snprintf(text, sizeof text, "cube %.0f mm: %s %d/%zu  %.0f s", map.cube_size * 1000, what,
+                  done, count,
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    progress.show(done, text);
-  });
+    line.show(done, text);
+  };
+  map.outcomes = sim::run_grasp_map(
+      scene, points, jobs,
+      [&](int done) {
+        placing.finish();
+        show(progress, "closings", done, points.size());
+      },
+      [&](int placed, int placements) {
+        show(placing, "placements", placed, std::size_t(placements));
+      });
   progress.finish();
   return map;
 }
