@@ -348,13 +348,15 @@ PinchScript make_pinch_script(const hand::Skeleton& skeleton, const HandSimModel
   return make_script(skeleton, model, closing, squeeze, posture);
 }
 
-// The wrist goes where the script's pinch puts it; a closing past (or short of) that goes on
-// with the fingers alone, as a person's fingers close on past a face they do not feel.
+// The closing's fields make_script reads: the rest only time the script (apply_timing), lay
+// the jitter on or move the cube.
 bool same_placement(const GraspClosing& a, const GraspClosing& b) {
   return a.over_closure == b.over_closure && a.tilt_yaw == b.tilt_yaw &&
          a.tilt_pitch == b.tilt_pitch && a.offset_along == b.offset_along;
 }
 
+// The wrist goes where the script's pinch puts it; a closing past (or short of) that goes on
+// with the fingers alone, as a person's fingers close on past a face they do not feel.
 PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& model,
                         const GraspClosing& closing, PinchPosture posture) {
   return make_script(skeleton, model, closing, GraspClosing{}.over_closure, posture);
