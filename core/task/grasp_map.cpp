@@ -76,7 +76,7 @@ std::vector<GraspOutcome> run_grasp_map(
     const std::function<void(int done)>& done,
     const std::function<void(int placed, int placements)>& placed) {
   // Each placement once: the repeats, and the closings that differ only in their timing, lift,
-  // hold or jitter, share theirs (a 6 cm placement takes as long as its run).
+  // hold or jitter, share theirs (a placement by the pinch's rule is a long least squares).
   std::vector<std::size_t> placement_of(points.size()), placed_from;
   for (std::size_t i = 0; i < points.size(); ++i) {
     std::size_t k = 0;

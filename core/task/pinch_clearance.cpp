@@ -19,7 +19,7 @@ constexpr int kIterations = 300;      // Levenberg-Marquardt's at each weight
 constexpr double kDifference = 1e-6;  // the Jacobian's forward differences (m, rad)
 
 // A ball about each bone's skin in the bone's frame: the residuals skip a bone whose ball lies
-// wholly beyond the penalty's aim, as do most of them in every pose tried.
+// wholly beyond the penalty's aim (the bones far from the cube, whose points would add zeros).
 struct SkinBall {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double radius = 0.0;  // m, a little over the farthest point's distance (rounding's margin)

@@ -83,8 +83,9 @@ PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel
 
 // make_grasp_script in two parts, so that a map places each distinct placement once. The
 // placement (the poses, the clearances) reads the closing's over_closure, tilt and offset alone:
-// closings with `same_placement` share it. `time_grasp` then times it, lays the jitter on and
-// moves the cube as `closing` says.
+// closings with `same_placement` share it. `time_grasp` then times `placed` (place_grasp's for a
+// closing with the same placement as `closing`: its timing reads the over-closure too), lays the
+// jitter on and moves the cube as `closing` says.
 bool same_placement(const GraspClosing& a, const GraspClosing& b);
 PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& model,
                         const GraspClosing& closing, PinchPosture posture = PinchPosture::kSolved);

@@ -421,7 +421,7 @@ std::optional<sim::GraspComparison> compare_with(const std::vector<MappedCube>& 
   return std::nullopt;
 }
 
-// One cube's closings run side by side, with a progress line.
+// One cube's closings run side by side, with progress lines: the placements', the runs'.
 CubeMap map_cube(const sim::PinchScene& scene, double side,
                  const std::vector<sim::ClosingPoint>& points, int jobs, bool quiet,
                  std::chrono::steady_clock::time_point start) {
@@ -436,13 +436,10 @@ CubeMap map_cube(const sim::PinchScene& scene, double side,
     line.show(done, text);
   };
   map.outcomes = sim::run_grasp_map(
-      scene, points, jobs,
-      [&](int done) {
-        placing.finish();
-        show(progress, "closings", done, points.size());
-      },
+      scene, points, jobs, [&](int done) { show(progress, "closings", done, points.size()); },
       [&](int placed, int placements) {
         show(placing, "placements", placed, std::size_t(placements));
+        if (placed == placements) placing.finish();
       });
   progress.finish();
   return map;

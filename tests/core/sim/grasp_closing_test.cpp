@@ -266,6 +266,7 @@ TEST(GraspClosing, ClosingsPlacedAlikeShareTheirPlacementToTheBit) {
       const hand::HandPose a = timed.target(t), b = whole.target(t);
       ASSERT_EQ(a.angles, b.angles) << f.name << " at " << t;
       ASSERT_EQ(a.root_position, b.root_position) << f.name << " at " << t;
+      ASSERT_EQ(a.root_rotation, b.root_rotation) << f.name << " at " << t;
     }
   }
   EXPECT_EQ(placing,
@@ -273,21 +274,27 @@ TEST(GraspClosing, ClosingsPlacedAlikeShareTheirPlacementToTheBit) {
 }
 
 // A map runs each closing from its own placement, shared or not: the tilted closing's pads
-// miss their targets as its own script's do, not as the scripted pinch's.
+// miss their targets as its own script's do, and the closing that shares the first placement
+// is timed as its own script is (the thumb first, the lift later).
 TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
-  GraspClosing brief, tilted;
-  set_closing_factor(brief, "hold", 1);
-  set_closing_factor(tilted, "hold", 1);
+  GraspClosing brief, thumb_first, tilted;
+  for (GraspClosing* c : {&brief, &thumb_first, &tilted}) set_closing_factor(*c, "hold", 1);
+  set_closing_factor(thumb_first, "lead", 100);
   set_closing_factor(tilted, "tilt_yaw", 30);
-  const std::vector<ClosingPoint> points = {{"hold", 1, brief}, {"pair", 1, tilted}};
+  const std::vector<ClosingPoint> points = {
+      {"hold", 1, brief}, {"pair", 1, thumb_first}, {"pair", 2, tilted}};
   const std::vector<GraspOutcome> map = run_grasp_map(scene(), points, 2);
-  ASSERT_EQ(map.size(), 2u);
-  for (std::size_t i = 0; i < 2; ++i) {
+  ASSERT_EQ(map.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
     const PinchScript s = make_grasp_script(scene().skeleton, scene().model, points[i].closing);
     EXPECT_EQ(map[i].pinch_error_mm, 1000 * s.pinch_error) << i;
     EXPECT_EQ(map[i].open_clearance_mm, 1000 * s.open_clearance) << i;
+    EXPECT_EQ(map[i].measures.step_ms.size(),
+              std::size_t(pinch_step_count(s.end, scene().model.parameters.time_step)))
+        << i;
   }
-  EXPECT_NE(map[0].pinch_error_mm, map[1].pinch_error_mm);
+  EXPECT_NE(map[0].pinch_error_mm, map[2].pinch_error_mm);
+  EXPECT_NE(map[0].measures.step_ms.size(), map[1].measures.step_ms.size());
 }
 
 // Every pair of factors at each pair of their half-range levels, once.
