@@ -583,6 +583,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
     EXPECT_EQ(doc.find("functional_posture"), nullptr);
     EXPECT_EQ(doc["cubes"].size(), 1u);
     EXPECT_EQ(doc["cubes"][0]["cube_size_m"].as_number(), std::stod(cube));
+    EXPECT_TRUE(doc["cubes"][0]["pad_jitter"].is_null()) << "no recording's jitter";
     const util::JsonValue o = doc["cubes"][0]["closings"][0];
     for (const char* key : {"factor",
                             "level",
@@ -648,6 +649,31 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_EQ(run_cli("sim grasp --physics friction=-1").status, 2);
   EXPECT_EQ(run_cli("sim grasp --posture bent").status, 2);
   EXPECT_EQ(run_cli("sim grasp --physics grip=1").status, 2);
+}
+
+// With a recording's jitter, each cube's map says what the jitter factor's levels do at the
+// scripted pinch's pads: the real recording's own moves each pad a few tenths of a millimetre
+// (docs/simulator.md), and each level as much again as the one before.
+TEST(CliSim, GraspMapSaysTheJitterAtThePads) {
+  const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
+  const Result r = run_cli("sim grasp --cube 0.01 --jobs 1 --closing jitter=1 --jitter-from " +
+                           recording + " --json -");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const util::JsonValue levels = util::JsonValue::parse(r.out)["cubes"][0]["pad_jitter"];
+  ASSERT_EQ(levels.size(), 4u) << "the jitter factor's levels but 0: 1, 2, 4, 8";
+  const util::JsonValue once = levels[0];
+  EXPECT_EQ(once["jitter"].as_number(), 1.0);
+  for (const char* key : {"thumb_rms_mm", "index_rms_mm", "along_rms_mm", "across_rms_mm",
+                          "relative_speed_rms_cm_s", "relative_speed_max_cm_s"}) {
+    EXPECT_GT(once[key].as_number(), 0.0) << key;
+    EXPECT_NEAR(levels[3][key].as_number(), 8 * once[key].as_number(),
+                0.05 * 8 * once[key].as_number())
+        << key;
+  }
+  EXPECT_GT(once["thumb_rms_mm"].as_number(), 0.1);
+  EXPECT_LT(once["thumb_rms_mm"].as_number(), 0.5);
+  EXPECT_GE(once["relative_speed_max_cm_s"].as_number(),
+            once["relative_speed_rms_cm_s"].as_number());
 }
 
 // The map placed in the functional posture (--posture functional): named in the JSON with the

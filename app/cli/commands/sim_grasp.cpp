@@ -21,10 +21,12 @@
 #include "core/hand/hand_shape.h"
 #include "core/retarget/recording_poses.h"
 #include "core/sim/sim_parameter_names.h"
+#include "core/task/finger_pads.h"
 #include "core/task/grasp_comparison.h"
 #include "core/task/grasp_map.h"
 #include "core/task/grasp_repeats.h"
 #include "core/task/human_closings.h"
+#include "core/task/pad_jitter.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
 
@@ -37,6 +39,9 @@ struct CubeMap {
   std::vector<sim::GraspOutcome> outcomes;
   std::optional<sim::GraspComparison> against;  // with --against, when its map has this cube
   bool against_missing = false;                 // with --against, when it has not
+  // With --jitter-from: the recording's jitter at the scripted pinch's pads, at each of the
+  // jitter factor's levels but 0.
+  std::vector<sim::PadJitter> pad_jitter;
 };
 
 // "over_closure 10 mm" for a factor's level, the closing's description for a pair or a draw.
@@ -168,6 +173,17 @@ void print_comparison(const sim::GraspComparison& c) {
   if (!c.repeated.empty()) print_rate_changes(c.repeated);
 }
 
+void print_pad_jitter(const CubeMap& map) {
+  if (map.pad_jitter.empty()) return;
+  std::printf(
+      "the jitter at the scripted pinch's pads (thumb, index; the index's against the "
+      "thumb's along and across the pinch; its speed, RMS and largest):\n");
+  for (const sim::PadJitter& p : map.pad_jitter)
+    std::printf("  %g x: %.2f, %.2f mm; %.2f, %.2f mm; %.1f, %.1f cm/s\n", p.scale,
+                1000 * p.thumb_rms, 1000 * p.index_rms, 1000 * p.along_rms, 1000 * p.across_rms,
+                100 * p.relative_speed_rms, 100 * p.relative_speed_max);
+}
+
 void print_map(const CubeMap& map) {
   // "top N": the flesh's load on the cube's top before the closing (PinchReport).
   std::printf("\ncube %.0f mm\n%-4s %-8s %8s %10s %7s %6s %6s  %s\n", map.cube_size * 1000, "held",
@@ -189,6 +205,7 @@ void print_map(const CubeMap& map) {
     held.back().second.first += m.held ? 1 : 0;
     ++held.back().second.second;
   }
+  print_pad_jitter(map);
   print_within_half(map);
   if (map.against) print_comparison(*map.against);
   if (map.against_missing)
@@ -317,6 +334,26 @@ void write_comparison(util::JsonWriter& json, const sim::GraspComparison& c) {
 }
 
 // A cube's closings, how many held, and the draws' hold rate with its Wilson interval.
+void write_pad_jitter(util::JsonWriter& json, const std::vector<sim::PadJitter>& levels) {
+  json.key("pad_jitter");
+  if (levels.empty()) {
+    json.null();
+    return;
+  }
+  json.begin_array();
+  for (const sim::PadJitter& p : levels)
+    json.begin_object()
+        .field("jitter", p.scale)
+        .field("thumb_rms_mm", 1000 * p.thumb_rms)
+        .field("index_rms_mm", 1000 * p.index_rms)
+        .field("along_rms_mm", 1000 * p.along_rms)
+        .field("across_rms_mm", 1000 * p.across_rms)
+        .field("relative_speed_rms_cm_s", 100 * p.relative_speed_rms)
+        .field("relative_speed_max_cm_s", 100 * p.relative_speed_max)
+        .end_object();
+  json.end_array();
+}
+
 void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
   json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
   int held = 0;
@@ -325,6 +362,7 @@ void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
     held += o.measures.held ? 1 : 0;
   }
   json.end_array().field("held", held).field("closings_run", int(map.outcomes.size()));
+  write_pad_jitter(json, map.pad_jitter);
   if (map.against) write_comparison(json, *map.against);
   const DrawRate d = draw_rate(map.outcomes);
   if (d.runs > 0)
@@ -419,6 +457,23 @@ std::optional<sim::GraspComparison> compare_with(const std::vector<MappedCube>& 
     return sim::compare_maps(cube.closings, after);
   }
   return std::nullopt;
+}
+
+// The jitter factor's levels but 0 at the scripted pinch's pads, sampled at the simulator's step.
+std::vector<sim::PadJitter> jitter_at_pads(const sim::PinchScene& scene,
+                                           const sim::PoseJitter& jitter) {
+  const sim::PinchScript& script = scene.script;
+  const sim::PinchPads pads{script.thumb_bone, script.index_bone,
+                            sim::finger_pad(scene.skeleton, scene.model, script.thumb_bone),
+                            sim::finger_pad(scene.skeleton, scene.model, script.index_bone)};
+  std::vector<sim::PadJitter> levels;
+  for (const sim::ClosingFactor& f : sim::closing_factors())
+    if (f.name == "jitter")
+      for (double level : f.levels)
+        if (level > 0)
+          levels.push_back(sim::pad_jitter(scene.skeleton, script.pinch, pads, jitter, level,
+                                           scene.model.parameters.time_step));
+  return levels;
 }
 
 // One cube's closings run side by side, with progress lines: the placements', the runs'.
@@ -556,7 +611,8 @@ std::vector<OptionSpec> sim_grasp_options() {
       {"seed", "S", "the draws' seed, and the repeats' cubes'", "1"},
       {"jitter-from", "RECORDING",
        "lay this recording's tracker jitter on the closings: the jitter factor in the grid, "
-       "its own jitter in the draws (e.g. data/leap/pinch.json.lz)"},
+       "its own jitter in the draws (e.g. data/leap/pinch.json.lz); reports what each of the "
+       "factor's levels does at the scripted pinch's pads"},
       {"repeats", "K",
        "run each closing K times: as given, then with the cube moved along the floor by up to "
        "0.1 mm from where the hand aims; reports how many closings were held in every repeat, "
@@ -635,6 +691,7 @@ int sim_grasp(const std::vector<std::string>& argv) {
     scene.jitter = jitter;
     CubeMap map = map_cube(scene, side, points, jobs, to_stdout, start);
     map.repeats = int(repeats);
+    if (jitter) map.pad_jitter = jitter_at_pads(scene, *jitter);
     if (args.has("against")) {
       map.against = compare_with(before, map);
       map.against_missing = !map.against;
