@@ -87,14 +87,23 @@ std::vector<GraspOutcome> run_grasp_map(
     placement_of[i] = k;
   }
   std::vector<PinchScript> placements(placed_from.size());
+  // The scene's own pinch is the scripted pinch's placement: closings placed as it take it.
+  std::vector<std::size_t> to_place;
+  for (std::size_t k = 0; k < placements.size(); ++k)
+    if (is_scripted_placement(scene.script) &&
+        same_placement(points[placed_from[k]].closing, GraspClosing{}))
+      placements[k] = scene.script;
+    else
+      to_place.push_back(k);
   util::run_in_parallel(
-      placements.size(), jobs,
-      [&](std::size_t k) {
+      to_place.size(), jobs,
+      [&](std::size_t j) {
+        const std::size_t k = to_place[j];
         placements[k] = place_grasp(scene.skeleton, scene.model, points[placed_from[k]].closing,
                                     scene.script.posture);
       },
       [&](int made) {
-        if (placed) placed(made, int(placements.size()));
+        if (placed) placed(made, int(to_place.size()));
       });
   std::vector<GraspOutcome> outcomes(points.size());
   SimOptions options;

@@ -378,6 +378,15 @@ PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
   return script;
 }
 
+bool is_scripted_placement(const PinchScript& script) {
+  const PinchScript untimed;
+  return script.squeeze == GraspClosing{}.over_closure && !script.jitter &&
+         script.dof_delay.empty() && script.recorded_times.empty() &&
+         script.close_end == untimed.close_end && script.lift_start == untimed.lift_start &&
+         script.lift_end == untimed.lift_end && script.hold_end == untimed.hold_end &&
+         script.release_end == untimed.release_end && script.end == untimed.end;
+}
+
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,
                               const GraspClosing& closing, std::shared_ptr<const PoseJitter> jitter,
                               PinchPosture posture) {

@@ -92,6 +92,9 @@ PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& mode
 PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
                        const GraspClosing& closing,
                        std::shared_ptr<const PoseJitter> jitter = nullptr);
+// Whether `script` is the scripted pinch as make_pinch_script makes it at the default closing's
+// over-closure, not yet timed: the placement place_grasp gives GraspClosing{}.
+bool is_scripted_placement(const PinchScript& script);
 
 // The grip at a state: over the cube's pairs of opposite faces, the lesser of the two faces'
 // flesh normal forces (N).

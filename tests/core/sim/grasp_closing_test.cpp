@@ -275,7 +275,8 @@ TEST(GraspClosing, ClosingsPlacedAlikeShareTheirPlacementToTheBit) {
 
 // A map runs each closing from its own placement, shared or not: the tilted closing's pads
 // miss their targets as its own script's do, and the closing that shares the first placement
-// is timed as its own script is (the thumb first, the lift later).
+// is timed as its own script is (the thumb first, the lift later). The two placed as the
+// scripted pinch take the scene's, which is that placement to the bit.
 TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
   GraspClosing brief, thumb_first, tilted;
   for (GraspClosing* c : {&brief, &thumb_first, &tilted}) set_closing_factor(*c, "hold", 1);
@@ -283,8 +284,12 @@ TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
   set_closing_factor(tilted, "tilt_yaw", 30);
   const std::vector<ClosingPoint> points = {
       {"hold", 1, brief}, {"pair", 1, thumb_first}, {"pair", 2, tilted}};
-  const std::vector<GraspOutcome> map = run_grasp_map(scene(), points, 2);
+  int to_place = -1;
+  const std::vector<GraspOutcome> map =
+      run_grasp_map(scene(), points, 2, {}, [&](int, int count) { to_place = count; });
   ASSERT_EQ(map.size(), 3u);
+  EXPECT_TRUE(is_scripted_placement(scene().script));
+  EXPECT_EQ(to_place, 1) << "the tilted closing's: the others take the scene's scripted pinch";
   for (std::size_t i = 0; i < 3; ++i) {
     const PinchScript s = make_grasp_script(scene().skeleton, scene().model, points[i].closing);
     EXPECT_EQ(map[i].pinch_error_mm, 1000 * s.pinch_error) << i;
