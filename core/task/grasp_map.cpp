@@ -74,7 +74,7 @@ std::vector<ClosingPoint> repeated_closings(const std::vector<ClosingPoint>& poi
 std::vector<GraspOutcome> run_grasp_map(
     const PinchScene& scene, const std::vector<ClosingPoint>& points, int jobs,
     const std::function<void(int done)>& done,
-    const std::function<void(int placed, int placements)>& placed) {
+    const std::function<void(int placed, int to_place)>& placed) {
   // Each placement once: the repeats, and the closings that differ only in their timing, lift,
   // hold or jitter, share theirs (a placement by the pinch's rule is a long least squares).
   std::vector<std::size_t> placement_of(points.size()), placed_from;
@@ -87,11 +87,12 @@ std::vector<GraspOutcome> run_grasp_map(
     placement_of[i] = k;
   }
   std::vector<PinchScript> placements(placed_from.size());
-  // The scene's own pinch is the scripted pinch's placement: closings placed as it take it.
+  // The scene's own pinch, where it is the scripted pinch's placement, serves the closings
+  // placed as it.
+  const bool scene_placed = scene.script.scripted_placement;
   std::vector<std::size_t> to_place;
   for (std::size_t k = 0; k < placements.size(); ++k)
-    if (is_scripted_placement(scene.script) &&
-        same_placement(points[placed_from[k]].closing, GraspClosing{}))
+    if (scene_placed && same_placement(points[placed_from[k]].closing, GraspClosing{}))
       placements[k] = scene.script;
     else
       to_place.push_back(k);

@@ -64,12 +64,13 @@ struct GraspOutcome {
 // Runs each point on `scene`'s hand and cube (and its jitter), placed in its script's posture,
 // `jobs` at once (each on one thread of the simulator), each distinct placement once first
 // (same_placement, pinch_script.h); the closings placed as the scripted pinch take the scene's
-// own script where it is that placement (is_scripted_placement). `placed` is called with the
-// count of placements made and the number to make after each, `done` with the count of runs finished after each, under a lock,
-// from the worker thread that finished it.
+// own script where it is that placement (PinchScript::scripted_placement). `placed` is called
+// with the count of placements made and the number to make after each (never where the scene's
+// is the only one), `done` with the count of runs finished after each, under a lock, from the
+// worker thread that finished it.
 std::vector<GraspOutcome> run_grasp_map(
     const PinchScene& scene, const std::vector<ClosingPoint>& points, int jobs,
     const std::function<void(int done)>& done = {},
-    const std::function<void(int placed, int placements)>& placed = {});
+    const std::function<void(int placed, int to_place)>& placed = {});
 
 }  // namespace handlab::sim

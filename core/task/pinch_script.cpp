@@ -249,6 +249,8 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   script.cube_size = 2 * model.cube_half.x();
   script.squeeze = squeeze;
   script.posture = posture;
+  script.scripted_placement =
+      same_placement(closing, GraspClosing{}) && wrist_squeeze == GraspClosing{}.over_closure;
   script.cube_centre = Eigen::Vector3d(0, script.cube_size / 2, 0);
   script.thumb_bone = skeleton.bone_index("thumb3");
   script.index_bone = skeleton.bone_index("index3");
@@ -365,6 +367,7 @@ PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& mode
 PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
                        const GraspClosing& closing, std::shared_ptr<const PoseJitter> jitter) {
   PinchScript script = std::move(placed);
+  script.scripted_placement = false;  // timed
   apply_timing(skeleton, closing, script);
   if (closing.jitter > 0) {
     if (!jitter) throw std::invalid_argument("a closing with jitter needs a recording's jitter");
@@ -376,15 +379,6 @@ PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
   script.cube_centre.x() += closing.cube_shift_x;
   script.cube_centre.z() += closing.cube_shift_z;
   return script;
-}
-
-bool is_scripted_placement(const PinchScript& script) {
-  const PinchScript untimed;
-  return script.squeeze == GraspClosing{}.over_closure && !script.jitter &&
-         script.dof_delay.empty() && script.recorded_times.empty() &&
-         script.close_end == untimed.close_end && script.lift_start == untimed.lift_start &&
-         script.lift_end == untimed.lift_end && script.hold_end == untimed.hold_end &&
-         script.release_end == untimed.release_end && script.end == untimed.end;
 }
 
 PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel& model,

@@ -56,6 +56,9 @@ struct PinchScript {
   double pinch_clearance = 0.0;
   bool placed_by_rule = false, pinch_meets_rule = false;
   double placement_pad_error = 0.0;  // m: the farther pad from its face's goal, so placed
+  // Whether this is the scripted pinch's placement, not yet timed: what place_grasp gives the
+  // default closing (make_pinch_script's at its default squeeze), which a map shares.
+  bool scripted_placement = false;
   // The nearest skin of the open pose, the pads' too, to the cube where the hand aims at it
   // (m; below 0: inside): aimed at kDescentClearance where the rule placed the hand
   // (pinch_clearance.h), short of it where the fingers alone cannot clear their knuckles.
@@ -92,9 +95,6 @@ PinchScript place_grasp(const hand::Skeleton& skeleton, const HandSimModel& mode
 PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
                        const GraspClosing& closing,
                        std::shared_ptr<const PoseJitter> jitter = nullptr);
-// Whether `script` is the scripted pinch as make_pinch_script makes it at the default closing's
-// over-closure, not yet timed: the placement place_grasp gives GraspClosing{}.
-bool is_scripted_placement(const PinchScript& script);
 
 // The grip at a state: over the cube's pairs of opposite faces, the lesser of the two faces'
 // flesh normal forces (N).

@@ -653,7 +653,7 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
 
 // With a recording's jitter, each cube's map says what the jitter factor's levels do at the
 // scripted pinch's pads: the real recording's own moves each pad a few tenths of a millimetre
-// (docs/simulator.md), and each level as much again as the one before.
+// (docs/simulator.md), and eight times it eight times as far.
 TEST(CliSim, GraspMapSaysTheJitterAtThePads) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const Result r = run_cli("sim grasp --cube 0.01 --jobs 1 --closing jitter=1 --jitter-from " +

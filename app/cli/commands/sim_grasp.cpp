@@ -333,7 +333,7 @@ void write_comparison(util::JsonWriter& json, const sim::GraspComparison& c) {
   json.end_object();
 }
 
-// A cube's closings, how many held, and the draws' hold rate with its Wilson interval.
+// What the jitter factor's levels do at the scripted pinch's pads (null without a recording).
 void write_pad_jitter(util::JsonWriter& json, const std::vector<sim::PadJitter>& levels) {
   json.key("pad_jitter");
   if (levels.empty()) {
@@ -354,6 +354,7 @@ void write_pad_jitter(util::JsonWriter& json, const std::vector<sim::PadJitter>&
   json.end_array();
 }
 
+// A cube's closings, how many held, and the draws' hold rate with its Wilson interval.
 void write_cube_map(util::JsonWriter& json, const CubeMap& map) {
   json.begin_object().field("cube_size_m", map.cube_size).key("closings").begin_array();
   int held = 0;
@@ -467,12 +468,10 @@ std::vector<sim::PadJitter> jitter_at_pads(const sim::PinchScene& scene,
                             sim::finger_pad(scene.skeleton, scene.model, script.thumb_bone),
                             sim::finger_pad(scene.skeleton, scene.model, script.index_bone)};
   std::vector<sim::PadJitter> levels;
-  for (const sim::ClosingFactor& f : sim::closing_factors())
-    if (f.name == "jitter")
-      for (double level : f.levels)
-        if (level > 0)
-          levels.push_back(sim::pad_jitter(scene.skeleton, script.pinch, pads, jitter, level,
-                                           scene.model.parameters.time_step));
+  for (double level : sim::closing_factor("jitter").levels)
+    if (level > 0)
+      levels.push_back(sim::pad_jitter(scene.skeleton, script.pinch, pads, jitter, level,
+                                       scene.model.parameters.time_step));
   return levels;
 }
 
@@ -492,9 +491,9 @@ CubeMap map_cube(const sim::PinchScene& scene, double side,
   };
   map.outcomes = sim::run_grasp_map(
       scene, points, jobs, [&](int done) { show(progress, "closings", done, points.size()); },
-      [&](int placed, int placements) {
-        show(placing, "placements", placed, std::size_t(placements));
-        if (placed == placements) placing.finish();
+      [&](int placed, int to_place) {
+        show(placing, "placements", placed, std::size_t(to_place));
+        if (placed == to_place) placing.finish();
       });
   progress.finish();
   return map;

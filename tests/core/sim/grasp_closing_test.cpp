@@ -288,7 +288,7 @@ TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
   const std::vector<GraspOutcome> map =
       run_grasp_map(scene(), points, 2, {}, [&](int, int count) { to_place = count; });
   ASSERT_EQ(map.size(), 3u);
-  EXPECT_TRUE(is_scripted_placement(scene().script));
+  EXPECT_TRUE(scene().script.scripted_placement);
   EXPECT_EQ(to_place, 1) << "the tilted closing's: the others take the scene's scripted pinch";
   for (std::size_t i = 0; i < 3; ++i) {
     const PinchScript s = make_grasp_script(scene().skeleton, scene().model, points[i].closing);
@@ -300,6 +300,18 @@ TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
   }
   EXPECT_NE(map[0].pinch_error_mm, map[2].pinch_error_mm);
   EXPECT_NE(map[0].measures.step_ms.size(), map[1].measures.step_ms.size());
+}
+
+// Only the scripted pinch's own placement, untimed, is taken for the closings placed as it: not
+// a pinch at another squeeze, a tilted one, nor one timed (its cube moved, say).
+TEST(GraspClosing, TheScriptedPlacementIsToldFromOthers) {
+  EXPECT_TRUE(place_grasp(scene().skeleton, scene().model, GraspClosing{}).scripted_placement);
+  EXPECT_FALSE(make_pinch_script(scene().skeleton, scene().model, 0.0).scripted_placement);
+  GraspClosing tilted, moved;
+  set_closing_factor(tilted, "tilt_yaw", 10);
+  EXPECT_FALSE(place_grasp(scene().skeleton, scene().model, tilted).scripted_placement);
+  moved.cube_shift_x = 1e-4;
+  EXPECT_FALSE(time_grasp(scene().script, scene().skeleton, moved).scripted_placement);
 }
 
 // Every pair of factors at each pair of their half-range levels, once.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "core/hand/simulated_hand.h"
 
@@ -66,6 +67,20 @@ TEST(PadJitter, OneFingersJointMovesThatPadAgainstTheOther) {
   EXPECT_NEAR(p.thumb_rms, 0.0, 1e-12);
   EXPECT_GT(p.index_rms, 0.0);
   EXPECT_NEAR(std::hypot(p.along_rms, p.across_rms), p.index_rms, 1e-12);
+  // Along the line between the pads: the pad's move turned +-0.01 rad, seen on that line.
+  const auto index_pad = [&](double turn) {
+    hand::HandPose pose = h.pinch;
+    pose.angles(dip) += turn;
+    const hand::BoneFrames f = hand::forward_kinematics(h.skeleton, pose);
+    return hand::bone_point(f, h.pads.index_bone, h.pads.index_pad);
+  };
+  const hand::BoneFrames still = hand::forward_kinematics(h.skeleton, h.pinch);
+  const Eigen::Vector3d axis =
+      (index_pad(0.0) - hand::bone_point(still, h.pads.thumb_bone, h.pads.thumb_pad)).normalized();
+  const double plus = (index_pad(0.01) - index_pad(0.0)).dot(axis),
+               minus = (index_pad(-0.01) - index_pad(0.0)).dot(axis);
+  EXPECT_NEAR(p.along_rms, std::sqrt((12 * plus * plus + 11 * minus * minus) / 23), 1e-12)
+      << "23 steps over the recording's 23 step-long frames, 12 of them turned +0.01 rad";
   // A pad half the distal bone out, turned 0.01 rad: about 0.01 x that radius.
   const double radius = h.pads.index_pad.y();
   EXPECT_NEAR(p.index_rms, 0.01 * radius, 0.01 * radius * 1e-3);
@@ -77,6 +92,22 @@ TEST(PadJitter, OneFingersJointMovesThatPadAgainstTheOther) {
   const PadJitter none = pad_jitter(h.skeleton, h.pinch, h.pads, j, 0.0, kStep);
   EXPECT_EQ(none.index_rms, 0.0);
   EXPECT_EQ(none.relative_speed_max, 0.0);
+}
+
+// The whole hand turned about an axis across the line between the pads turns that line: the
+// pads move against each other across it, by the turn times their distance, and not along it.
+TEST(PadJitter, AHandTurnedMovesThePadsAcrossTheirLine) {
+  const Hand h;
+  const hand::BoneFrames frames = hand::forward_kinematics(h.skeleton, h.pinch);
+  const Eigen::Vector3d line = hand::bone_point(frames, h.pads.index_bone, h.pads.index_pad) -
+                               hand::bone_point(frames, h.pads.thumb_bone, h.pads.thumb_pad);
+  const double angle = 0.002;  // rad
+  PoseJitter j = alternating(h, Eigen::Vector3d::Zero(), -1, 0.0);
+  for (std::size_t k = 0; k < j.turn.size(); ++k)
+    j.turn[k] = (k % 2 == 0 ? angle : -angle) * line.unitOrthogonal();
+  const PadJitter p = pad_jitter(h.skeleton, h.pinch, h.pads, j, 1.0, kStep);
+  EXPECT_NEAR(p.across_rms, angle * line.norm(), 1e-3 * angle * line.norm());
+  EXPECT_LT(p.along_rms, 1e-2 * p.across_rms);
 }
 
 TEST(PadJitter, RefusesWhatItCannotMeasure) {
