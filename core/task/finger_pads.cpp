@@ -23,4 +23,20 @@ Eigen::Vector3d finger_pad(const hand::Skeleton& skeleton, const HandSimModel& m
   return Eigen::Vector3d(0, 0.55 * length, depth);
 }
 
+PinchPads pinch_pads(const hand::Skeleton& skeleton, const HandSimModel& model) {
+  PinchPads pads;
+  pads.thumb_bone = skeleton.bone_index("thumb3");
+  pads.index_bone = skeleton.bone_index("index3");
+  if (pads.thumb_bone < 0 || pads.index_bone < 0)
+    throw std::invalid_argument("pinch_pads: a hand without thumb3 and index3");
+  pads.thumb_pad = finger_pad(skeleton, model, pads.thumb_bone);
+  pads.index_pad = finger_pad(skeleton, model, pads.index_bone);
+  return pads;
+}
+
+PadPoints pad_points(const hand::BoneFrames& frames, const PinchPads& pads) {
+  return {hand::bone_point(frames, pads.thumb_bone, pads.thumb_pad),
+          hand::bone_point(frames, pads.index_bone, pads.index_pad)};
+}
+
 }  // namespace handlab::sim

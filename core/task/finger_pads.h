@@ -14,4 +14,20 @@ namespace handlab::sim {
 // depth of the palmar flesh there. Throws std::invalid_argument when no flesh lies there.
 Eigen::Vector3d finger_pad(const hand::Skeleton& skeleton, const HandSimModel& model, int bone);
 
+// The pads of a pinch: each a point in its distal bone's frame.
+struct PinchPads {
+  int thumb_bone = -1, index_bone = -1;
+  Eigen::Vector3d thumb_pad = Eigen::Vector3d::Zero(), index_pad = Eigen::Vector3d::Zero();
+};
+
+// The thumb's and index's pads (thumb3, index3); throws std::invalid_argument for a hand
+// without those bones.
+PinchPads pinch_pads(const hand::Skeleton& skeleton, const HandSimModel& model);
+
+// Where the pads are with the bones at `frames`.
+struct PadPoints {
+  Eigen::Vector3d thumb, index;
+};
+PadPoints pad_points(const hand::BoneFrames& frames, const PinchPads& pads);
+
 }  // namespace handlab::sim

@@ -7,17 +7,6 @@
 namespace handlab::sim {
 namespace {
 
-struct PadPoints {
-  Eigen::Vector3d thumb, index;
-};
-
-PadPoints pad_points(const hand::Skeleton& skeleton, const hand::HandPose& pose,
-                     const PinchPads& pads, hand::BoneFrames& frames) {
-  hand::forward_kinematics(skeleton, pose, frames);
-  return {hand::bone_point(frames, pads.thumb_bone, pads.thumb_pad),
-          hand::bone_point(frames, pads.index_bone, pads.index_pad)};
-}
-
 double rms(double sum_of_squares, int n) {
   return std::sqrt(sum_of_squares / n);
 }
@@ -37,7 +26,8 @@ PadJitter pad_jitter(const hand::Skeleton& skeleton, const hand::HandPose& pinch
   if (steps < 2) throw std::invalid_argument("pad_jitter: the jitter is shorter than two steps");
 
   hand::BoneFrames frames;
-  const PadPoints still = pad_points(skeleton, pinch, pads, frames);
+  hand::forward_kinematics(skeleton, pinch, frames);
+  const PadPoints still = pad_points(frames, pads);
   const Eigen::Vector3d axis = (still.index - still.thumb).normalized();
   PadJitter out;
   out.scale = scale;
@@ -46,7 +36,8 @@ PadJitter pad_jitter(const hand::Skeleton& skeleton, const hand::HandPose& pinch
   for (int k = 0; k < steps; ++k) {
     hand::HandPose pose = pinch;
     jitter.apply(k * time_step, scale, pose);
-    const PadPoints p = pad_points(skeleton, pose, pads, frames);
+    hand::forward_kinematics(skeleton, pose, frames);
+    const PadPoints p = pad_points(frames, pads);
     const Eigen::Vector3d relative = (p.index - p.thumb) - (still.index - still.thumb);
     const double a = relative.dot(axis);
     thumb += (p.thumb - still.thumb).squaredNorm();

@@ -7,15 +7,10 @@
 #include <Eigen/Core>
 
 #include "core/hand/skeleton.h"
+#include "core/task/finger_pads.h"
 #include "core/task/tracker_jitter.h"
 
 namespace handlab::sim {
-
-// The pads of a pinch: each a point in its distal bone's frame (finger_pads.h).
-struct PinchPads {
-  int thumb_bone = -1, index_bone = -1;
-  Eigen::Vector3d thumb_pad = Eigen::Vector3d::Zero(), index_pad = Eigen::Vector3d::Zero();
-};
 
 struct PadJitter {
   double scale = 0.0;                       // times the recording's jitter

@@ -13,34 +13,20 @@ namespace {
 constexpr double kClosingDepth = 0.01;  // m: a closing's fall and the rise after it
 constexpr double kLeadIn = 0.5;         // s of the recording before the moment
 
-struct Pads {
-  Eigen::Vector3d thumb, index;
-};
-
-Pads pads_at(const hand::Skeleton& skeleton, const hand::HandPose& pose, int thumb, int index,
-             const Eigen::Vector3d& thumb_pad, const Eigen::Vector3d& index_pad) {
-  const hand::BoneFrames f = hand::forward_kinematics(skeleton, pose);
-  return {f.origin[std::size_t(thumb)] + f.rotation[std::size_t(thumb)] * thumb_pad,
-          f.origin[std::size_t(index)] + f.rotation[std::size_t(index)] * index_pad};
-}
-
-int bone(const hand::Skeleton& skeleton, const char* name) {
-  const int b = skeleton.bone_index(name);
-  if (b < 0) throw std::invalid_argument(std::string("recorded pinches: a hand without ") + name);
-  return b;
+PadPoints pads_at(const hand::Skeleton& skeleton, const hand::HandPose& pose,
+                  const PinchPads& pads) {
+  return pad_points(hand::forward_kinematics(skeleton, pose), pads);
 }
 
 }  // namespace
 
 std::vector<double> pad_apertures(const hand::Skeleton& skeleton, const HandSimModel& model,
                                   const std::vector<hand::HandPose>& poses) {
-  const int thumb = bone(skeleton, "thumb3"), index = bone(skeleton, "index3");
-  const Eigen::Vector3d thumb_pad = finger_pad(skeleton, model, thumb),
-                        index_pad = finger_pad(skeleton, model, index);
+  const PinchPads pads = pinch_pads(skeleton, model);
   std::vector<double> apertures;
   apertures.reserve(poses.size());
   for (const hand::HandPose& pose : poses) {
-    const Pads p = pads_at(skeleton, pose, thumb, index, thumb_pad, index_pad);
+    const PadPoints p = pads_at(skeleton, pose, pads);
     apertures.push_back((p.thumb - p.index).norm());
   }
   return apertures;
@@ -54,9 +40,7 @@ std::vector<RecordedClosing> find_recorded_closings(const hand::Skeleton& skelet
     throw std::invalid_argument("find_recorded_closings: times and poses differ in number");
   const std::vector<double> apertures = pad_apertures(skeleton, model, poses);
   const double cube_size = 2 * model.cube_half.x();
-  const int thumb = bone(skeleton, "thumb3"), index = bone(skeleton, "index3");
-  const Eigen::Vector3d thumb_pad = finger_pad(skeleton, model, thumb),
-                        index_pad = finger_pad(skeleton, model, index);
+  const PinchPads pads = pinch_pads(skeleton, model);
   std::vector<RecordedClosing> closings;
   const int n = int(apertures.size());
   auto emit = [&](int widest, int narrowest) {
@@ -75,8 +59,7 @@ std::vector<RecordedClosing> find_recorded_closings(const hand::Skeleton& skelet
     if (times[std::size_t(b)] > times[std::size_t(a)])
       c.closing_speed = 0.5 * (apertures[std::size_t(a)] - apertures[std::size_t(b)]) /
                         (times[std::size_t(b)] - times[std::size_t(a)]);
-    const Pads at =
-        pads_at(skeleton, poses[std::size_t(c.moment_frame)], thumb, index, thumb_pad, index_pad);
+    const PadPoints at = pads_at(skeleton, poses[std::size_t(c.moment_frame)], pads);
     const Eigen::Vector3d between = at.thumb - at.index;
     c.tilt = std::asin(std::abs(between.y()) / between.norm());
     c.first_frame = c.moment_frame;
@@ -117,11 +100,10 @@ PinchScript make_recorded_pinch_script(const hand::Skeleton& skeleton, const Han
   PinchScript script;
   script.cube_size = 2 * model.cube_half.x();
   script.cube_centre = Eigen::Vector3d(0, script.cube_size / 2, 0);
-  script.thumb_bone = bone(skeleton, "thumb3");
-  script.index_bone = bone(skeleton, "index3");
-  const Pads at = pads_at(skeleton, poses[std::size_t(closing.moment_frame)], script.thumb_bone,
-                          script.index_bone, finger_pad(skeleton, model, script.thumb_bone),
-                          finger_pad(skeleton, model, script.index_bone));
+  const PinchPads pads = pinch_pads(skeleton, model);
+  script.thumb_bone = pads.thumb_bone;
+  script.index_bone = pads.index_bone;
+  const PadPoints at = pads_at(skeleton, poses[std::size_t(closing.moment_frame)], pads);
   // Turned (the least turn) so that the pads' line is the cube's z axis, the thumb towards +z,
   // and moved so that their midpoint is the cube's centre.
   const Eigen::Vector3d between = at.thumb - at.index, middle = 0.5 * (at.thumb + at.index);

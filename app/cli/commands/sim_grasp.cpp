@@ -463,14 +463,11 @@ std::optional<sim::GraspComparison> compare_with(const std::vector<MappedCube>& 
 // The jitter factor's levels but 0 at the scripted pinch's pads, sampled at the simulator's step.
 std::vector<sim::PadJitter> jitter_at_pads(const sim::PinchScene& scene,
                                            const sim::PoseJitter& jitter) {
-  const sim::PinchScript& script = scene.script;
-  const sim::PinchPads pads{script.thumb_bone, script.index_bone,
-                            sim::finger_pad(scene.skeleton, scene.model, script.thumb_bone),
-                            sim::finger_pad(scene.skeleton, scene.model, script.index_bone)};
+  const sim::PinchPads pads = sim::pinch_pads(scene.skeleton, scene.model);
   std::vector<sim::PadJitter> levels;
   for (double level : sim::closing_factor("jitter").levels)
     if (level > 0)
-      levels.push_back(sim::pad_jitter(scene.skeleton, script.pinch, pads, jitter, level,
+      levels.push_back(sim::pad_jitter(scene.skeleton, scene.script.pinch, pads, jitter, level,
                                        scene.model.parameters.time_step));
   return levels;
 }
