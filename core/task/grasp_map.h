@@ -50,12 +50,12 @@ struct GraspOutcome {
   ClosingPoint point;
   PinchReport measures;         // as sim pinch judges them (pinch_script.h)
   double pinch_error_mm = 0.0;  // how far the closed pose misses the pads' targets (IK)
-  // The pinch's placement (pinch_script.h): the other skin's nearest to the cube (mm, below 0
-  // inside) and the pads' from their goals on the faces (mm), whether the pinch's rule placed
-  // the hand and met the rule.
+  // The pinch's placement (pinch_script.h): the other skin's nearest to the cube or the column
+  // under it (mm, below 0 inside) and the pads' from their goals on the faces (mm), whether the
+  // pinch's rule placed the hand and met the rule.
   double pinch_clearance_mm = 0.0, placement_pad_error_mm = 0.0;
   bool placed_by_rule = false, meets_pinch_rule = false;
-  double open_clearance_mm = 0.0;  // the open pose's nearest skin to the cube (mm)
+  double open_clearance_mm = 0.0;  // the open pose's nearest skin to the cube or its column (mm)
   // How a lost run lost the cube, and the signs it is told by (pinch_loss.h).
   PinchLoss loss = PinchLoss::kNone;
   double pushed_mm = 0.0, grip_at_lift_n = 0.0;

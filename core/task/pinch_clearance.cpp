@@ -1,6 +1,7 @@
 #include "core/task/pinch_clearance.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -17,6 +18,20 @@ constexpr double kAimedClearance = 0.0022;  // m
 constexpr double kFirstWeight = 0.3, kWeightBound = 40.0;
 constexpr int kIterations = 300;      // Levenberg-Marquardt's at each weight
 constexpr double kDifference = 1e-6;  // the Jacobian's forward differences (m, rad)
+
+// How far q (in the frame of the cube of half sides `half`) lies inside the column under the
+// cube widened by `widen` on every side, from its nearer side (> 0; -infinity where q is not
+// under the cube's bottom).
+double column_depth(const Eigen::Vector3d& half, const Eigen::Vector3d& q, double widen) {
+  if (q.y() >= -half.y()) return -std::numeric_limits<double>::infinity();
+  return std::min(half.x() + widen - std::abs(q.x()), half.z() + widen - std::abs(q.z()));
+}
+
+// Whether a ball about `centre` (the cube's frame) of radius `reach` reaches under the cube.
+bool reaches_column(const Eigen::Vector3d& half, const Eigen::Vector3d& centre, double reach) {
+  return centre.y() - reach < -half.y() && std::abs(centre.x()) < half.x() + reach &&
+         std::abs(centre.z()) < half.z() + reach;
+}
 
 // A ball about each bone's skin in the bone's frame: the residuals skip a bone whose ball lies
 // wholly beyond the penalty's aim (the bones far from the cube, whose points would add zeros).
@@ -46,7 +61,7 @@ std::vector<SkinBall> skin_balls(const HandSimModel& model) {
 // Calls visit(bone, &q) for each skin point of every bone but `pads` with the hand at `pose`,
 // q the point in the frame of the cube of half sides `half` at `cube`; or visit(bone, nullptr)
 // for each point of a bone whose ball (in `balls`, if given) lies wholly farther than `reach`
-// outside the cube.
+// outside the cube and its column.
 template <class Visit>
 void visit_other_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
                       const hand::HandPose& pose, const RigidPose& cube,
@@ -60,8 +75,12 @@ void visit_other_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
   for (std::size_t b = 0; b < bones.size(); ++b) {
     if (int(b) == pads[0] || int(b) == pads[1]) continue;
     const std::vector<Eigen::Vector3d>& skin = model.bone_skin[b];
-    if (balls && !skin.empty() &&
-        beyond_box(half, in_cube(b, (*balls)[b].centre), (*balls)[b].radius + reach)) {
+    const auto far = [&] {
+      const Eigen::Vector3d centre = in_cube(b, (*balls)[b].centre);
+      const double ball = (*balls)[b].radius + reach;
+      return beyond_box(half, centre, ball) && !reaches_column(half, centre, ball);
+    };
+    if (balls && !skin.empty() && far()) {
       for (std::size_t i = 0; i < skin.size(); ++i) visit(int(b), nullptr);
       continue;
     }
@@ -81,10 +100,11 @@ struct Problem {
   const std::array<int, 2>& pads;
   double aimed;     // m: the clearance the penalty aims at
   bool free_wrist;  // whether the wrist moves, or the fingers alone
+  const PosturePull& pull;
   std::vector<SkinBall> balls = skin_balls(model);
 
   // The features' weighted misses, then each other skin node's shortfall from the aimed
-  // clearance times `weight`.
+  // clearance (off the cube and its column) times `weight`, then the pull's.
   Eigen::VectorXd residuals(const hand::HandPose& pose, double weight) const {
     const hand::BoneFrames frames = hand::forward_kinematics(skeleton, pose);
     std::vector<double> r;
@@ -97,10 +117,13 @@ struct Problem {
     const Eigen::Vector3d& half = model.cube_half;
     visit_other_skin(
         skeleton, model, pose, cube, half, pads, &balls, aimed, [&](int, const Eigen::Vector3d* q) {
-          r.push_back(!q || beyond_box(half, *q, aimed)
-                          ? 0.0
-                          : weight * std::max(0.0, aimed - box_proximity(half, *q).distance));
+          if (!q) return r.push_back(0.0);
+          const double column = column_depth(half, *q, aimed);
+          const double off =
+              beyond_box(half, *q, aimed) ? 0.0 : aimed - box_proximity(half, *q).distance;
+          r.push_back(weight * std::max({0.0, column, off}));
         });
+    for (const int k : pull.dofs) r.push_back(pull.weight * (pose.angles(k) - pull.anchor(k)));
     return Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
   }
 
@@ -131,24 +154,46 @@ struct Problem {
 
 }  // namespace
 
-SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
-                             const hand::HandPose& pose, const RigidPose& cube,
-                             const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones) {
+namespace {
+
+// The nearest skin to the cube, or with `column` to the cube or the column under it.
+SkinClearance nearest_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
+                           const hand::HandPose& pose, const RigidPose& cube,
+                           const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones,
+                           bool column) {
   SkinClearance out;
   out.distance = std::numeric_limits<double>::infinity();
   visit_other_skin(skeleton, model, pose, cube, half, pad_bones, nullptr, 0.0,
                    [&](int bone, const Eigen::Vector3d* q) {
-                     const double d = box_proximity(half, *q).distance;
+                     const double under = column ? column_depth(half, *q, 0.0) : 0.0;
+                     const double d = under > 0 ? -under : box_proximity(half, *q).distance;
                      if (d < out.distance) out = {d, bone};
                    });
   return out;
 }
 
+}  // namespace
+
+SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
+                             const hand::HandPose& pose, const RigidPose& cube,
+                             const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones) {
+  return nearest_skin(skeleton, model, pose, cube, half, pad_bones, false);
+}
+
+SkinClearance placement_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
+                                  const hand::HandPose& pose, const RigidPose& cube,
+                                  const Eigen::Vector3d& half,
+                                  const std::array<int, 2>& pad_bones) {
+  return nearest_skin(skeleton, model, pose, cube, half, pad_bones, true);
+}
+
 ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
-                       const std::array<int, 2>& pad_bones, const hand::HandPose& start) {
-  const Problem problem{skeleton, model, features, goals, cube, pad_bones, kAimedClearance, true};
+                       const std::array<int, 2>& pad_bones, const hand::HandPose& start,
+                       const PosturePull& pull) {
+  const Problem problem{skeleton,  model,           features, goals, cube,
+                        pad_bones, kAimedClearance, true,     pull};
   ClearPinch out;
   out.pose = problem.solve_rising(start);
   const hand::BoneFrames frames = hand::forward_kinematics(skeleton, out.pose);
@@ -156,7 +201,7 @@ ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model
     out.pad_error =
         std::max(out.pad_error,
                  (hand::marker_position(skeleton, frames, features[i].marker) - goals[i]).norm());
-  out.clearance = skin_clearance(skeleton, model, out.pose, cube, model.cube_half, pad_bones);
+  out.clearance = placement_clearance(skeleton, model, out.pose, cube, model.cube_half, pad_bones);
   return out;
 }
 
@@ -165,8 +210,9 @@ hand::HandPose clear_descent(const hand::Skeleton& skeleton, const HandSimModel&
                              const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
                              const hand::HandPose& start) {
   const std::array<int, 2> every_bone = {-1, -1};
-  const Problem problem{skeleton, model,      features,          goals,
-                        cube,     every_bone, kDescentClearance, false};
+  const PosturePull none;
+  const Problem problem{skeleton,          model, features, goals, cube, every_bone,
+                        kDescentClearance, false, none};
   return problem.solve_rising(start);
 }
 

@@ -1,9 +1,9 @@
 // The pinch's posture by a rule fixed before any closing ran with it: the pads on their goals
-// and no other skin within 2 mm of the cube. The palm-down pinch whose fingers stretch along
-// the floor lays the index across a 6 cm cube's top (its middle phalanx's target 14 mm
-// inside), and the soft hand then pins the cube to the floor through every bone's tracking
-// spring (133-143 N on the top): a grip of three faces that no hand makes on a real cube and
-// that the grasp map does not mean to measure (docs/simulator.md, the scripted pinch).
+// and no other skin within 2 mm of the cube or of the column under it. The palm-down pinch whose
+// fingers stretch along the floor lays the index across a 6 cm cube's top (its middle phalanx's
+// target 14 mm inside), and the soft hand then pins the cube to the floor through every bone's
+// tracking spring (133-143 N on the top): a grip of three faces that no hand makes on a real cube
+// and that the grasp map does not mean to measure (docs/simulator.md, the scripted pinch).
 #pragma once
 
 #include <array>
@@ -15,12 +15,16 @@
 #include "core/retarget/fingertip_solver.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/sim/rigid_body.h"
+#include "core/task/pinch_posture.h"
 
 namespace handlab::sim {
 
 // The rule: both pads within kPadReach of their goals, every other bone's skin at least
-// kSkinClearance off the cube. A pinch is placed by it where its other skin lies deeper than
-// kPinningDepth inside the cube.
+// kSkinClearance off the cube and off the column under it (the hand comes down onto its pinch
+// from above: skin placed under the cube, below the floor, passed through the cube on the way;
+// the curled ring and little fingers of a functional pitch of 10° under the 6 cm cube pressed its
+// top with 497 N). A pinch is placed by it where its other skin lies deeper than kPinningDepth
+// inside the cube or that column.
 constexpr double kPadReach = 0.001;       // m
 constexpr double kSkinClearance = 0.002;  // m
 constexpr double kPinningDepth = 0.002;   // m
@@ -41,6 +45,11 @@ struct SkinClearance {
 SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
                              const hand::HandPose& pose, const RigidPose& cube,
                              const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones);
+// As skin_clearance, the column under the cube counted as the cube: how the pinch's rule
+// measures a placement on the floor.
+SkinClearance placement_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
+                                  const hand::HandPose& pose, const RigidPose& cube,
+                                  const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones);
 
 struct ClearPinch {
   hand::HandPose pose;
@@ -52,12 +61,15 @@ struct ClearPinch {
 // A posture found by least squares from `start` (Levenberg-Marquardt over the wrist's pose and
 // every joint within its limits) whose `features` (the pads first, as markers of `skeleton`)
 // reach `goals` while the other skin keeps kSkinClearance off the cube: a penalty on the skin
-// nearer than that, raised step by step, each step solved from the last. Where the clearance
+// nearer than that, raised step by step, each step solved from the last, the posture drawn by
+// `pull` (the functional posture's: its pads reach their goals with its joints off their
+// limits, where the skin's penalty alone bends them to their limits). Where the clearance
 // binds, the pads may stop short of their goals: `meets_rule` says whether they reached them.
 ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
-                       const std::array<int, 2>& pad_bones, const hand::HandPose& start);
+                       const std::array<int, 2>& pad_bones, const hand::HandPose& start,
+                       const PosturePull& pull = {});
 
 // The open pose a hand placed by the rule comes down in: from `start`, the fingers alone (the
 // wrist stays) moved by the same least squares so that `features` reach `goals` (the pads'

@@ -88,11 +88,18 @@ Eigen::VectorXd posture_anchor(const hand::Skeleton& skeleton, const hand::HandP
   return anchor;
 }
 
+PosturePull functional_pull(const hand::Skeleton& skeleton, const hand::HandPose& pose) {
+  return {posture_anchor(skeleton, pose), posture_dofs(skeleton), functional_posture().weight};
+}
+
 hand::HandPose place_in_posture(const hand::Skeleton& skeleton,
                                 const std::vector<retarget::Feature>& features,
                                 const std::vector<Eigen::Vector3d>& goals,
-                                const hand::HandPose& start, const Eigen::VectorXd& anchor,
-                                const std::vector<int>& dofs, double weight, bool free_wrist) {
+                                const hand::HandPose& start, const PosturePull& pull,
+                                bool free_wrist) {
+  const Eigen::VectorXd& anchor = pull.anchor;
+  const std::vector<int>& dofs = pull.dofs;
+  const double weight = pull.weight;
   hand::HandPose pose =
       free_wrist ? aligned(skeleton, features, goals, start, anchor, dofs) : start;
   const Eigen::Matrix3d placed = pose.root_rotation;

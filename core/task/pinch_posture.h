@@ -38,20 +38,31 @@ struct FunctionalPosture {
 };
 const FunctionalPosture& functional_posture();
 
+// A least squares' pull towards a posture: each of `dofs` drawn towards `anchor`'s angle with
+// `weight` (m/rad). Without DOFs it pulls nothing.
+struct PosturePull {
+  Eigen::VectorXd anchor;
+  std::vector<int> dofs;
+  double weight = 0.0;  // m/rad
+};
+
 // Levenberg-Marquardt from `start`: the features' markers on `goals` (in the features' order
-// and weights), each of `dofs` drawn towards `anchor`'s angle with `weight` (m/rad). With
-// `free_wrist` the posture is first set to `anchor`'s angles and turned and moved so that the
-// first two features' axis lies along their goals' and their midpoint on their goals'; the wrist
-// then takes part, its turn drawn back towards that placement at a fifth of `weight`. Without,
-// the wrist stays where `start` has it and only `dofs` move. Angles stay within their limits.
+// and weights), the posture drawn by `pull`. With `free_wrist` the posture is first set to the
+// pull's anchor and turned and moved so that the first two features' axis lies along their goals'
+// and their midpoint on their goals'; the wrist then takes part, its turn drawn back towards that
+// placement at a fifth of the pull's weight. Without, the wrist stays where `start` has it and
+// only the pull's DOFs move. Angles stay within their limits.
 hand::HandPose place_in_posture(const hand::Skeleton& skeleton,
                                 const std::vector<retarget::Feature>& features,
                                 const std::vector<Eigen::Vector3d>& goals,
-                                const hand::HandPose& start, const Eigen::VectorXd& anchor,
-                                const std::vector<int>& dofs, double weight, bool free_wrist);
+                                const hand::HandPose& start, const PosturePull& pull,
+                                bool free_wrist);
 
 // The functional posture's DOFs of `skeleton` and an anchor: `pose`'s angles with theirs set.
 std::vector<int> posture_dofs(const hand::Skeleton& skeleton);
 Eigen::VectorXd posture_anchor(const hand::Skeleton& skeleton, const hand::HandPose& pose);
+
+// The functional posture's pull from `pose` (its other angles kept as they are).
+PosturePull functional_pull(const hand::Skeleton& skeleton, const hand::HandPose& pose);
 
 }  // namespace handlab::sim

@@ -132,7 +132,8 @@ double clear_approach_height(const hand::Skeleton& ik, const HandSimModel& model
     for (int i = 0; i < kSamples && clear; ++i) {
       hand::HandPose pose = blend(flat, script.open, double(i) / (kSamples - 1));
       pose.root_position.y() += height;
-      clear = skin_clearance(ik, model, pose, cube, model.cube_half, {-1, -1}).distance >= kClear;
+      clear =
+          placement_clearance(ik, model, pose, cube, model.cube_half, {-1, -1}).distance >= kClear;
     }
     if (clear || height >= kHighest) return height;
   }
@@ -143,18 +144,22 @@ double clear_approach_height(const hand::Skeleton& ik, const HandSimModel& model
 // by the pinch's rule, the pads on the faces (`on_faces`), the rest of the hand clear of the
 // cube, the pads' facing (the points behind them) at a tenth of their weight: the rule asks
 // for the pads' places, and a pad turned a few degrees still presses its face
-// (pinch_clearance.h). Sets the script's pinch and what the placement measured.
+// (pinch_clearance.h), a functional pinch still drawn towards the functional posture.
+// Sets the script's pinch and what the placement measured.
 void place_by_rule(const hand::Skeleton& ik, const HandSimModel& model,
                    const std::vector<retarget::Feature>& features,
                    const std::vector<Eigen::Vector3d>& on_faces, const RigidPose& cube,
                    const hand::HandPose& pose, PinchScript& script) {
   const std::array<int, 2> pads = {script.thumb_bone, script.index_bone};
   script.pinch = pose;
-  script.pinch_clearance = skin_clearance(ik, model, pose, cube, model.cube_half, pads).distance;
+  script.pinch_clearance =
+      placement_clearance(ik, model, pose, cube, model.cube_half, pads).distance;
   if (script.pinch_clearance >= -kPinningDepth) return;
   std::vector<retarget::Feature> relaxed = features;
   relaxed[2].weight = relaxed[3].weight = 0.1;
-  const ClearPinch clear = clear_pinch(ik, model, relaxed, on_faces, cube, pads, pose);
+  const PosturePull pull =
+      script.posture == PinchPosture::kFunctional ? functional_pull(ik, pose) : PosturePull{};
+  const ClearPinch clear = clear_pinch(ik, model, relaxed, on_faces, cube, pads, pose, pull);
   script.pinch = clear.pose;
   script.pinch_clearance = clear.clearance.distance;
   script.placed_by_rule = true;
@@ -162,10 +167,10 @@ void place_by_rule(const hand::Skeleton& ik, const HandSimModel& model,
   script.placement_pad_error = clear.pad_error;
 }
 
-// The open pose's nearest skin to the cube (PinchScript::open_clearance).
+// The open pose's nearest skin to the cube or its column (PinchScript::open_clearance).
 double open_clearance(const hand::Skeleton& ik, const HandSimModel& model,
                       const hand::HandPose& open, const RigidPose& cube) {
-  return skin_clearance(ik, model, open, cube, model.cube_half, {-1, -1}).distance;
+  return placement_clearance(ik, model, open, cube, model.cube_half, {-1, -1}).distance;
 }
 
 // A hand placed by the pinch's rule comes down in an open pose whose skin is aimed
@@ -201,8 +206,7 @@ hand::HandPose placed_pose(const hand::Skeleton& ik, const std::vector<retarget:
                            const std::vector<Eigen::Vector3d>& goals, hand::HandPose pose,
                            PinchPosture posture, const retarget::SolverOptions& options) {
   if (posture == PinchPosture::kFunctional)
-    return place_in_posture(ik, features, goals, pose, posture_anchor(ik, pose), posture_dofs(ik),
-                            functional_posture().weight, true);
+    return place_in_posture(ik, features, goals, pose, functional_pull(ik, pose), true);
   const retarget::SolverResult placed =
       retarget::FingertipSolver(ik, features, options).solve(pose, goals, true);
   pose.angles = placed.angles;
@@ -217,17 +221,15 @@ void close_and_open(const hand::Skeleton& ik, const std::vector<retarget::Featur
                     const std::vector<Eigen::Vector3d>& open, bool close,
                     const retarget::SolverOptions& options, PinchScript& script) {
   if (script.posture == PinchPosture::kFunctional) {
-    const std::vector<int> dofs = posture_dofs(ik);
-    const double weight = functional_posture().weight;
     const hand::HandPose placed = script.pinch;
-    if (close)
-      script.pinch =
-          place_in_posture(ik, features, closed, placed, placed.angles, dofs, weight, false);
+    // Drawn towards the placed pinch's own angles: the hand closes from the posture it took.
+    const PosturePull pull{placed.angles, posture_dofs(ik), functional_posture().weight};
+    if (close) script.pinch = place_in_posture(ik, features, closed, placed, pull, false);
     // Opened as a hand opens, the pads no longer held face to face, from the pinch as placed:
     // the hand opens the same however far it will close past the faces.
     std::vector<retarget::Feature> loose = features;
     loose[2].weight = loose[3].weight = 0.1;
-    script.open = place_in_posture(ik, loose, open, placed, placed.angles, dofs, weight, false);
+    script.open = place_in_posture(ik, loose, open, placed, pull, false);
     return;
   }
   if (close)

@@ -48,19 +48,20 @@ struct PinchScript {
   std::vector<hand::HandPose> recorded_poses;
   int thumb_bone = -1, index_bone = -1;  // the distal bones that hold the cube
   double pinch_error = 0.0;  // m: the pads' targets the closed pose misses by (inverse kinematics)
-  // The nearest skin but the pads' to the cube at the pinch before the closing's squeeze (m;
-  // below 0: inside), whether the hand was placed again by the pinch's rule because the
-  // script's pose laid a finger inside the cube (pinch_clearance.h), and whether the rule was
-  // then met (false where it was not needed). A recorded closing's script (recorded_pinches.h)
-  // sets the clearance alone, at its least aperture.
+  // The nearest skin but the pads' to the cube or the column under it (placement_clearance) at
+  // the pinch before the closing's squeeze (m; below 0: inside), whether the hand was placed
+  // again by the pinch's rule because the script's pose laid a finger inside them
+  // (pinch_clearance.h), and whether the rule was then met (false where it was not needed). A
+  // recorded closing's script (recorded_pinches.h) sets the clearance alone, to the cube alone
+  // (skin_clearance), at its least aperture.
   double pinch_clearance = 0.0;
   bool placed_by_rule = false, pinch_meets_rule = false;
   double placement_pad_error = 0.0;  // m: the farther pad from its face's goal, so placed
   // Whether this is the scripted pinch's placement, not yet timed: what place_grasp gives the
   // default closing (make_pinch_script's at its default squeeze), which a map shares.
   bool scripted_placement = false;
-  // The nearest skin of the open pose, the pads' too, to the cube where the hand aims at it
-  // (m; below 0: inside): aimed at kDescentClearance where the rule placed the hand
+  // The nearest skin of the open pose, the pads' too, to the cube or the column under it where
+  // the hand aims at it (m; below 0: inside): aimed at kDescentClearance where the rule placed the hand
   // (pinch_clearance.h), short of it where the fingers alone cannot clear their knuckles.
   double open_clearance = 0.0;
 

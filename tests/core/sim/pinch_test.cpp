@@ -11,6 +11,7 @@
 #include "core/hand/hand_shape.h"
 #include "core/sim/box_distance.h"
 #include "core/sim/contact_forces.h"
+#include "core/task/pinch_clearance.h"
 #include "core/task/pinch_scene.h"
 #include "tests/support/under_sanitizers.h"
 
@@ -78,6 +79,24 @@ TEST(PinchPlacement, TheHeavyCubesPinchLeavesItsTopFree) {
   });
   EXPECT_LT(top, 5.0) << "N on the top before the lift";
   EXPECT_FALSE(make_pinch_scene(0.01).script.placed_by_rule);
+}
+
+// The pinch's rule counts the column under the cube as the cube (pinch_clearance.h): the hand
+// comes down from above, so skin placed under the cube passed through it. A hand 9 cm under a
+// cube's bottom is well off the cube and inside its column.
+TEST(PinchPlacement, CountsTheColumnUnderTheCubeAsTheCube) {
+  const PinchScene scene = make_pinch_scene(0.06);
+  RigidPose cube;
+  cube.position = scene.script.pinch.root_position + Eigen::Vector3d(0, 0.12, 0);
+  const std::array<int, 2> no_pads = {-1, -1};
+  const double off = skin_clearance(scene.skeleton, scene.model, scene.script.pinch, cube,
+                                    scene.model.cube_half, no_pads)
+                         .distance;
+  const double placed = placement_clearance(scene.skeleton, scene.model, scene.script.pinch, cube,
+                                            scene.model.cube_half, no_pads)
+                            .distance;
+  EXPECT_GT(off, 0.05);
+  EXPECT_LT(placed, -0.01);
 }
 
 // The script run to the first second of the hold at each squeeze: the cube lifted and held,
