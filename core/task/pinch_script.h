@@ -61,8 +61,8 @@ struct PinchScript {
   // default closing (make_pinch_script's at its default squeeze), which a map shares.
   bool scripted_placement = false;
   // The nearest skin of the open pose, the pads' too, to the cube or the column under it where
-  // the hand aims at it (m; below 0: inside): aimed at kDescentClearance where the rule placed the hand
-  // (pinch_clearance.h), short of it where the fingers alone cannot clear their knuckles.
+  // the hand aims at it (m; below 0: inside): aimed at kDescentClearance where the rule placed the
+  // hand (pinch_clearance.h), short of it where the fingers alone cannot clear their knuckles.
   double open_clearance = 0.0;
 
   hand::HandPose target(double t) const;  // the intermediate hand at time t
