@@ -21,7 +21,8 @@ constexpr double kDifference = 1e-6;  // the Jacobian's forward differences (m, 
 
 // How far q (in the frame of the cube of half sides `half`) lies inside the column under the
 // cube widened by `widen` on every side, from its nearer side (> 0; -infinity where q is not
-// under the cube's bottom).
+// under the cube's bottom). A point inside the cube keeps its depth below the nearest face, the
+// bottom's too: the column's depth starts where the cube's ends.
 double column_depth(const Eigen::Vector3d& half, const Eigen::Vector3d& q, double widen) {
   if (q.y() >= -half.y()) return -std::numeric_limits<double>::infinity();
   return std::min(half.x() + widen - std::abs(q.x()), half.z() + widen - std::abs(q.z()));
@@ -117,11 +118,14 @@ struct Problem {
     const Eigen::Vector3d& half = model.cube_half;
     visit_other_skin(
         skeleton, model, pose, cube, half, pads, &balls, aimed, [&](int, const Eigen::Vector3d* q) {
-          if (!q) return r.push_back(0.0);
-          const double column = column_depth(half, *q, aimed);
-          const double off =
-              beyond_box(half, *q, aimed) ? 0.0 : aimed - box_proximity(half, *q).distance;
-          r.push_back(weight * std::max({0.0, column, off}));
+          double shortfall = 0.0;
+          if (q) {
+            const double column = column_depth(half, *q, aimed);
+            const double off =
+                beyond_box(half, *q, aimed) ? 0.0 : aimed - box_proximity(half, *q).distance;
+            shortfall = std::max({0.0, column, off});
+          }
+          r.push_back(weight * shortfall);
         });
     for (const int k : pull.dofs) r.push_back(pull.weight * (pose.angles(k) - pull.anchor(k)));
     return Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
@@ -152,11 +156,7 @@ struct Problem {
   }
 };
 
-}  // namespace
-
-namespace {
-
-// The nearest skin to the cube, or with `column` to the cube or the column under it.
+// The nearest skin to the cube, or with `column` to the cube or into the column under it.
 SkinClearance nearest_skin(const hand::Skeleton& skeleton, const HandSimModel& model,
                            const hand::HandPose& pose, const RigidPose& cube,
                            const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones,

@@ -20,7 +20,7 @@
 namespace handlab::sim {
 
 // The rule: both pads within kPadReach of their goals, every other bone's skin at least
-// kSkinClearance off the cube and off the column under it (the hand comes down onto its pinch
+// kSkinClearance off the cube and out of the column under it (the hand comes down onto its pinch
 // from above: skin placed under the cube, below the floor, passed through the cube on the way;
 // the curled ring and little fingers of a functional pitch of 10° under the 6 cm cube pressed its
 // top with 497 N). A pinch is placed by it where its other skin lies deeper than kPinningDepth
@@ -31,12 +31,15 @@ constexpr double kPinningDepth = 0.002;   // m
 // A hand the rule places comes down onto its pinch in the open pose with its flesh behind its
 // targets by up to about 5 mm (the thumb's base held off by the flesh's strain: the bones'
 // largest offset 4.3-4.9 mm before any contact, `sim pinch --trace`), more than the rule's
-// clearance: so its open pose is placed with every skin point aimed this far off the cube.
+// clearance: so its open pose is placed with every skin point aimed this far off the cube and
+// its column.
 constexpr double kDescentClearance = 0.005;  // m
 
 struct SkinClearance {
-  double distance = 0.0;  // m: the nearest skin of the other bones to the cube (< 0: inside)
-  int bone = -1;          // whose skin that is
+  // m: the nearest skin of the other bones to the cube (< 0: inside; placement_clearance's also
+  // inside the column under it)
+  double distance = 0.0;
+  int bone = -1;  // whose skin that is
 };
 
 // How near a cube of half sides `half` at `cube` the skin of every bone but `pad_bones` comes
@@ -45,8 +48,9 @@ struct SkinClearance {
 SkinClearance skin_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
                              const hand::HandPose& pose, const RigidPose& cube,
                              const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones);
-// As skin_clearance, the column under the cube counted as the cube: how the pinch's rule
-// measures a placement on the floor.
+// As skin_clearance, but a point inside the column under the cube counts as inside the cube, as
+// deep as it lies from the column's nearer side: how the pinch's rule measures a placement on
+// the floor. A point below the cube's bottom beside the column keeps its distance to the cube.
 SkinClearance placement_clearance(const hand::Skeleton& skeleton, const HandSimModel& model,
                                   const hand::HandPose& pose, const RigidPose& cube,
                                   const Eigen::Vector3d& half, const std::array<int, 2>& pad_bones);
@@ -60,11 +64,12 @@ struct ClearPinch {
 
 // A posture found by least squares from `start` (Levenberg-Marquardt over the wrist's pose and
 // every joint within its limits) whose `features` (the pads first, as markers of `skeleton`)
-// reach `goals` while the other skin keeps kSkinClearance off the cube: a penalty on the skin
-// nearer than that, raised step by step, each step solved from the last, the posture drawn by
-// `pull` (the functional posture's: its pads reach their goals with its joints off their
-// limits, where the skin's penalty alone bends them to their limits). Where the clearance
-// binds, the pads may stop short of their goals: `meets_rule` says whether they reached them.
+// reach `goals` while the other skin keeps kSkinClearance off the cube and out of its column: a
+// penalty on the skin nearer than that to either, raised step by step, each step solved from the
+// last, the posture drawn by `pull` (the functional posture's: its pads reach their goals with its
+// joints off their limits, where the skin's penalty alone bends them to their limits). Where the
+// clearance binds, the pads may stop short of their goals: `meets_rule` says whether they reached
+// them.
 ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,
@@ -74,8 +79,8 @@ ClearPinch clear_pinch(const hand::Skeleton& skeleton, const HandSimModel& model
 // The open pose a hand placed by the rule comes down in: from `start`, the fingers alone (the
 // wrist stays) moved by the same least squares so that `features` reach `goals` (the pads'
 // places off the faces) with the penalty on every skin point, the pads' too, nearer than
-// kDescentClearance to the cube. Fingers alone barely move the skin by their knuckles: the
-// pose can stop short of that clearance.
+// kDescentClearance to the cube or its column. Fingers alone barely move the skin by their
+// knuckles: the pose can stop short of that clearance.
 hand::HandPose clear_descent(const hand::Skeleton& skeleton, const HandSimModel& model,
                              const std::vector<retarget::Feature>& features,
                              const std::vector<Eigen::Vector3d>& goals, const RigidPose& cube,

@@ -118,9 +118,10 @@ Eigen::Isometry3d PinchScript::start_root() const {
 namespace {
 
 // How high above the pinch a hand placed by the pinch's rule shapes from flat into the open
-// pose: 5 cm, or as many centimetres more as keep every skin point 1 cm off the cube through the
-// shaping (the rule's steeper hand over the 6 cm cube swept its flat fingers through it from
-// 5 cm). A hand the rule leaves alone shapes at 5 cm, as before the rule.
+// pose: 5 cm, or as many centimetres more as keep every skin point 1 cm off the cube and out of
+// its column (placement_clearance) through the shaping (the rule's steeper hand over the 6 cm cube
+// swept its flat fingers through it from 5 cm). A hand the rule leaves alone shapes at 5 cm, as
+// before the rule.
 double clear_approach_height(const hand::Skeleton& ik, const HandSimModel& model,
                              const PinchScript& script, const RigidPose& cube) {
   constexpr double kLowest = 0.05, kHighest = 0.20, kRaise = 0.01, kClear = 0.01;
@@ -174,10 +175,10 @@ double open_clearance(const hand::Skeleton& ik, const HandSimModel& model,
 }
 
 // A hand placed by the pinch's rule comes down in an open pose whose skin is aimed
-// kDescentClearance off the cube: where the open pose comes nearer, every finger's joints are
-// placed again (pinch_clearance.h; the curled fingers' too, which then move as the hand closes),
-// the pads aiming at `open_goals` with their facing at a tenth of its weight, as the rule places
-// the pinch.
+// kDescentClearance off the cube and its column: where the open pose comes nearer, every finger's
+// joints are placed again (pinch_clearance.h; the curled fingers' too, which then move as the hand
+// closes), the pads aiming at `open_goals` with their facing at a tenth of its weight, as the rule
+// places the pinch.
 void clear_the_descent(const hand::Skeleton& ik, const HandSimModel& model,
                        const std::vector<retarget::Feature>& features,
                        const std::vector<Eigen::Vector3d>& open_goals, const RigidPose& cube,

@@ -42,8 +42,9 @@ TEST(PinchPosture, KeepsTheLightCubesPinchOffItsLimitsAndItsTopFree) {
 }
 
 // The heavy cube's functional pinch is placed by the pinch's rule (pinch_clearance.h), drawn
-// towards the posture it was placed in: without that draw the rule's least squares bent five
-// of the thumb's and index's joints to their limits and left the pads 4.7 mm off their goals.
+// towards the functional posture: without that draw the rule's least squares kept the index's
+// PIP at its 110° limit and the pads 4.7 mm off their goals. Closed, it keeps every joint 10°
+// inside its limits.
 TEST(PinchPosture, TheRuleKeepsTheHeavyCubesPinchOffItsLimits) {
   const PinchScene scene = make_pinch_scene(0.06, 1, 0.003, 0.214, {}, PinchPosture::kFunctional);
   const PinchScript& script = scene.script;
