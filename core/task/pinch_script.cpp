@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "core/retarget/fingertip_solver.h"
 #include "core/sim/contact_forces.h"
@@ -255,16 +256,15 @@ PinchScript make_script(const hand::Skeleton& skeleton, const HandSimModel& mode
   script.scripted_placement =
       same_placement(closing, GraspClosing{}) && wrist_squeeze == GraspClosing{}.over_closure;
   script.cube_centre = Eigen::Vector3d(0, script.cube_size / 2, 0);
-  script.thumb_bone = skeleton.bone_index("thumb3");
-  script.index_bone = skeleton.bone_index("index3");
-  if (script.thumb_bone < 0 || script.index_bone < 0)
-    throw std::invalid_argument("make_pinch_script: a hand without thumb3 and index3");
+  const PinchPads pads = pinch_pads(skeleton, model);
+  script.thumb_bone = pads.thumb_bone;
+  script.index_bone = pads.index_bone;
   // Pads as markers: on the palmar side of the distal bones' middles, and 12 mm further in,
   // so that aiming both at the cube's axis turns the pads to face each other.
   hand::Skeleton ik = skeleton;
   const int first = int(ik.markers.size());
-  for (const int bone : {script.thumb_bone, script.index_bone}) {
-    const Eigen::Vector3d pad = finger_pad(skeleton, model, bone);
+  for (const auto& [bone, pad] :
+       {std::pair{pads.thumb_bone, pads.thumb_pad}, std::pair{pads.index_bone, pads.index_pad}}) {
     ik.markers.push_back({"pad", bone, pad});
     ik.markers.push_back({"pad_in", bone, pad - Eigen::Vector3d(0, 0, 0.012)});
   }

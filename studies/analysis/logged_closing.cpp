@@ -12,7 +12,6 @@
 #include "core/sim/box_distance.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/task/cube_task.h"
-#include "core/task/finger_pads.h"
 #include "core/task/pinch_clearance.h"
 
 namespace handlab::studies {
@@ -84,14 +83,9 @@ FactorSpread spread_of(const std::vector<double>& values, double unit) {
 
 ClosingReader::ClosingReader(const hand::HandShape& simulated_hand)
     : skeleton_(hand::build_simulated_hand(simulated_hand)) {
-  thumb_bone_ = skeleton_.bone_index("thumb3");
-  index_bone_ = skeleton_.bone_index("index3");
-  if (thumb_bone_ < 0 || index_bone_ < 0)
-    throw std::runtime_error("the simulated hand has no thumb3 and index3");
   const hand::HandFlesh flesh = hand::build_flesh(skeleton_, simulated_hand);
   model_ = sim::make_hand_sim_model(skeleton_, flesh, {});
-  thumb_pad_ = sim::finger_pad(skeleton_, model_, thumb_bone_);
-  index_pad_ = sim::finger_pad(skeleton_, model_, index_bone_);
+  pads_ = sim::pinch_pads(skeleton_, model_);
 }
 
 double ClosingReader::other_skin_depth(const store::FrameRecord& f, double side) const {
@@ -99,7 +93,8 @@ double ClosingReader::other_skin_depth(const store::FrameRecord& f, double side)
   cube.position = f.cube_position.cast<double>();
   cube.rotation = f.cube_rotation.cast<double>();
   return -sim::skin_clearance(skeleton_, model_, pose_at(f), cube,
-                              Eigen::Vector3d::Constant(side / 2), {thumb_bone_, index_bone_})
+                              Eigen::Vector3d::Constant(side / 2),
+                              {pads_.thumb_bone, pads_.index_bone})
               .distance;
 }
 
@@ -117,14 +112,14 @@ hand::HandPose ClosingReader::pose_at(const store::FrameRecord& f) const {
 }
 
 ClosingReader::Pads ClosingReader::pads_at(const store::FrameRecord& f) const {
-  const hand::BoneFrames frames = hand::forward_kinematics(skeleton_, pose_at(f));
+  const sim::PadPoints world =
+      sim::pad_points(hand::forward_kinematics(skeleton_, pose_at(f)), pads_);
   const Eigen::Quaterniond cube = f.cube_rotation.cast<double>();
   const Eigen::Vector3d centre = f.cube_position.cast<double>();
-  auto in_cube = [&](int bone, const Eigen::Vector3d& pad) -> Eigen::Vector3d {
-    const std::size_t b = std::size_t(bone);
-    return cube.conjugate() * (frames.origin[b] + frames.rotation[b] * pad - centre);
+  auto in_cube = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    return cube.conjugate() * (p - centre);
   };
-  return {in_cube(thumb_bone_, thumb_pad_), in_cube(index_bone_, index_pad_)};
+  return {in_cube(world.thumb), in_cube(world.index)};
 }
 
 LoggedClosing ClosingReader::read(const std::vector<store::FrameRecord>& frames, std::size_t grasp,

@@ -12,6 +12,7 @@
 #include "core/hand/skeleton.h"
 #include "core/sim/hand_sim_model.h"
 #include "core/store/frame_record.h"
+#include "core/task/finger_pads.h"
 
 namespace handlab::studies {
 
@@ -78,8 +79,7 @@ class ClosingReader {
 
   hand::Skeleton skeleton_;
   sim::HandSimModel model_;  // the simulated hand's, for the skin each bone carries
-  int thumb_bone_ = -1, index_bone_ = -1;
-  Eigen::Vector3d thumb_pad_, index_pad_;  // in their bones' frames
+  sim::PinchPads pads_;
 };
 
 }  // namespace handlab::studies
