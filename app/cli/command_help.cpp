@@ -21,14 +21,17 @@ bool is_name(const std::string& word) {
          word.find('.') == std::string::npos;
 }
 
-// "--name VALUE" ("..." after a repeatable one), or the word itself.
+// "--name VALUE" ("..." after a repeatable one's, unless its value ends in one), or the word
+// itself.
 std::string spelled(const std::string& word, const std::vector<OptionSpec>& options,
                     const std::string& command) {
   if (!is_name(word)) return word;
   const OptionSpec* o = find(options, word);
   if (!o) throw std::logic_error(command + "'s usage names --" + word + ", which it lacks");
+  const bool dotted =
+      o->value_name.size() >= 3 && o->value_name.compare(o->value_name.size() - 3, 3, "...") == 0;
   return "--" + o->name + (o->value_name.empty() ? "" : " " + o->value_name) +
-         (o->repeatable ? "..." : "");
+         (o->repeatable && !dotted ? "..." : "");
 }
 
 // One form: its words, each group's alternatives spelled and joined by " | ".

@@ -752,6 +752,40 @@ TEST(CliSim, GraspMapRepeatsEachClosingWithTheCubeMoved) {
   EXPECT_EQ(run_cli("sim grasp --cube 0.01 --closing over_closure=3 --repeats 101").status, 2);
 }
 
+// Several closings at once (--closing repeated): each with its repeats, which move the cube
+// and come out as when that closing runs alone.
+TEST(CliSim, GraspMapRunsSeveralClosingsEachAsAlone) {
+  const Result both = run_cli(
+      "sim grasp --cube 0.01 --jobs 2 --closing over_closure=3 --closing over_closure=5 "
+      "--repeats 2 --json -");
+  ASSERT_EQ(both.status, 0) << both.out;
+  const Result alone =
+      run_cli("sim grasp --cube 0.01 --jobs 2 --closing over_closure=5 --repeats 2 --json -");
+  ASSERT_EQ(alone.status, 0) << alone.out;
+  const util::JsonValue runs = util::JsonValue::parse(both.out)["cubes"][0]["closings"];
+  const util::JsonValue own = util::JsonValue::parse(alone.out)["cubes"][0]["closings"];
+  ASSERT_EQ(runs.size(), 4u);
+  ASSERT_EQ(own.size(), 2u);
+  EXPECT_EQ(runs[0]["closing"].as_string(), "the scripted pinch");
+  EXPECT_NE(runs[2]["closing"].as_string(), runs[0]["closing"].as_string());
+  EXPECT_EQ(util::JsonValue::parse(both.out)["cubes"][0]["repeats"]["all"]["closings"].as_number(),
+            2);
+  for (std::size_t r = 0; r < 2; ++r) {
+    const util::JsonValue a = runs[2 + r], b = own[r];
+    EXPECT_EQ(a["closing"].as_string(), b["closing"].as_string());
+    EXPECT_EQ(a["repeat"].as_number(), double(r));
+    EXPECT_EQ(a["cube_shift_mm"][0].as_number(), b["cube_shift_mm"][0].as_number());
+    EXPECT_EQ(a["cube_shift_mm"][1].as_number(), b["cube_shift_mm"][1].as_number());
+    EXPECT_EQ(a["held"].as_bool(), b["held"].as_bool());
+    EXPECT_EQ(a["slip_mm"].as_number(), b["slip_mm"].as_number()) << "the same run to the bit";
+  }
+  EXPECT_NE(runs[1]["cube_shift_mm"][0].as_number(), runs[3]["cube_shift_mm"][0].as_number())
+      << "each closing's repeats move the cube by what the closing is";
+  const Result help = run_cli("sim grasp --help");
+  EXPECT_NE(help.out.find("--closing NAME=VALUE,... ["), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("......"), std::string::npos) << "a repeatable value's dots once";
+}
+
 // A map set beside one written before (--against): a map whose 1 cm cube held its 0 mm
 // over-closure, which today's physics loses (nothing presses), and lost the scripted pinch,
 // which it holds; and a map without that cube.

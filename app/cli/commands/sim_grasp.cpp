@@ -426,13 +426,16 @@ void write_map_json(const std::vector<CubeMap>& maps, const MapRun& run, std::os
   out << "\n";
 }
 
-// The grid's closings: --closing alone, each --factor (or every one) alone, or the pairs.
+// The grid's closings: the --closing ones, each --factor (or every one) alone, or the pairs.
 std::vector<sim::ClosingPoint> grid_of(const Arguments& args, const std::string& grid, long draws,
                                        bool with_jitter) {
   if (args.has("closing")) {
     if (args.has("factor") || args.has("grid") || draws > 0)
       throw UsageError("give --closing alone, not with --factor, --grid or --draws");
-    return {{"closing", 0.0, parse_closing_option(args.text("closing"))}};
+    std::vector<sim::ClosingPoint> points;
+    for (const std::string& text : args.all("closing"))
+      points.push_back({"closing", 0.0, parse_closing_option(text)});
+    return points;
   }
   if (grid == "single") {
     try {
@@ -597,8 +600,10 @@ std::vector<OptionSpec> sim_grasp_options() {
        "--jitter-from)",
        "", true},
       {"closing", "NAME=VALUE,...",
-       "run this one closing instead of the grid, in the factors' units (mm, deg, side, ms, "
-       "cm/s, m/s2, s), e.g. over_closure=20,lead=100"},
+       "run this closing instead of the grid, in the factors' units (mm, deg, side, ms, cm/s, "
+       "m/s2, s), e.g. over_closure=20,lead=100; repeatable, each closing's repeats the same as "
+       "run alone",
+       "", true},
       {"grid", "single|pairs|none",
        "each factor alone at its levels, or every pair of factors at about half their ranges "
        "(docs/simulator.md), or no grid",
