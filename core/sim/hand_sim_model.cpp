@@ -59,6 +59,7 @@ void add_skin_samples(HandSimModel& m, const std::vector<std::array<int, 3>>& fa
 void add_bone_skin(HandSimModel& m, const hand::Skeleton& skeleton, const hand::HandFlesh& flesh) {
   const hand::BoneFrames rest = hand::forward_kinematics(skeleton, hand::HandPose::rest(skeleton));
   m.bone_skin.assign(m.bones.size(), {});
+  m.node_bone.assign(m.rest.size(), -1);
   for (int n : m.surface_nodes) {
     const Eigen::Vector3d& x = m.rest[std::size_t(n)];
     double nearest = std::numeric_limits<double>::infinity();
@@ -72,6 +73,7 @@ void add_bone_skin(HandSimModel& m, const hand::Skeleton& skeleton, const hand::
       if (d < nearest) nearest = d, bone = c.bone;
     }
     const std::size_t b = std::size_t(bone);
+    m.node_bone[std::size_t(n)] = bone;
     m.bone_skin[b].push_back(rest.rotation[b].transpose() * (x - rest.origin[b]) -
                              m.bones[b].centre_in_bone);
   }

@@ -152,6 +152,7 @@ struct HandSimModel {
   // The skin each bone carries: the surface nodes nearest it at rest (its capsules'), at rest
   // in its body frame (about its centre of mass): what a posture keeps clear of the cube.
   std::vector<std::vector<Eigen::Vector3d>> bone_skin;
+  std::vector<int> node_bone;  // each node's bone of bone_skin (-1: not a surface node)
   // The cube
   RigidInertia cube;
   Eigen::Vector3d cube_half = Eigen::Vector3d::Zero();

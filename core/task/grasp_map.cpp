@@ -122,6 +122,8 @@ std::vector<GraspOutcome> run_grasp_map(
         o.loss = watch.loss(o.measures.held);
         o.pushed_mm = watch.pushed_mm();
         o.grip_at_lift_n = watch.grip_at_lift_n();
+        o.touch_lead_ms = watch.touch_lead_ms();
+        o.turn_at_touch_deg = watch.turn_at_touch_deg();
         o.pinch_error_mm = 1000 * script.pinch_error;
         o.pinch_clearance_mm = 1000 * script.pinch_clearance;
         o.placement_pad_error_mm = 1000 * script.placement_pad_error;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,9 +57,12 @@ struct GraspOutcome {
   double pinch_clearance_mm = 0.0, placement_pad_error_mm = 0.0;
   bool placed_by_rule = false, meets_pinch_rule = false;
   double open_clearance_mm = 0.0;  // the open pose's nearest skin to the cube or its column (mm)
-  // How a lost run lost the cube, and the signs it is told by (pinch_loss.h).
+  // How a lost run lost the cube, and the signs it is told by (pinch_loss.h); how long after
+  // the thumb's distal skin first touched the cube the index's did, and the cube's turn then
+  // (none: one never did before the lift).
   PinchLoss loss = PinchLoss::kNone;
   double pushed_mm = 0.0, grip_at_lift_n = 0.0;
+  std::optional<double> touch_lead_ms, turn_at_touch_deg;
 };
 
 // Runs each point on `scene`'s hand and cube (and its jitter), placed in its script's posture,

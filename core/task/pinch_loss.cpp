@@ -22,8 +22,28 @@ const char* pinch_loss_name(PinchLoss loss) {
 PinchLossWatch::PinchLossWatch(const HandSimModel& model, const PinchScript& script)
     : model_(model), script_(script) {}
 
+bool PinchLossWatch::touches(const HandSimState& s, int bone) const {
+  const auto on = [&](int node) { return model_.node_bone[std::size_t(node)] == bone; };
+  for (const ContactAnchor& a : s.node_cube)
+    if (on(a.point)) return true;
+  for (const ContactAnchor& a : s.sample_cube)
+    for (const int node : model_.skin_samples[std::size_t(a.point)].nodes)
+      if (on(node)) return true;
+  return false;
+}
+
+void PinchLossWatch::watch_touches(const HandSimState& s) {
+  if (thumb_touch_s_ < 0 && touches(s, script_.thumb_bone)) thumb_touch_s_ = s.time;
+  if (index_touch_s_ < 0 && touches(s, script_.index_bone)) index_touch_s_ = s.time;
+  if (thumb_touch_s_ < 0 || index_touch_s_ < 0) return;
+  touch_lead_ms_ = 1000 * (index_touch_s_ - thumb_touch_s_);
+  turn_at_touch_deg_ =
+      s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI;
+}
+
 void PinchLossWatch::observe(const HandSimState& s) {
   const double h = model_.parameters.time_step;
+  if (!touch_lead_ms_ && s.time < script_.lift_start - 0.5 * h) watch_touches(s);
   if (s.time <= script_.close_end + 0.5 * h) {
     const Eigen::Vector3d moved = s.cube_pose.position - script_.cube_centre;
     pushed_mm_ = std::max(pushed_mm_, 1000 * std::hypot(moved.x(), moved.z()));

@@ -607,7 +607,9 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
                             "within_half",
                             "loss",
                             "pushed_mm",
-                            "grip_at_lift_n"})
+                            "grip_at_lift_n",
+                            "touch_lead_ms",
+                            "turn_at_touch_deg"})
       EXPECT_NE(o.find(key), nullptr) << key;
     EXPECT_EQ(o["values"].size(), 9u);
     EXPECT_EQ(doc["human_distribution"]["parameters"].size(), 9u);

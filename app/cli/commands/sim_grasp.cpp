@@ -252,6 +252,9 @@ void write_closing(util::JsonWriter& json, const sim::GraspOutcome& o) {
       .field("loss", sim::pinch_loss_name(o.loss))
       .field("pushed_mm", o.pushed_mm)
       .field("grip_at_lift_n", o.grip_at_lift_n)
+      // null where a pad never touched the cube (NaN is written as null)
+      .field("touch_lead_ms", o.touch_lead_ms.value_or(std::nan("")))
+      .field("turn_at_touch_deg", o.turn_at_touch_deg.value_or(std::nan("")))
       .end_object();
 }
 
@@ -649,10 +652,11 @@ CommandHelp sim_grasp_help() {
           "pairs of factors; --draws adds closings drawn from a distribution of people's "
           "closings whose sources --json lists. Reports per closing whether the cube was held "
           "through the lift and hold and released, its slip between the pads, the flesh's "
-          "deepest penetration, the hold's peak grip and the cube's turn; the hold rate per "
-          "factor and over the draws with its 95 % interval, and how many of the grid's closings "
-          "within half of every factor's range it held; with --repeats, how many closings it "
-          "held every time, never and only sometimes (docs/simulator.md)."};
+          "deepest penetration, the hold's peak grip and the cube's turn, how a lost run lost it, "
+          "and (--json) how much later the index's pad first touched it than the thumb's; the "
+          "hold rate per factor and over the draws with its 95 % interval, and how many of the "
+          "grid's closings within half of every factor's range it held; with --repeats, how many "
+          "closings it held every time, never and only sometimes (docs/simulator.md)."};
 }
 
 int sim_grasp(const std::vector<std::string>& argv) {

@@ -302,6 +302,36 @@ TEST(GraspClosing, AMapRunsEachClosingFromItsOwnPlacement) {
   EXPECT_NE(map[0].measures.step_ms.size(), map[1].measures.step_ms.size());
 }
 
+// Which pad touched the cube first and how much earlier (pinch_loss.h): on the 6 cm cube the
+// closing's lead moves the index's first touch after the thumb's by about as much, either way,
+// the cube not yet turned; the light cube's solved pinch holds it with the index's middle
+// phalanx, its pad never touching (none).
+TEST(GraspClosing, ThePadsTouchesTellWhichDigitCameFirst) {
+  static const PinchScene heavy = make_pinch_scene(0.06);
+  std::vector<ClosingPoint> points;
+  for (const double lead : {0.0, 200.0, -200.0}) {
+    GraspClosing c;
+    set_closing_factor(c, "hold", 1);
+    set_closing_factor(c, "lead", lead);
+    points.push_back({"lead", lead, c});
+  }
+  const std::vector<GraspOutcome> map = run_grasp_map(heavy, points, 2);
+  ASSERT_EQ(map.size(), 3u);
+  for (const GraspOutcome& o : map) {
+    ASSERT_TRUE(o.touch_lead_ms.has_value()) << o.point.level;
+    ASSERT_TRUE(o.turn_at_touch_deg.has_value());
+    EXPECT_LT(*o.turn_at_touch_deg, 5.0) << o.point.level;
+  }
+  EXPECT_LT(std::abs(*map[0].touch_lead_ms), 50.0) << "the scripted pads arrive together";
+  EXPECT_GT(*map[1].touch_lead_ms - *map[0].touch_lead_ms, 100.0) << "the thumb first";
+  EXPECT_LT(*map[2].touch_lead_ms - *map[0].touch_lead_ms, -50.0) << "the index first";
+  GraspClosing brief;
+  set_closing_factor(brief, "hold", 1);
+  const std::vector<GraspOutcome> light = run_grasp_map(scene(), {{"hold", 1, brief}}, 1);
+  EXPECT_FALSE(light[0].touch_lead_ms.has_value());
+  EXPECT_FALSE(light[0].turn_at_touch_deg.has_value());
+}
+
 // Only the scripted pinch's own placement, untimed, is taken for the closings placed as it: not
 // a pinch at another squeeze, a tilted one, nor one timed (its cube moved, say).
 TEST(GraspClosing, TheScriptedPlacementIsToldFromOthers) {
