@@ -23,7 +23,10 @@ PinchLossWatch::PinchLossWatch(const HandSimModel& model, const PinchScript& scr
     : model_(model), script_(script) {}
 
 bool PinchLossWatch::touches(const HandSimState& s, int bone) const {
-  const auto on = [&](int node) { return model_.node_bone[std::size_t(node)] == bone; };
+  const auto on = [&](int node) {  // a model without bones has no node_bone
+    return std::size_t(node) < model_.node_bone.size() &&
+           model_.node_bone[std::size_t(node)] == bone;
+  };
   for (const ContactAnchor& a : s.node_cube)
     if (on(a.point)) return true;
   for (const ContactAnchor& a : s.sample_cube)

@@ -148,6 +148,8 @@ RecordedPinchRun run_recorded_pinch(const HandSimModel& model, const hand::Skele
   run.loss = watch.loss(run.report.held);
   run.pushed_mm = watch.pushed_mm();
   run.grip_at_lift_n = watch.grip_at_lift_n();
+  run.touch_lead_ms = watch.touch_lead_ms();
+  run.turn_at_touch_deg = watch.turn_at_touch_deg();
   return run;
 }
 

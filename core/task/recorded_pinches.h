@@ -22,6 +22,7 @@
 //   script's settle, lift, hold and opening follow.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,9 @@ struct RecordedPinchRun {
   PinchLoss loss = PinchLoss::kNone;
   double pushed_mm = 0.0;       // the cube's displacement along the floor by the closing's end
   double grip_at_lift_n = 0.0;  // the grip as the lift starts
+  // How much later the index's pad first touched the cube than the thumb's, and the cube's turn
+  // then (none: a pad never touched it before the lift; pinch_loss.h).
+  std::optional<double> touch_lead_ms, turn_at_touch_deg;
 };
 
 RecordedPinchRun run_recorded_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,

@@ -545,16 +545,17 @@ TEST(CliSim, PinchesRunARecordingsClosingOnTheSoftHand) {
   const util::JsonValue doc = util::JsonValue::parse(r.out);
   ASSERT_EQ(doc["pinches"].size(), 1u) << r.out;
   const util::JsonValue p = doc["pinches"][0];
-  for (const char* key : {"recording",      "strategy",
-                          "cube_size_m",    "moment_s",
-                          "closed_s",       "widest_m",
-                          "narrowest_m",    "closing_speed_m_s",
-                          "tilt_deg",       "takes_cube",
-                          "outcome",        "pushed_mm",
-                          "grip_at_lift_n", "held",
-                          "released",       "lift_m",
-                          "slip_mm",        "max_penetration_mm",
-                          "peak_grip_n",    "top_load_before_closing_n"})
+  for (const char* key : {"recording",         "strategy",
+                          "cube_size_m",       "moment_s",
+                          "closed_s",          "widest_m",
+                          "narrowest_m",       "closing_speed_m_s",
+                          "tilt_deg",          "takes_cube",
+                          "outcome",           "pushed_mm",
+                          "grip_at_lift_n",    "touch_lead_ms",
+                          "turn_at_touch_deg", "held",
+                          "released",          "lift_m",
+                          "slip_mm",           "max_penetration_mm",
+                          "peak_grip_n",       "top_load_before_closing_n"})
     EXPECT_NE(p.find(key), nullptr) << key;
   EXPECT_TRUE(p["takes_cube"].as_bool());
   EXPECT_TRUE(p["held"].as_bool());

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -153,6 +154,9 @@ void write_rows_json(const std::vector<PinchRow>& rows, const std::vector<std::s
     if (r.closing.takes_cube) {
       json.field("pushed_mm", r.run.pushed_mm)
           .field("grip_at_lift_n", r.run.grip_at_lift_n)
+          // null where a pad never touched the cube (NaN is written as null)
+          .field("touch_lead_ms", r.run.touch_lead_ms.value_or(std::nan("")))
+          .field("turn_at_touch_deg", r.run.turn_at_touch_deg.value_or(std::nan("")))
           .field("other_skin_depth_mm", -1000 * r.script.pinch_clearance);
       write_pinch_measures(json, r.run.report);
     }
