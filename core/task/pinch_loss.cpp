@@ -40,8 +40,7 @@ void PinchLossWatch::watch_touches(const HandSimState& s) {
   if (index_touch_s_ < 0 && touches(s, script_.index_bone)) index_touch_s_ = s.time;
   if (thumb_touch_s_ < 0 || index_touch_s_ < 0) return;
   touch_lead_ms_ = 1000 * (index_touch_s_ - thumb_touch_s_);
-  turn_at_touch_deg_ =
-      s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI;
+  turn_at_touch_deg_ = cube_turn_deg(s);
 }
 
 void PinchLossWatch::observe(const HandSimState& s) {

@@ -391,6 +391,10 @@ PinchScript make_grasp_script(const hand::Skeleton& skeleton, const HandSimModel
                     std::move(jitter));
 }
 
+double cube_turn_deg(const HandSimState& state) {
+  return state.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI;
+}
+
 double grip_force(const HandSimModel& model, const HandSimState& state) {
   const std::array<double, 6> faces = flesh_forces_on_cube_faces(model, state);
   double grip = 0.0;
@@ -421,7 +425,7 @@ void PinchMeter::observe(const HandSimState& state, double t, double max_penetra
   slip_mm_ = std::max(slip_mm_, 1000 * (between - reference_).norm());
   max_penetration_mm_ = std::max(max_penetration_mm_, 1000 * max_penetration);
   peak_grip_n_ = std::max(peak_grip_n_, grip_force(model_, state));
-  turn_deg_ = state.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI;
+  turn_deg_ = cube_turn_deg(state);
   lift_ = state.cube_pose.position.y() - script_.cube_centre.y();
   // Half the lift: a cube that fell is back on the floor, while one held but turned in the
   // grip hangs up to about a side's third lower than the pads (at 80 % a 6 cm cube held at

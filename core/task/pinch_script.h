@@ -101,6 +101,9 @@ PinchScript time_grasp(PinchScript placed, const hand::Skeleton& skeleton,
 // flesh normal forces (N).
 double grip_force(const HandSimModel& model, const HandSimState& state);
 
+// How far the cube has turned from its start, which every script sets unturned (degrees).
+double cube_turn_deg(const HandSimState& state);
+
 struct PinchReport {
   bool held = false;      // lifted to at least half the lift and kept there through the hold
   bool released = false;  // back on the floor, no flesh touching it, at the end

@@ -354,8 +354,7 @@ class FrameWriter {
 // --trace: a step's row.
 void write_trace_row(std::ostream& trace, const sim::PinchScene& setup,
                      const sim::HandSimState& s) {
-  trace << s.time << ',' << s.cube_pose.position.y() << ','
-        << s.cube_pose.rotation.angularDistance(Eigen::Quaterniond::Identity()) * 180 / M_PI << ','
+  trace << s.time << ',' << s.cube_pose.position.y() << ',' << sim::cube_turn_deg(s) << ','
         << sim::grip_force(setup.model, s) << ','
         << sim::flesh_forces_on_cube_faces(setup.model, s)[3] << ','  // its own +y: the top
         << s.node_cube.size() + s.sample_cube.size();
