@@ -1,5 +1,6 @@
 #include "core/sim/body_energies.h"
 
+#include "core/sim/saturating_damper.h"
 #include "core/sim/saturating_spring.h"
 
 namespace handlab::sim {
@@ -81,6 +82,30 @@ void add_tracking(const HandSimModel& model, const HandSimState& s,
     terms.energy += 0.5 * scale * par.tracking_torsion * phi.squaredNorm();
     terms.gradient.segment<3>(3 * (tb + 1)) += scale * par.tracking_torsion * phi;
     terms.add_block(tb + 1, scale * par.tracking_torsion * identity);
+  }
+}
+
+void add_tracking_damping(const HandSimModel& model, const HandSimState& s,
+                          const HandSimState& start, NewtonTerms& terms) {
+  const SimParameters& par = model.parameters;
+  if (par.tracking_damping <= 0) return;
+  const double h = par.time_step, scale = terms.scale;
+  const double move = par.tracking_damping * par.tracking_stiffness,
+               turn = par.tracking_damping * par.tracking_torsion;
+  // A turn's saturating speed: the move's at the end of a phalanx (an assumption, about 2 cm).
+  const double speed = par.tracking_damping_speed, turn_speed = speed / 0.02;
+  for (int b = 0; b < model.bone_count(); ++b) {
+    const RigidPose &pose = s.bone_pose[std::size_t(b)], &from = start.bone_pose[std::size_t(b)];
+    const int tb = bone_block(model, b);
+    const SpringResponse m = saturating_damper(move, speed, h, pose.position - from.position),
+                         r = saturating_damper(
+                             turn, turn_speed, h,
+                             rotation_vector(pose.rotation * from.rotation.conjugate()));
+    terms.energy += scale * (m.energy + r.energy);
+    terms.gradient.segment<3>(3 * tb) += scale * m.force;
+    terms.gradient.segment<3>(3 * (tb + 1)) += scale * r.force;
+    terms.add_block(tb, scale * m.stiffness);
+    terms.add_block(tb + 1, scale * r.stiffness);
   }
 }
 

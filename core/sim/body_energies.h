@@ -1,5 +1,6 @@
 // The bodies' energies: the bone-flesh coupling springs, the penalty joints, the tracking
-// springs towards the intermediate hand, gravity, and the kinetic terms of backward Euler.
+// springs towards the intermediate hand and their damping, gravity, and the kinetic terms of
+// backward Euler.
 #pragma once
 
 #include <vector>
@@ -25,6 +26,10 @@ void add_joints(const HandSimModel& model, const HandSimState& state, NewtonTerm
 // by a spring, and its rotation by a torsion spring on the rotation vector that separates them.
 void add_tracking(const HandSimModel& model, const HandSimState& state,
                   const std::vector<RigidPose>& targets, NewtonTerms& terms);
+// The tracking's damping (tracking_damping): each bone's move and turn since the step's `start`,
+// by saturating dampers of tracking_damping times the tracking's stiffness and torsion.
+void add_tracking_damping(const HandSimModel& model, const HandSimState& state,
+                          const HandSimState& start, NewtonTerms& terms);
 // Gravity on the bones, the cube and the flesh's nodes.
 void add_gravity(const HandSimModel& model, const HandSimState& state, NewtonTerms& terms);
 

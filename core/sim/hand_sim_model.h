@@ -45,6 +45,15 @@ struct SimParameters {
   // tracks linearly.
   double tracking_force_limit = 0.0;   // N per finger bone
   double tracking_torque_limit = 0.0;  // N m per finger bone
+  // Each bone's motion damped against the world, so that a target that jumps a little, as a
+  // tracker's jitter does, is followed as through a first-order lag of tracking_damping (the
+  // damper is tracking_damping times the tracking's stiffness and torsion), while the hand's
+  // own motion is not held back: the damper's force saturates past tracking_damping_speed
+  // (saturating_damper.h; a rotation past that over 2 cm), so that a bone never lags its target
+  // by much more than tracking_damping x tracking_damping_speed for it. 0: no damping; a
+  // speed of 0: a linear damper.
+  double tracking_damping = 0.0;        // s
+  double tracking_damping_speed = 0.0;  // m/s
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
   // coefficients (below).
   double contact_stiffness = 5e3;     // N/m, a flesh node against the cube or floor, at first

@@ -39,6 +39,8 @@ const std::vector<NamedParameter>& named_parameters() {
       {"tracking_torsion", &SimParameters::tracking_torsion, true},
       {"tracking_force_limit", &SimParameters::tracking_force_limit, false},
       {"tracking_torque_limit", &SimParameters::tracking_torque_limit, false},
+      {"tracking_damping", &SimParameters::tracking_damping, false},
+      {"tracking_damping_speed", &SimParameters::tracking_damping_speed, false},
       {"contact_stiffness", &SimParameters::contact_stiffness, true},
       {"contact_stiffening", &SimParameters::contact_stiffening, false},
       {"contact_damping", &SimParameters::contact_damping, false},

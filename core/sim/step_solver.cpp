@@ -145,6 +145,7 @@ struct StepSolver::Impl {
       add_flesh(model, it.state, terms, pool, flesh_buffers);
       add_coupling(model, it.state, terms, &layout);
       add_joints(model, it.state, terms, &layout);
+      add_tracking_damping(model, it.state, start, terms);
       add_tracking(model, it.state, targets, terms);
       add_gravity(model, it.state, terms);
       add_kinetic(model, it.state, it.turned, start, terms);

@@ -1,10 +1,12 @@
 // The bodies' stage (core/sim/body_energies.h), each energy alone: coupling, joints, tracking,
-// gravity and the kinetic terms. Gradients against central differences of the energy along
-// directions through every unknown (node positions, the bodies' translations and rotation
+// its damping, gravity and the kinetic terms. Gradients against central differences of the energy
+// along directions through every unknown (node positions, the bodies' translations and rotation
 // vectors) on the hand gripping the fine cube, where every spring is stretched; Hessians against
 // central differences of the gradient where the springs are at rest length (the hand at rest,
 // its targets where its bones are), where the Gauss-Newton Hessian J'KJ is the Hessian, and the
-// kinetic terms' everywhere (they are quadratic).
+// kinetic terms' everywhere (they are quadratic), and the tracking's damping's where the bones have
+// moved since the step's start but not turned (its turn's Hessian, like the tracking's, is the
+// rotation vector's at rest).
 #include <functional>
 #include <string>
 
@@ -22,6 +24,17 @@ using test::GraspScene;
 using Energy =
     std::function<void(const HandSimState&, const std::vector<Eigen::Vector3d>&, NewtonTerms&)>;
 
+// The model with the tracking's damping on, saturating (a bone moved 1 mm in a step is past v0).
+const HandSimModel& damped(const HandSimModel& model) {
+  static const HandSimModel copy = [&] {
+    HandSimModel m = model;
+    m.parameters.tracking_damping = 0.025;
+    m.parameters.tracking_damping_speed = 0.07;
+    return m;
+  }();
+  return copy;
+}
+
 // The energy named `name`, with the targets and the step's start it reads.
 Energy energy_named(const std::string& name, const HandSimModel& model,
                     const std::vector<RigidPose>& targets, const HandSimState& start) {
@@ -32,6 +45,10 @@ Energy energy_named(const std::string& name, const HandSimModel& model,
   if (name == "tracking")
     return [&](const HandSimState& s, const auto&, NewtonTerms& t) {
       add_tracking(model, s, targets, t);
+    };
+  if (name == "tracking_damping")
+    return [&](const HandSimState& s, const auto&, NewtonTerms& t) {
+      add_tracking_damping(damped(model), s, start, t);
     };
   if (name == "gravity")
     return [&](const HandSimState& s, const auto&, NewtonTerms& t) { add_gravity(model, s, t); };
@@ -64,6 +81,14 @@ HandSimState step_before(const HandSimModel& model, const HandSimState& s) {
   return start;
 }
 
+// The tracking's damping's start: every bone 1.1 mm back along a line (a step at 0.14 m/s, past
+// its saturating speed), none turned.
+HandSimState moved_not_turned(const HandSimState& s) {
+  HandSimState start = s;
+  for (RigidPose& pose : start.bone_pose) pose.position -= Eigen::Vector3d(1e-3, -4e-4, 2e-4);
+  return start;
+}
+
 class BodyEnergy : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BodyEnergy, GradientIsTheEnergysSlope) {
@@ -93,7 +118,8 @@ TEST_P(BodyEnergy, HessianIsTheGradientsDerivativeAtRestLength) {
   At at{initial_state(model, g.scene.skeleton, g.scene.script.start_root(), g.state.cube_pose),
         std::vector<Eigen::Vector3d>(std::size_t(model.bone_count() + 1), Eigen::Vector3d::Zero())};
   const std::vector<RigidPose> targets = at.state.bone_pose;
-  const HandSimState start = step_before(model, at.state);
+  const HandSimState start =
+      GetParam() == "tracking_damping" ? moved_not_turned(at.state) : step_before(model, at.state);
   const Energy energy = energy_named(GetParam(), model, targets, start);
   const NewtonTerms terms =
       terms_at(model, at, energy, Eigen::VectorXd::Zero(model.dof_count()), 0.0, true);
@@ -119,7 +145,8 @@ TEST_P(BodyEnergy, HessianIsTheGradientsDerivativeAtRestLength) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Each, BodyEnergy,
-                         ::testing::Values("coupling", "joints", "tracking", "gravity", "kinetic"),
+                         ::testing::Values("coupling", "joints", "tracking", "tracking_damping",
+                                           "gravity", "kinetic"),
                          [](const auto& info) { return info.param; });
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The soft hand in the simulator: it holds a pose against gravity, comes to rest held still in
-// a tracked pose, and targets that jump, leave the joint limits or are not numbers leave its
-// state finite and bounded.
+// a tracked pose, targets that jump, leave the joint limits or are not numbers leave its state
+// finite and bounded, and the tracking's damping filters a small jump but not a fast move.
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -135,6 +135,56 @@ TEST(HandSimulator, StaysBoundedWhenItsTargetJumpsHalfAMetre) {
   }
   EXPECT_LT(worst, 0.8) << "m from the new target's wrist";
   EXPECT_LT(farthest_node(s, pose.root_position), 0.3) << "m: the hand should have followed";
+}
+
+// How a hand of `model` follows, palm down in the air: the share of a 0.3 mm jump of its targets
+// its palm makes in one step, and how much farther behind its target the palm is after 0.25 s
+// of the targets moving at 0.5 m/s than at rest.
+struct Following {
+  double jump_share = 0.0, extra_lag = 0.0;
+};
+
+Following following(const StudyHand& h, const HandSimModel& model) {
+  HandSimulator sim(model);
+  hand::HandPose pose = palm_down(h.skeleton);
+  HandSimState s = start_state(h, pose);
+  int palm = 0;
+  while (model.bones[std::size_t(palm)].parent >= 0) ++palm;
+  auto lag = [&] {
+    return bone_targets(model, h.skeleton, pose)[std::size_t(palm)].position.x() -
+           s.bone_pose[std::size_t(palm)].position.x();
+  };
+  for (int i = 0; i < 20; ++i) sim.step(s, bone_targets(model, h.skeleton, pose));
+  const double at_rest = lag(), before = s.bone_pose[std::size_t(palm)].position.x();
+  pose.root_position.x() += 3e-4;
+  sim.step(s, bone_targets(model, h.skeleton, pose));
+  Following f;
+  f.jump_share = (s.bone_pose[std::size_t(palm)].position.x() - before) / 3e-4;
+  for (int i = 0; i < 30; ++i) {
+    pose.root_position.x() += 0.5 * model.parameters.time_step;
+    sim.step(s, bone_targets(model, h.skeleton, pose));
+  }
+  f.extra_lag = lag() - at_rest;
+  return f;
+}
+
+TEST(HandSimulator, TrackingDampingFiltersASmallJumpButNotAFastMove) {
+  const StudyHand& h = study_hand();
+  HandSimModel linear = h.model, saturating = h.model;
+  linear.parameters.tracking_damping = saturating.parameters.tracking_damping = 0.025;
+  saturating.parameters.tracking_damping_speed = 0.07;
+  const Following none = following(h, h.model), lin = following(h, linear),
+                  sat = following(h, saturating);
+  EXPECT_GT(none.jump_share, 0.6);
+  EXPECT_LT(lin.jump_share, 0.4);
+  EXPECT_LT(sat.jump_share, 0.4);
+  // A linear damper lags a move by its time constant, 12.5 mm at 0.5 m/s; the saturating one by
+  // little more than 0.025 s x 0.07 m/s = 1.75 mm.
+  EXPECT_GT(lin.extra_lag - none.extra_lag, 0.006);
+  EXPECT_LT(sat.extra_lag - none.extra_lag, 0.0035);
+  std::cout << "jump followed in a step: " << none.jump_share << ", " << lin.jump_share << ", "
+            << sat.jump_share << "; lag at 0.5 m/s (mm): " << 1000 * none.extra_lag << ", "
+            << 1000 * lin.extra_lag << ", " << 1000 * sat.extra_lag << "\n";
 }
 
 TEST(HandSimulator, StaysBoundedForTargetsBeyondTheJointLimits) {
