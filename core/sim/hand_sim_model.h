@@ -48,10 +48,10 @@ struct SimParameters {
   // Each bone's motion damped against the world, so that a target that jumps a little, as a
   // tracker's jitter does, is followed as through a first-order lag of tracking_damping (the
   // damper is tracking_damping times the tracking's stiffness and torsion), while the hand's
-  // own motion is not held back: the damper's force saturates past tracking_damping_speed
-  // (saturating_damper.h; a rotation past that over 2 cm), so that a bone never lags its target
-  // by much more than tracking_damping x tracking_damping_speed for it. 0: no damping; a
-  // speed of 0: a linear damper.
+  // own motion is held back little: the damper's force saturates past tracking_damping_speed
+  // (saturating_damper.h; a turn past that over 2 cm), so that a fast move adds little more
+  // than tracking_damping x tracking_damping_speed to a bone's lag behind its target. 0: no
+  // damping; a speed of 0: a linear damper.
   double tracking_damping = 0.0;        // s
   double tracking_damping_speed = 0.0;  // m/s
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
