@@ -10,7 +10,7 @@
 #include "core/task/pinch_scene.h"
 
 namespace handlab::sim {
-namespace {
+namespace contact_substeps_test {
 
 constexpr double kStudyStep = 1.0 / 120;
 
@@ -140,5 +140,5 @@ TEST(ContactSubsteps, OnlyWhereFleshBeginsToTouchTheCube) {
   EXPECT_GT(plain_without_window, 0) << "steps that only the window takes in substeps";
 }
 
-}  // namespace
+}  // namespace contact_substeps_test
 }  // namespace handlab::sim

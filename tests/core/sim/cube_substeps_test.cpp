@@ -19,7 +19,7 @@
 #include "core/task/pinch_script.h"
 
 namespace handlab::sim {
-namespace {
+namespace cube_substeps_test {
 
 constexpr double kStudyStep = 1.0 / 120;
 
@@ -215,5 +215,5 @@ TEST(CubeSubsteps, OnTheFloorPastTheWindowWhereFleshMovesTheCube) {
   EXPECT_GT(left, 0) << "states the rule leaves alone";
 }
 
-}  // namespace
+}  // namespace cube_substeps_test
 }  // namespace handlab::sim
