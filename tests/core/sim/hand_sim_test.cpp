@@ -178,8 +178,8 @@ TEST(HandSimulator, TrackingDampingFiltersASmallJumpButNotAFastMove) {
   EXPECT_GT(none.jump_share, 0.6);
   EXPECT_LT(lin.jump_share, 0.4);
   EXPECT_LT(sat.jump_share, 0.4);
-  // A linear damper lags a move by its time constant, 12.5 mm at 0.5 m/s; the saturating one by
-  // little more than 0.025 s x 0.07 m/s = 1.75 mm.
+  // A linear damper lags a move by its time constant, 12.5 mm at 0.5 m/s; the saturating one,
+  // whose force stays under c v0, by at most 0.025 s x 0.07 m/s = 1.75 mm once the move is steady.
   EXPECT_GT(lin.extra_lag - none.extra_lag, 0.006);
   EXPECT_LT(sat.extra_lag - none.extra_lag, 0.0035);
   std::cout << "jump followed in a step: " << none.jump_share << ", " << lin.jump_share << ", "
