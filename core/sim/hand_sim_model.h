@@ -51,9 +51,10 @@ struct SimParameters {
   // own motion is held back little: the damper's force saturates past tracking_damping_speed
   // (saturating_damper.h; a turn past that over 2 cm), so that a fast move adds little more
   // than tracking_damping x tracking_damping_speed to a bone's lag behind its target. 0: no
-  // damping; a speed of 0: a linear damper.
-  double tracking_damping = 0.0;        // s
-  double tracking_damping_speed = 0.0;  // m/s
+  // damping; a speed of 0: a linear damper. The values were chosen on the grasp map
+  // (docs/simulator.md, "The tracking's damping").
+  double tracking_damping = 0.025;       // s
+  double tracking_damping_speed = 0.07;  // m/s
   // Contact: normal penalty per contact point, the friction anchor spring, Coulomb's
   // coefficients (below).
   double contact_stiffness = 5e3;     // N/m, a flesh node against the cube or floor, at first
