@@ -1,8 +1,8 @@
 // handlab-cli sim replay: a real recording, calibrated and retargeted onto the study hand, drives
 // the soft hand in free motion (the cube out of reach): the simulator's cost on tracked input,
 // which moves as a person's hand does (fast, with tremor and the tracker's jitter), where `sim
-// bench` measures a smooth scripted pinch. With --hold the hand is held still in the
-// recording's first pose: it should come to rest.
+// bench` measures a smooth scripted pinch. With --hold the hand is held still in one of the
+// recording's poses: it should come to rest.
 #include "app/cli/commands/sim_replay.h"
 
 #include <algorithm>
@@ -36,19 +36,19 @@ struct ReplayFigures {
   double fastest_at_end = 0.0;  // m/s: the fastest flesh node in the last 0.5 s
 };
 
-// The recording's poses (or its first, held) played on the soft hand for `duration` s, the
-// cube out of reach, each step taking the latest pose.
+// The recording's poses (or its pose `held`, held: -1 plays them) played on the soft hand for
+// `duration` s, the cube out of reach, each step taking the latest pose.
 ReplayFigures replay_poses(const retarget::RecordingPoses& replay, const sim::HandSimModel& model,
-                           bool hold, double duration, int threads) {
+                           int held, double duration, const sim::SimOptions& options) {
   const hand::Skeleton& skeleton = replay.skeleton;
   const std::vector<hand::HandPose>& poses = replay.poses;
   const std::vector<double>& times = replay.times;
-  sim::SimOptions options;
-  options.threads = threads;
+  const bool hold = held >= 0;
   sim::HandSimulator simulator(model, options);
+  std::size_t frame = hold ? std::size_t(held) : 0;
   Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
-  root.linear() = poses.front().root_rotation;
-  root.translation() = poses.front().root_position;
+  root.linear() = poses[frame].root_rotation;
+  root.translation() = poses[frame].root_position;
   sim::RigidPose cube;  // out of reach
   cube.position = root.translation() + Eigen::Vector3d(1.0, 0, 0);
   cube.position.y() = model.parameters.cube_size / 2;
@@ -56,7 +56,6 @@ ReplayFigures replay_poses(const retarget::RecordingPoses& replay, const sim::Ha
   const double h = model.parameters.time_step;
   ReplayFigures f;
   f.steps = int(std::floor(duration / h));
-  std::size_t frame = 0;
   for (int i = 0; i < f.steps; ++i) {
     const double t = times.front() + double(i) * h;
     while (!hold && frame + 1 < times.size() && times[frame + 1] <= t) ++frame;
@@ -80,9 +79,11 @@ ReplayFigures replay_poses(const retarget::RecordingPoses& replay, const sim::Ha
 std::vector<OptionSpec> sim_replay_options() {
   return {
       {"strategy", "naive|ours", "the retargeting", "ours"},
-      {"hold", "", "hold the recording's first pose still instead of playing it"},
+      {"hold", "", "hold one of the recording's poses still instead of playing it"},
+      {"frame", "K", "with --hold: the pose held, the K-th of the recording's hand frames", "0"},
       {"duration", "SECONDS", "with --hold: how long (default: the recording's length)"},
       {"threads", "N", "threads the flesh's work is split over", "1"},
+      {"newton-iterations", "N", "Newton iterations a step", "1"},
       {"stiffening-blend", "FRACTION",
        "of the stiffening threshold, below it, over which Newton's matrix takes in the "
        "stiffening (0: a matrix that jumps at the threshold)",
@@ -117,6 +118,15 @@ int sim_replay(const std::vector<std::string>& argv) {
   const double length = replay.times.back() - replay.times.front();
   const double duration = hold && args.has("duration") ? args.number("duration") : length;
   if (!(duration > 0 && duration <= 600)) throw UsageError("--duration must be in (0, 600] s");
+  const long frame = args.integer("frame");
+  if (frame < 0 || frame >= long(replay.poses.size()))
+    throw UsageError("--frame must be 0 to " + std::to_string(replay.poses.size() - 1));
+  if (args.has("frame") && !hold) throw UsageError("--frame needs --hold");
+  sim::SimOptions options;
+  options.threads = threads;
+  options.newton_iterations = int(args.integer("newton-iterations"));
+  if (options.newton_iterations < 1 || options.newton_iterations > 20)
+    throw UsageError("--newton-iterations must be 1 to 20");
 
   const hand::HandFlesh flesh = hand::build_flesh(replay.skeleton, replay.shape);
   sim::SimParameters parameters;
@@ -124,14 +134,14 @@ int sim_replay(const std::vector<std::string>& argv) {
   if (!(parameters.stiffening_blend >= 0 && parameters.stiffening_blend < 1))
     throw UsageError("--stiffening-blend must be in [0, 1)");
   const sim::HandSimModel model = sim::make_hand_sim_model(replay.skeleton, flesh, parameters);
-  const ReplayFigures f = replay_poses(replay, model, hold, duration, threads);
+  const ReplayFigures f = replay_poses(replay, model, hold ? int(frame) : -1, duration, options);
   const double median = timing_quantile(f.step_ms, 0.5), p95 = timing_quantile(f.step_ms, 0.95);
   const std::string json_out = args.text("json");
   if (json_out != "-") {
     std::cout << std::fixed << std::setprecision(2) << recording.source << " (" << strategy_name
-              << (hold ? ", held still" : "") << "): " << f.steps << " steps, median " << median
-              << " ms, p95 " << p95 << " ms; " << f.factorizations << " factorisations, CG "
-              << double(f.linear_iterations) / f.steps
+              << (hold ? ", pose " + std::to_string(frame) + " held still" : "") << "): " << f.steps
+              << " steps, median " << median << " ms, p95 " << p95 << " ms; " << f.factorizations
+              << " factorisations, CG " << double(f.linear_iterations) / f.steps
               << " a step; fastest flesh node in the last 0.5 s " << std::setprecision(3)
               << f.fastest_at_end * 1000 << " mm/s\n";
   }
@@ -142,7 +152,9 @@ int sim_replay(const std::vector<std::string>& argv) {
           .field("recording", recording.source)
           .field("strategy", strategy_name)
           .field("hold", hold)
+          .field("frame", static_cast<long long>(hold ? frame : -1))
           .field("threads", threads)
+          .field("newton_iterations", options.newton_iterations)
           .field("stiffening_blend", model.parameters.stiffening_blend)
           .field("steps", f.steps)
           .field("step_ms_median", median)
