@@ -394,8 +394,9 @@ TEST(CliRetarget, DrawsThePinchPicture) {
   EXPECT_EQ(run_cli("retarget " + recording + " --picture " + png + " --frame 1").status, 1);
 }
 
-// A real recording on the soft hand: played, and held still in one of its poses (the 40th, one
-// where the flesh comes to rest: HandSimulator.ComesToRestHeldStillInMostTrackedPoses).
+// A real recording on the soft hand: played, and held still in one of its poses (index 40, where
+// the flesh comes to rest; in a few poses a node cycles instead: docs/simulator.md, "Open
+// problems", HandSimulator.ComesToRestHeldStillInMostTrackedPoses).
 TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";
   const std::string json = test::fresh_path("sim_replay.json");
@@ -574,9 +575,9 @@ TEST(CliSim, PinchesRunARecordingsClosingOnTheSoftHand) {
 
 // The grasp map's parts: a closing known to hold (the 6 cm cube's scripted pinch, 3 mm past
 // the faces, its hand placed by the pinch's rule) and one known to lose the cube (the 1 cm
-// cube in the functional posture under eight times a real recording's tracker jitter, whose
-// pads jump by 2 mm, a fifth of its side, at up to half a metre a second: it is knocked away
-// before the pinch closes, docs/simulator.md), each closing's keys in the JSON, and the
+// cube in the functional posture under eight times a real recording's tracker jitter, which
+// shakes its pads by 1.8 and 2.5 mm RMS at up to 56 cm/s, a quarter of its side: it is knocked
+// away before the pinch closes; the map's `pad_jitter`), each closing's keys in the JSON, and the
 // refusals.
 TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   const std::string recording = std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz";

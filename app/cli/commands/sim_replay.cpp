@@ -108,8 +108,9 @@ int sim_replay(const std::vector<std::string>& argv) {
   if (args.help_requested()) return print_help(sim_replay_help(), args);
   if (args.positional().size() != 1) throw UsageError("name one recording");
   const std::string strategy_name = args.choice("strategy", {"naive", "ours"});
-  const int threads = int(args.integer("threads"));
-  if (threads < 1 || threads > 64) throw UsageError("--threads must be 1 to 64");
+  const long threads_asked = args.integer("threads");
+  if (threads_asked < 1 || threads_asked > 64) throw UsageError("--threads must be 1 to 64");
+  const int threads = int(threads_asked);
 
   const tracking::Recording recording = tracking::read_recording(args.positional()[0]);
   const retarget::RecordingPoses replay = retarget::retarget_recording(
@@ -118,15 +119,16 @@ int sim_replay(const std::vector<std::string>& argv) {
   const double length = replay.times.back() - replay.times.front();
   const double duration = hold && args.has("duration") ? args.number("duration") : length;
   if (!(duration > 0 && duration <= 600)) throw UsageError("--duration must be in (0, 600] s");
+  if (args.has("frame") && !hold) throw UsageError("--frame needs --hold");
   const long frame = args.integer("frame");
   if (frame < 0 || frame >= long(replay.poses.size()))
     throw UsageError("--frame must be 0 to " + std::to_string(replay.poses.size() - 1));
-  if (args.has("frame") && !hold) throw UsageError("--frame needs --hold");
+  const long newton_iterations = args.integer("newton-iterations");
+  if (newton_iterations < 1 || newton_iterations > 20)
+    throw UsageError("--newton-iterations must be 1 to 20");
   sim::SimOptions options;
   options.threads = threads;
-  options.newton_iterations = int(args.integer("newton-iterations"));
-  if (options.newton_iterations < 1 || options.newton_iterations > 20)
-    throw UsageError("--newton-iterations must be 1 to 20");
+  options.newton_iterations = int(newton_iterations);
 
   const hand::HandFlesh flesh = hand::build_flesh(replay.skeleton, replay.shape);
   sim::SimParameters parameters;
