@@ -96,21 +96,30 @@ struct HeldStill {
   int factorizations = 0;
 };
 
+// The pinch recording and its open-palm calibration onto the study hand, made once.
+struct PinchRecording {
+  tracking::Recording recording =
+      tracking::read_recording(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz");
+  std::optional<retarget::Calibration> calibration;
+  explicit PinchRecording(const hand::Skeleton& skeleton) {
+    const auto fitter =
+        tracking::TrackedHandFitter::for_recording(recording.frames, tracking::Side::kRight);
+    if (fitter)
+      calibration = retarget::calibrate_open_palm(recording.frames, tracking::Side::kRight,
+                                                  skeleton, *fitter);
+  }
+};
+
 HeldStill held_still(const StudyHand& h, const HandSimModel& model, int frame,
                      const SimOptions& options = {}) {
-  static const tracking::Recording recording =
-      tracking::read_recording(std::string(HANDLAB_SOURCE_DIR) + "/data/leap/pinch.json.lz");
-  const auto side = tracking::Side::kRight;
-  auto fitter = tracking::TrackedHandFitter::for_recording(recording.frames, side);
-  const auto calibration =
-      fitter ? retarget::calibrate_open_palm(recording.frames, side, h.skeleton, *fitter)
-             : std::nullopt;
-  const tracking::TrackedHand* hand = recording.frames.at(std::size_t(frame)).hand(side);
-  if (!calibration || hand == nullptr) {
+  static const PinchRecording pinch(h.skeleton);
+  const tracking::TrackedHand* hand =
+      pinch.recording.frames.at(std::size_t(frame)).hand(tracking::Side::kRight);
+  if (!pinch.calibration || hand == nullptr) {
     ADD_FAILURE() << "no calibration or no right hand in frame " << frame;
     return {};
   }
-  retarget::Retargeter retargeter(retarget::Strategy::kOurs, h.skeleton, *calibration);
+  retarget::Retargeter retargeter(retarget::Strategy::kOurs, h.skeleton, *pinch.calibration);
   const hand::HandPose pose = retargeter.retarget(*hand).pose;
 
   HandSimulator sim(model, options);
