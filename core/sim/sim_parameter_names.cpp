@@ -32,6 +32,7 @@ const std::vector<NamedParameter>& named_parameters() {
       {"flesh_density", &SimParameters::flesh_density, true},
       {"stiffening_strain", &SimParameters::stiffening_strain, true},
       {"stiffening_factor", &SimParameters::stiffening_factor, false},
+      {"short_step_excess", &SimParameters::short_step_excess, false},
       {"bone_density", &SimParameters::bone_density, true},
       {"coupling_stiffness", &SimParameters::coupling_stiffness, true},
       {"joint_stiffness", &SimParameters::joint_stiffness, true},

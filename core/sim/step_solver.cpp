@@ -38,6 +38,18 @@ namespace {
 constexpr int kFrictionPasses = 4;
 // The largest rotation of a body in one Newton iteration (rad).
 constexpr double kMaxTurn = 0.25;
+// The Newton iterations a pass takes beyond SimOptions::newton_iterations while its steps stop
+// short (SimParameters::short_step_excess): with one, held poses still cycle where the excess
+// is small; with two, none of 13 held poses does (docs/simulator.md).
+constexpr int kShortStepIterations = 2;
+
+// An iteration's energy decrease over its quadratic model's, less 1: how far the step, from
+// `before` to `after` at `length` along the Newton direction dq, stopped short of the model's
+// (above 0) or ran into curvature the model has not (below 0: contacts, which the line search
+// handles). With H dq = -g the model lowers the energy by -slope (L - L^2 / 2), slope = g.dq.
+double decrease_excess(double before, double after, double slope, double length) {
+  return (after - before) / (slope * (length - 0.5 * length * length)) - 1;
+}
 
 // Every body carried on by its velocity, into `it` (whose buffers are reused).
 void predict(const HandSimModel& model, const HandSimState& start, StepIterate& it) {
@@ -110,6 +122,9 @@ struct StepSolver::Impl {
   // the tets' rotations as it found them, and only their contacts differ.
   Eigen::VectorXd kept_gradient;
   double kept_energy = 0.0;
+  // Whether the matrix's terms but the contacts' are still the kept evaluation's: not after a
+  // later Newton iteration's evaluation replaced them.
+  bool kept_current = false;
   // The step's iterate, the line search's trial, and the prediction with its tets' rotations
   // (where a step's later passes start), kept from step to step: a study hand's state is
   // 130 kB (its tets' rotations the most), and swapped or assigned, their buffers are reused.
@@ -126,11 +141,14 @@ struct StepSolver::Impl {
 
   // h^2 times the backward-Euler energy at the iterate, with `hessian` its gradient and
   // Gauss-Newton Hessian (without, as the line search needs, the energy alone). `reuse`: kKeep
-  // keeps every term but the contacts'; kKept takes them from the last kKeep.
+  // keeps every term but the contacts'; kKept takes them from the last kKeep (or, where a later
+  // evaluation has replaced its matrix's terms, evaluates and keeps them again).
   enum class Reuse { kNone, kKeep, kKept };
   double evaluate(StepIterate& it, const HandSimState& start, const std::vector<RigidPose>& targets,
                   bool hessian, Reuse reuse = Reuse::kNone) {
     terms.with_hessian = hessian;
+    if (reuse == Reuse::kKept && !kept_current) reuse = Reuse::kKeep;
+    if (hessian) kept_current = reuse != Reuse::kNone;
     if (reuse == Reuse::kKept) {
       terms.gradient = kept_gradient;
       terms.energy = kept_energy;
@@ -186,15 +204,16 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   // contacts make the energy piecewise quadratic, and a full step that runs into a surface the
   // linearisation did not see would land deep inside it. Every pass starts from the
   // prediction, and (one Newton iteration a pass, so that its Hessian terms are still the
-  // first evaluation's) takes the flesh's terms from the first pass: only contacts differ.
+  // first evaluation's) takes the flesh's terms from the first pass: only contacts differ. A
+  // pass whose step stopped short iterates again (SimParameters::short_step_excess).
   SimStepReport report;
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
     using Reuse = Impl::Reuse;
     if (pass > 0) iterate = sim.rotations_found;
-    const bool kept = pass > 0 && sim.options.newton_iterations == 1;
     double current =
-        sim.evaluate(iterate, start, targets, true, kept ? Reuse::kKept : Reuse::kKeep);
-    for (int newton = 0; newton < sim.options.newton_iterations; ++newton) {
+        sim.evaluate(iterate, start, targets, true, pass > 0 ? Reuse::kKept : Reuse::kKeep);
+    int iterations = sim.options.newton_iterations;
+    for (int newton = 0; newton < iterations; ++newton) {
       report.residual = sim.terms.gradient.lpNorm<Eigen::Infinity>() / sim.terms.scale;
       const Eigen::VectorXd dq = model.kinematic_nodes
                                      ? solve_cube_step(model, sim.terms, report)
@@ -206,12 +225,20 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
       // Where the state already solves the step (CG's first residual within its tolerance, so
       // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
       const bool searched = slope < 0;
+      double taken = length, reached = current;
       for (int halving = 0; halving < 12 && searched; ++halving, length *= 0.5) {
         trial = iterate;
         apply_increment(model, trial.state, trial.turned, dq, length);
-        if (sim.evaluate(trial, start, targets, false) <= current + 1e-4 * length * slope) break;
+        taken = length;
+        reached = sim.evaluate(trial, start, targets, false);
+        if (reached <= current + 1e-4 * length * slope) break;
         ++report.halvings;
       }
+      const double excess = model.parameters.short_step_excess;
+      if (excess > 0 && searched && newton + 1 == iterations &&
+          iterations < sim.options.newton_iterations + kShortStepIterations &&
+          decrease_excess(current, reached, slope, taken) > excess)
+        ++iterations;
       // The first pass's start (the prediction with its tets' rotations) is where later passes
       // start; swapped out, since `iterate` takes the trial's place next (the trial's buffer
       // then holds what is left, assigned anew before it is read).
@@ -223,8 +250,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
       }
       if (searched) std::swap(iterate, trial);
       report.newton_iterations += 1;
-      if (newton + 1 < sim.options.newton_iterations)
-        current = sim.evaluate(iterate, start, targets, true);
+      if (newton + 1 < iterations) current = sim.evaluate(iterate, start, targets, true);
     }
     const bool entered = contacts_entered(model, iterate.state, sim.contacts);
     if (!friction_changed(model, iterate.state, sim.contacts) && !entered) break;

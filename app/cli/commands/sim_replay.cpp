@@ -15,6 +15,7 @@
 #include "analysis/stats/descriptives.h"
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
+#include "app/cli/commands/sim_grasp.h"
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/recording_poses.h"
@@ -88,6 +89,7 @@ std::vector<OptionSpec> sim_replay_options() {
        "of the stiffening threshold, below it, over which Newton's matrix takes in the "
        "stiffening (0: a matrix that jumps at the threshold)",
        "0.2"},
+      physics_option(),
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
 }
@@ -135,6 +137,7 @@ int sim_replay(const std::vector<std::string>& argv) {
   parameters.stiffening_blend = args.number("stiffening-blend");
   if (!(parameters.stiffening_blend >= 0 && parameters.stiffening_blend < 1))
     throw UsageError("--stiffening-blend must be in [0, 1)");
+  apply_physics_option(args, parameters);
   const sim::HandSimModel model = sim::make_hand_sim_model(replay.skeleton, flesh, parameters);
   const ReplayFigures f = replay_poses(replay, model, hold ? int(frame) : -1, duration, options);
   const double median = timing_quantile(f.step_ms, 0.5), p95 = timing_quantile(f.step_ms, 0.95);
@@ -157,8 +160,9 @@ int sim_replay(const std::vector<std::string>& argv) {
           .field("frame", static_cast<long long>(hold ? frame : -1))
           .field("threads", threads)
           .field("newton_iterations", options.newton_iterations)
-          .field("stiffening_blend", model.parameters.stiffening_blend)
-          .field("steps", f.steps)
+          .field("stiffening_blend", model.parameters.stiffening_blend);
+      write_physics(json, args.all("physics"));
+      json.field("steps", f.steps)
           .field("step_ms_median", median)
           .field("step_ms_p95", p95)
           .field("factorizations", static_cast<long long>(f.factorizations))
