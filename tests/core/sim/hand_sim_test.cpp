@@ -202,8 +202,8 @@ TEST(HandSimulator, ComesToRestHeldStillWithTwoNewtonIterationsAStep) {
 // Where a pass iterates again, up to twice, while its step stops short (the energy falling by
 // more than 1.25 times its quadratic model's decrease), the hand comes to rest in every one of 26
 // poses, with the tracking's damping and without: the 13 above, and every 20th frame as `sim
-// replay` plays the recording. With one iteration more at most, three cycle (played frame 40's
-// damped, frames 200 and 220 undamped, at 23-29 mm/s); at 1.5 times, four of the 13 above do.
+// replay` plays the recording. With one iteration more at most, three damped poses cycle (frame
+// 40's as played, 200's and 220's, at 23-29 mm/s); at 1.5 times, four of the 13 above do.
 TEST(HandSimulator, ComesToRestHeldStillWhereShortStepsIterateAgain) {
   const StudyHand& h = study_hand();
   const PinchRecording& pinch = pinch_recording(h);
