@@ -39,16 +39,17 @@ constexpr int kFrictionPasses = 4;
 // The largest rotation of a body in one Newton iteration (rad).
 constexpr double kMaxTurn = 0.25;
 // The Newton iterations a pass takes beyond SimOptions::newton_iterations while its steps stop
-// short (SimParameters::short_step_excess): with one, held poses still cycle where the excess
-// is small; with two, none of 13 held poses does (docs/simulator.md).
+// short (SimParameters::short_step_excess): with one more at most, three of the held poses that
+// docs/simulator.md measures ("The short step's iterations") still cycle; with two, none does.
 constexpr int kShortStepIterations = 2;
 
-// An iteration's energy decrease over its quadratic model's, less 1: how far the step, from
-// `before` to `after` at `length` along the Newton direction dq, stopped short of the model's
-// (above 0) or ran into curvature the model has not (below 0: contacts, which the line search
-// handles). With H dq = -g the model lowers the energy by -slope (L - L^2 / 2), slope = g.dq.
-double decrease_excess(double before, double after, double slope, double length) {
-  return (after - before) / (slope * (length - 0.5 * length * length)) - 1;
+// Whether an iteration, from energy `before` to `after` at `length` along the Newton direction
+// dq, stopped short of the step's minimum: the energy fell by more than 1 + `excess` times its
+// quadratic model's decrease, -slope (L - L^2 / 2) with H dq = -g and slope = g.dq < 0 (the
+// matrix held curvature the energy has not). A fall short of the model's is curvature the model
+// has not (contacts), the line search's business.
+bool stopped_short(double excess, double before, double after, double slope, double length) {
+  return (after - before) / (slope * (length - 0.5 * length * length)) > 1 + excess;
 }
 
 // Every body carried on by its velocity, into `it` (whose buffers are reused).
@@ -124,7 +125,7 @@ struct StepSolver::Impl {
   double kept_energy = 0.0;
   // Whether the matrix's terms but the contacts' are still the kept evaluation's: not after a
   // later Newton iteration's evaluation replaced them.
-  bool kept_current = false;
+  bool kept_terms_current = false;
   // The step's iterate, the line search's trial, and the prediction with its tets' rotations
   // (where a step's later passes start), kept from step to step: a study hand's state is
   // 130 kB (its tets' rotations the most), and swapped or assigned, their buffers are reused.
@@ -147,8 +148,8 @@ struct StepSolver::Impl {
   double evaluate(StepIterate& it, const HandSimState& start, const std::vector<RigidPose>& targets,
                   bool hessian, Reuse reuse = Reuse::kNone) {
     terms.with_hessian = hessian;
-    if (reuse == Reuse::kKept && !kept_current) reuse = Reuse::kKeep;
-    if (hessian) kept_current = reuse != Reuse::kNone;
+    if (reuse == Reuse::kKept && !kept_terms_current) reuse = Reuse::kKeep;
+    if (hessian) kept_terms_current = reuse != Reuse::kNone;
     if (reuse == Reuse::kKept) {
       terms.gradient = kept_gradient;
       terms.energy = kept_energy;
@@ -203,9 +204,9 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   // Newton on the step's energy, each step backtracked until the energy decreases (Armijo):
   // contacts make the energy piecewise quadratic, and a full step that runs into a surface the
   // linearisation did not see would land deep inside it. Every pass starts from the
-  // prediction, and (one Newton iteration a pass, so that its Hessian terms are still the
-  // first evaluation's) takes the flesh's terms from the first pass: only contacts differ. A
-  // pass whose step stopped short iterates again (SimParameters::short_step_excess).
+  // prediction, and takes the flesh's terms from the first pass while they are still its first
+  // evaluation's (Impl::evaluate): only contacts differ. A pass whose step stopped short
+  // iterates again (SimParameters::short_step_excess).
   SimStepReport report;
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
     using Reuse = Impl::Reuse;
@@ -235,10 +236,11 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
         ++report.halvings;
       }
       const double excess = model.parameters.short_step_excess;
-      if (excess > 0 && searched && newton + 1 == iterations &&
-          iterations < sim.options.newton_iterations + kShortStepIterations &&
-          decrease_excess(current, reached, slope, taken) > excess)
-        ++iterations;
+      const bool more_allowed = newton + 1 == iterations &&
+                                iterations < sim.options.newton_iterations + kShortStepIterations;
+      if (excess > 0 && searched && more_allowed &&
+          stopped_short(excess, current, reached, slope, taken))
+        ++iterations;  // one more turn of this loop
       // The first pass's start (the prediction with its tets' rotations) is where later passes
       // start; swapped out, since `iterate` takes the trial's place next (the trial's buffer
       // then holds what is left, assigned anew before it is read).

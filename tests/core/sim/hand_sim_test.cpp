@@ -160,9 +160,9 @@ HeldStill held_still(const StudyHand& h, const HandSimModel& model, int frame,
 
 // Held still in 13 poses a person made (every 20th frame), the hand comes to rest, no node
 // moving and the steps not factorising, in all but a few. In those few a node by a tet at the
-// stiffening threshold cycles every 6 steps at about 17 mm/s, one Newton iteration a step
-// overshooting the threshold's kink (two iterations a step bring it to rest: below); which
-// poses do depends on the path (frames 0 and 220 with the tracking's damping, 20 and 80
+// stiffening threshold cycles every 6 steps at about 17 mm/s, one Newton iteration a step not
+// solving the step across the threshold's kink (two iterations a step bring it to rest: below);
+// which poses do depends on the path (frames 0 and 220 with the tracking's damping, 20 and 80
 // without). The blend of the stiffening's curvature into the matrix is what keeps them few:
 // without it 12 of the 13 go on moving at 5-270 mm/s, and nearly every step factorises.
 TEST(HandSimulator, ComesToRestHeldStillInMostTrackedPoses) {
@@ -207,6 +207,8 @@ TEST(HandSimulator, ComesToRestHeldStillWithTwoNewtonIterationsAStep) {
 TEST(HandSimulator, ComesToRestHeldStillWhereShortStepsIterateAgain) {
   const StudyHand& h = study_hand();
   const PinchRecording& pinch = pinch_recording(h);
+  // Every frame holds the right hand: the played poses' index is the frames'.
+  ASSERT_EQ(pinch.played.size(), pinch.recording.frames.size());
   for (const double damping : {h.model.parameters.tracking_damping, 0.0}) {
     HandSimModel model = h.model;
     model.parameters.short_step_excess = 0.25;
@@ -217,7 +219,7 @@ TEST(HandSimulator, ComesToRestHeldStillWhereShortStepsIterateAgain) {
       EXPECT_LT(held.speed, 1e-3) << "m/s, frame " << frame << damped;
       EXPECT_LE(held.factorizations, 3) << "frame " << frame << damped;
       held = held_still(h, model, pinch.played.at(std::size_t(frame)),
-                        "played frame " + std::to_string(frame) + "'s pose");
+                        "frame " + std::to_string(frame) + "'s pose as played" + damped);
       EXPECT_LT(held.speed, 1e-3) << "m/s, played frame " << frame << damped;
       EXPECT_LE(held.factorizations, 3) << "played frame " << frame << damped;
     }
