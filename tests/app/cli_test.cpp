@@ -547,7 +547,9 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   const Result pinch = run_cli("sim pinch --cube 0.06 --json -");
   ASSERT_EQ(pinch.status, 0) << pinch.out;
   EXPECT_TRUE(util::JsonValue::parse(pinch.out)["held"].as_bool()) << pinch.out;
+  EXPECT_EQ(util::JsonValue::parse(pinch.out)["newton_iterations_a_pass"].as_number(), 1);
   EXPECT_EQ(run_cli("sim pinch --cube 2").status, 2);
+  EXPECT_EQ(run_cli("sim pinch --newton-iterations 0").status, 2);
   EXPECT_EQ(run_cli("sim pinch --skin-samples 3").status, 2);
   EXPECT_EQ(run_cli("sim bench --skin-samples -1").status, 2);
   EXPECT_EQ(run_cli("sim wobble").status, 2);

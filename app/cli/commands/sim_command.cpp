@@ -388,10 +388,12 @@ void print_pinch(const sim::PinchScene& setup, const sim::PinchReport& r) {
   print_timing(setup, r);
 }
 
-void write_pinch_json(std::ostream& out, const sim::PinchScene& setup, const sim::PinchReport& r) {
+void write_pinch_json(std::ostream& out, const sim::PinchScene& setup,
+                      const sim::SimOptions& options, const sim::PinchReport& r) {
   util::JsonWriter json(out);
   json.begin_object()
       .field("cube_size_m", setup.script.cube_size)
+      .field("newton_iterations_a_pass", options.newton_iterations)
       .field("posture", sim::pinch_posture_name(setup.script.posture))
       .field("placed_by_rule", setup.script.placed_by_rule)
       .field("meets_pinch_rule", setup.script.pinch_meets_rule)
@@ -425,6 +427,10 @@ std::vector<OptionSpec> sim_pinch_options() {
        "contact points against the cube inside each of the flesh's boundary faces besides its "
        "nodes: 1 (the centroid) or 0 (the nodes alone, as before 2026-11-26)",
        "1"},
+      {"newton-iterations", "N",
+       "Newton iterations a step (more: whether an outcome is the physics' or the one-iteration "
+       "scheme's)",
+       "1"},
       {"json", "OUT", "write the result as JSON (- for standard output)"},
   };
   specs.push_back(physics_option());
@@ -447,6 +453,10 @@ int sim_pinch(const std::vector<std::string>& argv) {
   if (args.help_requested()) return print_help(sim_pinch_help(), args);
   const double squeeze = args.number("squeeze");
   if (!(squeeze >= 0 && squeeze <= 0.005)) throw UsageError("--squeeze must be 0 to 0.005 m");
+  sim::SimOptions options;
+  options.newton_iterations = int(args.integer("newton-iterations"));
+  if (options.newton_iterations < 1 || options.newton_iterations > 20)
+    throw UsageError("--newton-iterations must be 1 to 20");
   sim::SimParameters parameters = simulator_parameters(args);
   apply_physics_option(args, parameters);
   const sim::PinchPosture posture = posture_of(args);
@@ -484,14 +494,14 @@ int sim_pinch(const std::vector<std::string>& argv) {
     };
   }
   const sim::PinchReport r =
-      sim::run_pinch(setup.model, setup.skeleton, setup.script, {}, 0.0, observer);
+      sim::run_pinch(setup.model, setup.skeleton, setup.script, options, 0.0, observer);
   if (args.has("trace"))
     util::write_output(args.text("trace"), [&](std::ostream& out) { out << trace.str(); });
   // With --json - (or --trace -) standard output is that alone.
   if (args.text("json") != "-" && args.text("trace") != "-") print_pinch(setup, r);
   if (args.has("json"))
     util::write_output(args.text("json"),
-                       [&](std::ostream& out) { write_pinch_json(out, setup, r); });
+                       [&](std::ostream& out) { write_pinch_json(out, setup, options, r); });
   return 0;
 }
 
