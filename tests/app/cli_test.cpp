@@ -417,11 +417,12 @@ TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   // step (docs/simulator.md, "The short step's iterations"), comes to rest where short steps
   // iterate again.
   const std::string resting = test::fresh_path("sim_replay_resting.json");
-  ASSERT_EQ(
-      run_cli("sim replay " + recording +
-              " --hold --duration 2 --threads 2 --physics short_step_excess=0.25 --json " + resting)
-          .status,
-      0);
+  const Result rested = run_cli(
+      "sim replay " + recording +
+      " --hold --duration 2 --threads 2 --physics short_step_excess=0.25 --json " + resting);
+  ASSERT_EQ(rested.status, 0) << rested.out;
+  EXPECT_NE(rested.out.find("held still, short_step_excess=0.25)"), std::string::npos)
+      << rested.out;
   const std::string rest_text = test::file_bytes(resting);
   const std::size_t rest_at = rest_text.find("\"fastest_node_last_half_second_m_s\": ");
   ASSERT_NE(rest_at, std::string::npos) << rest_text;

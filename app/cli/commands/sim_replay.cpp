@@ -143,10 +143,12 @@ int sim_replay(const std::vector<std::string>& argv) {
   const double median = timing_quantile(f.step_ms, 0.5), p95 = timing_quantile(f.step_ms, 0.95);
   const std::string json_out = args.text("json");
   if (json_out != "-") {
+    std::string changed;
+    for (const std::string& item : args.all("physics")) changed += ", " + item;
     std::cout << std::fixed << std::setprecision(2) << recording.source << " (" << strategy_name
-              << (hold ? ", pose " + std::to_string(frame) + " held still" : "") << "): " << f.steps
-              << " steps, median " << median << " ms, p95 " << p95 << " ms; " << f.factorizations
-              << " factorisations, CG " << double(f.linear_iterations) / f.steps
+              << (hold ? ", pose " + std::to_string(frame) + " held still" : "") << changed
+              << "): " << f.steps << " steps, median " << median << " ms, p95 " << p95 << " ms; "
+              << f.factorizations << " factorisations, CG " << double(f.linear_iterations) / f.steps
               << " a step; fastest flesh node in the last 0.5 s " << std::setprecision(3)
               << f.fastest_at_end * 1000 << " mm/s\n";
   }
