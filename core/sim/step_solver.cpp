@@ -39,8 +39,9 @@ constexpr int kFrictionPasses = 4;
 // The largest rotation of a body in one Newton iteration (rad).
 constexpr double kMaxTurn = 0.25;
 // The Newton iterations a pass takes beyond SimOptions::newton_iterations while its steps stop
-// short (SimParameters::short_step_excess): with one more at most, three of the held poses that
-// docs/simulator.md measures ("The short step's iterations") still cycle; with two, none does.
+// short and no flesh touches anything (SimParameters::short_step_excess): with one more at most,
+// three of the held poses that docs/simulator.md measures ("The short step's iterations") still
+// cycle; with two, none does.
 constexpr int kShortStepIterations = 2;
 
 // Whether an iteration, from energy `before` to `after` at `length` along the Newton direction
@@ -50,6 +51,16 @@ constexpr int kShortStepIterations = 2;
 // has not (contacts), the line search's business.
 bool stopped_short(double excess, double before, double after, double slope, double length) {
   return (after - before) / (slope * (length - 0.5 * length * length)) > 1 + excess;
+}
+
+// Whether any flesh point touches the cube or the floor (inside at the prediction, or carried
+// inside by a pass). The short step's iterations are for the free flesh, where the held hand
+// cycles; where flesh touches, the friction passes solve the step again, and iterating as well
+// changed which grips formed (docs/simulator.md, "The short step's iterations").
+bool flesh_in_contact(const std::vector<Contact>& contacts) {
+  return std::any_of(contacts.begin(), contacts.end(), [](const Contact& c) {
+    return c.kind != Contact::kCornerFloor && (c.touching || c.curved);
+  });
 }
 
 // Every body carried on by its velocity, into `it` (whose buffers are reused).
@@ -206,7 +217,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   // linearisation did not see would land deep inside it. Every pass starts from the
   // prediction, and takes the flesh's terms from the first pass while they are still its first
   // evaluation's (Impl::evaluate): only contacts differ. A pass whose step stopped short
-  // iterates again (SimParameters::short_step_excess).
+  // iterates again while no flesh touches anything (SimParameters::short_step_excess).
   SimStepReport report;
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
     using Reuse = Impl::Reuse;
@@ -238,7 +249,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
       const double excess = model.parameters.short_step_excess;
       const bool more_allowed = newton + 1 == iterations &&
                                 iterations < sim.options.newton_iterations + kShortStepIterations;
-      if (excess > 0 && searched && more_allowed &&
+      if (excess > 0 && searched && more_allowed && !flesh_in_contact(sim.contacts) &&
           stopped_short(excess, current, reached, slope, taken))
         ++iterations;  // one more turn of this loop
       // The first pass's start (the prediction with its tets' rotations) is where later passes
