@@ -34,8 +34,8 @@ struct SimParameters {
   // matrix jumps by 20 E where a tet crosses the threshold, and one Newton iteration a step
   // overshoots across it, back and forth: held still, flesh nodes buzz at 30-60 Hz.
   double stiffening_blend = 0.2;
-  // Where the blend is not enough: while no flesh touches anything, a pass iterates again while
-  // its step stopped short, the energy falling by more than 1 + short_step_excess times its
+  // Where the blend is not enough: a pass in which no flesh touches anything iterates again
+  // while its step stopped short, the energy falling by more than 1 + short_step_excess times its
   // quadratic model's decrease (step_solver.cpp; docs/simulator.md, "The short step's
   // iterations"). 0: never.
   double short_step_excess = 0.0;

@@ -53,14 +53,15 @@ bool stopped_short(double excess, double before, double after, double slope, dou
   return (after - before) / (slope * (length - 0.5 * length * length)) > 1 + excess;
 }
 
-// Whether any flesh point touches the cube or the floor (inside at the prediction, or carried
-// inside by a pass). The short step's iterations are for the free flesh, where the held hand
-// cycles; where flesh touches, the friction passes solve the step again, and iterating as well
-// changed which grips formed (docs/simulator.md, "The short step's iterations").
+// Whether any flesh point touches the cube or the floor: inside at the prediction, or carried
+// inside by an earlier pass of this step (`curved` marks both). A pass where flesh touches takes
+// SimOptions::newton_iterations as without the short step's iterations: there a grip is held or
+// lost by the solver's path, and iterating again lost the scripted light pinch without a squeeze
+// (docs/simulator.md, "The short step's iterations"). The cube's corners on the floor do not
+// count: the cube alone, in the hand's step or its own substeps, iterates again as the free flesh.
 bool flesh_in_contact(const std::vector<Contact>& contacts) {
-  return std::any_of(contacts.begin(), contacts.end(), [](const Contact& c) {
-    return c.kind != Contact::kCornerFloor && (c.touching || c.curved);
-  });
+  return std::any_of(contacts.begin(), contacts.end(),
+                     [](const Contact& c) { return c.kind != Contact::kCornerFloor && c.curved; });
 }
 
 // Every body carried on by its velocity, into `it` (whose buffers are reused).
