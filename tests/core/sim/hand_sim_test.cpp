@@ -158,18 +158,22 @@ HeldStill held_still(const StudyHand& h, const HandSimModel& model, int frame,
   return held_still(h, model, *pose, "frame " + std::to_string(frame) + "'s pose", options);
 }
 
-// Held still in 13 poses a person made (every 20th frame), the hand comes to rest, no node
+// Held still in 13 poses a person made (every 20th frame), under one Newton iteration a step
+// without the short step's iterations (short_step_excess 0), the hand comes to rest, no node
 // moving and the steps not factorising, in all but a few. In those few a node by a tet at the
 // stiffening threshold cycles every 6 steps at about 17 mm/s, one Newton iteration a step not
-// solving the step across the threshold's kink (two iterations a step bring it to rest: below);
-// which poses do depends on the path (frames 0 and 220 with the tracking's damping, 20 and 80
-// without). The blend of the stiffening's curvature into the matrix is what keeps them few:
-// without it 12 of the 13 go on moving at 5-270 mm/s, and nearly every step factorises.
+// solving the step across the threshold's kink (two iterations a step, or the short step's,
+// bring it to rest: below); which poses do depends on the path (frames 0 and 220 with the
+// tracking's damping, 20 and 80 without). The blend of the stiffening's curvature into the
+// matrix is what keeps them few: without it 12 of the 13 go on moving at 5-270 mm/s, and nearly
+// every step factorises.
 TEST(HandSimulator, ComesToRestHeldStillInMostTrackedPoses) {
   const StudyHand& h = study_hand();
+  HandSimModel model = h.model;
+  model.parameters.short_step_excess = 0;
   int moving = 0;
   for (int frame = 0; frame <= 240; frame += test::kUnderSanitizers ? 120 : 20) {
-    const HeldStill held = held_still(h, h.model, frame);
+    const HeldStill held = held_still(h, model, frame);
     if (held.speed < 1e-3) {
       EXPECT_LE(held.factorizations, 3) << "frame " << frame;
     } else {
@@ -180,17 +184,19 @@ TEST(HandSimulator, ComesToRestHeldStillInMostTrackedPoses) {
   EXPECT_LE(moving, 2) << "of 13 poses still moving";
 }
 
-// The poses that keep moving under one Newton iteration a step (frames 0 and 220 with the
-// tracking's damping, 20 and 80 without) come to rest under two: the cycle is the iteration's,
-// not a motion the energy has.
+// The poses that keep moving under one Newton iteration a step without the short step's
+// iterations (frames 0 and 220 with the tracking's damping, 20 and 80 without) come to rest under
+// two: the cycle is the iteration's, not a motion the energy has.
 TEST(HandSimulator, ComesToRestHeldStillWithTwoNewtonIterationsAStep) {
   const StudyHand& h = study_hand();
-  HandSimModel undamped = h.model;
+  HandSimModel damped = h.model;
+  damped.parameters.short_step_excess = 0;
+  HandSimModel undamped = damped;
   undamped.parameters.tracking_damping = 0;
   SimOptions two;
   two.newton_iterations = 2;
   const std::pair<int, const HandSimModel*> cycling[] = {
-      {0, &h.model}, {220, &h.model}, {20, &undamped}, {80, &undamped}};
+      {0, &damped}, {220, &damped}, {20, &undamped}, {80, &undamped}};
   for (const auto& [frame, model] : cycling) {
     if (test::kUnderSanitizers && frame > 0) break;  // the same code as the others
     const HeldStill held = held_still(h, *model, frame, two);
@@ -200,10 +206,11 @@ TEST(HandSimulator, ComesToRestHeldStillWithTwoNewtonIterationsAStep) {
 }
 
 // Where a pass iterates again, up to twice, while its step stops short (the energy falling by
-// more than 1.25 times its quadratic model's decrease), the hand comes to rest in every one of 26
-// poses, with the tracking's damping and without: the 13 above, and every 20th frame as `sim
-// replay` plays the recording. With one iteration more at most, three damped poses cycle (frame
-// 40's as played, 200's and 220's, at 23-29 mm/s); at 1.5 times, four of the 13 above do.
+// more than 1.25 times its quadratic model's decrease: the default), the hand comes to rest in
+// every one of 26 poses, with the tracking's damping and without: the 13 above, and every 20th
+// frame as `sim replay` plays the recording. With one iteration more at most, three damped poses
+// cycle (frame 40's as played, 200's and 220's, at 23-29 mm/s); at 1.5 times, four of the 13 above
+// do.
 TEST(HandSimulator, ComesToRestHeldStillWhereShortStepsIterateAgain) {
   const StudyHand& h = study_hand();
   const PinchRecording& pinch = pinch_recording(h);
