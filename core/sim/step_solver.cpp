@@ -250,8 +250,8 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
       const double excess = model.parameters.short_step_excess;
       const bool more_allowed = newton + 1 == iterations &&
                                 iterations < sim.options.newton_iterations + kShortStepIterations;
-      if (excess > 0 && searched && more_allowed && !flesh_in_contact(sim.contacts) &&
-          stopped_short(excess, current, reached, slope, taken))
+      if (excess > 0 && searched && more_allowed &&
+          stopped_short(excess, current, reached, slope, taken) && !flesh_in_contact(sim.contacts))
         ++iterations;  // one more turn of this loop
       // The first pass's start (the prediction with its tets' rotations) is where later passes
       // start; swapped out, since `iterate` takes the trial's place next (the trial's buffer
