@@ -411,13 +411,16 @@ TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   const std::size_t at = text.find("\"fastest_node_last_half_second_m_s\": ");
   ASSERT_NE(at, std::string::npos);
   EXPECT_LT(std::stod(text.substr(at + 37)), 1e-3) << "m/s: the held hand came to rest";
-  // A physics change reaches the hand: pose 0, which comes to rest where short steps iterate
-  // again (the default), cycles under one Newton iteration a step without them
-  // (docs/simulator.md, "The short step's iterations").
+  // A physics change reaches the hand: pose 0 comes to rest where short steps iterate again (the
+  // default), and cycles under one Newton iteration a step without them (docs/simulator.md, "The
+  // short step's iterations").
+  const std::string resting = test::fresh_path("sim_replay_resting.json");
+  const std::string pose0 = "sim replay " + recording + " --hold --duration 2 --threads 2";
+  ASSERT_EQ(run_cli(pose0 + " --json " + resting).status, 0);
+  const util::JsonValue rest = util::JsonValue::parse(test::file_bytes(resting));
+  EXPECT_LT(rest["fastest_node_last_half_second_m_s"].as_number(), 1e-3) << "m/s";
   const std::string cycling = test::fresh_path("sim_replay_cycling.json");
-  const Result cycled =
-      run_cli("sim replay " + recording +
-              " --hold --duration 2 --threads 2 --physics short_step_excess=0 --json " + cycling);
+  const Result cycled = run_cli(pose0 + " --physics short_step_excess=0 --json " + cycling);
   ASSERT_EQ(cycled.status, 0) << cycled.out;
   EXPECT_NE(cycled.out.find("held still, short_step_excess=0)"), std::string::npos) << cycled.out;
   const util::JsonValue cycle = util::JsonValue::parse(test::file_bytes(cycling));

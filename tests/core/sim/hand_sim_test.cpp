@@ -217,8 +217,7 @@ TEST(HandSimulator, ComesToRestHeldStillWhereShortStepsIterateAgain) {
   // Every frame holds the right hand: the played poses' index is the frames'.
   ASSERT_EQ(pinch.played.size(), pinch.recording.frames.size());
   for (const double damping : {h.model.parameters.tracking_damping, 0.0}) {
-    HandSimModel model = h.model;
-    model.parameters.short_step_excess = 0.25;
+    HandSimModel model = h.model;  // the default physics, short_step_excess among it
     model.parameters.tracking_damping = damping;
     const std::string damped = damping > 0 ? ", damped" : ", undamped";
     for (int frame = 0; frame <= 240; frame += test::kUnderSanitizers ? 240 : 20) {
