@@ -19,6 +19,7 @@
 #include "tests/support/cli_runner.h"
 #include "tests/support/study_protocol.h"
 #include "tests/support/test_files.h"
+#include "tests/support/under_sanitizers.h"
 
 namespace handlab {
 namespace {
@@ -424,7 +425,12 @@ TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
   ASSERT_EQ(cycled.status, 0) << cycled.out;
   EXPECT_NE(cycled.out.find("held still, short_step_excess=0)"), std::string::npos) << cycled.out;
   const util::JsonValue cycle = util::JsonValue::parse(test::file_bytes(cycling));
-  EXPECT_GT(cycle["fastest_node_last_half_second_m_s"].as_number(), 0.01) << "m/s";
+  EXPECT_NE(cycle["factorizations"].as_number(), rest["factorizations"].as_number());
+  // Which poses cycle is the path's: in the sanitizers' build, rounding apart, pose 0 rests
+  // either way (40 factorisations against the default's 50).
+  if (!test::kUnderSanitizers) {
+    EXPECT_GT(cycle["fastest_node_last_half_second_m_s"].as_number(), 0.01) << "m/s";
+  }
   EXPECT_EQ(cycle["physics"][0].as_string(), "short_step_excess=0");
   EXPECT_EQ(run_cli("sim replay " + recording + " --physics short_step_excess=-1").status, 2);
   const Result played = run_cli("sim replay " + recording + " --strategy naive");
@@ -658,11 +664,20 @@ TEST(CliSim, GraspMapsAClosingThatHoldsAndOneThatLosesTheCube) {
   EXPECT_LT(loses["lift_m"].as_number(), 0.01);
   EXPECT_EQ(loses["closing"].as_string(), "jitter 8 x");
   EXPECT_NEAR(loses["values"]["jitter"].as_number(), 8.0, 1e-9);
-  // How it was lost (pinch_loss.h): pushed away, more than a quarter of its side, before the
-  // pads held it, so there was no grip at the lift.
-  EXPECT_EQ(loses["loss"].as_string(), "pushed_away");
-  EXPECT_GT(loses["pushed_mm"].as_number(), 2.5);
-  EXPECT_EQ(loses["grip_at_lift_n"].as_number(), 0.0);
+  // How it was lost (pinch_loss.h): pushed away, more than a quarter of its side, before the pads
+  // held it, so there was no grip at the lift; or slipped at the lift out of a grip. Which one the
+  // jitter leaves is the path's: the sanitizers' build, rounding apart, slips it with 1.0 N.
+  const std::string loss = loses["loss"].as_string();
+  if (!test::kUnderSanitizers) {
+    EXPECT_EQ(loss, "pushed_away");
+  }
+  if (loss == "pushed_away") {
+    EXPECT_GT(loses["pushed_mm"].as_number(), 2.5);
+    EXPECT_EQ(loses["grip_at_lift_n"].as_number(), 0.0);
+  } else {
+    EXPECT_EQ(loss, "slipped_at_lift");
+    EXPECT_GT(loses["grip_at_lift_n"].as_number(), 0.0);
+  }
   EXPECT_EQ(holds["loss"].as_string(), "held");
   EXPECT_GT(holds["grip_at_lift_n"].as_number(), 0.0);
   EXPECT_EQ(run_cli("sim grasp --closing squeeze=3").status, 2);
