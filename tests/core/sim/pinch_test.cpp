@@ -61,18 +61,16 @@ TEST_P(Pinch, LiftsHoldsAndReleasesTheCube) {
 
 INSTANTIATE_TEST_SUITE_P(StudyCubes, Pinch, testing::Values(0.01, 0.06));
 
-// The short step's iterations (SimParameters::short_step_excess) are taken only in passes where
-// no flesh touches anything, so that the pinches without a squeeze, whose pads' targets lie on
-// the faces, are held and released with them within the slip issue #71 allows (1.3 and 21 µm;
-// measured 0.84 and 18.2 µm, as without the rule within 0.12 µm). Iterating where flesh touches
-// as well lost the light one (slip 0.24 mm, no grip): a pinch that asks for no grip is held or
-// lost by the solver's path (docs/simulator.md, "The short step's iterations").
+// The short step's iterations (SimParameters::short_step_excess, the default) are taken only in
+// passes where no flesh touches anything, so that the pinches without a squeeze, whose pads'
+// targets lie on the faces, are held and released with them within the slip issue #71 allows (1.3
+// and 21 µm; measured 0.84 and 18.2 µm, as without the rule within 0.12 µm). Iterating where flesh
+// touches as well lost the light one (slip 0.24 mm, no grip): a pinch that asks for no grip is held
+// or lost by the solver's path (docs/simulator.md, "The short step's iterations").
 TEST(PinchShortSteps, HoldTheCubesPinchedWithoutASqueeze) {
   for (const double cube : {0.01, 0.06}) {
     if (test::kUnderSanitizers && cube > 0.03) break;  // the same code as the light one
-    SimParameters parameters;
-    parameters.short_step_excess = 0.25;
-    const PinchScene scene = make_pinch_scene(cube, 1, 0.0, hand::HandShape{}.length, parameters);
+    const PinchScene scene = make_pinch_scene(cube, 1, 0.0, hand::HandShape{}.length);
     const PinchReport r = run_pinch(scene.model, scene.skeleton, scene.script);
     std::cout << "cube " << cube * 100 << " cm without a squeeze, short steps iterating: slip "
               << r.slip_mm << " mm, penetration " << r.max_penetration_mm << " mm, grip "
