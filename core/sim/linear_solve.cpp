@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "core/sim/sim_options.h"
+#include "core/sim/step_timer.h"
 
 namespace handlab::sim {
 
@@ -30,6 +31,7 @@ void analyze_newton_matrix(const HandSimModel& model, SolverMemory& memory, Newt
 
 Eigen::VectorXd solve_cube_step(const HandSimModel& model, const NewtonTerms& terms,
                                 SimStepReport& report) {
+  const ScopedStepTimer timer(report, StepTimer::kDirectSolve);
   const int cube = 3 * cube_block(model);
   const Eigen::LDLT<Matrix6d> ldlt(cube_block_matrix(model, terms));
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
@@ -49,19 +51,27 @@ Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& 
   const Eigen::VectorXd rhs = -terms.gradient;
   auto refactor = [&] {
     double* values = factor.values();
-    if (pool.workers() >= 2 && layout.panel_split > 0) {
-      pool.run([&](int worker) {
-        if (worker > 1) return;
-        const int begin = worker == 0 ? 0 : layout.panel_split;
-        const int end = worker == 0 ? layout.panel_split : factor.value_count();
-        std::fill(values + begin, values + end, 0.0);
-        write_panels(model, terms, layout, factor, values, worker);
-      });
-    } else {
-      factor.clear_values();
-      write_panels(model, terms, layout, factor, values);
+    {
+      const ScopedStepTimer timer(report, StepTimer::kAssemble);
+      if (pool.workers() >= 2 && layout.panel_split > 0) {
+        pool.run([&](int worker) {
+          if (worker > 1) return;
+          const int begin = worker == 0 ? 0 : layout.panel_split;
+          const int end = worker == 0 ? layout.panel_split : factor.value_count();
+          std::fill(values + begin, values + end, 0.0);
+          write_panels(model, terms, layout, factor, values, worker);
+        });
+      } else {
+        factor.clear_values();
+        write_panels(model, terms, layout, factor, values);
+      }
     }
-    if (!factor.factorize_values(&pool))
+    bool definite = false;
+    {
+      const ScopedStepTimer timer(report, StepTimer::kFactorize);
+      definite = factor.factorize_values(&pool);
+    }
+    if (!definite)
       throw std::runtime_error("HandSimulator: the Newton system is not positive definite");
     memory.factorized = true;
     memory.cube_factorized = cube_matrix(model, terms);
@@ -72,15 +82,20 @@ Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& 
     memory.slow_steps = 0;
     ++report.factorizations;
   };
+  // A solve by the factor alone.
+  auto solve_by_factor = [&] {
+    const ScopedStepTimer timer(report, StepTimer::kDirectSolve);
+    ++report.linear_iterations;
+    ++report.direct_solves;
+    return factor.solve(rhs, &pool);
+  };
   // A direct solve with the matrix factorised anew, whose factorisation then preconditions
   // the next solves.
   auto direct = [&] {
     refactor();
     memory.stale = false;
     memory.last_iterations = 0;
-    ++report.linear_iterations;
-    ++report.direct_solves;
-    return factor.solve(rhs, &pool);
+    return solve_by_factor();
   };
   const bool first = memory.solves_this_step++ == 0;
   // A later pass (another contact state from the same start) whose pass before needed more
@@ -108,14 +123,11 @@ Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& 
   } else {
     exact = exact && cube_matrix(model, terms) == memory.cube_factorized;
   }
-  if (exact) {
-    ++report.linear_iterations;
-    ++report.direct_solves;
-    return factor.solve(rhs, &pool);
-  }
+  if (exact) return solve_by_factor();
   // Converged when what is left of the residual would move no unknown, on its own, by more
   // than the tolerance: a criterion per unknown, because a relative norm is the flesh's and
   // lets a light cube's unknowns go unsolved.
+  ScopedStepTimer cg_timer(report, StepTimer::kCg);
   const Eigen::VectorXd inverse_diagonal = diagonal(model, terms, diagonal_cache).cwiseInverse();
   auto left = [&](const Eigen::VectorXd& residual) {  // the largest move it would make
     return (residual.cwiseProduct(inverse_diagonal)).lpNorm<Eigen::Infinity>();
@@ -149,6 +161,7 @@ Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& 
     direction = z + (rz_next / rz) * direction;
     rz = rz_next;
   }
+  cg_timer.stop();
   report.linear_iterations += iterations;
   memory.stale = iterations > options.refactor_iterations;
   memory.last_iterations = iterations;

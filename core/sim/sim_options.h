@@ -3,6 +3,9 @@
 // and its stages, so that a stage needs no part of the simulator's own header.
 #pragma once
 
+#include <array>
+#include <cstddef>
+
 namespace handlab::sim {
 
 struct SimOptions {
@@ -40,6 +43,15 @@ inline SimOptions single_threaded() {
   return o;
 }
 
+// The parts of a step's solve whose wall time a step reports (SimStepReport::timer_ms), as
+// MuJoCo's timers do: the energy's terms at each Newton iterate, the line search's energies,
+// the Newton matrix written into the factorisation's panels, their factorisation, CG's
+// iterations (its products, preconditioner solves and the diagonal it measures by), and the
+// solves by a factor alone. What a step spends elsewhere (the prediction, the contact search,
+// the friction's checks) is its time less their sum.
+enum class StepTimer { kEvaluate, kLineSearch, kAssemble, kFactorize, kCg, kDirectSolve, kCount };
+constexpr std::size_t kStepTimers = std::size_t(StepTimer::kCount);
+
 struct SimStepReport {
   int newton_iterations = 0;
   int linear_iterations = 0;  // CG iterations (a direct solve counts one)
@@ -53,6 +65,7 @@ struct SimStepReport {
   int contacts = 0;              // active contact points (hand-cube, hand-floor, cube-floor)
   double max_penetration = 0.0;  // m, deepest flesh node inside the cube after the step
   double residual = 0.0;         // max |gradient| where the last Newton solve started (N)
+  std::array<double, kStepTimers> timer_ms{};  // wall time by StepTimer (ms)
 };
 
 // A step solved more than once (again in substeps): the work of each added up, the result's
@@ -63,6 +76,7 @@ inline void add_work(const SimStepReport& more, SimStepReport& total) {
   total.factorizations += more.factorizations;
   total.direct_solves += more.direct_solves;
   total.halvings += more.halvings;
+  for (std::size_t k = 0; k < kStepTimers; ++k) total.timer_ms[k] += more.timer_ms[k];
   total.max_penetration = more.max_penetration;
   total.residual = more.residual;
 }

@@ -18,6 +18,7 @@
 #include "core/sim/linear_solve.h"
 #include "core/sim/newton_matrix.h"
 #include "core/sim/newton_terms.h"
+#include "core/sim/step_timer.h"
 #include "core/sim/thread_pool.h"
 
 namespace handlab::sim {
@@ -223,8 +224,10 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
   for (int pass = 0; pass < kFrictionPasses; ++pass) {
     using Reuse = Impl::Reuse;
     if (pass > 0) iterate = sim.rotations_found;
+    ScopedStepTimer evaluate_timer(report, StepTimer::kEvaluate);
     double current =
         sim.evaluate(iterate, start, targets, true, pass > 0 ? Reuse::kKept : Reuse::kKeep);
+    evaluate_timer.stop();
     int iterations = sim.options.newton_iterations;
     for (int newton = 0; newton < iterations; ++newton) {
       report.residual = sim.terms.gradient.lpNorm<Eigen::Infinity>() / sim.terms.scale;
@@ -239,6 +242,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
       // dq = 0), there is nothing to search: an energy evaluated again differs by rounding.
       const bool searched = slope < 0;
       double taken = length, reached = current;
+      ScopedStepTimer search_timer(report, StepTimer::kLineSearch);
       for (int halving = 0; halving < 12 && searched; ++halving, length *= 0.5) {
         trial = iterate;
         apply_increment(model, trial.state, trial.turned, dq, length);
@@ -247,6 +251,7 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
         if (reached <= current + 1e-4 * length * slope) break;
         ++report.halvings;
       }
+      search_timer.stop();
       const double excess = model.parameters.short_step_excess;
       const bool more_allowed = newton + 1 == iterations &&
                                 iterations < sim.options.newton_iterations + kShortStepIterations;
@@ -264,7 +269,10 @@ SimStepReport StepSolver::step(const HandSimState& start, const std::vector<Rigi
       }
       if (searched) std::swap(iterate, trial);
       report.newton_iterations += 1;
-      if (newton + 1 < iterations) current = sim.evaluate(iterate, start, targets, true);
+      if (newton + 1 < iterations) {
+        const ScopedStepTimer timer(report, StepTimer::kEvaluate);
+        current = sim.evaluate(iterate, start, targets, true);
+      }
     }
     const bool entered = contacts_entered(model, iterate.state, sim.contacts);
     if (!friction_changed(model, iterate.state, sim.contacts) && !entered) break;

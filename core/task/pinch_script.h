@@ -6,6 +6,7 @@
 // A client of the simulator (in its namespace), kept out of its stages in core/sim.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -123,6 +124,7 @@ struct PinchReport {
   std::vector<double> step_ms;  // wall time of every step
   std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
   std::vector<int> halvings, direct_solves;                                         // per step
+  std::vector<std::array<double, kStepTimers>> timer_ms;  // per step (SimStepReport::timer_ms)
 };
 
 // The measures of the report, fed the state after each step: the top's load before the

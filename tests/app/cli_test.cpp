@@ -481,6 +481,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("approach"), std::string::npos) << "the phases: " << r.out;
+  EXPECT_NE(r.out.find("at the p99 or over: evaluate"), std::string::npos) << "timers: " << r.out;
   const std::string text = test::file_bytes(json);
   for (const char* key : {"\"scale\": 1",
                           "\"tets\"",
@@ -503,11 +504,17 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
                           "\"phases\"",
                           "\"name\": \"shape\"",
                           "\"name\": \"approach\"",
-                          "\"median_ms\""})
+                          "\"median_ms\"",
+                          "\"timers\"",
+                          "\"slowest_steps\"",
+                          "\"name\": \"factorize\"",
+                          "\"name\": \"rest\"",
+                          "\"slowest_mean_ms\""})
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   const std::string csv = test::file_bytes(steps);
   EXPECT_EQ(csv.rfind("step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,"
-                      "contacts,halvings,direct_solves\n",
+                      "contacts,halvings,direct_solves,evaluate_ms,line_search_ms,assemble_ms,"
+                      "factorize_ms,cg_ms,direct_solve_ms\n",
                       0),
             0u)
       << csv.substr(0, 200);

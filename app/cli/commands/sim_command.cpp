@@ -29,6 +29,7 @@
 #include "core/render/offscreen_context.h"
 #include "core/render/sim_drawing.h"
 #include "core/sim/contact_forces.h"
+#include "core/sim/step_timer.h"
 #include "core/task/pinch_scene.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -105,6 +106,39 @@ std::vector<Phase> phases(const sim::PinchScene& setup, const sim::PinchReport& 
   return taken;
 }
 
+// Where the steps' time went: each timer's mean a step, and the rest (the step's time less its
+// timers), over every step and over the slowest (at or above the p99).
+struct TimerMeans {
+  std::size_t slowest_steps = 0;
+  std::array<double, sim::kStepTimers + 1> all{}, slowest{};  // the rest last
+};
+
+TimerMeans timer_means(const sim::PinchReport& r) {
+  TimerMeans means;
+  const double p99 = timing_quantile(r.step_ms, 0.99);
+  for (std::size_t i = 0; i < r.step_ms.size(); ++i) {
+    std::array<double, sim::kStepTimers + 1> parts{};
+    double timed = 0.0;
+    for (std::size_t k = 0; k < sim::kStepTimers; ++k) timed += parts[k] = r.timer_ms[i][k];
+    parts.back() = std::max(0.0, r.step_ms[i] - timed);
+    const bool slow = r.step_ms[i] >= p99;
+    means.slowest_steps += slow;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      means.all[k] += parts[k];
+      if (slow) means.slowest[k] += parts[k];
+    }
+  }
+  for (std::size_t k = 0; k < means.all.size(); ++k) {
+    means.all[k] /= double(std::max<std::size_t>(1, r.step_ms.size()));
+    means.slowest[k] /= double(std::max<std::size_t>(1, means.slowest_steps));
+  }
+  return means;
+}
+
+const char* timer_name(std::size_t k) {
+  return k < sim::kStepTimers ? sim::kStepTimerNames[k] : "rest";
+}
+
 void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const sim::PinchReport& r) {
   const std::vector<int>& lin = r.linear_iterations;
   json.field("tets", setup.model.tets.size())
@@ -148,6 +182,16 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
         .field("factorizations", p.factorizations)
         .end_object();
   json.end_array();
+  const TimerMeans means = timer_means(r);
+  json.key("timers").begin_object().field("slowest_steps", means.slowest_steps);
+  json.key("parts").begin_array();
+  for (std::size_t k = 0; k < means.all.size(); ++k)
+    json.begin_object()
+        .field("name", timer_name(k))
+        .field("mean_ms", means.all[k])
+        .field("slowest_mean_ms", means.slowest[k])
+        .end_object();
+  json.end_array().end_object();
 }
 
 void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
@@ -165,6 +209,14 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
               << p.ms.size() << " steps: median " << timing_quantile(p.ms, 0.5) << " ms, p95 "
               << timing_quantile(p.ms, 0.95) << " ms; Newton " << p.passes << ", CG " << p.linear
               << " a step, " << p.factorizations << " factorisations\n";
+  const TimerMeans means = timer_means(r);
+  std::cout << "  ms a step, all steps / the " << means.slowest_steps << " at the p99 or over:";
+  for (std::size_t k = 0; k < means.all.size(); ++k) {
+    std::string name = timer_name(k);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    std::cout << (k ? ", " : " ") << name << ' ' << means.all[k] << " / " << means.slowest[k];
+  }
+  std::cout << '\n';
 }
 
 // The solver's settings from --newton-iterations ... --threads, checked.
@@ -194,12 +246,17 @@ sim::SimOptions solver_options(const Arguments& args) {
 // --steps: every step's time and solver counts.
 void write_steps_csv(std::ostream& out, double time_step, const sim::PinchReport& report) {
   out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
-         "halvings,direct_solves\n";
-  for (std::size_t i = 0; i < report.step_ms.size(); ++i)
+         "halvings,direct_solves";
+  for (const char* name : sim::kStepTimerNames) out << ',' << name << "_ms";
+  out << '\n';
+  for (std::size_t i = 0; i < report.step_ms.size(); ++i) {
     out << i << ',' << double(i + 1) * time_step << ',' << report.step_ms[i] << ','
         << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
         << report.factorizations[i] << ',' << report.contacts[i] << ',' << report.halvings[i] << ','
-        << report.direct_solves[i] << '\n';
+        << report.direct_solves[i];
+    for (double ms : report.timer_ms[i]) out << ',' << ms;
+    out << '\n';
+  }
 }
 
 std::vector<OptionSpec> sim_bench_options() {
@@ -234,8 +291,9 @@ std::vector<OptionSpec> sim_bench_options() {
        "1"},
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
-       "write every step's time (ms), Newton and CG iterations, factorisations, contacts and "
-       "line-search halvings"},
+       "write every step's time (ms), Newton and CG iterations, factorisations, contacts, "
+       "line-search halvings, direct solves, and the time of each part of its solve (ms: "
+       "evaluate, line_search, assemble, factorize, cg, direct_solve)"},
       physics_option(),
       posture_option(),
   };
@@ -274,7 +332,10 @@ int sim_bench(const std::vector<std::string>& argv) {
       throw std::runtime_error("sim bench: run " + std::to_string(run + 1) +
                                " took other iterations than the first");
     for (std::size_t i = 0; i < report.step_ms.size(); ++i)
-      report.step_ms[i] = std::min(report.step_ms[i], again.step_ms[i]);
+      if (again.step_ms[i] < report.step_ms[i]) {
+        report.step_ms[i] = again.step_ms[i];
+        report.timer_ms[i] = again.timer_ms[i];  // the parts of the run that counts
+      }
   }
   if (args.text("json") != "-") {  // else the JSON alone
     // What was timed, when it is not the default pinch.

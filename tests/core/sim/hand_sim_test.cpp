@@ -2,6 +2,7 @@
 // most tracked poses (under two Newton iterations a step, those that cycle under one), targets that
 // jump, leave the joint limits or are not numbers leave its state finite and bounded, and the
 // tracking's damping filters a small jump but not a fast move.
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -87,6 +88,35 @@ TEST(HandSimulator, HoldsAPoseAgainstGravity) {
   double speed = 0.0;
   for (const Eigen::Vector3d& v : s.node_velocity) speed = std::max(speed, v.norm());
   EXPECT_LT(speed, 0.01) << "m/s: the hand should have come to rest";
+}
+
+// Each step says where its time went (SimStepReport::timer_ms): the energy at its Newton
+// iterates and the line search always, the panels' assembly, the factorisation and the solves
+// by the factor when it made them, and no more than the step took in all.
+TEST(HandSimulator, TimesTheStepsParts) {
+  const StudyHand& h = study_hand();
+  HandSimulator sim(h.model);
+  const hand::HandPose pose = palm_down(h.skeleton);
+  HandSimState s = start_state(h, pose);
+  const std::vector<RigidPose> targets = bone_targets(h.model, h.skeleton, pose);
+  for (int i = 0; i < 10; ++i) {
+    const auto begin = std::chrono::steady_clock::now();
+    const SimStepReport report = sim.step(s, targets);
+    const double wall =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    const auto& ms = report.timer_ms;
+    double timed = 0.0;
+    for (double part : ms) {
+      EXPECT_GE(part, 0.0);
+      timed += part;
+    }
+    EXPECT_LE(timed, wall) << "step " << i;
+    EXPECT_GT(ms[std::size_t(StepTimer::kEvaluate)], 0.0) << "step " << i;
+    EXPECT_EQ(ms[std::size_t(StepTimer::kFactorize)] > 0, report.factorizations > 0) << i;
+    EXPECT_EQ(ms[std::size_t(StepTimer::kAssemble)] > 0, report.factorizations > 0) << i;
+    EXPECT_EQ(ms[std::size_t(StepTimer::kDirectSolve)] > 0, report.direct_solves > 0) << i;
+    EXPECT_GT(ms[std::size_t(StepTimer::kLineSearch)], 0.0) << "step " << i;
+  }
 }
 
 // How a hand of `model` held still in a pose of the real pinch recording (retargeted by Ours onto

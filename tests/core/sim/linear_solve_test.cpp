@@ -6,10 +6,15 @@
 
 #include "core/sim/hand_simulator.h"
 #include "core/sim/linear_solve.h"
+#include "core/sim/step_timer.h"
 #include "tests/core/sim/stage_fixture.h"
 
 namespace handlab::sim {
 namespace {
+
+double timed(const SimStepReport& report, StepTimer timer) {
+  return report.timer_ms[std::size_t(timer)];
+}
 
 struct System {
   const HandSimModel& model;
@@ -63,6 +68,11 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
   EXPECT_EQ(first.direct_solves, 1);
   EXPECT_GT(direct.lpNorm<Eigen::Infinity>(), 0.0);
   EXPECT_LT(system.left(direct), 1e-3 * options.linear_tolerance);
+  // Its time: the matrix written into the panels, factorised, solved; no CG.
+  EXPECT_GT(timed(first, StepTimer::kAssemble), 0.0);
+  EXPECT_GT(timed(first, StepTimer::kFactorize), 0.0);
+  EXPECT_GT(timed(first, StepTimer::kDirectSolve), 0.0);
+  EXPECT_EQ(timed(first, StepTimer::kCg), 0.0);
 
   // The same matrix again (a later pass whose contacts did not change): the factor alone.
   SimStepReport again;
@@ -70,6 +80,10 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
   EXPECT_EQ(again.factorizations, 0);
   EXPECT_EQ(again.direct_solves, 1);
   EXPECT_EQ(same, direct);
+  EXPECT_EQ(timed(again, StepTimer::kAssemble), 0.0);
+  EXPECT_EQ(timed(again, StepTimer::kFactorize), 0.0);
+  EXPECT_GT(timed(again, StepTimer::kDirectSolve), 0.0);
+  EXPECT_EQ(timed(again, StepTimer::kCg), 0.0);
 
   // The next step's matrix, a little way on: CG with the old factor as preconditioner.
   HandSimState next = g.state;
@@ -83,6 +97,8 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
   EXPECT_GE(cg.linear_iterations, 1);
   EXPECT_LE(cg.linear_iterations, options.max_linear_iterations);
   EXPECT_LE(system.left(iterated), options.linear_tolerance);
+  EXPECT_GT(timed(cg, StepTimer::kCg), 0.0);
+  EXPECT_EQ(timed(cg, StepTimer::kFactorize) + timed(cg, StepTimer::kDirectSolve), 0.0);
 }
 
 // When CG cannot reach the tolerance in its iterations, the matrix is factorised and solved
@@ -110,6 +126,9 @@ TEST(LinearSolve, FallsBackToTheFactorizationWhenCgFails) {
   EXPECT_EQ(failed.factorizations, 1);
   EXPECT_EQ(failed.direct_solves, 1);
   EXPECT_EQ(failed.linear_iterations, 2) << "one CG iteration, then the direct solve";
+  for (StepTimer part :
+       {StepTimer::kCg, StepTimer::kAssemble, StepTimer::kFactorize, StepTimer::kDirectSolve})
+    EXPECT_GT(timed(failed, part), 0.0) << "each part of a failed CG's solve is timed";
   EXPECT_LT(system.left(x), 1e-3 * 1e-8);
   EXPECT_EQ(system.memory.direct_until, system.memory.step + 1 + options.direct_steps);
 }
