@@ -1,7 +1,11 @@
 // What the simulator's steps cost over a run (a trial, a session, a study): how many steps,
-// how many of them factorised the Newton matrix, their passes, CG iterations and wall-clock
-// time. Counting only: where a simulated study's time goes (docs/performance.md).
+// how many of them factorised the Newton matrix, their passes, CG iterations, wall-clock time
+// and its parts (StepTimer). Counting only: where a simulated study's time goes
+// (docs/performance.md).
 #pragma once
+
+#include <array>
+#include <cstddef>
 
 #include "core/sim/sim_options.h"
 
@@ -13,7 +17,8 @@ struct StepTotals {
   long factorizations = 0;
   long passes = 0;  // Newton iterations: a step takes more than one when contacts changed
   long linear_iterations = 0, direct_solves = 0, halvings = 0;
-  double seconds = 0.0;  // wall clock inside HandSimulator::step
+  double seconds = 0.0;                             // wall clock inside HandSimulator::step
+  std::array<double, kStepTimers> timer_seconds{};  // the parts of it (SimStepReport::timer_ms)
 
   void add(const SimStepReport& r, double step_seconds) {
     ++steps;
@@ -24,6 +29,7 @@ struct StepTotals {
     direct_solves += r.direct_solves;
     halvings += r.halvings;
     seconds += step_seconds;
+    for (std::size_t k = 0; k < kStepTimers; ++k) timer_seconds[k] += 1e-3 * r.timer_ms[k];
   }
   StepTotals& operator+=(const StepTotals& o) {
     steps += o.steps;
@@ -34,6 +40,7 @@ struct StepTotals {
     direct_solves += o.direct_solves;
     halvings += o.halvings;
     seconds += o.seconds;
+    for (std::size_t k = 0; k < kStepTimers; ++k) timer_seconds[k] += o.timer_seconds[k];
     return *this;
   }
 };

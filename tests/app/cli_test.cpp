@@ -403,11 +403,13 @@ TEST(CliSim, ReplayDrivesTheSoftHandByARecording) {
       run_cli("sim replay " + recording + " --hold --frame 40 --duration 2 --json " + json);
   ASSERT_EQ(held.status, 0) << held.out;
   EXPECT_NE(held.out.find("held still"), std::string::npos) << held.out;
+  EXPECT_NE(held.out.find("ms a step by part: evaluate"), std::string::npos) << held.out;
   const std::string text = test::file_bytes(json);
   for (const char* key :
        {"\"strategy\": \"ours\"", "\"hold\": true", "\"frame\": 40", "\"newton_iterations\": 1",
         "\"steps\": 240", "\"step_ms_median\"", "\"step_ms_p95\"", "\"factorizations\"",
-        "\"linear_iterations_per_step\"", "\"fastest_node_last_half_second_m_s\""})
+        "\"linear_iterations_per_step\"", "\"fastest_node_last_half_second_m_s\"",
+        "\"timer_seconds\"", "\"factorize\""})
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   const std::size_t at = text.find("\"fastest_node_last_half_second_m_s\": ");
   ASSERT_NE(at, std::string::npos);
@@ -482,6 +484,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
   EXPECT_NE(r.out.find("median"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("approach"), std::string::npos) << "the phases: " << r.out;
   EXPECT_NE(r.out.find("at the p99 or over: evaluate"), std::string::npos) << "timers: " << r.out;
+  EXPECT_NE(r.out.find(", factorise "), std::string::npos) << r.out;
   const std::string text = test::file_bytes(json);
   for (const char* key : {"\"scale\": 1",
                           "\"tets\"",

@@ -100,6 +100,13 @@ TEST(PipelineTrialDriver, RunsATrialOnTheSoftHand) {
   EXPECT_GE(run.simulator.factorizing_steps, 1);
   EXPECT_GE(run.simulator.factorizations, run.simulator.factorizing_steps);
   EXPECT_GT(run.simulator.seconds, 0.0);
+  // Its time by part (StepTimer): each part timed, together no more than the steps took.
+  double timed = 0.0;
+  for (double part : run.simulator.timer_seconds) {
+    EXPECT_GT(part, 0.0);
+    timed += part;
+  }
+  EXPECT_LE(timed, run.simulator.seconds);
   EXPECT_GT(touching, 10) << "frames with thumb or index on the cube";
   EXPECT_EQ(moved_untouched, 0) << "the cube moved before the hand touched it";
 }

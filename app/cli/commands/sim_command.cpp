@@ -22,6 +22,7 @@
 #include "app/cli/commands/sim_pinches.h"
 #include "app/cli/commands/sim_replay.h"
 #include "app/cli/commands/sim_settle.h"
+#include "app/cli/commands/step_parts.h"
 #include "core/hand/flesh.h"
 #include "core/hand/hand_shape.h"
 #include "core/hand/simulated_hand.h"
@@ -135,6 +136,7 @@ TimerMeans timer_means(const sim::PinchReport& r) {
   return means;
 }
 
+// Part k's key in the JSON; k = kStepTimers the rest of the step.
 const char* timer_name(std::size_t k) {
   return k < sim::kStepTimers ? sim::kStepTimerNames[k] : "rest";
 }
@@ -211,11 +213,9 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
               << " a step, " << p.factorizations << " factorisations\n";
   const TimerMeans means = timer_means(r);
   std::cout << "  ms a step, all steps / the " << means.slowest_steps << " at the p99 or over:";
-  for (std::size_t k = 0; k < means.all.size(); ++k) {
-    std::string name = timer_name(k);
-    std::replace(name.begin(), name.end(), '_', ' ');
-    std::cout << (k ? ", " : " ") << name << ' ' << means.all[k] << " / " << means.slowest[k];
-  }
+  for (std::size_t k = 0; k < means.all.size(); ++k)
+    std::cout << (k ? ", " : " ") << step_part_label(k) << ' ' << means.all[k] << " / "
+              << means.slowest[k];
   std::cout << '\n';
 }
 

@@ -16,6 +16,7 @@
 #include "app/cli/arguments.h"
 #include "app/cli/command_help.h"
 #include "app/cli/commands/sim_grasp.h"
+#include "app/cli/commands/step_parts.h"
 #include "core/hand/flesh.h"
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/recording_poses.h"
@@ -34,6 +35,7 @@ struct ReplayFigures {
   int steps = 0;
   std::vector<double> step_ms;
   long factorizations = 0, linear_iterations = 0;
+  sim::StepTotals totals;       // the steps' time by part
   double fastest_at_end = 0.0;  // m/s: the fastest flesh node in the last 0.5 s
 };
 
@@ -66,6 +68,7 @@ ReplayFigures replay_poses(const retarget::RecordingPoses& replay, const sim::Ha
     f.step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());
+    f.totals.add(r, 1e-3 * f.step_ms.back());
     f.factorizations += r.factorizations;
     f.linear_iterations += r.linear_iterations;
     if (double(f.steps - i) * h <= 0.5)
@@ -150,7 +153,9 @@ int sim_replay(const std::vector<std::string>& argv) {
               << "): " << f.steps << " steps, median " << median << " ms, p95 " << p95 << " ms; "
               << f.factorizations << " factorisations, CG " << double(f.linear_iterations) / f.steps
               << " a step; fastest flesh node in the last 0.5 s " << std::setprecision(3)
-              << f.fastest_at_end * 1000 << " mm/s\n";
+              << f.fastest_at_end * 1000 << " mm/s\n"
+              << std::setprecision(2);
+    print_step_parts(std::cout, f.totals);
   }
   if (args.has("json")) {
     util::write_output(json_out, [&](std::ostream& out) {
@@ -169,8 +174,9 @@ int sim_replay(const std::vector<std::string>& argv) {
           .field("step_ms_p95", p95)
           .field("factorizations", static_cast<long long>(f.factorizations))
           .field("linear_iterations_per_step", double(f.linear_iterations) / f.steps)
-          .field("fastest_node_last_half_second_m_s", f.fastest_at_end)
-          .end_object();
+          .field("fastest_node_last_half_second_m_s", f.fastest_at_end);
+      write_step_parts(json, f.totals);
+      json.end_object();
     });
   }
   return 0;

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <stdexcept>
+#include <string>
 
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include "app/cli/command_help.h"
 #include "app/cli/commands/commands.h"
 #include "app/cli/commands/simulate_slurm.h"
+#include "app/cli/commands/step_parts.h"
 #include "app/cli/progress_line.h"
 #include "app/cli/world_option.h"
 #include "core/util/json_writer.h"
@@ -213,6 +215,7 @@ void print_simulator_totals(const studies::SimulationReport& report) {
   };
   for (const auto& [label, t] : report.simulator) line(label, t);
   line("all", all);
+  print_step_parts(std::cout, all);
 }
 
 void print_outcome(const studies::SimulationReport& report,
@@ -262,7 +265,7 @@ void write_outcome_json(std::ostream& out, const studies::SimulationReport& repo
     w.field("trials", c.planned).end_object();
   }
   w.end_array().key("simulator").begin_array();
-  for (const auto& [label, t] : report.simulator)
+  for (const auto& [label, t] : report.simulator) {
     w.begin_object()
         .field("condition", label)
         .field("steps", static_cast<long long>(t.steps))
@@ -272,8 +275,10 @@ void write_outcome_json(std::ostream& out, const studies::SimulationReport& repo
         .field("linear_iterations", static_cast<long long>(t.linear_iterations))
         .field("direct_solves", static_cast<long long>(t.direct_solves))
         .field("halvings", static_cast<long long>(t.halvings))
-        .field("seconds", t.seconds)
-        .end_object();
+        .field("seconds", t.seconds);
+    write_step_parts(w, t);
+    w.end_object();
+  }
   w.end_array();
   write_participant_time(w, report);
   w.end_object();
