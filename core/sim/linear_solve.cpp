@@ -181,6 +181,7 @@ Eigen::VectorXd solve_newton_step(const HandSimModel& model, const NewtonTerms& 
     // steps factorise at once rather than spend CG iterations first.
     if (first && memory.factorized_at == memory.step - 1)
       memory.direct_until = memory.step + 1 + options.direct_steps;
+    ++report.failed_cg;
     return direct();
   }
   return x;

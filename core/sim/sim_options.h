@@ -59,6 +59,9 @@ struct SimStepReport {
   // Solves by the factorisation alone (after a factorisation, and in a step's later passes
   // while the factor is the matrix's): each counts one linear iteration, and needs no product.
   int direct_solves = 0;
+  // CG solves that stopped short of the tolerance (out of iterations, or far off halfway),
+  // each then factorised and solved directly: the CG iterations they took were spent for nothing.
+  int failed_cg = 0;
   // Step lengths the line search rejected (each halves the next; after 12 the last is taken).
   // With an energy and gradient that agree, rare: a step that runs into a surface or a kink.
   int halvings = 0;
@@ -75,6 +78,7 @@ inline void add_work(const SimStepReport& more, SimStepReport& total) {
   total.linear_iterations += more.linear_iterations;
   total.factorizations += more.factorizations;
   total.direct_solves += more.direct_solves;
+  total.failed_cg += more.failed_cg;
   total.halvings += more.halvings;
   for (std::size_t k = 0; k < kStepTimers; ++k) total.timer_ms[k] += more.timer_ms[k];
   total.max_penetration = more.max_penetration;

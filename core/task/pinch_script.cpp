@@ -483,6 +483,7 @@ PinchReport run_pinch(const HandSimModel& model, const hand::Skeleton& skeleton,
     report.contacts.push_back(step.contacts);
     report.halvings.push_back(step.halvings);
     report.direct_solves.push_back(step.direct_solves);
+    report.failed_cg.push_back(step.failed_cg);
     report.timer_ms.push_back(step.timer_ms);
     if (observer) observer(state);
     meter.observe(state, t, step.max_penetration);

@@ -123,7 +123,7 @@ struct PinchReport {
   int inverted_tets = 0;
   std::vector<double> step_ms;  // wall time of every step
   std::vector<int> newton_iterations, linear_iterations, factorizations, contacts;  // per step
-  std::vector<int> halvings, direct_solves;                                         // per step
+  std::vector<int> halvings, direct_solves, failed_cg;                              // per step
   std::vector<std::array<double, kStepTimers>> timer_ms;  // per step (SimStepReport::timer_ms)
 };
 

@@ -504,6 +504,7 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
                           "\"linear_iterations\"",
                           "\"factorizations\"",
                           "\"direct_solves\"",
+                          "\"failed_cg\"",
                           "\"phases\"",
                           "\"name\": \"shape\"",
                           "\"name\": \"approach\"",
@@ -516,7 +517,8 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   const std::string csv = test::file_bytes(steps);
   EXPECT_EQ(csv.rfind("step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,"
-                      "contacts,halvings,direct_solves,evaluate_ms,line_search_ms,assemble_ms,"
+                      "contacts,halvings,direct_solves,failed_cg,evaluate_ms,line_search_ms,"
+                      "assemble_ms,"
                       "factorize_ms,cg_ms,direct_solve_ms\n",
                       0),
             0u)

@@ -170,6 +170,7 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
   json.field("factorizations",
              std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0));
   json.field("direct_solves", std::accumulate(r.direct_solves.begin(), r.direct_solves.end(), 0));
+  json.field("failed_cg", std::accumulate(r.failed_cg.begin(), r.failed_cg.end(), 0));
   json.key("phases").begin_array();
   for (const Phase& p : phases(setup, r))
     json.begin_object()
@@ -205,7 +206,8 @@ void print_timing(const sim::PinchScene& setup, const sim::PinchReport& r) {
             << timing_quantile(r.step_ms, 1.0) << " ms; Newton " << mean(r.newton_iterations)
             << ", CG " << mean(r.linear_iterations) << " a step, "
             << std::accumulate(r.factorizations.begin(), r.factorizations.end(), 0)
-            << " factorisations\n";
+            << " factorisations (" << std::accumulate(r.failed_cg.begin(), r.failed_cg.end(), 0)
+            << " after a CG that failed)\n";
   for (const Phase& p : phases(setup, r))
     std::cout << "  " << std::left << std::setw(9) << p.name << std::right << std::setw(4)
               << p.ms.size() << " steps: median " << timing_quantile(p.ms, 0.5) << " ms, p95 "
@@ -246,14 +248,14 @@ sim::SimOptions solver_options(const Arguments& args) {
 // --steps: every step's time and solver counts.
 void write_steps_csv(std::ostream& out, double time_step, const sim::PinchReport& report) {
   out << "step,time_s,step_ms,newton_iterations,linear_iterations,factorizations,contacts,"
-         "halvings,direct_solves";
+         "halvings,direct_solves,failed_cg";
   for (const char* name : sim::kStepTimerNames) out << ',' << name << "_ms";
   out << '\n';
   for (std::size_t i = 0; i < report.step_ms.size(); ++i) {
     out << i << ',' << double(i + 1) * time_step << ',' << report.step_ms[i] << ','
         << report.newton_iterations[i] << ',' << report.linear_iterations[i] << ','
         << report.factorizations[i] << ',' << report.contacts[i] << ',' << report.halvings[i] << ','
-        << report.direct_solves[i];
+        << report.direct_solves[i] << ',' << report.failed_cg[i];
     for (double ms : report.timer_ms[i]) out << ',' << ms;
     out << '\n';
   }
@@ -292,7 +294,8 @@ std::vector<OptionSpec> sim_bench_options() {
       {"json", "OUT", "write the figures as JSON (- for standard output)"},
       {"steps", "CSV",
        "write every step's time (ms), Newton and CG iterations, factorisations, contacts, "
-       "line-search halvings, direct solves, and the time of each part of its solve (ms: "
+       "line-search halvings, direct solves, CG solves that failed, and the time of each part of "
+       "its solve (ms: "
        "evaluate, line_search, assemble, factorize, cg, direct_solve)"},
       physics_option(),
       posture_option(),

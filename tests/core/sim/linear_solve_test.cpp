@@ -94,6 +94,7 @@ TEST(LinearSolve, FactorizesThenSolvesDirectlyThenByCg) {
   const Eigen::VectorXd iterated = system.solve(options, cg, true);
   EXPECT_EQ(cg.factorizations, 0);
   EXPECT_EQ(cg.direct_solves, 0);
+  EXPECT_EQ(cg.failed_cg, 0);
   EXPECT_GE(cg.linear_iterations, 1);
   EXPECT_LE(cg.linear_iterations, options.max_linear_iterations);
   EXPECT_LE(system.left(iterated), options.linear_tolerance);
@@ -126,6 +127,7 @@ TEST(LinearSolve, FallsBackToTheFactorizationWhenCgFails) {
   EXPECT_EQ(failed.factorizations, 1);
   EXPECT_EQ(failed.direct_solves, 1);
   EXPECT_EQ(failed.linear_iterations, 2) << "one CG iteration, then the direct solve";
+  EXPECT_EQ(failed.failed_cg, 1);
   for (StepTimer part :
        {StepTimer::kCg, StepTimer::kAssemble, StepTimer::kFactorize, StepTimer::kDirectSolve})
     EXPECT_GT(timed(failed, part), 0.0) << "each part of a failed CG's solve is timed";
