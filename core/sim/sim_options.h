@@ -47,10 +47,17 @@ inline SimOptions single_threaded() {
 // MuJoCo's timers do: the energy's terms at each Newton iterate, the line search's energies,
 // the Newton matrix written into the factorisation's panels, their factorisation, CG's
 // iterations (its products, preconditioner solves and the diagonal it measures by), and the
-// solves by a factor alone. What a step spends elsewhere (the prediction, the contact search,
-// the friction's checks) is its time less their sum.
+// solves by a factor alone. What a step spends elsewhere is its time less their sum: the
+// prediction, the contact search, the friction's checks, the factor's update for the cube's
+// own terms, and the cube's substeps and free steps (whose own solves are not counted here).
 enum class StepTimer { kEvaluate, kLineSearch, kAssemble, kFactorize, kCg, kDirectSolve, kCount };
 constexpr std::size_t kStepTimers = std::size_t(StepTimer::kCount);
+// Each timer's name in reports (JSON keys, CSV columns) and for people, in StepTimer's order.
+constexpr auto kStepTimerNames = std::to_array<const char*>(
+    {"evaluate", "line_search", "assemble", "factorize", "cg", "direct_solve"});
+constexpr auto kStepTimerLabels = std::to_array<const char*>(
+    {"evaluate", "line search", "assemble", "factorise", "CG", "direct solve"});
+static_assert(kStepTimerNames.size() == kStepTimers && kStepTimerLabels.size() == kStepTimers);
 
 struct SimStepReport {
   int newton_iterations = 0;
@@ -59,8 +66,9 @@ struct SimStepReport {
   // Solves by the factorisation alone (after a factorisation, and in a step's later passes
   // while the factor is the matrix's): each counts one linear iteration, and needs no product.
   int direct_solves = 0;
-  // CG solves that stopped short of the tolerance (out of iterations, or far off halfway),
-  // each then factorised and solved directly: the CG iterations they took were spent for nothing.
+  // CG solves that stopped short of the tolerance (out of iterations, far off halfway, or a
+  // direction of no positive curvature), each then factorised and solved directly: the CG
+  // iterations they took were spent for nothing.
   int failed_cg = 0;
   // Step lengths the line search rejected (each halves the next; after 12 the last is taken).
   // With an energy and gradient that agree, rare: a step that runs into a surface or a kink.

@@ -8,12 +8,6 @@
 
 namespace handlab::sim {
 
-// Each timer's name in reports (JSON keys, CSV columns) and for people, in StepTimer's order.
-constexpr const char* kStepTimerNames[kStepTimers] = {"evaluate",  "line_search", "assemble",
-                                                      "factorize", "cg",          "direct_solve"};
-constexpr const char* kStepTimerLabels[kStepTimers] = {"evaluate",  "line search", "assemble",
-                                                       "factorise", "CG",          "direct solve"};
-
 // Adds the wall time from its construction to stop() or its end, whichever comes first.
 class ScopedStepTimer {
  public:

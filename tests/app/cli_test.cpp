@@ -524,6 +524,10 @@ TEST(CliSim, BenchReportsTheMeshAndStepTimes) {
             0u)
       << csv.substr(0, 200);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 49) << "a header and 48 steps";
+  const std::size_t header_end = csv.find('\n');
+  const std::string row =
+      csv.substr(header_end + 1, csv.find('\n', header_end + 1) - header_end - 1);
+  EXPECT_EQ(std::count(row.begin(), row.end(), ','), 15) << "16 fields, as the header: " << row;
   EXPECT_EQ(run_cli("sim bench --threads 0").status, 2);
   EXPECT_EQ(run_cli("sim bench --max-linear-iterations -1").status, 2);
   EXPECT_EQ(run_cli("sim bench --direct-steps -1").status, 2);

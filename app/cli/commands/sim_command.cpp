@@ -4,6 +4,7 @@
 // (sim_replay.cpp) drives the hand by a real recording; `settle` (sim_settle.cpp) kicks the cube
 // alone on the floor.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -30,7 +31,7 @@
 #include "core/render/offscreen_context.h"
 #include "core/render/sim_drawing.h"
 #include "core/sim/contact_forces.h"
-#include "core/sim/step_timer.h"
+#include "core/sim/sim_options.h"
 #include "core/task/pinch_scene.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -136,11 +137,6 @@ TimerMeans timer_means(const sim::PinchReport& r) {
   return means;
 }
 
-// Part k's key in the JSON; k = kStepTimers the rest of the step.
-const char* timer_name(std::size_t k) {
-  return k < sim::kStepTimers ? sim::kStepTimerNames[k] : "rest";
-}
-
 void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const sim::PinchReport& r) {
   const std::vector<int>& lin = r.linear_iterations;
   json.field("tets", setup.model.tets.size())
@@ -190,7 +186,7 @@ void write_timing(util::JsonWriter& json, const sim::PinchScene& setup, const si
   json.key("parts").begin_array();
   for (std::size_t k = 0; k < means.all.size(); ++k)
     json.begin_object()
-        .field("name", timer_name(k))
+        .field("name", step_part_name(k))
         .field("mean_ms", means.all[k])
         .field("slowest_mean_ms", means.slowest[k])
         .end_object();
@@ -295,8 +291,8 @@ std::vector<OptionSpec> sim_bench_options() {
       {"steps", "CSV",
        "write every step's time (ms), Newton and CG iterations, factorisations, contacts, "
        "line-search halvings, direct solves, CG solves that failed, and the time of each part of "
-       "its solve (ms: "
-       "evaluate, line_search, assemble, factorize, cg, direct_solve)"},
+       "its solve (ms: " +
+           step_part_names() + ")"},
       physics_option(),
       posture_option(),
   };

@@ -21,6 +21,7 @@
 #include "core/hand/simulated_hand.h"
 #include "core/retarget/recording_poses.h"
 #include "core/sim/hand_simulator.h"
+#include "core/sim/step_totals.h"
 #include "core/tracking/recording_io.h"
 #include "core/util/json_writer.h"
 #include "core/util/output_file.h"
@@ -34,8 +35,7 @@ using stats::timing_quantile;
 struct ReplayFigures {
   int steps = 0;
   std::vector<double> step_ms;
-  long factorizations = 0, linear_iterations = 0;
-  sim::StepTotals totals;       // the steps' time by part
+  sim::StepTotals totals;       // their factorisations, CG iterations and time by part
   double fastest_at_end = 0.0;  // m/s: the fastest flesh node in the last 0.5 s
 };
 
@@ -69,8 +69,6 @@ ReplayFigures replay_poses(const retarget::RecordingPoses& replay, const sim::Ha
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());
     f.totals.add(r, 1e-3 * f.step_ms.back());
-    f.factorizations += r.factorizations;
-    f.linear_iterations += r.linear_iterations;
     if (double(f.steps - i) * h <= 0.5)
       for (const Eigen::Vector3d& v : state.node_velocity)
         f.fastest_at_end = std::max(f.fastest_at_end, v.norm());
@@ -151,7 +149,8 @@ int sim_replay(const std::vector<std::string>& argv) {
     std::cout << std::fixed << std::setprecision(2) << recording.source << " (" << strategy_name
               << (hold ? ", pose " + std::to_string(frame) + " held still" : "") << changed
               << "): " << f.steps << " steps, median " << median << " ms, p95 " << p95 << " ms; "
-              << f.factorizations << " factorisations, CG " << double(f.linear_iterations) / f.steps
+              << f.totals.factorizations << " factorisations, CG "
+              << double(f.totals.linear_iterations) / f.steps
               << " a step; fastest flesh node in the last 0.5 s " << std::setprecision(3)
               << f.fastest_at_end * 1000 << " mm/s\n"
               << std::setprecision(2);
@@ -172,8 +171,8 @@ int sim_replay(const std::vector<std::string>& argv) {
       json.field("steps", f.steps)
           .field("step_ms_median", median)
           .field("step_ms_p95", p95)
-          .field("factorizations", static_cast<long long>(f.factorizations))
-          .field("linear_iterations_per_step", double(f.linear_iterations) / f.steps)
+          .field("factorizations", static_cast<long long>(f.totals.factorizations))
+          .field("linear_iterations_per_step", double(f.totals.linear_iterations) / f.steps)
           .field("fastest_node_last_half_second_m_s", f.fastest_at_end);
       write_step_parts(json, f.totals);
       json.end_object();

@@ -2,9 +2,20 @@
 
 #include <algorithm>
 
-#include "core/sim/step_timer.h"
+#include "core/sim/sim_options.h"
 
 namespace handlab::cli {
+
+std::string step_part_name(std::size_t k) {
+  return k < sim::kStepTimers ? sim::kStepTimerNames[k] : "rest";
+}
+
+std::string step_part_names() {
+  std::string names;
+  for (const char* name : sim::kStepTimerNames)
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  return names;
+}
 
 std::string step_part_label(std::size_t k) {
   return k < sim::kStepTimers ? sim::kStepTimerLabels[k] : "the rest";

@@ -11,8 +11,13 @@
 
 namespace handlab::cli {
 
-// Part k's name for people (kStepTimerLabels); k = kStepTimers is the rest of the step.
+// Part k's name in JSON keys and CSV columns (kStepTimerNames), and for people
+// (kStepTimerLabels); k = kStepTimers is the rest of the step.
+std::string step_part_name(std::size_t k);
 std::string step_part_label(std::size_t k);
+
+// The parts' names, comma separated (for help texts).
+std::string step_part_names();
 
 // "ms a step by part: evaluate 0.34, ..., the rest 0.19" over the totals' steps.
 void print_step_parts(std::ostream& out, const sim::StepTotals& totals);
