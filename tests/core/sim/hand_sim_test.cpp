@@ -53,6 +53,15 @@ HandSimState start_state(const StudyHand& h, const hand::HandPose& pose) {
   return initial_state(h.model, h.skeleton, root, cube);
 }
 
+// The study hand palm down, held there: its simulator, pose, state and targets.
+struct PalmDownHold {
+  const StudyHand& h = study_hand();
+  HandSimulator sim{h.model};
+  hand::HandPose pose = palm_down(h.skeleton);
+  HandSimState s = start_state(h, pose);
+  std::vector<RigidPose> targets = bone_targets(h.model, h.skeleton, pose);
+};
+
 double farthest_node(const HandSimState& s, const Eigen::Vector3d& from) {
   double d = 0;
   for (const Eigen::Vector3d& x : s.node_position) {
@@ -63,11 +72,8 @@ double farthest_node(const HandSimState& s, const Eigen::Vector3d& from) {
 }
 
 TEST(HandSimulator, HoldsAPoseAgainstGravity) {
-  const StudyHand& h = study_hand();
-  HandSimulator sim(h.model);
-  const hand::HandPose pose = palm_down(h.skeleton);
-  HandSimState s = start_state(h, pose);
-  const std::vector<RigidPose> targets = bone_targets(h.model, h.skeleton, pose);
+  PalmDownHold hold;
+  auto& [h, sim, pose, s, targets] = hold;
   for (int i = 0; i < 60; ++i) sim.step(s, targets);
   double bone_off = 0.0, node_off = 0.0;
   for (int b = 0; b < h.model.bone_count(); ++b)
@@ -94,11 +100,8 @@ TEST(HandSimulator, HoldsAPoseAgainstGravity) {
 // iterates and the line search always, the panels' assembly, the factorisation and the solves
 // by the factor when it made them, and no more than the step took in all.
 TEST(HandSimulator, TimesTheStepsParts) {
-  const StudyHand& h = study_hand();
-  HandSimulator sim(h.model);
-  const hand::HandPose pose = palm_down(h.skeleton);
-  HandSimState s = start_state(h, pose);
-  const std::vector<RigidPose> targets = bone_targets(h.model, h.skeleton, pose);
+  PalmDownHold hold;
+  auto& [h, sim, pose, s, targets] = hold;
   for (int i = 0; i < 10; ++i) {
     const auto begin = std::chrono::steady_clock::now();
     const SimStepReport report = sim.step(s, targets);
@@ -356,11 +359,8 @@ TEST(HandSimulator, StaysBoundedForTargetsBeyondTheJointLimits) {
 }
 
 TEST(HandSimulator, RejectsATargetThatIsNotANumberAndKeepsItsState) {
-  const StudyHand& h = study_hand();
-  HandSimulator sim(h.model);
-  const hand::HandPose pose = palm_down(h.skeleton);
-  HandSimState s = start_state(h, pose);
-  std::vector<RigidPose> targets = bone_targets(h.model, h.skeleton, pose);
+  PalmDownHold hold;
+  auto& [h, sim, pose, s, targets] = hold;
   sim.step(s, targets);
   const HandSimState before = s;
   targets[6].position.y() = NAN;
